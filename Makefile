@@ -1,0 +1,96 @@
+# crownshy — build, tests, verification and the full reproduction.
+# `make verify` (main job) and `make check` (tests) install missing Debian
+# packages themselves when run as root; otherwise they print the apt-get line.
+# Sources are discovered: every src/*.c except src/cli.c is library code, every
+# tests/test_*.c is one cmocka binary.
+
+SHELL := /bin/bash
+CC ?= cc
+# Determinism (SPEC §1): no FMA contraction, no fast-math, no -march=native.
+CFLAGS ?= -std=c11 -O2 -ffp-contract=off -g -Wall -Wextra -Wno-unused-parameter \
+          -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
+CPPFLAGS += -Isrc
+LDLIBS := -lgsl -lopenblas -lm
+SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+
+DEB_PKGS := libgsl-dev libopenblas-dev libcmocka-dev gnuplot-nox
+SCALE ?= full
+export OPENBLAS_NUM_THREADS := 1
+
+B := build
+LIB_SRC := $(filter-out src/cli.c,$(wildcard src/*.c))
+LIB_OBJ := $(patsubst src/%.c,$(B)/obj/%.o,$(LIB_SRC))
+ASAN_OBJ := $(patsubst src/%.c,$(B)/asan/obj/%.o,$(LIB_SRC))
+TEST_SRC := $(wildcard tests/test_*.c)
+TESTS := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_SRC))
+ASAN_TESTS := $(patsubst tests/%.c,$(B)/asan/tests/%,$(TEST_SRC))
+CLI := $(B)/crownshy
+
+.PHONY: all deps check check-fast verify bench reproduce freeze figures paper deps-paper audit clean
+.DELETE_ON_ERROR:
+
+all: $(CLI) $(TESTS)
+
+# ---- dependencies -----------------------------------------------------------
+deps:
+	@missing=""; for p in $(DEB_PKGS); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'install ok installed' || missing="$$missing $$p"; \
+	done; \
+	if [ -z "$$missing" ]; then exit 0; fi; \
+	if [ "$$(id -u)" = 0 ]; then \
+	  echo "deps: installing$$missing"; \
+	  export DEBIAN_FRONTEND=noninteractive; \
+	  apt-get update -q >/dev/null && apt-get install -y -q --no-install-recommends$$missing >/dev/null || \
+	    { echo "deps: apt-get install failed for$$missing" >&2; exit 1; }; \
+	else \
+	  echo "deps: missing Debian packages:$$missing" >&2; \
+	  echo "deps: run: sudo apt-get install -y$$missing" >&2; exit 1; \
+	fi
+
+# ---- build ------------------------------------------------------------------
+$(B)/obj/%.o: src/%.c $(wildcard src/*.h) | $(B)/obj
+	$(CC) $(CPPFLAGS) $(CFLAGS) -c $< -o $@
+$(B)/asan/obj/%.o: src/%.c $(wildcard src/*.h) | $(B)/asan/obj
+	$(CC) $(CPPFLAGS) $(CFLAGS) $(SANFLAGS) -c $< -o $@
+$(B)/libcrownshy.a: $(LIB_OBJ)
+	ar rcs $@ $^
+$(B)/asan/libcrownshy.a: $(ASAN_OBJ)
+	ar rcs $@ $^
+$(CLI): src/cli.c $(B)/libcrownshy.a
+	$(CC) $(CPPFLAGS) $(CFLAGS) $< $(B)/libcrownshy.a $(LDLIBS) -o $@
+$(B)/tests/%: tests/%.c $(B)/libcrownshy.a $(wildcard tests/*.h) | $(B)/tests
+	$(CC) $(CPPFLAGS) -Itests $(CFLAGS) $< $(B)/libcrownshy.a -lcmocka $(LDLIBS) -o $@
+$(B)/asan/tests/%: tests/%.c $(B)/asan/libcrownshy.a $(wildcard tests/*.h) | $(B)/asan/tests
+	$(CC) $(CPPFLAGS) -Itests $(CFLAGS) $(SANFLAGS) $< $(B)/asan/libcrownshy.a -lcmocka $(LDLIBS) -o $@
+$(B)/obj $(B)/asan/obj $(B)/tests $(B)/asan/tests:
+	mkdir -p $@
+
+# ---- tests ------------------------------------------------------------------
+# Every cmocka binary, then all of them again under ASan+UBSan; one aggregate line.
+check: deps
+	@$(MAKE) --no-print-directory $(CLI) $(TESTS) $(ASAN_TESTS)
+	@bash tests/run.sh $(TESTS) -- $(ASAN_TESTS)
+
+check-fast: deps
+	@$(MAKE) --no-print-directory $(CLI) $(TESTS)
+	@bash tests/run.sh $(TESTS)
+
+# ---- verification (the reviewer's job) --------------------------------------
+verify: deps
+	@$(MAKE) --no-print-directory $(CLI)
+	@$(CLI) verify
+
+audit: deps
+	@$(MAKE) --no-print-directory $(CLI)
+	@$(CLI) audit
+
+figures: deps
+	@$(MAKE) --no-print-directory $(CLI)
+	@$(CLI) figures
+
+bench: deps
+	@$(MAKE) --no-print-directory $(CLI)
+	@$(CLI) bench
+
+clean:
+	rm -rf $(B)
