@@ -1,0 +1,31 @@
+/* prov: the provenance block every frozen TSV starts with (SPEC §9):
+ * experiment, command, teacher version, teacher/estimator/gates SHA-256,
+ * git commit, seeds, date, wall time, worst overlap. Hashes are computed from
+ * the source files at run time (src/teacher.c, src/estimator.c, gates/ *.gate
+ * in name order), so the audit can compare them with audit/pins. */
+#ifndef PROV_H
+#define PROV_H
+#include "cs.h"
+#include "tsv.h"
+
+typedef struct {
+    char experiment[64];
+    char command[512];   /* the command line that produced the file */
+    char seeds[256];     /* how seeds were derived, e.g. "seed_derive(mechanism,d,stand,stream) stands 0..7" */
+    double wall_s;       /* wall time of the producing run, seconds */
+    double worst_overlap_m; /* max teacher self-check overlap over the run; <0 if not applicable */
+    double t0;           /* start time (internal) */
+} prov;
+
+/* Start: records experiment name, command line (argv joined) and start time. */
+void prov_begin(prov *p, const char *experiment, int argc, char **argv);
+/* Write all provenance lines (computes wall time now, hashes, git commit, date). */
+cs_status prov_write(tsv_writer *w, prov *p);
+/* SHA-256 of a file as 64 lowercase hex chars (+NUL). */
+cs_status prov_sha256_file(const char *path, char hex[65]);
+/* SHA-256 of gates/ *.gate concatenated in name order. */
+cs_status prov_gates_sha256(const char *gates_dir, char hex[65]);
+/* Monotonic seconds. */
+double prov_now(void);
+
+#endif
