@@ -1,6 +1,7 @@
 /* crownshy: the one command-line entry point. Only this file decides how the
  * process dies; library calls return a cs_status (SPEC §11 exit codes). */
 #include "cs.h"
+#include "teacher.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,7 +16,28 @@ static int cmd_version(int argc, char **argv)
     return 0;
 }
 
+/* Teacher cost (SPEC §10): ms per 144-tree stand at N = 48 and N = 384. */
+static int cmd_bench_teacher(int argc, char **argv)
+{
+    if (argc > 1 && !strcmp(argv[1], "--help")) {
+        puts("usage: crownshy bench-teacher [reps]\n"
+             "prints teacher ms per 144-tree controlled-lattice stand (d = 3.5 m, beta 0.06) at N = 48 and N = 384");
+        return 0;
+    }
+    int reps = argc > 1 ? atoi(argv[1]) : 10;
+    if (reps < 1) { fprintf(stderr, "bench-teacher: reps must be >= 1\n"); return 2; }
+    int levels[2] = {48, 384};
+    for (int k = 0; k < 2; k++) {
+        double ms = 0.0;
+        cs_status st = teacher_bench(levels[k], k ? (reps + 3) / 4 : reps, &ms);
+        if (st) { fprintf(stderr, "bench-teacher: %s\n", cs_errmsg()); return cs_exit_code(st); }
+        printf("teacher_ms_per_stand_N%d\t%.3f\n", levels[k], ms);
+    }
+    return 0;
+}
+
 static const cli_cmd cli_cmds[] = {
+    {"bench-teacher", cmd_bench_teacher, "teacher ms per 144-tree stand at N = 48 and 384"},
     {"version", cmd_version, "print the version"},
 };
 #define NCMDS (sizeof cli_cmds / sizeof cli_cmds[0])
