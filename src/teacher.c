@@ -249,9 +249,26 @@ static int conflict(grow_ws *w, size_t i, int s, double rp, double clear_i)
         /* (c) j's sample points inside i's proposed crown. Points farther from
          * p_i than rho_max are outside the changed arcs, and were outside i's
          * unchanged arcs already. */
-        for (int k = 0; k < NSMP; k++) {
+        /* Only j's points within rho_max of p_i matter; when rho_max < nu they
+         * lie within asin(rho_max/nu) of the bearing theta_ji, so scan only the
+         * sector intervals covering that cone (plus a 1e-9 rad margin). */
+        int t0 = 0, t1 = NS - 1;
+        if (rho_max < nu) {
+            double half = asin(rho_max / nu) + 1e-9;
+            double thji = atan2(-vy, -vx);
+            t0 = (int)floor((thji - half) / CROWN_DTHETA);
+            t1 = (int)floor((thji + half) / CROWN_DTHETA);
+            if (t1 - t0 >= NS) { t0 = 0; t1 = NS - 1; }
+        }
+        for (int t = t0; t <= t1; t++)
+        for (int k = ((t % NS) + NS) % NS * SPS, ke = k + SPS; k < ke; k++) {
             double px, py;
             smp_point(&w->dirs, xj, yj, rj, k, &px, &py);
+            double qx = px - xi, qy = py - yi;
+            if (qx * qx + qy * qy >= rho_max * rho_max) continue;
+            /* Outside the closed wedge [theta_sm, theta_sp] i's radius is unchanged. */
+            double scale = MARGIN * (fabs(qx) + fabs(qy));
+            if (w->uc[sm] * qy - w->us[sm] * qx < -scale || w->uc[sp] * qy - w->us[sp] * qx > scale) continue;
             if (pen_into(px, py, xi, yi, tmp, rho_max) > 0.0) return 1;
         }
     }
