@@ -1,6 +1,9 @@
 /* crownshy: the one command-line entry point. Only this file decides how the
  * process dies; library calls return a cs_status (SPEC §11 exit codes). */
 #include "cs.h"
+#include "audit.h"
+#include "claims.h"
+#include "verify.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,7 +18,137 @@ static int cmd_version(int argc, char **argv)
     return 0;
 }
 
+/* Common --help handling: every command answers --help with exit 0. */
+static int want_help(int argc, char **argv, const char *text)
+{
+    for (int i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) { fputs(text, stdout); return 1; }
+    return 0;
+}
+
+static int die(cs_status st)
+{
+    fprintf(stderr, "crownshy: %s\n", cs_errmsg()[0] ? cs_errmsg() : cs_status_name(st));
+    return cs_exit_code(st);
+}
+
+static int cmd_verify(int argc, char **argv)
+{
+    if (want_help(argc, argv,
+                  "usage: crownshy verify [--no-figures]\n"
+                  "Audit pins and frozen hashes, recompute every claim of audit/claims.tsv from frozen/,\n"
+                  "compare with paper/numbers.tex, judge every gate, redraw every figure, and print\n"
+                  "'N passed, N failed'. Exit 1 if anything failed; pending claims are listed, not passed.\n"))
+        return 0;
+    verify_opts o = {0};
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--no-figures")) o.no_figures = 1;
+        else { fprintf(stderr, "crownshy verify: unknown option '%s'\n", argv[i]); return 2; }
+    }
+    cs_status st = verify_run(&o);
+    if (st && st != CS_EFAIL) return die(st);
+    return cs_exit_code(st);
+}
+
+static int cmd_numbers(int argc, char **argv)
+{
+    if (want_help(argc, argv,
+                  "usage: crownshy numbers [--check]\n"
+                  "Regenerate paper/numbers.tex from frozen/ (atomic). With --check, only compare.\n"))
+        return 0;
+    int check = argc > 1 && !strcmp(argv[1], "--check");
+    if (argc > 1 && !check) { fprintf(stderr, "crownshy numbers: unknown option '%s'\n", argv[1]); return 2; }
+    claims c;
+    cs_status st = claims_load(AUDIT_CLAIMS, &c);
+    if (st) return die(st);
+    claim_result *res;
+    if ((st = verify_eval_all(&c, &res))) { claims_free(&c); return die(st); }
+    if (check) {
+        checklist cl = {0};
+        audit_run(&c, res, &cl);
+        int bad = 0;
+        for (size_t i = 0; i < cl.n; i++)
+            if (!strcmp(cl.items[i].name, "numbers.tex")) {
+                printf("%s %s\n", verdict_name(cl.items[i].v), cl.items[i].msg);
+                bad |= cl.items[i].v == VERDICT_FAIL;
+            }
+        checklist_free(&cl);
+        free(res);
+        claims_free(&c);
+        return bad ? 1 : 0;
+    }
+    st = claims_write_numbers(AUDIT_NUMBERS, &c, res);
+    size_t pend = 0;
+    for (size_t i = 0; i < c.n; i++) pend += res[i].status != VERDICT_PASS;
+    if (!st) printf("wrote %s: %zu claims (%zu pending)\n", AUDIT_NUMBERS, c.n, pend);
+    free(res);
+    claims_free(&c);
+    return st ? die(st) : 0;
+}
+
+static int cmd_audit(int argc, char **argv)
+{
+    if (want_help(argc, argv,
+                  "usage: crownshy audit\n"
+                  "Check pins (estimator hash, teacher version and hash, gate hashes), frozen-file hashes,\n"
+                  "frozen provenance vs pins, the claim registry, numbers.tex and the paper text.\n"))
+        return 0;
+    claims c;
+    cs_status st = claims_load(AUDIT_CLAIMS, &c);
+    if (st) return die(st);
+    claim_result *res;
+    if ((st = verify_eval_all(&c, &res))) { claims_free(&c); return die(st); }
+    checklist cl = {0};
+    audit_run(&c, res, &cl);
+    size_t pass = 0, fail = 0;
+    for (size_t i = 0; i < cl.n; i++) {
+        printf("  %-7s %-28s %s\n", verdict_name(cl.items[i].v), cl.items[i].name, cl.items[i].msg);
+        if (cl.items[i].v == VERDICT_FAIL) fail++; else pass++;
+    }
+    printf("%zu passed, %zu failed\n", pass, fail);
+    checklist_free(&cl);
+    free(res);
+    claims_free(&c);
+    return fail ? 1 : 0;
+}
+
+static int cmd_trace(int argc, char **argv)
+{
+    if (want_help(argc, argv, "usage: crownshy trace MACRO\nPrint a claim's value, frozen file, function, gate and test.\n")) return 0;
+    if (argc != 2) { fprintf(stderr, "usage: crownshy trace MACRO\n"); return 2; }
+    cs_status st = verify_trace(argv[1]);
+    return st ? die(st) : 0;
+}
+
+static int cmd_pin(int argc, char **argv)
+{
+    if (want_help(argc, argv,
+                  "usage: crownshy pin\n"
+                  "Rewrite audit/pins.tsv from the current estimator, teacher and gates. Deliberate:\n"
+                  "afterwards frozen/ must be regenerated (make reproduce freeze) or the audit fails.\n"))
+        return 0;
+    cs_status st = audit_pin();
+    if (st) return die(st);
+    printf("wrote %s\n", AUDIT_PINS);
+    return 0;
+}
+
+static int cmd_hash_frozen(int argc, char **argv)
+{
+    if (want_help(argc, argv, "usage: crownshy hash-frozen\nRewrite audit/frozen.sha256 from frozen/ (part of make freeze).\n")) return 0;
+    cs_status st = audit_hash_frozen();
+    if (st) return die(st);
+    printf("wrote %s\n", AUDIT_FROZEN_HASHES);
+    return 0;
+}
+
 static const cli_cmd cli_cmds[] = {
+    {"verify", cmd_verify, "audit, recompute every claim, judge gates, redraw figures"},
+    {"numbers", cmd_numbers, "regenerate paper/numbers.tex from frozen/"},
+    {"audit", cmd_audit, "check pins, frozen hashes, provenance, registry and paper"},
+    {"trace", cmd_trace, "trace one macro to its value, file, function, gate and test"},
+    {"pin", cmd_pin, "re-pin the estimator, teacher and gates (deliberate)"},
+    {"hash-frozen", cmd_hash_frozen, "record the hashes of frozen/ (make freeze)"},
     {"version", cmd_version, "print the version"},
 };
 #define NCMDS (sizeof cli_cmds / sizeof cli_cmds[0])
