@@ -4,6 +4,9 @@
 #include "audit.h"
 #include "claims.h"
 #include "verify.h"
+#include "gate.h"
+#include "tsv.h"
+#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -142,7 +145,72 @@ static int cmd_hash_frozen(int argc, char **argv)
     return 0;
 }
 
+static int cmd_gates(int argc, char **argv)
+{
+    if (want_help(argc, argv,
+                  "usage: crownshy gates [FILE.gate ...]\n"
+                  "Parse the preregistered gate files (default: every gates/ *.gate) and print each\n"
+                  "threshold with its file and line. Exit 3 on a malformed file.\n"))
+        return 0;
+    char *files[64];
+    int n = 0;
+    if (argc > 1) {
+        for (int i = 1; i < argc && n < 64; i++) files[n++] = strdup(argv[i]);
+    } else {
+        DIR *d = opendir("gates");
+        if (!d) { fprintf(stderr, "crownshy gates: gates/: cannot open\n"); return 3; }
+        struct dirent *e;
+        while ((e = readdir(d)) && n < 64) {
+            size_t l = strlen(e->d_name);
+            if (l > 5 && !strcmp(e->d_name + l - 5, ".gate")) {
+                char p[600];
+                snprintf(p, sizeof p, "gates/%s", e->d_name);
+                files[n++] = strdup(p);
+            }
+        }
+        closedir(d);
+    }
+    int rc = 0;
+    for (int i = 0; i < n; i++) {
+        gate *g;
+        if (gate_load(files[i], &g)) { fprintf(stderr, "crownshy: %s\n", cs_errmsg()); rc = 3; free(files[i]); continue; }
+        printf("%s: ok\n", files[i]);
+        gate_free(g);
+        free(files[i]);
+    }
+    return rc;
+}
+
+static int cmd_check_tsv(int argc, char **argv)
+{
+    if (want_help(argc, argv,
+                  "usage: crownshy check-tsv FILE.tsv ...\n"
+                  "Validate frozen tables: provenance lines, header, field counts, and every column\n"
+                  "that is numeric in its first row numeric in every row. Exit 3 naming file, line, field.\n"))
+        return 0;
+    if (argc < 2) { fprintf(stderr, "usage: crownshy check-tsv FILE.tsv ...\n"); return 2; }
+    int rc = 0;
+    for (int i = 1; i < argc; i++) {
+        tsv *t;
+        if (tsv_read(argv[i], &t)) { fprintf(stderr, "crownshy: %s\n", cs_errmsg()); rc = 3; continue; }
+        int bad = 0;
+        for (size_t c = 0; c < tsv_ncols(t) && !bad && tsv_nrows(t) > 0; c++) {
+            double v;
+            const char *col = tsv_colname(t, c);
+            if (tsv_double_nf(t, 0, col, &v)) continue; /* a text column */
+            for (size_t r = 1; r < tsv_nrows(t) && !bad; r++)
+                if (tsv_double_nf(t, r, col, &v)) { fprintf(stderr, "crownshy: %s\n", cs_errmsg()); bad = 1; }
+        }
+        if (bad) rc = 3;
+        else printf("%s: ok (%zu rows, %zu columns)\n", argv[i], tsv_nrows(t), tsv_ncols(t));
+        tsv_free(t);
+    }
+    return rc;
+}
+
 static const cli_cmd cli_cmds[] = {
+    {"gates", cmd_gates, "parse and list the preregistered gate files"},
+    {"check-tsv", cmd_check_tsv, "validate frozen TSV files"},
     {"verify", cmd_verify, "audit, recompute every claim, judge gates, redraw figures"},
     {"numbers", cmd_numbers, "regenerate paper/numbers.tex from frozen/"},
     {"audit", cmd_audit, "check pins, frozen hashes, provenance, registry and paper"},
