@@ -628,6 +628,69 @@ static void crown_columns(tsv_writer *w)
     tsv_writer_columns(w, cols);
 }
 
+/* Top-down polygons of one panel for gnuplot (filledcurves): each crown's
+ * boundary at 4 points per sector (crown_radius_at) plus the closing point,
+ * 97 rows per tree, trees in ascending height so that taller crowns are drawn
+ * last (on top). Millimetre precision: display data, not a result. */
+#define POLY_PER_SECTOR 4
+#define POLY_ROWS (CROWN_NSEC * POLY_PER_SECTOR + 1)
+static const double *poly_h;
+static int poly_cmp(const void *a, const void *b)
+{
+    size_t i = *(const size_t *)a, j = *(const size_t *)b;
+    if (poly_h[i] != poly_h[j]) return poly_h[i] < poly_h[j] ? -1 : 1;
+    return (i > j) - (i < j);
+}
+
+static cs_status write_polygons(const exp_opts *o, prov *pv, const char *experiment, const char *panel, double d,
+                                const stand *sd, const double *r, double k1)
+{
+    char file[128], path[512];
+    snprintf(file, sizeof file, "figure_poly_%s_%.1f.tsv", panel, d);
+    tsv_writer *w = NULL;
+    cs_status st = open_out(o, experiment, file, &w, path, sizeof path);
+    if (st) return st;
+    st = prov_write(w, pv);
+    if (st) { tsv_writer_abort(w); return st; }
+    size_t n = sd->s->n;
+    size_t *ord = malloc((n ? n : 1) * sizeof *ord);
+    if (!ord) { tsv_writer_abort(w); return cs_err(CS_ENOMEM, "experiments: out of memory"); }
+    for (size_t i = 0; i < n; i++) ord[i] = i;
+    poly_h = sd->h;
+    qsort(ord, n, sizeof *ord, poly_cmp);
+    tsv_writer_meta(w, "panel", "%s, spacing %.2f m, footprint %.0f m, %zu trees, %d rows per tree", panel, d, sd->s->L, n, POLY_ROWS);
+    tsv_writer_meta(w, "k1_median_m", "%.3f", k1);
+    tsv_writer_columns(w, "tree	x_m	y_m	h_m");
+    char buf[64];
+    for (size_t t = 0; t < n; t++) {
+        size_t i = ord[t];
+        for (int q = 0; q < POLY_ROWS; q++) {
+            double th = (2.0 * CROWN_PI / (CROWN_NSEC * POLY_PER_SECTOR)) * (double)(q % (POLY_ROWS - 1));
+            double rho = crown_radius_at(r + i * NS, th);
+            tsv_writer_long(w, (long)i);
+            snprintf(buf, sizeof buf, "%.3f", sd->s->x[i] + rho * cos(th));
+            tsv_writer_str(w, buf);
+            snprintf(buf, sizeof buf, "%.3f", sd->s->y[i] + rho * sin(th));
+            tsv_writer_str(w, buf);
+            snprintf(buf, sizeof buf, "%.2f", sd->h[i]);
+            tsv_writer_str(w, buf);
+            tsv_writer_endrow(w);
+        }
+    }
+    free(ord);
+    return tsv_writer_commit(w);
+}
+
+/* Median k1 clearance of the interior trees of one stand. */
+static double stand_k1(const stand *sd, const double *r)
+{
+    dvec g[3] = {{0}, {0}, {0}};
+    double med = NAN;
+    if (!stand_metrics(sd, r, g, NULL, NULL)) est_median(g[0].v, g[0].n, &med);
+    for (int k = 0; k < 3; k++) free(g[k].v);
+    return med;
+}
+
 #define FIG_L 36.0
 #define FIG_C 0.5
 
@@ -667,17 +730,16 @@ static cs_status unit_fig_mechanism(const exp_opts *o)
     }
     if (!st) {
         tsv_writer_meta(w, "stems", "hard-core Poisson c = %.2f, d = %.2f m, L = %.0f m; one stand, identical in all panels", FIG_C, d, FIG_L);
-        for (int a = 0; a < 3; a++) {
-            /* NN clearance on the stand shown (interior trees), for the panel captions. */
-            dvec g[3] = {{0}, {0}, {0}};
-            double med = NAN;
-            if (!stand_metrics(sd, r + (size_t)a * n * NS, g, NULL, NULL)) est_median(g[0].v, g[0].n, &med);
-            tsv_writer_meta(w, arms[a], "median k1 clearance %.3f m", med);
-            for (int k = 0; k < 3; k++) free(g[k].v);
-        }
+        /* NN clearance on the stand shown (interior trees), for the panel captions. */
+        for (int a = 0; a < 3; a++)
+            tsv_writer_meta(w, arms[a], "median k1 clearance %.3f m", stand_k1(sd, r + (size_t)a * n * NS));
         crown_columns(w);
         for (int a = 0; a < 3; a++) write_crowns(w, arms[a], d, sd, r + (size_t)a * n * NS);
-        st = finish(w, &pv, path);
+        for (int a = 0; a < 3 && !st; a++)
+            st = write_polygons(o, &pv, "mechanism", arms[a], d, sd, r + (size_t)a * n * NS,
+                                stand_k1(sd, r + (size_t)a * n * NS));
+        if (st) tsv_writer_abort(w);
+        else st = finish(w, &pv, path);
     }
     free(r);
     stand_free(sd);
@@ -727,7 +789,14 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
         for (size_t a = 0; a < nd; a++)
             for (size_t b = 0; b < nrows + (size_t)with_uncoupled; b++)
                 write_crowns(w, b < nrows ? rows[b] : "uncoupled", ds[a], sds[a], rs[a * (nrows + (size_t)with_uncoupled) + b]);
-        st = finish(w, &pv, path);
+        for (size_t a = 0; a < nd && !st; a++)
+            for (size_t b = 0; b < nrows + (size_t)with_uncoupled && !st; b++) {
+                const double *r = rs[a * (nrows + (size_t)with_uncoupled) + b];
+                st = write_polygons(o, &pv, experiment, b < nrows ? rows[b] : "uncoupled", ds[a], sds[a], r,
+                                    stand_k1(sds[a], r));
+            }
+        if (st) tsv_writer_abort(w);
+        else st = finish(w, &pv, path);
     } else if (w) tsv_writer_abort(w);
     for (size_t a = 0; sds && a < nd; a++) stand_free(sds[a]);
     for (size_t k = 0; rs && k < total; k++) free(rs[k]);
