@@ -804,6 +804,87 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
     return st;
 }
 
+/* E8 numbers on the point-cloud stands: per spacing, the share of interior
+ * crowns that made contact during coupled growth (a sector froze), the share
+ * of interior crowns that interpenetrate a neighbour (some g(i,j) < 0) in
+ * each arm, and the median NN clearance coupled vs uncoupled. */
+static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size_t nd, double beta)
+{
+    prov pv;
+    prov_begin(&pv, "pointcloud", o->argc, o->argv);
+    typedef struct { size_t trees; double contact, ovl_c, ovl_u, k1_c, k1_u; } pc_row;
+    pc_row rows[8];
+    double worst = 0.0;
+    cs_status st = CS_OK;
+    for (size_t a = 0; a < nd && !st; a++) {
+        stand *sd = NULL;
+        st = stand_alloc(&sd, STAND_HARDCORE, ds[a], FIG_L, FIG_C, "fig/pointcloud", 0);
+        if (st) break;
+        size_t n = sd->s->n;
+        double *rc = malloc(n * NS * sizeof *rc), *ru = malloc(n * NS * sizeof *ru);
+        unsigned char *fz = malloc(n * NS);
+        if (!rc || !ru || !fz) st = cs_err(CS_ENOMEM, "experiments: out of memory");
+        teacher_params p;
+        teacher_params_default(&p);
+        p.beta = beta;
+        p.frozen_out = fz;
+        if (!st) st = grow(sd, &p, rc, NULL, &worst);
+        p.coupled = 0;
+        p.frozen_out = NULL;
+        if (!st) st = grow(sd, &p, ru, NULL, NULL);
+        size_t m = 0, contact = 0, oc = 0, ou = 0;
+        for (size_t i = 0; i < n && !st; i++) {
+            if (!stems_interior(sd->s, i)) continue;
+            m++;
+            int any = 0;
+            for (int s = 0; s < NS; s++) any |= fz[i * NS + s];
+            contact += (size_t)any;
+            int c_ov = 0, u_ov = 0;
+            for (size_t j = 0; j < n; j++) {
+                if (j == i) continue;
+                const stems *S = sd->s;
+                if (est_clearance(S->x[i], S->y[i], rc + i * NS, S->x[j], S->y[j], rc + j * NS) < 0.0) c_ov = 1;
+                if (est_clearance(S->x[i], S->y[i], ru + i * NS, S->x[j], S->y[j], ru + j * NS) < 0.0) u_ov = 1;
+            }
+            oc += (size_t)c_ov;
+            ou += (size_t)u_ov;
+        }
+        if (!st) {
+            rows[a].trees = m;
+            rows[a].contact = (double)contact / (double)m;
+            rows[a].ovl_c = (double)oc / (double)m;
+            rows[a].ovl_u = (double)ou / (double)m;
+            rows[a].k1_c = stand_k1(sd, rc);
+            rows[a].k1_u = stand_k1(sd, ru);
+        }
+        free(rc); free(ru); free(fz);
+        stand_free(sd);
+    }
+    tsv_writer *w = NULL;
+    char path[512];
+    if (!st) st = open_out(o, "pointcloud", "stats.tsv", &w, path, sizeof path);
+    if (st) return st;
+    pv.worst_overlap_m = worst;
+    snprintf(pv.seeds, sizeof pv.seeds, "seed_derive(fig/pointcloud,d,0,stems|crowns)");
+    st = prov_write(w, &pv);
+    if (st) { tsv_writer_abort(w); return st; }
+    tsv_writer_meta(w, "stems", "hard-core Poisson c = %.2f, L = %.0f m, one stand per spacing (the figure's)", FIG_C, FIG_L);
+    tsv_writer_meta(w, "dieback", "%.17g", beta);
+    tsv_writer_meta(w, "contact", "interior crowns with a sector frozen on contact during coupled growth");
+    tsv_writer_columns(w, "spacing_m	trees	contact_fraction	overlap_fraction_coupled	overlap_fraction_uncoupled	k1_coupled_m	k1_uncoupled_m");
+    for (size_t a = 0; a < nd; a++) {
+        tsv_writer_dbl(w, ds[a]);
+        tsv_writer_long(w, (long)rows[a].trees);
+        tsv_writer_dbl(w, rows[a].contact);
+        tsv_writer_dbl(w, rows[a].ovl_c);
+        tsv_writer_dbl(w, rows[a].ovl_u);
+        tsv_writer_dbl(w, rows[a].k1_c);
+        tsv_writer_dbl(w, rows[a].k1_u);
+        tsv_writer_endrow(w);
+    }
+    return finish(w, &pv, path);
+}
+
 /* ---- command handlers ----------------------------------------------------------------- */
 
 static const char *RUN_HELP =
@@ -816,7 +897,8 @@ static const char *RUN_HELP =
     "  irreducibility-reduction E2: best-fit Voronoi reduction -> irreducibility/reduction_<tag>.tsv\n"
     "  fig-mechanism            crowns of the three mechanism panels (hard-core, 3.5 m, L = 36 m)\n"
     "  fig-hero                 crowns of the hero figure (hard-core, L = 36 m, d = 3.0..6.5)\n"
-    "  fig-pointcloud           crowns of the point-cloud stands (hard-core, L = 36 m, 5/4/3 m, + uncoupled)\n"
+    "  fig-pointcloud           E8: crowns of the point-cloud stands (hard-core, L = 36 m, 5/4/3 m, + uncoupled)\n"
+    "                           and pointcloud/stats.tsv (contact share, coupled vs uncoupled NN clearance)\n"
     "options: --stands N stands per cell (default 8); --beta B die-back for E2 (default: the\n"
     "gate's dieback_train); --tag names the E2 output (default train).\n";
 
@@ -864,6 +946,7 @@ int exp_cmd_run(int argc, char **argv)
                 const double ds[3] = {5.0, 4.0, 3.0};
                 const char *rows[1] = {"coupled"};
                 st = unit_fig_stands(&o, "pointcloud", "fig/pointcloud", ds, 3, &btrain, rows, 1, 1);
+                if (!st) st = unit_pointcloud_stats(&o, ds, 3, btrain);
             }
         } else { fprintf(stderr, "crownshy run: unknown unit '%s'\n%s", o.unit, RUN_HELP); return 2; }
     }
