@@ -6,6 +6,7 @@
 #include "verify.h"
 #include "gate.h"
 #include "tsv.h"
+#include "teacher.h"
 #include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -208,6 +209,26 @@ static int cmd_check_tsv(int argc, char **argv)
     return rc;
 }
 
+/* Teacher cost (SPEC §10): ms per 144-tree stand at N = 48 and N = 384. */
+static int cmd_bench_teacher(int argc, char **argv)
+{
+    if (argc > 1 && !strcmp(argv[1], "--help")) {
+        puts("usage: crownshy bench-teacher [reps]\n"
+             "prints teacher ms per 144-tree controlled-lattice stand (d = 3.5 m, beta 0.06) at N = 48 and N = 384");
+        return 0;
+    }
+    int reps = argc > 1 ? atoi(argv[1]) : 10;
+    if (reps < 1) { fprintf(stderr, "bench-teacher: reps must be >= 1\n"); return 2; }
+    int levels[2] = {48, 384};
+    for (int k = 0; k < 2; k++) {
+        double ms = 0.0;
+        cs_status st = teacher_bench(levels[k], k ? (reps + 3) / 4 : reps, &ms);
+        if (st) { fprintf(stderr, "bench-teacher: %s\n", cs_errmsg()); return cs_exit_code(st); }
+        printf("teacher_ms_per_stand_N%d\t%.3f\n", levels[k], ms);
+    }
+    return 0;
+}
+
 static const cli_cmd cli_cmds[] = {
     {"gates", cmd_gates, "parse and list the preregistered gate files"},
     {"check-tsv", cmd_check_tsv, "validate frozen TSV files"},
@@ -217,6 +238,7 @@ static const cli_cmd cli_cmds[] = {
     {"trace", cmd_trace, "trace one macro to its value, file, function, gate and test"},
     {"pin", cmd_pin, "re-pin the estimator, teacher and gates (deliberate)"},
     {"hash-frozen", cmd_hash_frozen, "record the hashes of frozen/ (make freeze)"},
+    {"bench-teacher", cmd_bench_teacher, "teacher ms per 144-tree stand at N = 48 and 384"},
     {"version", cmd_version, "print the version"},
 };
 #define NCMDS (sizeof cli_cmds / sizeof cli_cmds[0])
