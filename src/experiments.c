@@ -14,7 +14,23 @@
  *  - E2 reduction: sigma on a grid -1.000:0.001:3.000 m, one sigma for all
  *    interior sectors of all spacings pooled; miss in steps = pooled mean
  *    miss / pooled mean Delta at N = 48;
- *  - figures: hard-core stems c = 0.5, L = 36 m. */
+ *  - figures: hard-core stems c = 0.5, L = 36 m.
+ * Outputs (columns; every file starts with the provenance block):
+ *  mechanism/sweep.tsv     beta spacing_m stands trees k1_m k2_m k3_m cover
+ *                          worst_overlap_m pass train_row   (16 rows)
+ *  mechanism/ablation.tsv  arm(coupling_off|abrasion_off|both_on) coupled beta
+ *                          spacing_m stands trees k1_m k2_m k3_m cover overlap_m
+ *  irreducibility/perturb_<tag>.tsv  spacing_m beta nres stands judged responded
+ *                          response_fraction magnitude_m step_m   (5 rows)
+ *  irreducibility/refine_<tag>.tsv   scope(pooled|spacing) spacing_m nres stands
+ *                          judged responded magnitude_m step_m step_ratio
+ *                          magnitude_ratio   (pooled rows first; gate on pooled N=384)
+ *  irreducibility/reduction_<tag>.tsv scope spacing_m sectors sigma_m miss_m step_m
+ *                          miss_steps own_sigma_m own_miss_m (pooled row first)
+ *  <exp>/figure_crowns.tsv panel spacing_m tree x_m y_m h_m interior r0..r23
+ *  <exp>/figure_poly_<panel>_<d>.tsv tree x_m y_m h_m (97 rows per tree, figures)
+ *  pointcloud/stats.tsv    spacing_m trees contact_fraction overlap_fraction_coupled
+ *                          overlap_fraction_uncoupled k1_coupled_m k1_uncoupled_m */
 #include "experiments.h"
 #include "crown.h"
 #include "estimator.h"
