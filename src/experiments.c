@@ -513,9 +513,12 @@ static double territory(const stems *s, size_t i, double th)
     return b;
 }
 
+/* sigma_q = (q - 1000) / 1000 m, q = 0..4000: -1.000 .. 3.000 m by 1 mm
+ * (an exact division, so the reported sigma is the nearest double to q mm). */
 #define SIG_LO (-1.0)
 #define SIG_STEP 0.001
 #define SIG_N 4001
+#define SIGMA(q) ((double)((q) - 1000) / 1000.0)
 
 static cs_status unit_irred_reduction(const exp_opts *o, double beta)
 {
@@ -560,7 +563,7 @@ static cs_status unit_irred_reduction(const exp_opts *o, double beta)
         ntot += rt[a].n;
         steptot += step_sum[a];
         for (int q = 0; q < SIG_N; q++) {
-            double sig = SIG_LO + SIG_STEP * (double)q, sum = 0.0;
+            double sig = SIGMA(q), sum = 0.0;
             for (size_t e = 0; e < rt[a].n; e++) sum += fabs(rt[a].v[e] - fmin(rs[a].v[e], bb[a].v[e] - sig));
             miss[a * SIG_N + q] = sum;
         }
@@ -577,7 +580,7 @@ static cs_status unit_irred_reduction(const exp_opts *o, double beta)
             for (size_t a = 0; a < c.nd; a++) sum += miss[a * SIG_N + q];
             if (sum < best) { best = sum; qbest = q; }
         }
-        double sig = SIG_LO + SIG_STEP * (double)qbest;
+        double sig = SIGMA(qbest);
         double step_mean = steptot / (double)(o->stands * (int)c.nd);
         pv.worst_overlap_m = worst;
         snprintf(pv.seeds, sizeof pv.seeds, "seed_derive(irreducibility,d,k,stems|crowns) k=0..%d", o->stands - 1);
@@ -604,7 +607,7 @@ static cs_status unit_irred_reduction(const exp_opts *o, double beta)
                     tsv_writer_dbl(w, m);
                     tsv_writer_dbl(w, stp);
                     tsv_writer_dbl(w, m / stp);
-                    tsv_writer_dbl(w, SIG_LO + SIG_STEP * (double)qo);
+                    tsv_writer_dbl(w, SIGMA(qo));
                     tsv_writer_dbl(w, pooled ? m : miss[a * SIG_N + qo] / (double)rt[a].n);
                     tsv_writer_endrow(w);
                 }
