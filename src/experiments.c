@@ -451,6 +451,10 @@ static cs_status unit_irred_refine(const exp_opts *o, double beta)
                 st = stand_alloc(&sd, STAND_LATTICE, c.ds[a], 12.0 * c.ds[a], 0.04, "irreducibility", (unsigned)k);
                 if (!st) st = perturb_stand(sd, beta, (int)c.levels[l], c.hfac, c.tol, c.njudge, &acc[l][a], &worst);
                 stand_free(sd);
+                if (!st && k == o->stands - 1)
+                    fprintf(stderr, "irreducibility refine (%s): %3.0f%% (N=%.0f d=%.1f done, %.1f s)\n", o->tag,
+                            100.0 * (double)(l * c.nd + a + 1) / (double)(c.nlev * c.nd), c.levels[l], c.ds[a],
+                            prov_now() - pv.t0);
             }
         for (size_t a = 0; a < c.nd; a++) {
             pool[l].abs_sum += acc[l][a].abs_sum;
