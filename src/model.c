@@ -82,11 +82,11 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
     m->Bmax = Bmax;
     const int L = cfg->L;
     m->blk = calloc((size_t)L, sizeof *m->blk);
-    float **ptrs = calloc((size_t)13 * (L + 1), sizeof *ptrs);
+    float **ptrs = calloc((size_t)14 * (L + 1), sizeof *ptrs);
     if (!m->blk || !ptrs) { free(ptrs); model_free(m); return cs_err(CS_ENOMEM, "model: out of memory"); }
     m->x = ptrs; m->ln1 = ptrs + (L + 1); m->mu1 = m->ln1 + L; m->rs1 = m->mu1 + L;
     m->qkv = m->rs1 + L; m->prob = m->qkv + L; m->att = m->prob + L; m->xm = m->att + L;
-    m->ln2 = m->xm + L; m->mu2 = m->ln2 + L; m->rs2 = m->mu2 + L; m->h = m->rs2 + L; m->hg = m->h + L;
+    m->ln2 = m->xm + L; m->mu2 = m->ln2 + L; m->rs2 = m->mu2 + L; m->h = m->rs2 + L; m->hs = m->h + L; m->hg = m->hs + L;
     m->nparams = layout(cfg, m, &m->ndecay);
     m->params = calloc(m->nparams, sizeof(float));
     m->grads = calloc(m->nparams, sizeof(float));
@@ -94,7 +94,7 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
     const size_t N = (size_t)Bmax * cfg->T, C = cfg->C, F = cfg->F, B = Bmax;
     const size_t I = cfg->P + cfg->nfeat, E = cfg->ncond + cfg->ntime, TP = (size_t)cfg->T * cfg->P;
     const size_t probn = cfg->joint ? B * cfg->H * cfg->T * cfg->T : 0;
-    size_t per_block = N * C * 4 + N * 4 + N * 3 * C + probn + N * F * 2;
+    size_t per_block = N * C * 4 + N * 4 + N * 3 * C + probn + N * F * 3;
     size_t total = N * I + B * E + 3 * B * C + N * C + 2 * N + N * cfg->P
                  + (size_t)(L + 1) * N * C + (size_t)L * per_block
                  + 3 * N * C + N * 3 * C + N * F + 2 * B * C
@@ -112,7 +112,7 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
         m->ln1[l] = TAKE(N * C); m->mu1[l] = TAKE(N); m->rs1[l] = TAKE(N);
         m->qkv[l] = TAKE(N * 3 * C); m->prob[l] = TAKE(probn); m->att[l] = TAKE(N * C);
         m->xm[l] = TAKE(N * C); m->ln2[l] = TAKE(N * C); m->mu2[l] = TAKE(N); m->rs2[l] = TAKE(N);
-        m->h[l] = TAKE(N * F); m->hg[l] = TAKE(N * F);
+        m->h[l] = TAKE(N * F); m->hs[l] = TAKE(N * F); m->hg[l] = TAKE(N * F);
     }
     m->dx = TAKE(N * C); m->dtmp = TAKE(N * C); m->dln = TAKE(N * C);
     m->dqkv = TAKE(N * 3 * C); m->dh = TAKE(N * F); m->de = TAKE(B * C); m->de1 = TAKE(B * C);
@@ -193,7 +193,7 @@ cs_status model_forward(model *m, int B, const float *xt, const float *feat,
         nn_residual_forward(m->xm[l], m->xm[l], m->x[l], (size_t)N * C);
         nn_layernorm_forward(m->ln2[l], m->mu2[l], m->rs2[l], m->xm[l], w + o->ln2_g, w + o->ln2_b, N, C);
         nn_linear_forward(m->h[l], m->ln2[l], w + o->fc1_w, w + o->fc1_b, N, C, F);
-        nn_gelu_forward(m->hg[l], m->h[l], (size_t)N * F);
+        nn_gelu_forward_save(m->hg[l], m->hs[l], m->h[l], (size_t)N * F);
         nn_linear_forward(m->x[l + 1], m->hg[l], w + o->fc2_w, w + o->fc2_b, N, F, C);
         nn_residual_forward(m->x[l + 1], m->x[l + 1], m->xm[l], (size_t)N * C);
     }
@@ -218,7 +218,7 @@ void model_backward(model *m, const float *dv)
         const model_block_off *o = &m->blk[l];
         /* dx holds d x[l+1]; the residual passes it straight to xm[l]. */
         nn_linear_backward(m->dh, g + o->fc2_w, g + o->fc2_b, m->dx, m->hg[l], w + o->fc2_w, N, F, C);
-        nn_gelu_backward(m->dh, m->dh, m->h[l], (size_t)N * F);
+        nn_gelu_backward_saved(m->dh, m->dh, m->h[l], m->hs[l], (size_t)N * F);
         nn_linear_backward(m->dln, g + o->fc1_w, g + o->fc1_b, m->dh, m->ln2[l], w + o->fc1_w, N, C, F);
         nn_layernorm_backward(m->dx, g + o->ln2_g, g + o->ln2_b, m->dln, m->xm[l], m->mu2[l], m->rs2[l], w + o->ln2_g, N, C);
         nn_linear_backward(m->dtmp, g + o->proj_w, g + o->proj_b, m->dx, m->att[l], w + o->proj_w, N, C, C);

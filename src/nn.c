@@ -1,36 +1,50 @@
 /* nn: layer kernels (see nn.h). The GEMMs go to cblas_sgemm; every other loop
- * is written on 4-wide GCC/Clang vector types because -O2 without fast-math
- * will not vectorise float reductions by itself (reassociation is forbidden),
- * and the baseline x86-64 target gives SSE2 only. Reductions use a fixed lane
- * order, so results are deterministic. Paper §4.2; SPEC §8, §10. */
+ * is written on 8-wide GCC/Clang vector types, because -O2 without fast-math
+ * will not vectorise float reductions by itself (reassociation is forbidden).
+ * The hot kernels are compiled twice (target_clones: AVX2 and baseline x86-64,
+ * picked at load time); both clones execute the same lane-wise IEEE operations
+ * in the same order, so their results are bit-identical - no -march=native,
+ * no FMA contraction (-ffp-contract=off), no fast-math. Reductions use a fixed
+ * lane order. Paper §4.2; SPEC §8, §10. */
 #include "nn.h"
 #include <cblas.h>
 #include <math.h>
 #include <string.h>
 
-typedef float v4f __attribute__((vector_size(16)));
-typedef int v4i __attribute__((vector_size(16)));
+/* The vector helpers are always inlined, so no vector crosses a call boundary. */
+#pragma GCC diagnostic ignored "-Wpsabi"
 
-static inline v4f ld4(const float *p) { v4f v; memcpy(&v, p, sizeof v); return v; }
-static inline void st4(float *p, v4f v) { memcpy(p, &v, sizeof v); }
-static inline v4f splat(float a) { return (v4f){a, a, a, a}; }
-static inline float hsum(v4f v) { return (v[0] + v[1]) + (v[2] + v[3]); }
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(NN_NO_CLONES)
+#define HOT __attribute__((target_clones("avx2", "default")))
+#else
+#define HOT
+#endif
+#define INL static inline __attribute__((always_inline))
+
+typedef float vf __attribute__((vector_size(32)));
+typedef int vi __attribute__((vector_size(32)));
+enum { VL = 8 };
+
+INL vf ld(const float *p) { vf v; memcpy(&v, p, sizeof v); return v; }
+INL void st(float *p, vf v) { memcpy(p, &v, sizeof v); }
+INL vf splat(float a) { return (vf){a, a, a, a, a, a, a, a}; }
+INL float hsum(vf v) { return ((v[0] + v[1]) + (v[2] + v[3])) + ((v[4] + v[5]) + (v[6] + v[7])); }
 
 /* y[0..n) += a * x[0..n) */
-static inline void axpy(float *restrict y, float a, const float *restrict x, int n)
+INL void axpy(float *restrict y, float a, const float *restrict x, int n)
 {
     int i = 0;
-    v4f va = splat(a);
-    for (; i + 4 <= n; i += 4) st4(y + i, ld4(y + i) + va * ld4(x + i));
+    vf va = splat(a);
+    for (; i + VL <= n; i += VL) st(y + i, ld(y + i) + va * ld(x + i));
     for (; i < n; i++) y[i] += a * x[i];
 }
 
-/* sum of x[0..n), fixed order: 4 lanes then the tail. */
-static inline float vsum(const float *x, int n)
+/* sum of x[0..n), fixed order: 8 lanes, then the tail. */
+INL float vsum(const float *x, int n)
 {
-    v4f acc = splat(0.f);
+    vf acc = splat(0.f);
     int i = 0;
-    for (; i + 4 <= n; i += 4) acc += ld4(x + i);
+    for (; i + VL <= n; i += VL) acc += ld(x + i);
     float s = hsum(acc);
     for (; i < n; i++) s += x[i];
     return s;
@@ -38,17 +52,17 @@ static inline float vsum(const float *x, int n)
 
 /* ---- exp ------------------------------------------------------------------ */
 /* exp(x) = 2^n * p(r), x = n ln2 + r, |r| <= ln2/2, p = Taylor to degree 7. */
-static inline v4f vexp(v4f x)
+INL vf vexp(vf x)
 {
-    const v4f lo = splat(-87.0f), hi = splat(88.0f);
-    v4i mlo = x < lo, mhi = x > hi;
-    x = (v4f)(((v4i)x & ~mlo) | ((v4i)lo & mlo));
-    x = (v4f)(((v4i)x & ~mhi) | ((v4i)hi & mhi));
-    const v4f shifter = splat(12582912.0f); /* 1.5*2^23: add-subtract rounds to nearest */
-    v4f kn = (x * splat(1.44269504088896341f) + shifter) - shifter;
-    v4f r = x - kn * splat(0.693145751953125f);      /* ln2 high part (exact kn*hi) */
-    r = r - kn * splat(1.428606765330187e-06f);      /* ln2 low part */
-    v4f p = splat(1.f / 5040.f);
+    const vf lo = splat(-87.0f), hi = splat(88.0f);
+    vi mlo = x < lo, mhi = x > hi;
+    x = (vf)(((vi)x & ~mlo) | ((vi)lo & mlo));
+    x = (vf)(((vi)x & ~mhi) | ((vi)hi & mhi));
+    const vf shifter = splat(12582912.0f); /* 1.5*2^23: add-subtract rounds to nearest */
+    vf kn = (x * splat(1.44269504088896341f) + shifter) - shifter;
+    vf r = x - kn * splat(0.693145751953125f);      /* ln2 high part (kn*hi exact) */
+    r = r - kn * splat(1.428606765330187e-06f);     /* ln2 low part */
+    vf p = splat(1.f / 5040.f);
     p = p * r + splat(1.f / 720.f);
     p = p * r + splat(1.f / 120.f);
     p = p * r + splat(1.f / 24.f);
@@ -56,21 +70,19 @@ static inline v4f vexp(v4f x)
     p = p * r + splat(0.5f);
     p = p * r + splat(1.f);
     p = p * r + splat(1.f);
-    v4i n = __builtin_convertvector(kn, v4i);
-    v4i bits = (n + 127) << 23;
-    return p * (v4f)bits;
+    vi n = __builtin_convertvector(kn, vi);
+    vi bits = (n + 127) << 23;
+    return p * (vf)bits;
 }
 
-static inline float sexp(float x)
-{
-    v4f v = vexp(splat(x));
-    return v[0];
-}
+/* Scalar tails go through the same lane arithmetic, so a value does not depend
+ * on whether it sat in a full vector or in the tail. */
+INL float sexp(float x) { return vexp(splat(x))[0]; }
 
-void nn_expf(float *y, const float *x, size_t n)
+HOT void nn_expf(float *y, const float *x, size_t n)
 {
     size_t i = 0;
-    for (; i + 4 <= n; i += 4) st4(y + i, vexp(ld4(x + i)));
+    for (; i + VL <= n; i += VL) st(y + i, vexp(ld(x + i)));
     for (; i < n; i++) y[i] = sexp(x[i]);
 }
 
@@ -87,6 +99,11 @@ void nn_linear_forward(float *out, const float *in, const float *w, const float 
                 beta, out, N);
 }
 
+HOT static void colsum_add(float *db, const float *dout, int M, int N)
+{
+    for (int r = 0; r < M; r++) axpy(db, 1.f, dout + (size_t)r * N, N);
+}
+
 void nn_linear_backward(float *dinp, float *dw, float *db, const float *dout,
                         const float *in, const float *w, int M, int K, int N)
 {
@@ -95,54 +112,53 @@ void nn_linear_backward(float *dinp, float *dw, float *db, const float *dout,
                     0.f, dinp, K);
     cblas_sgemm(CblasRowMajor, CblasTrans, CblasNoTrans, N, K, M, 1.f, dout, N, in, K,
                 1.f, dw, K);
-    if (db)
-        for (int r = 0; r < M; r++) axpy(db, 1.f, dout + (size_t)r * N, N);
+    if (db) colsum_add(db, dout, M, N);
 }
 
 /* ---- layer norm ---------------------------------------------------------------- */
 #define LN_EPS 1e-5f
 
-void nn_layernorm_forward(float *out, float *mean, float *rstd, const float *in,
-                          const float *g, const float *b, int M, int C)
+HOT void nn_layernorm_forward(float *out, float *mean, float *rstd, const float *in,
+                              const float *g, const float *b, int M, int C)
 {
     const float invC = 1.f / (float)C;
     for (int r = 0; r < M; r++) {
         const float *x = in + (size_t)r * C;
         float *y = out + (size_t)r * C;
         float mu = vsum(x, C) * invC;
-        v4f acc = splat(0.f), vm = splat(mu);
+        vf acc = splat(0.f), vm = splat(mu);
         int c = 0;
-        for (; c + 4 <= C; c += 4) { v4f d = ld4(x + c) - vm; acc += d * d; }
+        for (; c + VL <= C; c += VL) { vf d = ld(x + c) - vm; acc += d * d; }
         float var = hsum(acc);
         for (; c < C; c++) { float d = x[c] - mu; var += d * d; }
         float rs = 1.f / sqrtf(var * invC + LN_EPS);
-        v4f vr = splat(rs);
-        for (c = 0; c + 4 <= C; c += 4)
-            st4(y + c, (ld4(x + c) - vm) * vr * ld4(g + c) + ld4(b + c));
+        vf vr = splat(rs);
+        for (c = 0; c + VL <= C; c += VL)
+            st(y + c, (ld(x + c) - vm) * vr * ld(g + c) + ld(b + c));
         for (; c < C; c++) y[c] = (x[c] - mu) * rs * g[c] + b[c];
         mean[r] = mu;
         rstd[r] = rs;
     }
 }
 
-void nn_layernorm_backward(float *dinp, float *dg, float *db, const float *dout,
-                           const float *in, const float *mean, const float *rstd,
-                           const float *g, int M, int C)
+HOT void nn_layernorm_backward(float *dinp, float *dg, float *db, const float *dout,
+                               const float *in, const float *mean, const float *rstd,
+                               const float *g, int M, int C)
 {
     const float invC = 1.f / (float)C;
     for (int r = 0; r < M; r++) {
         const float *x = in + (size_t)r * C, *dy = dout + (size_t)r * C;
         float *dx = dinp + (size_t)r * C;
-        v4f vm = splat(mean[r]), vr = splat(rstd[r]);
-        v4f s1 = splat(0.f), s2 = splat(0.f);
+        vf vm = splat(mean[r]), vr = splat(rstd[r]);
+        vf s1 = splat(0.f), s2 = splat(0.f);
         int c = 0;
-        for (; c + 4 <= C; c += 4) {
-            v4f xh = (ld4(x + c) - vm) * vr, d = ld4(dy + c);
-            v4f dxh = d * ld4(g + c);
+        for (; c + VL <= C; c += VL) {
+            vf xh = (ld(x + c) - vm) * vr, d = ld(dy + c);
+            vf dxh = d * ld(g + c);
             s1 += dxh;
             s2 += dxh * xh;
-            st4(dg + c, ld4(dg + c) + d * xh);
-            st4(db + c, ld4(db + c) + d);
+            st(dg + c, ld(dg + c) + d * xh);
+            st(db + c, ld(db + c) + d);
         }
         float a1 = hsum(s1), a2 = hsum(s2);
         for (; c < C; c++) {
@@ -154,11 +170,11 @@ void nn_layernorm_backward(float *dinp, float *dg, float *db, const float *dout,
         }
         a1 *= invC;
         a2 *= invC;
-        v4f va1 = splat(a1), va2 = splat(a2);
-        for (c = 0; c + 4 <= C; c += 4) {
-            v4f xh = (ld4(x + c) - vm) * vr;
-            v4f dxh = ld4(dy + c) * ld4(g + c);
-            st4(dx + c, ld4(dx + c) + vr * (dxh - va1 - xh * va2));
+        vf va1 = splat(a1), va2 = splat(a2);
+        for (c = 0; c + VL <= C; c += VL) {
+            vf xh = (ld(x + c) - vm) * vr;
+            vf dxh = ld(dy + c) * ld(g + c);
+            st(dx + c, ld(dx + c) + vr * (dxh - va1 - xh * va2));
         }
         for (; c < C; c++) {
             float xh = (x[c] - mean[r]) * rstd[r], dxh = dy[c] * g[c];
@@ -171,73 +187,160 @@ void nn_layernorm_backward(float *dinp, float *dg, float *db, const float *dout,
 #define GELU_K 0.7978845608028654f /* sqrt(2/pi) */
 #define GELU_A 0.044715f
 
-static inline v4f vgelu(v4f x)
+/* sigmoid(2u) of the tanh-form GELU: gelu(x) = x * gsig(x). */
+INL vf vgsig(vf x)
 {
-    v4f u = splat(GELU_K) * (x + splat(GELU_A) * x * x * x);
-    return x / (splat(1.f) + vexp(splat(-2.f) * u));
+    vf u = splat(GELU_K) * (x + splat(GELU_A) * x * x * x);
+    return splat(1.f) / (splat(1.f) + vexp(splat(-2.f) * u));
 }
 
-static inline v4f vgelu_grad(v4f x)
+INL vf vgelu_grad(vf x, vf s)
 {
-    v4f x2 = x * x;
-    v4f u = splat(GELU_K) * (x + splat(GELU_A) * x2 * x);
-    v4f s = splat(1.f) / (splat(1.f) + vexp(splat(-2.f) * u));
-    v4f du = splat(GELU_K) * (splat(1.f) + splat(3.f * GELU_A) * x2);
+    vf du = splat(GELU_K) * (splat(1.f) + splat(3.f * GELU_A) * (x * x));
     return s + x * s * (splat(1.f) - s) * splat(2.f) * du;
 }
 
-void nn_gelu_forward(float *out, const float *in, size_t n)
+HOT void nn_gelu_forward(float *out, const float *in, size_t n)
 {
     size_t i = 0;
-    for (; i + 4 <= n; i += 4) st4(out + i, vgelu(ld4(in + i)));
-    for (; i < n; i++) out[i] = vgelu(splat(in[i]))[0];
+    for (; i + VL <= n; i += VL) { vf x = ld(in + i); st(out + i, x * vgsig(x)); }
+    for (; i < n; i++) { vf x = splat(in[i]); out[i] = (x * vgsig(x))[0]; }
 }
 
-void nn_gelu_backward(float *dinp, const float *dout, const float *in, size_t n)
+HOT void nn_gelu_forward_save(float *out, float *sig, const float *in, size_t n)
 {
     size_t i = 0;
-    for (; i + 4 <= n; i += 4) st4(dinp + i, ld4(dout + i) * vgelu_grad(ld4(in + i)));
-    for (; i < n; i++) dinp[i] = dout[i] * vgelu_grad(splat(in[i]))[0];
+    for (; i + VL <= n; i += VL) {
+        vf x = ld(in + i), s = vgsig(x);
+        st(sig + i, s);
+        st(out + i, x * s);
+    }
+    for (; i < n; i++) { vf x = splat(in[i]), s = vgsig(x); sig[i] = s[0]; out[i] = (x * s)[0]; }
+}
+
+HOT void nn_gelu_backward(float *dinp, const float *dout, const float *in, size_t n)
+{
+    size_t i = 0;
+    for (; i + VL <= n; i += VL) { vf x = ld(in + i); st(dinp + i, ld(dout + i) * vgelu_grad(x, vgsig(x))); }
+    for (; i < n; i++) { vf x = splat(in[i]); dinp[i] = dout[i] * vgelu_grad(x, vgsig(x))[0]; }
+}
+
+HOT void nn_gelu_backward_saved(float *dinp, const float *dout, const float *in,
+                                const float *sig, size_t n)
+{
+    size_t i = 0;
+    for (; i + VL <= n; i += VL) st(dinp + i, ld(dout + i) * vgelu_grad(ld(in + i), ld(sig + i)));
+    for (; i < n; i++) dinp[i] = dout[i] * vgelu_grad(splat(in[i]), splat(sig[i]))[0];
 }
 
 /* ---- residual ---------------------------------------------------------------------- */
-void nn_residual_forward(float *out, const float *a, const float *b, size_t n)
+HOT void nn_residual_forward(float *out, const float *a, const float *b, size_t n)
 {
     size_t i = 0;
-    for (; i + 4 <= n; i += 4) st4(out + i, ld4(a + i) + ld4(b + i));
+    for (; i + VL <= n; i += VL) st(out + i, ld(a + i) + ld(b + i));
     for (; i < n; i++) out[i] = a[i] + b[i];
 }
 
-void nn_residual_backward(float *acc, const float *x, size_t n)
+HOT void nn_residual_backward(float *acc, const float *x, size_t n)
 {
     size_t i = 0;
-    for (; i + 4 <= n; i += 4) st4(acc + i, ld4(acc + i) + ld4(x + i));
+    for (; i + VL <= n; i += VL) st(acc + i, ld(acc + i) + ld(x + i));
     for (; i < n; i++) acc[i] += x[i];
 }
 
 /* ---- attention -------------------------------------------------------------------- */
+/* Per patch and head the work is four small products on T x hd blocks. Two
+ * helpers cover all of them with accumulators held in registers:
+ *   rows_times_t: S[i][0..T) = sum_d a * A[i][d] * Bt[d][0..T)   (scores, dP)
+ *   mix_rows:     O[i][0..hd) = sum_j W[i][j] * X[j][0..hd)     (PV, dV, dQ, dK)
+ * The fast paths (T = 24; hd a multiple of 8) and the generic loops perform
+ * the same operations per element in the same order of summation. */
+
 size_t nn_attention_scratch_len(int T, int C, int H)
 {
     int hd = C / H;
-    return (size_t)2 * hd * T + 2 * (size_t)T;
+    return (size_t)2 * hd * T + (size_t)3 * T * T;
+}
+
+INL void rows_times_t(float *S, const float *A, int lda, float a, const float *Bt,
+                      int T, int hd)
+{
+    for (int i = 0; i < T; i++) {
+        const float *ai = A + (size_t)i * lda;
+        float *s = S + (size_t)i * T;
+        if (T == 24) {
+            vf s0 = splat(0.f), s1 = splat(0.f), s2 = splat(0.f);
+            for (int d = 0; d < hd; d++) {
+                vf q = splat(ai[d] * a);
+                const float *b = Bt + (size_t)d * 24;
+                s0 += q * ld(b); s1 += q * ld(b + 8); s2 += q * ld(b + 16);
+            }
+            st(s, s0); st(s + 8, s1); st(s + 16, s2);
+        } else {
+            memset(s, 0, sizeof(float) * T);
+            for (int d = 0; d < hd; d++) axpy(s, ai[d] * a, Bt + (size_t)d * T, T);
+        }
+    }
+}
+
+/* W element (i, j): row-major W[i*T + j], or W[j*T + i] when tw (W^T used). */
+#define WAT(W, i, j) ((tw) ? (W)[(size_t)(j) * T + (i)] : (W)[(size_t)(i) * T + (j)])
+
+INL void mix_rows(float *O, int ldo, const float *W, int tw, const float *X, int ldx, int T, int hd)
+{
+    int i = 0;
+    if (hd % 8 == 0)
+        for (; i + 2 <= T; i += 2) {
+            float *o0 = O + (size_t)i * ldo, *o1 = o0 + ldo;
+            int c = 0;
+            for (; c + 16 <= hd; c += 16) {
+                vf a0 = splat(0.f), a1 = splat(0.f), b0 = splat(0.f), b1 = splat(0.f);
+                for (int j = 0; j < T; j++) {
+                    const float *x = X + (size_t)j * ldx + c;
+                    vf x0 = ld(x), x1 = ld(x + 8), p = splat(WAT(W, i, j)), q = splat(WAT(W, i + 1, j));
+                    a0 += p * x0; a1 += p * x1; b0 += q * x0; b1 += q * x1;
+                }
+                st(o0 + c, a0); st(o0 + c + 8, a1); st(o1 + c, b0); st(o1 + c + 8, b1);
+            }
+            for (; c < hd; c += 8) {
+                vf a0 = splat(0.f), b0 = splat(0.f);
+                for (int j = 0; j < T; j++) {
+                    vf x0 = ld(X + (size_t)j * ldx + c);
+                    a0 += splat(WAT(W, i, j)) * x0; b0 += splat(WAT(W, i + 1, j)) * x0;
+                }
+                st(o0 + c, a0); st(o1 + c, b0);
+            }
+        }
+    for (; i < T; i++) {
+        float *o = O + (size_t)i * ldo;
+        memset(o, 0, sizeof(float) * hd);
+        for (int j = 0; j < T; j++) axpy(o, WAT(W, i, j), X + (size_t)j * ldx, hd);
+    }
+}
+#undef WAT
+
+INL void transpose(float *dst, const float *src, int ld, int rows, int cols)
+{
+    for (int r = 0; r < rows; r++)
+        for (int c = 0; c < cols; c++) dst[(size_t)c * rows + r] = src[(size_t)r * ld + c];
 }
 
 /* In place softmax of s[0..n). */
-static inline void softmax_row(float *s, int n)
+INL void softmax_row(float *s, int n)
 {
     float mx = s[0];
     for (int j = 1; j < n; j++) mx = s[j] > mx ? s[j] : mx;
     int j = 0;
-    v4f vm = splat(mx);
-    for (; j + 4 <= n; j += 4) st4(s + j, vexp(ld4(s + j) - vm));
+    vf vm = splat(mx);
+    for (; j + VL <= n; j += VL) st(s + j, vexp(ld(s + j) - vm));
     for (; j < n; j++) s[j] = sexp(s[j] - mx);
     float inv = 1.f / vsum(s, n);
-    for (j = 0; j + 4 <= n; j += 4) st4(s + j, ld4(s + j) * splat(inv));
+    for (j = 0; j + VL <= n; j += VL) st(s + j, ld(s + j) * splat(inv));
     for (; j < n; j++) s[j] *= inv;
 }
 
-void nn_attention_forward(float *out, float *prob, const float *qkv,
-                          int B, int T, int C, int H, nn_attn_mode mode, float *scratch)
+HOT void nn_attention_forward(float *out, float *prob, const float *qkv,
+                              int B, int T, int C, int H, nn_attn_mode mode, float *scratch)
 {
     const int hd = C / H, C3 = 3 * C;
     if (mode == NN_ATTN_SELF) {
@@ -251,25 +354,18 @@ void nn_attention_forward(float *out, float *prob, const float *qkv,
     for (int b = 0; b < B; b++) {
         const float *base = qkv + (size_t)b * T * C3;
         for (int h = 0; h < H; h++) {
-            for (int j = 0; j < T; j++)
-                for (int d = 0; d < hd; d++) kt[d * T + j] = base[(size_t)j * C3 + C + h * hd + d];
-            for (int i = 0; i < T; i++) {
-                const float *q = base + (size_t)i * C3 + h * hd;
-                float *s = prob + (((size_t)b * H + h) * T + i) * T;
-                memset(s, 0, sizeof(float) * T);
-                for (int d = 0; d < hd; d++) axpy(s, q[d] * scale, kt + d * T, T);
-                softmax_row(s, T);
-                float *o = out + ((size_t)b * T + i) * C + h * hd;
-                memset(o, 0, sizeof(float) * hd);
-                for (int j = 0; j < T; j++) axpy(o, s[j], base + (size_t)j * C3 + 2 * C + h * hd, hd);
-            }
+            float *P = prob + ((size_t)b * H + h) * T * T;
+            transpose(kt, base + C + h * hd, C3, T, hd);
+            rows_times_t(P, base + h * hd, C3, scale, kt, T, hd);
+            for (int i = 0; i < T; i++) softmax_row(P + (size_t)i * T, T);
+            mix_rows(out + (size_t)b * T * C + h * hd, C, P, 0, base + 2 * C + h * hd, C3, T, hd);
         }
     }
 }
 
-void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
-                           const float *prob, int B, int T, int C, int H,
-                           nn_attn_mode mode, float *scratch)
+HOT void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
+                               const float *prob, int B, int T, int C, int H,
+                               nn_attn_mode mode, float *scratch)
 {
     const int hd = C / H, C3 = 3 * C;
     if (mode == NN_ATTN_SELF) {
@@ -281,35 +377,29 @@ void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
         return;
     }
     const float scale = 1.f / sqrtf((float)hd);
-    float *vt = scratch;            /* [hd x T] */
-    float *dp = scratch + hd * T;   /* [T] */
-    float *ds = dp + T;             /* [T] */
-    memset(dqkv, 0, sizeof(float) * (size_t)B * T * C3);
+    float *vt = scratch;                 /* [hd x T] V transposed */
+    float *ds = vt + (size_t)hd * T;     /* [T x T] dP, then dS */
     for (int b = 0; b < B; b++) {
         const float *base = qkv + (size_t)b * T * C3;
+        const float *dO = dout + (size_t)b * T * C + 0;
         float *gbase = dqkv + (size_t)b * T * C3;
         for (int h = 0; h < H; h++) {
-            for (int j = 0; j < T; j++)
-                for (int d = 0; d < hd; d++) vt[d * T + j] = base[(size_t)j * C3 + 2 * C + h * hd + d];
+            const float *P = prob + ((size_t)b * H + h) * T * T;
+            transpose(vt, base + 2 * C + h * hd, C3, T, hd);
+            rows_times_t(ds, dO + h * hd, C, 1.f, vt, T, hd); /* dP = dO V^T */
             for (int i = 0; i < T; i++) {
-                const float *P = prob + (((size_t)b * H + h) * T + i) * T;
-                const float *dO = dout + ((size_t)b * T + i) * C + h * hd;
-                const float *q = base + (size_t)i * C3 + h * hd;
-                memset(dp, 0, sizeof(float) * T);
-                for (int d = 0; d < hd; d++) axpy(dp, dO[d], vt + d * T, T);
-                for (int j = 0; j < T; j++) axpy(gbase + (size_t)j * C3 + 2 * C + h * hd, P[j], dO, hd);
+                const float *p = P + (size_t)i * T;
+                float *d = ds + (size_t)i * T;
                 float dot = 0.f;
-                for (int j = 0; j < T; j++) dot += P[j] * dp[j];
+                for (int j = 0; j < T; j++) dot += p[j] * d[j];
                 int j = 0;
-                for (; j + 4 <= T; j += 4)
-                    st4(ds + j, ld4(P + j) * (ld4(dp + j) - splat(dot)) * splat(scale));
-                for (; j < T; j++) ds[j] = P[j] * (dp[j] - dot) * scale;
-                float *dq = gbase + (size_t)i * C3 + h * hd;
-                for (j = 0; j < T; j++) {
-                    axpy(dq, ds[j], base + (size_t)j * C3 + C + h * hd, hd);
-                    axpy(gbase + (size_t)j * C3 + C + h * hd, ds[j], q, hd);
-                }
+                vf vd = splat(dot), vs = splat(scale);
+                for (; j + VL <= T; j += VL) st(d + j, ld(p + j) * (ld(d + j) - vd) * vs);
+                for (; j < T; j++) d[j] = p[j] * (d[j] - dot) * scale;
             }
+            mix_rows(gbase + 2 * C + h * hd, C3, P, 1, dO + h * hd, C, T, hd);   /* dV = P^T dO */
+            mix_rows(gbase + h * hd, C3, ds, 0, base + C + h * hd, C3, T, hd);   /* dQ = dS K   */
+            mix_rows(gbase + C + h * hd, C3, ds, 1, base + h * hd, C3, T, hd);   /* dK = dS^T Q */
         }
     }
 }

@@ -34,8 +34,13 @@ void nn_layernorm_backward(float *dinp, float *dg, float *db, const float *dout,
 
 /* GELU, tanh approximation written as x * sigmoid(2u), u = sqrt(2/pi)(x + 0.044715 x^3). */
 void nn_gelu_forward(float *out, const float *in, size_t n);
-/* dinp[n] = dout * gelu'(in). */
+/* dinp[n] = dout * gelu'(in) (dinp may alias dout). */
 void nn_gelu_backward(float *dinp, const float *dout, const float *in, size_t n);
+/* Forward that also saves sig[n] = sigmoid(2u) so that the backward needs no
+ * exp or division; same out values as nn_gelu_forward. */
+void nn_gelu_forward_save(float *out, float *sig, const float *in, size_t n);
+void nn_gelu_backward_saved(float *dinp, const float *dout, const float *in,
+                            const float *sig, size_t n);
 
 /* out[n] = a + b (out may alias a). */
 void nn_residual_forward(float *out, const float *a, const float *b, size_t n);

@@ -135,6 +135,21 @@ static void test_gelu_forward_and_gradient(void **s)
     ASSERT_GRAD(din, g, n, GRAD_TOL, "gelu d/din");
 }
 
+/* The saved-sigmoid forward/backward give exactly the plain kernels' values. */
+static void test_gelu_saved_path_matches_plain_path(void **s)
+{
+    (void)s;
+    enum { n = 37 };
+    unsigned st = 12;
+    float in[n], dout[n], o1[n], o2[n], sig[n], d1[n], d2[n];
+    tu_fill(in, n, 5, &st); tu_fill(dout, n, 1, &st);
+    nn_gelu_forward(o1, in, n);
+    nn_gelu_forward_save(o2, sig, in, n);
+    nn_gelu_backward(d1, dout, in, n);
+    nn_gelu_backward_saved(d2, dout, in, sig, n);
+    for (int i = 0; i < n; i++) { ASSERT_EXACT(o2[i], o1[i]); ASSERT_EXACT(d2[i], d1[i]); }
+}
+
 /* ---- residual ---------------------------------------------------------------------- */
 static void test_residual_forward_and_backward(void **s)
 {
@@ -181,6 +196,7 @@ static void check_attention(int B, int T, int C, int H, nn_attn_mode mode, unsig
 
 static void test_attention_joint_odd_sizes(void **s) { (void)s; check_attention(2, 5, 12, 2, NN_ATTN_JOINT, 5); }
 static void test_attention_joint_patch_of_24(void **s) { (void)s; check_attention(1, 24, 16, 2, NN_ATTN_JOINT, 6); }
+static void test_attention_joint_reference_head_width(void **s) { (void)s; check_attention(2, 24, 32, 2, NN_ATTN_JOINT, 9); }
 static void test_attention_self_gradients(void **s) { (void)s; check_attention(2, 5, 12, 3, NN_ATTN_SELF, 7); }
 
 static void test_attention_self_ignores_other_tokens(void **s)
@@ -208,7 +224,9 @@ int main(void)
         cmocka_unit_test(test_residual_forward_and_backward),
         cmocka_unit_test(test_attention_joint_odd_sizes),
         cmocka_unit_test(test_attention_joint_patch_of_24),
+        cmocka_unit_test(test_attention_joint_reference_head_width),
         cmocka_unit_test(test_attention_self_gradients),
+        cmocka_unit_test(test_gelu_saved_path_matches_plain_path),
         cmocka_unit_test(test_attention_self_ignores_other_tokens),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
