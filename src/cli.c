@@ -7,6 +7,7 @@
 #include "gate.h"
 #include "tsv.h"
 #include "teacher.h"
+#include "exp_main.h"
 #include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -230,6 +231,9 @@ static int cmd_bench_teacher(int argc, char **argv)
 }
 
 static const cli_cmd cli_cmds[] = {
+    {"main-run", exp_main_cmd_run, "E3/E4: one (seed, arm) training + evaluation unit"},
+    {"main-baselines", exp_main_cmd_baselines, "E3/E4: direction-blind baseline and noise floor"},
+    {"main-summary", exp_main_cmd_summary, "E3/E4: gather runs into frozen tables"},
     {"gates", cmd_gates, "parse and list the preregistered gate files"},
     {"check-tsv", cmd_check_tsv, "validate frozen TSV files"},
     {"verify", cmd_verify, "audit, recompute every claim, judge gates, redraw figures"},
