@@ -9,7 +9,9 @@
 #include "nn.h"
 #include <cblas.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 /* The vector helpers are always inlined, so no vector crosses a call boundary. */
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -113,6 +115,30 @@ void nn_linear_backward(float *dinp, float *dw, float *db, const float *dout,
     cblas_sgemm(CblasRowMajor, CblasTrans, CblasNoTrans, N, K, M, 1.f, dout, N, in, K,
                 1.f, dw, K);
     if (db) colsum_add(db, dout, M, N);
+}
+
+double nn_sgemm_gflops(int M, const int *sizes, int n, int reps)
+{
+    int mx = 1;
+    for (int i = 0; i < n; i++) mx = sizes[i] > mx ? sizes[i] : mx;
+    float *A = malloc(sizeof(float) * M * mx), *W = malloc(sizeof(float) * mx * mx);
+    float *Cm = malloc(sizeof(float) * M * mx);
+    if (!A || !W || !Cm) { free(A); free(W); free(Cm); return 0; }
+    for (size_t i = 0; i < (size_t)M * mx; i++) A[i] = (float)((i % 17) * 0.01 - 0.08);
+    for (size_t i = 0; i < (size_t)mx * mx; i++) W[i] = (float)((i % 13) * 0.01 - 0.06);
+    double fl = 0;
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    for (int a = 0; a < n; a++)
+        for (int b = 0; b < n; b++)
+            for (int k = 0; k < reps; k++) {
+                cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasTrans, M, sizes[a], sizes[b], 1.f,
+                            A, sizes[b], W, sizes[b], 0.f, Cm, sizes[a]);
+                fl += 2.0 * M * sizes[a] * sizes[b];
+            }
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    free(A); free(W); free(Cm);
+    return fl / ((t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec)) / 1e9;
 }
 
 /* ---- layer norm ---------------------------------------------------------------- */

@@ -65,4 +65,9 @@ size_t nn_attention_scratch_len(int T, int C, int H);
  * and GELU so that neither depends on libm speed. */
 void nn_expf(float *y, const float *x, size_t n);
 
+/* GFLOP/s of cblas_sgemm (NoTrans x Trans, as in nn_linear_forward) over all
+ * shapes M x N x K with N, K in sizes[0..n), each run `reps` times, timed
+ * together; 0 on allocation failure. For the benchmark of SPEC §10. */
+double nn_sgemm_gflops(int M, const int *sizes, int n, int reps);
+
 #endif
