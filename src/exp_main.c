@@ -281,7 +281,7 @@ int exp_main_cmd_run(int argc, char **argv)
                  "extrapolation spacings (joint arm: also the shuffled-geometry probe), write FILE.tsv.");
             return 0;
         }
-    static const char *known[] = {"--seed", "--arm", "--out", "--scale", "--ckpt", NULL};
+    static const char *known[] = {"--seed", "--arm", "--out", "--scale", "--ckpt", "--epochs", "--train-stands", NULL};
     if (bad_opts(argc, argv, known)) return 2;
     const char *seed_s = opt(argc, argv, "--seed", NULL), *arm = opt(argc, argv, "--arm", NULL);
     const char *out = opt(argc, argv, "--out", NULL), *scale = opt(argc, argv, "--scale", "full");
@@ -301,6 +301,10 @@ int exp_main_cmd_run(int argc, char **argv)
     cs_status st = design_get(&ds);
     if (!st) st = exp_main_plan_get(scale, &pl);
     if (st) return fail_with(st);
+    /* exploration overrides (recorded in the provenance command line) */
+    if (opt(argc, argv, "--epochs", NULL)) pl.epochs = atoi(opt(argc, argv, "--epochs", NULL));
+    if (opt(argc, argv, "--train-stands", NULL)) pl.train_stands = atoi(opt(argc, argv, "--train-stands", NULL));
+    if (pl.epochs < 1 || pl.train_stands < 1) { fprintf(stderr, "crownshy main-run: --epochs and --train-stands must be >= 1\n"); return 2; }
     double worst = 0.0, maxdiff = 0.0;
     patch_set *tr = NULL;
     if ((st = build_train(&ds, &pl, &tr, &worst))) return fail_with(st);
@@ -317,6 +321,12 @@ int exp_main_cmd_run(int argc, char **argv)
     o.seed_init = (unsigned long)seed_derive("main-model", 0, seed, "init");
     o.seed_batch = (unsigned long)seed_derive("main-model", 0, seed, "batch");
     o.seed_noise = (unsigned long)seed_derive("main-model", 0, seed, "noise");
+    if (ckpt) { /* the checkpoint's directory must exist before the first atomic write */
+        char dirbuf[1024];
+        snprintf(dirbuf, sizeof dirbuf, "%s", ckpt);
+        for (char *c = dirbuf + 1; *c; c++)
+            if (*c == '/') { *c = '\0'; mkdir(dirbuf, 0777); *c = '/'; }
+    }
     train *t = NULL;
     if ((st = train_alloc(&t, &cfg, tr, &o))) { patch_set_free(tr); return fail_with(st); }
     if (ckpt && file_exists(ckpt)) {
