@@ -905,7 +905,7 @@ static const char *RUN_HELP =
 int exp_cmd_run(int argc, char **argv)
 {
     exp_opts o = {.out = "build/results", .stands = EXP_STANDS_DEFAULT, .beta = NAN, .tag = "train",
-                  .argc = argc + 1, .argv = argv - 1};
+                  .argc = argc, .argv = argv};
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) { printf(RUN_HELP); return 0; }
         int more = i + 1 < argc;
