@@ -54,6 +54,17 @@ $(RESULTS)/irreducibility/refine_train.tsv: $(TEACHER_DEPS)
 $(RESULTS)/irreducibility/reduction_train.tsv: $(TEACHER_DEPS)
 	$(CLI) run irreducibility-reduction --stands $(TEACHER_STANDS) --out $(RESULTS)
 $(RESULTS)/hero/figure_crowns.tsv: $(TEACHER_DEPS)
-	$(CLI) run fig-hero --out $(RESULTS)
+	$(CLI) run fig-hero --out $(RESULTS) $(if $(BETA_FIELD),--beta $(BETA_FIELD))
 $(RESULTS)/pointcloud/figure_crowns.tsv: $(TEACHER_DEPS)
 	$(CLI) run fig-pointcloud --out $(RESULTS)
+
+# E2 at the field die-back (SPEC §7 E2 "at beta_train and at beta_field"): set
+# BETA_FIELD to the E5 calibration (e.g. make reproduce BETA_FIELD=0.19) and
+# the three field units are registered; the hero figure then gets its second row.
+ifneq ($(strip $(BETA_FIELD)),)
+IRRED_FIELD_UNITS := $(RESULTS)/irreducibility/perturb_field.tsv $(RESULTS)/irreducibility/refine_field.tsv \
+                     $(RESULTS)/irreducibility/reduction_field.tsv
+REPRODUCE_UNITS += $(IRRED_FIELD_UNITS)
+$(RESULTS)/irreducibility/%_field.tsv: $(TEACHER_DEPS)
+	$(CLI) run irreducibility-$* --stands $(TEACHER_STANDS) --beta $(BETA_FIELD) --tag field --out $(RESULTS)
+endif
