@@ -188,6 +188,7 @@ typedef struct {
     unsigned char *frozen;
     double *curmax;   /* upper bound on max_s r_i,s (stale-high after die-back: safe) */
     nbrs nb;
+    double *pvx, *pvy, *pnu; /* per neighbour entry: p_j - p_i and its length */
     smp_dirs dirs;
     double uc[NS], us[NS]; /* sector-centre unit vectors */
 } grow_ws;
@@ -206,9 +207,10 @@ static int conflict(grow_ws *w, size_t i, int s, double rp, double clear_i)
     for (size_t e = w->nb.start[i]; e < w->nb.start[i + 1]; e++) {
         size_t j = w->nb.idx[e];
         double cm = w->curmax[j] + MARGIN;
-        double vx = st->x[j] - xi, vy = st->y[j] - yi;
-        double nu2 = vx * vx + vy * vy, nu = sqrt(nu2);
+        double nu = w->pnu[e];
         if (nu - rho_max >= cm) continue;
+        double vx = w->pvx[e], vy = w->pvy[e];
+        double nu2 = vx * vx + vy * vy;
         /* Distance from p_j to the wedge {bearing in [theta_sm, theta_sp], radius <= rho_max}. */
         double c1 = w->uc[sm] * vy - w->us[sm] * vx;
         double c2 = w->uc[sp] * vy - w->us[sp] * vx;
@@ -350,6 +352,20 @@ cs_status teacher_grow(const teacher_stand *st, const teacher_params *p, double 
     }
     rc = nbrs_build(&w.nb, n, st->x, st->y, reach);
     if (rc) goto done;
+    {
+        size_t ne = w.nb.start[n];
+        w.pvx = malloc((ne ? ne : 1) * sizeof *w.pvx);
+        w.pvy = malloc((ne ? ne : 1) * sizeof *w.pvy);
+        w.pnu = malloc((ne ? ne : 1) * sizeof *w.pnu);
+        if (!w.pvx || !w.pvy || !w.pnu) { rc = cs_err(CS_ENOMEM, "teacher: out of memory"); goto done; }
+        for (size_t i = 0; i < n; i++)
+            for (size_t e = w.nb.start[i]; e < w.nb.start[i + 1]; e++) {
+                size_t j = w.nb.idx[e];
+                w.pvx[e] = st->x[j] - st->x[i];
+                w.pvy[e] = st->y[j] - st->y[i];
+                w.pnu[e] = sqrt(w.pvx[e] * w.pvx[e] + w.pvy[e] * w.pvy[e]);
+            }
+    }
     /* Stems closer than their starting crowns (0.05 r*) cannot start without
      * overlap; the rule is not bent for them: the stand is reported unbuildable. */
     {
@@ -374,9 +390,7 @@ cs_status teacher_grow(const teacher_stand *st, const teacher_params *p, double 
             /* No neighbour can be reached by an arc of radius below clear_i. */
             double clear_i = INFINITY;
             for (size_t e = w.nb.start[i]; e < w.nb.start[i + 1]; e++) {
-                size_t j = w.nb.idx[e];
-                double vx = st->x[j] - st->x[i], vy = st->y[j] - st->y[i];
-                double c = sqrt(vx * vx + vy * vy) - w.curmax[j];
+                double c = w.pnu[e] - w.curmax[w.nb.idx[e]];
                 if (c < clear_i) clear_i = c;
             }
             double *ri = r + i * NS;
@@ -412,6 +426,7 @@ cs_status teacher_grow(const teacher_stand *st, const teacher_params *p, double 
                     inf.worst_overlap, TEACHER_OVERLAP_MAX_M);
 done:
     nbrs_free(&w.nb);
+    free(w.pvx); free(w.pvy); free(w.pnu);
     free(w.frozen); free(w.curmax); free(step); free(reach); free(order); free(active);
     if (info) *info = inf;
     return rc;
