@@ -7,6 +7,7 @@
 #include "gate.h"
 #include "tsv.h"
 #include "teacher.h"
+#include "exp_field.h"
 #include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -239,6 +240,14 @@ static const cli_cmd cli_cmds[] = {
     {"pin", cmd_pin, "re-pin the estimator, teacher and gates (deliberate)"},
     {"hash-frozen", cmd_hash_frozen, "record the hashes of frozen/ (make freeze)"},
     {"bench-teacher", cmd_bench_teacher, "teacher ms per 144-tree stand at N = 48 and 384"},
+    {"field-summary", cmd_field_summary, "summarise a raw field table (FIELD_TABLE) with the canonical estimator"},
+    {"field-calibrate", cmd_field_calibrate, "E5: calibrate die-back beta to the field tree-mean median clearance"},
+    {"field-heldout", cmd_field_heldout, "E5: held-out spread, elongation and uncoupled control at beta_field"},
+    {"aniso-lattice", cmd_aniso_lattice, "E6: anisotropy on the controlled lattice at beta_field"},
+    {"aniso-hardcore", cmd_aniso_hardcore, "E6: hard-core stem family sweep"},
+    {"aniso-jitter", cmd_aniso_jitter, "E6: jitter-amplitude family sweep"},
+    {"aniso-jitter-calibrate", cmd_aniso_jitter_calibrate, "E6: calibrate jitter a* to the field anisotropy median"},
+    {"aniso-heldout", cmd_aniso_heldout, "E6: held-out stands at a*"},
     {"version", cmd_version, "print the version"},
 };
 #define NCMDS (sizeof cli_cmds / sizeof cli_cmds[0])

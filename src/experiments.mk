@@ -1,3 +1,36 @@
 # experiments.mk: one make target per unit of the full run (included by the
 # Makefile). Each experiment block appends its units to REPRODUCE_UNITS and
 # gives a rule writing $(RESULTS)/<experiment>/<unit>.tsv via the CLI.
+
+# ---- E5 field validation and E6 anisotropy attribution (SPEC §7) -------------
+# Stand counts: full run 28 held-out stands (E5, E6 lattice, E6 held-out) and 12
+# per sweep level; smoke 3 and 2. Calibration seeds come from gates/field.gate.
+# E6 runs at beta_field, so every E6 unit depends on the E5 calibration.
+ifeq ($(SCALE),smoke)
+FIELD_STANDS := 3
+ANISO_SWEEP_STANDS := 2
+else
+FIELD_STANDS := 28
+ANISO_SWEEP_STANDS := 12
+endif
+FIELD_CAL := $(RESULTS)/field/calibration.tsv
+$(FIELD_CAL): | $(CLI)
+	$(CLI) field-calibrate --out $@
+$(RESULTS)/field/heldout.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) field-heldout --calibration $(FIELD_CAL) --stands $(FIELD_STANDS) --out $@
+$(RESULTS)/anisotropy/lattice.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) aniso-lattice --calibration $(FIELD_CAL) --stands $(FIELD_STANDS) --out $@
+$(RESULTS)/anisotropy/hardcore.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) aniso-hardcore --calibration $(FIELD_CAL) --stands $(ANISO_SWEEP_STANDS) --out $@
+$(RESULTS)/anisotropy/jitter.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) aniso-jitter --calibration $(FIELD_CAL) --stands $(ANISO_SWEEP_STANDS) --out $@
+$(RESULTS)/anisotropy/jitter_calibration.tsv: $(RESULTS)/anisotropy/jitter.tsv | $(CLI)
+	$(CLI) aniso-jitter-calibrate --sweep $< --out $@
+$(RESULTS)/anisotropy/heldout.tsv: $(FIELD_CAL) $(RESULTS)/anisotropy/jitter_calibration.tsv | $(CLI)
+	$(CLI) aniso-heldout --calibration $(FIELD_CAL) --jitter-calibration $(RESULTS)/anisotropy/jitter_calibration.tsv --stands $(FIELD_STANDS) --out $@
+REPRODUCE_UNITS += $(FIELD_CAL) $(RESULTS)/field/heldout.tsv $(RESULTS)/anisotropy/lattice.tsv \
+  $(RESULTS)/anisotropy/hardcore.tsv $(RESULTS)/anisotropy/jitter.tsv \
+  $(RESULTS)/anisotropy/jitter_calibration.tsv $(RESULTS)/anisotropy/heldout.tsv
+.PHONY: field anisotropy
+field: $(FIELD_CAL) $(RESULTS)/field/heldout.tsv
+anisotropy: $(RESULTS)/anisotropy/lattice.tsv $(RESULTS)/anisotropy/hardcore.tsv $(RESULTS)/anisotropy/heldout.tsv

@@ -5,6 +5,7 @@
 #include "estimator.h"
 #include "stems.h"
 #include "teacher.h"
+#include "gate.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -261,4 +262,89 @@ void fs_fraction_text(double v, char *buf, size_t n)
         }
     }
     snprintf(buf, n, "%.3f", v);
+}
+
+/* Jitter amplitude is stated in whole percent of the spacing (the paper's
+ * JitterStarPct), so a* is rounded to 0.01. */
+#define FS_JITTER_STEP 0.01
+
+static cs_status fs_gate_value(const char *file, const char *key, size_t idx, double *v)
+{
+    gate *g;
+    cs_status st = gate_load(file, &g);
+    if (st) return st;
+    st = gate_value(g, key, idx, v);
+    gate_free(g);
+    return st;
+}
+
+static cs_status fs_curve_calibrate(const char *path, const double *x, const double *y, const int *lines, size_t n,
+                                    double target, double step, fs_calibration *out)
+{
+    out->target = target;
+    out->step = step;
+    out->points = n;
+    cs_status st = fs_interp_target(x, y, n, target, &out->interp, &out->bracketed);
+    if (st) return cs_err(st, "%s: %s", path, cs_errmsg());
+    out->value = fs_round_step(out->interp, step);
+    out->line_lo = lines[0];
+    for (size_t i = 0; i < n; i++) if (x[i] <= out->interp) out->line_lo = lines[i];
+    return CS_OK;
+}
+
+cs_status fs_beta_field(const char *calibration_path, fs_calibration *out)
+{
+    memset(out, 0, sizeof *out);
+    double target, step;
+    cs_status st = fs_gate_value("gates/field.gate", "calibration_target_m", 0, &target);
+    if (!st) st = fs_gate_value("gates/field.gate", "dieback_grid", 2, &step);
+    if (st) return st;
+    tsv *t;
+    fs_trees tr;
+    if ((st = fs_load_checked(calibration_path, &t, &tr))) return st;
+    size_t n = tsv_nrows(t);
+    double *x = malloc((n ? n : 1) * sizeof *x), *y = malloc((n ? n : 1) * sizeof *y);
+    int *ln = malloc((n ? n : 1) * sizeof *ln);
+    size_t m = 0;
+    if (!x || !y || !ln) st = cs_err(CS_ENOMEM, "out of memory");
+    for (size_t r = 0; r < n && !st; r++) {
+        int coupled;
+        if ((st = fs_arm(t, r, &coupled))) break;
+        if (!coupled) continue;
+        if ((st = tsv_double(t, r, "beta", &x[m]))) break;
+        if ((st = tsv_double(t, r, "tree_mean_median", &y[m]))) break;
+        if (m && !(x[m] > x[m - 1])) { st = cs_err(CS_EINPUT, "%s:%d: field 'beta': grid not ascending", calibration_path, tsv_line(t, r)); break; }
+        ln[m++] = tsv_line(t, r);
+    }
+    if (!st && m < 2) st = cs_err(CS_EINPUT, "%s: fewer than 2 calibration points", calibration_path);
+    if (!st) st = fs_curve_calibrate(calibration_path, x, y, ln, m, target, step, out);
+    free(x); free(y); free(ln);
+    tsv_free(t);
+    fs_trees_free(&tr);
+    return st;
+}
+
+cs_status fs_jitter_star(const char *path, fs_calibration *out)
+{
+    memset(out, 0, sizeof *out);
+    double target;
+    cs_status st = fs_gate_value("gates/anisotropy.gate", "field_median", 0, &target);
+    if (st) return st;
+    tsv *t;
+    if ((st = tsv_read(path, &t))) return st;
+    size_t n = tsv_nrows(t);
+    double *x = malloc((n ? n : 1) * sizeof *x), *y = malloc((n ? n : 1) * sizeof *y);
+    int *ln = malloc((n ? n : 1) * sizeof *ln);
+    if (!x || !y || !ln) st = cs_err(CS_ENOMEM, "out of memory");
+    for (size_t r = 0; r < n && !st; r++) {
+        if ((st = tsv_double(t, r, "level", &x[r]))) break;
+        if ((st = tsv_double(t, r, "aniso_median", &y[r]))) break;
+        if (r && !(x[r] > x[r - 1])) { st = cs_err(CS_EINPUT, "%s:%d: field 'level': not ascending", path, tsv_line(t, r)); break; }
+        ln[r] = tsv_line(t, r);
+    }
+    if (!st && n < 2) st = cs_err(CS_EINPUT, "%s: fewer than 2 sweep levels", path);
+    if (!st) st = fs_curve_calibrate(path, x, y, ln, n, target, FS_JITTER_STEP, out);
+    free(x); free(y); free(ln);
+    tsv_free(t);
+    return st;
 }

@@ -70,4 +70,14 @@ double fs_round_step(double x, double step);
  * or "%.3f" when no small denominator fits (ties). */
 void fs_fraction_text(double v, char *buf, size_t n);
 
+/* ---- calibrations (read back by the experiments and by the claims) ---- */
+/* E5: beta_field from a calibration summary (checked against its trees):
+ * the curve (beta, coupled tree_mean_median) interpolated to the field
+ * target (gates/field.gate calibration_target_m) and rounded to the grid
+ * step (dieback_grid). *line_lo gets the file line of the lower bracketing row. */
+typedef struct { double target, interp, value, step; int bracketed, line_lo; size_t points; } fs_calibration;
+cs_status fs_beta_field(const char *calibration_path, fs_calibration *out);
+/* E6: a* from the jitter calibration table (columns level, aniso_median):
+ * interpolated to gates/anisotropy.gate field_median, rounded to 0.01. */
+cs_status fs_jitter_star(const char *path, fs_calibration *out);
 #endif
