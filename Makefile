@@ -69,7 +69,7 @@ $(B)/obj $(B)/asan/obj $(B)/tests $(B)/asan/tests:
 # Every cmocka binary, then all of them again under ASan+UBSan; one aggregate line.
 check: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS) $(ASAN_TESTS)
-	@bash tests/run.sh $(TESTS) -- $(ASAN_TESTS)
+	@bash tests/run.sh $(TESTS) tests/tamper.sh -- $(ASAN_TESTS)
 
 check-fast: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS)
