@@ -223,6 +223,7 @@ static const cli_cmd cli_cmds[] = {
     {"hash-frozen", cmd_hash_frozen, "record the hashes of frozen/ (make freeze)"},
     {"field-summary", cmd_field_summary, "summarise a raw field table (FIELD_TABLE) with the canonical estimator"},
     {"field-calibrate", cmd_field_calibrate, "E5: calibrate die-back beta to the field tree-mean median clearance"},
+    {"field-beta", cmd_field_beta, "E5: print beta_field from a calibration table"},
     {"field-heldout", cmd_field_heldout, "E5: held-out spread, elongation and uncoupled control at beta_field"},
     {"aniso-lattice", cmd_aniso_lattice, "E6: anisotropy on the controlled lattice at beta_field"},
     {"aniso-hardcore", cmd_aniso_hardcore, "E6: hard-core stem family sweep"},

@@ -259,6 +259,21 @@ int cmd_field_calibrate(int argc, char **argv)
     return 0;
 }
 
+int cmd_field_beta(int argc, char **argv)
+{
+    if (fs_help(argc, argv,
+                "usage: crownshy field-beta DIR/calibration.tsv\n"
+                "Print beta_field (%.17g) recomputed from an E5 calibration table (used by the make units\n"
+                "that rerun E2 at the field operating point).\n"))
+        return 0;
+    if (argc != 2) { fprintf(stderr, "usage: crownshy field-beta DIR/calibration.tsv\n"); return 2; }
+    fs_calibration c;
+    cs_status st = fs_beta_field(argv[1], &c);
+    if (st) return fs_die("field-beta", st);
+    printf("%.17g\n", c.value);
+    return 0;
+}
+
 /* beta_field from --calibration, or a usage/input error code. */
 static int need_beta(const char *cmd, const fs_opts *o, fs_calibration *c)
 {

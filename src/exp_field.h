@@ -6,6 +6,7 @@
 
 int cmd_field_summary(int argc, char **argv);
 int cmd_field_calibrate(int argc, char **argv);
+int cmd_field_beta(int argc, char **argv);
 int cmd_field_heldout(int argc, char **argv);
 int cmd_aniso_lattice(int argc, char **argv);
 int cmd_aniso_hardcore(int argc, char **argv);

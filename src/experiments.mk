@@ -65,3 +65,14 @@ REPRODUCE_UNITS += $(FIELD_CAL) $(RESULTS)/field/heldout.tsv $(RESULTS)/anisotro
 .PHONY: field anisotropy
 field: $(FIELD_CAL) $(RESULTS)/field/heldout.tsv
 anisotropy: $(RESULTS)/anisotropy/lattice.tsv $(RESULTS)/anisotropy/hardcore.tsv $(RESULTS)/anisotropy/heldout.tsv
+# E2 irreducibility again at the field operating point (SPEC §7 E2 "at beta_train
+# and at beta_field (E5)"): beta_field is recomputed from the E5 calibration table.
+IRRED_FIELD_UNITS := $(RESULTS)/irreducibility/perturb_field.tsv $(RESULTS)/irreducibility/refine_field.tsv \
+                     $(RESULTS)/irreducibility/reduction_field.tsv
+$(RESULTS)/irreducibility/perturb_field.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) run irreducibility-perturb --stands $(TEACHER_STANDS) --beta $$($(CLI) field-beta $(FIELD_CAL)) --tag field --out $(RESULTS)
+$(RESULTS)/irreducibility/refine_field.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) run irreducibility-refine --stands $(TEACHER_STANDS) --beta $$($(CLI) field-beta $(FIELD_CAL)) --tag field --out $(RESULTS)
+$(RESULTS)/irreducibility/reduction_field.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) run irreducibility-reduction --stands $(TEACHER_STANDS) --beta $$($(CLI) field-beta $(FIELD_CAL)) --tag field --out $(RESULTS)
+REPRODUCE_UNITS += $(IRRED_FIELD_UNITS)
