@@ -28,8 +28,9 @@ $(RESULTS)/irreducibility/refine_train.tsv: $(TEACHER_DEPS)
 	$(CLI) run irreducibility-refine --stands $(TEACHER_STANDS) --out $(RESULTS)
 $(RESULTS)/irreducibility/reduction_train.tsv: $(TEACHER_DEPS)
 	$(CLI) run irreducibility-reduction --stands $(TEACHER_STANDS) --out $(RESULTS)
-$(RESULTS)/hero/figure_crowns.tsv: $(TEACHER_DEPS)
-	$(CLI) run fig-hero --out $(RESULTS)
+# second row at beta_field (E5): recomputed from the field calibration table
+$(RESULTS)/hero/figure_crowns.tsv: $(TEACHER_DEPS) $(RESULTS)/field/calibration.tsv
+	$(CLI) run fig-hero --beta $$($(CLI) field-beta $(RESULTS)/field/calibration.tsv) --out $(RESULTS)
 $(RESULTS)/pointcloud/figure_crowns.tsv: $(TEACHER_DEPS)
 	$(CLI) run fig-pointcloud --out $(RESULTS)
 
