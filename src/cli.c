@@ -230,6 +230,7 @@ static const cli_cmd cli_cmds[] = {
     {"aniso-jitter", cmd_aniso_jitter, "E6: jitter-amplitude family sweep"},
     {"aniso-jitter-calibrate", cmd_aniso_jitter_calibrate, "E6: calibrate jitter a* to the field anisotropy median"},
     {"aniso-heldout", cmd_aniso_heldout, "E6: held-out stands at a*"},
+    {"field-diagnose", cmd_field_diagnose, "E5/E6: diagnostics for the elongation and anisotropy verdicts"},
     {"version", cmd_version, "print the version"},
 };
 #define NCMDS (sizeof cli_cmds / sizeof cli_cmds[0])

@@ -25,6 +25,8 @@
 #include "gate.h"
 #include "prov.h"
 #include "stats.h"
+#include "estimator.h"
+#include "crown.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -531,4 +533,81 @@ int cmd_aniso_heldout(int argc, char **argv)
     }
     fs_trees_free(&acc);
     return st ? fs_die("aniso-heldout", st) : 0;
+}
+
+/* -------------------------------------------------------- diagnosis ---- */
+
+/* Why the elongation and anisotropy gates fail (printed, not frozen): the
+ * open-grown crown targets (SPEC §3) and the two knobs' reach. */
+int cmd_field_diagnose(int argc, char **argv)
+{
+    if (fs_help(argc, argv,
+                "usage: crownshy field-diagnose --calibration DIR/calibration.tsv [--stands N]\n"
+                "Print diagnostics for the E5/E6 verdicts: elongation of the open-grown crown targets\n"
+                "(by lobe count k), the reach of beta over the calibration grid (elongation, anisotropy),\n"
+                "and the anisotropy of a perfect lattice (a = 0) at beta_field (N stands, default 12,\n"
+                "seeds 'field/diagnose'). Nothing is written.\n"))
+        return 0;
+    fs_opts o;
+    char *av[16];
+    int ac = 0;
+    if (argc > 14) { fprintf(stderr, "crownshy field-diagnose: too many arguments\n"); return 2; }
+    for (int i = 0; i < argc; i++) av[ac++] = argv[i];
+    av[ac++] = "--out";
+    av[ac++] = "-";
+    int rc = fs_parse("field-diagnose", ac, av, &o, 12);
+    if (rc) return rc;
+    fs_calibration c;
+    if ((rc = need_beta("field-diagnose", &o, &c))) return rc;
+    double d = DESIGN_FIELD_SPACING_M, L = FS_L_FACTOR * d, a;
+    cs_status st = fs_canonical_jitter(&a);
+    if (st) return fs_die("field-diagnose", st);
+    /* 1. open-grown target elongation on the E5 held-out stands' draws */
+    size_t n[6] = {0}, ge[6] = {0}, tot = 0, totge = 0;
+    double emax = 0, lo;
+    if ((st = gate_get1("gates/field.gate", "elongation_band", 0, &lo))) return fs_die("field-diagnose", st);
+    for (unsigned s = 0; s < o.stands && !st; s++) {
+        stand *sd;
+        if ((st = stand_alloc(&sd, STAND_LATTICE, d, L, a, "field/heldout", s))) break;
+        for (size_t i = 0; i < sd->s->n; i++) {
+            double e = est_elongation(sd->rstar + i * CROWN_NSEC);
+            int k = sd->draw[i].k;
+            n[k]++; tot++;
+            if (e >= lo) { ge[k]++; totge++; }
+            if (e > emax) emax = e;
+        }
+        stand_free(sd);
+    }
+    if (st) return fs_die("field-diagnose", st);
+    printf("open-grown targets (%zu crowns): max elongation %.4f; share >= %.2f: %.4f\n", tot, emax, lo, (double)totge / (double)tot);
+    for (int k = 2; k <= 5; k++)
+        printf("  lobe count k = %d: %zu crowns, share >= %.2f: %.4f\n", k, n[k], lo, n[k] ? (double)ge[k] / (double)n[k] : 0.0);
+    /* 2. reach of beta: calibration grid */
+    tsv *t;
+    fs_trees tr;
+    if ((st = fs_load_checked(o.calibration, &t, &tr))) return fs_die("field-diagnose", st);
+    fs_trees_free(&tr);
+    double emx = 0, amn = INFINITY, bea = 0, baa = 0;
+    for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+        double b, e, an;
+        if ((st = tsv_double(t, r, "beta", &b)) || (st = tsv_double(t, r, "elong_median", &e)) || (st = tsv_double(t, r, "aniso_median", &an))) break;
+        if (e > emx) { emx = e; bea = b; }
+        if (an < amn) { amn = an; baa = b; }
+    }
+    tsv_free(t);
+    if (st) return fs_die("field-diagnose", st);
+    printf("calibration grid: largest median elongation %.4f (beta %.2f); smallest median anisotropy %.4f (beta %.2f)\n", emx, bea, amn, baa);
+    /* 3. a perfect lattice at beta_field */
+    fs_trees acc;
+    fs_trees_init(&acc);
+    fs_job j = {"field/diagnose", STAND_LATTICE, 0.0, 0.0, c.value, o.stands, 0, 0};
+    double worst = 0;
+    st = fs_run_job(&j, &acc, &worst);
+    fs_summary sm;
+    if (!st) st = fs_group(&acc, 1, 0.0, &sm);
+    fs_trees_free(&acc);
+    if (st) return fs_die("field-diagnose", st);
+    printf("perfect lattice (a = 0) at beta_field %.2f, %u stands: median anisotropy %.4f (%zu trees), tree-mean median %.4f m, elongation %.4f\n",
+           c.value, o.stands, sm.f.aniso_median, sm.f.aniso_trees, sm.f.tree_mean_median, sm.elong_median);
+    return 0;
 }

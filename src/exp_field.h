@@ -13,5 +13,6 @@ int cmd_aniso_hardcore(int argc, char **argv);
 int cmd_aniso_jitter(int argc, char **argv);
 int cmd_aniso_jitter_calibrate(int argc, char **argv);
 int cmd_aniso_heldout(int argc, char **argv);
+int cmd_field_diagnose(int argc, char **argv);
 
 #endif

@@ -22,7 +22,7 @@ static void test_help_exits_zero(void **s)
 {
     (void)s;
     const char *cmds[] = {"field-summary", "field-calibrate", "field-beta", "field-heldout", "aniso-lattice",
-                          "aniso-hardcore", "aniso-jitter", "aniso-jitter-calibrate", "aniso-heldout"};
+                          "aniso-hardcore", "aniso-jitter", "aniso-jitter-calibrate", "aniso-heldout", "field-diagnose"};
     for (size_t i = 0; i < sizeof cmds / sizeof *cmds; i++) {
         char a[96];
         snprintf(a, sizeof a, "%s --help", cmds[i]);
