@@ -1,0 +1,310 @@
+/* model: flow-matching set transformer (see model.h; paper §4.2, Eq. 2 and 6;
+ * SPEC §8). The block is pre-LN: x += Proj(MHA(LN1 x)); x += FC2(GELU(FC1(LN2 x))).
+ * Time features: sin/cos of pi*2^k*t, k < ntime/2 (t in [0,1]). */
+#include "model.h"
+#include <gsl/gsl_randist.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+model_cfg model_cfg_reference(int ncond)
+{
+    model_cfg c = {.T = 24, .P = 24, .nfeat = 3, .ncond = ncond, .ntime = 16,
+                   .C = 64, .L = 3, .H = 4, .F = 256, .joint = 1};
+    return c;
+}
+
+cs_status model_cfg_check(const model_cfg *c)
+{
+#define POS(f) if (c->f < 1) return cs_err(CS_EINPUT, "model config: " #f " = %d must be >= 1", c->f)
+    POS(T); POS(P); POS(nfeat); POS(ncond); POS(ntime); POS(C); POS(L); POS(H); POS(F);
+#undef POS
+    if (c->C % c->H) return cs_err(CS_EINPUT, "model config: width C = %d not divisible by heads H = %d", c->C, c->H);
+    if (c->ntime % 2) return cs_err(CS_EINPUT, "model config: ntime = %d must be even", c->ntime);
+    if (c->joint != 0 && c->joint != 1) return cs_err(CS_EINPUT, "model config: joint = %d must be 0 or 1", c->joint);
+    return CS_OK;
+}
+
+/* Assign offsets (m may be NULL to only count). Matrices first, then vectors. */
+static size_t layout(const model_cfg *c, model *m, size_t *ndecay)
+{
+    size_t o = 0;
+    const size_t C = c->C, F = c->F, E = c->ncond + c->ntime, I = c->P + c->nfeat;
+#define PUT(field, n) do { if (m) m->field = o; o += (n); } while (0)
+#define PUTB(l, field, n) do { if (m) m->blk[l].field = o; o += (n); } while (0)
+    PUT(tok_w, C * I);
+    PUT(e1_w, C * E);
+    PUT(e2_w, C * C);
+    for (int l = 0; l < c->L; l++) {
+        PUTB(l, qkv_w, 3 * C * C);
+        PUTB(l, proj_w, C * C);
+        PUTB(l, fc1_w, F * C);
+        PUTB(l, fc2_w, C * F);
+    }
+    PUT(head_w, (size_t)c->P * C);
+    if (ndecay) *ndecay = o;
+    PUT(tok_b, C);
+    PUT(e1_b, C);
+    PUT(e2_b, C);
+    for (int l = 0; l < c->L; l++) {
+        PUTB(l, ln1_g, C); PUTB(l, ln1_b, C);
+        PUTB(l, qkv_b, 3 * C); PUTB(l, proj_b, C);
+        PUTB(l, ln2_g, C); PUTB(l, ln2_b, C);
+        PUTB(l, fc1_b, F); PUTB(l, fc2_b, C);
+    }
+    PUT(lnf_g, C);
+    PUT(lnf_b, C);
+    PUT(head_b, c->P);
+#undef PUT
+#undef PUTB
+    return o;
+}
+
+size_t model_nparams(const model_cfg *cfg) { return layout(cfg, NULL, NULL); }
+
+void model_free(model *m)
+{
+    if (!m) return;
+    free(m->params); free(m->grads); free(m->mem); free(m->blk);
+    free(m->x); /* the per-block pointer arrays share one allocation */
+    free(m);
+}
+
+cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
+{
+    *out = NULL;
+    cs_status st = model_cfg_check(cfg);
+    if (st) return st;
+    if (Bmax < 1) return cs_err(CS_EINPUT, "model: batch capacity %d must be >= 1", Bmax);
+    model *m = calloc(1, sizeof *m);
+    if (!m) return cs_err(CS_ENOMEM, "model: out of memory");
+    m->cfg = *cfg;
+    m->Bmax = Bmax;
+    const int L = cfg->L;
+    m->blk = calloc((size_t)L, sizeof *m->blk);
+    float **ptrs = calloc((size_t)14 * (L + 1), sizeof *ptrs);
+    if (!m->blk || !ptrs) { free(ptrs); model_free(m); return cs_err(CS_ENOMEM, "model: out of memory"); }
+    m->x = ptrs; m->ln1 = ptrs + (L + 1); m->mu1 = m->ln1 + L; m->rs1 = m->mu1 + L;
+    m->qkv = m->rs1 + L; m->prob = m->qkv + L; m->att = m->prob + L; m->xm = m->att + L;
+    m->ln2 = m->xm + L; m->mu2 = m->ln2 + L; m->rs2 = m->mu2 + L; m->h = m->rs2 + L; m->hs = m->h + L; m->hg = m->hs + L;
+    m->nparams = layout(cfg, m, &m->ndecay);
+    m->params = calloc(m->nparams, sizeof(float));
+    m->grads = calloc(m->nparams, sizeof(float));
+
+    const size_t N = (size_t)Bmax * cfg->T, C = cfg->C, F = cfg->F, B = Bmax;
+    const size_t I = cfg->P + cfg->nfeat, E = cfg->ncond + cfg->ntime, TP = (size_t)cfg->T * cfg->P;
+    const size_t probn = cfg->joint ? B * cfg->H * cfg->T * cfg->T : 0;
+    size_t per_block = N * C * 4 + N * 4 + N * 3 * C + probn + N * F * 3;
+    size_t total = N * I + B * E + 3 * B * C + N * C + 2 * N + N * cfg->P
+                 + (size_t)(L + 1) * N * C + (size_t)L * per_block
+                 + 3 * N * C + N * 3 * C + N * F + 2 * B * C
+                 + nn_attention_scratch_len(cfg->T, cfg->C, cfg->H)
+                 + 4 * B * TP + B;
+    m->mem = calloc(total, sizeof(float));
+    if (!m->params || !m->grads || !m->mem) { model_free(m); return cs_err(CS_ENOMEM, "model: out of memory"); }
+    float *p = m->mem;
+#define TAKE(n) (p += (n), p - (n))
+    m->tin = TAKE(N * I); m->cin = TAKE(B * E);
+    m->e1 = TAKE(B * C); m->e1g = TAKE(B * C); m->e = TAKE(B * C);
+    m->lnf = TAKE(N * C); m->muf = TAKE(N); m->rsf = TAKE(N); m->out = TAKE(N * cfg->P);
+    for (int l = 0; l <= L; l++) m->x[l] = TAKE(N * C);
+    for (int l = 0; l < L; l++) {
+        m->ln1[l] = TAKE(N * C); m->mu1[l] = TAKE(N); m->rs1[l] = TAKE(N);
+        m->qkv[l] = TAKE(N * 3 * C); m->prob[l] = TAKE(probn); m->att[l] = TAKE(N * C);
+        m->xm[l] = TAKE(N * C); m->ln2[l] = TAKE(N * C); m->mu2[l] = TAKE(N); m->rs2[l] = TAKE(N);
+        m->h[l] = TAKE(N * F); m->hs[l] = TAKE(N * F); m->hg[l] = TAKE(N * F);
+    }
+    m->dx = TAKE(N * C); m->dtmp = TAKE(N * C); m->dln = TAKE(N * C);
+    m->dqkv = TAKE(N * 3 * C); m->dh = TAKE(N * F); m->de = TAKE(B * C); m->de1 = TAKE(B * C);
+    m->ascr = TAKE(nn_attention_scratch_len(cfg->T, cfg->C, cfg->H));
+    m->fm_xt = TAKE(B * TP); m->fm_u = TAKE(B * TP); m->fm_v = TAKE(B * TP); m->fm_dv = TAKE(B * TP);
+    m->fm_t = TAKE(B);
+#undef TAKE
+    if ((size_t)(p - m->mem) != total) { model_free(m); return cs_err(CS_EINVARIANT, "model: activation layout mismatch"); }
+    *out = m;
+    return CS_OK;
+}
+
+static void init_matrix(float *w, size_t nout, size_t nin, double gain, gsl_rng *r)
+{
+    double sd = gain / sqrt((double)nin);
+    for (size_t i = 0; i < nout * nin; i++) w[i] = (float)(sd * gsl_ran_gaussian_ziggurat(r, 1.0));
+}
+
+void model_init(model *m, gsl_rng *r)
+{
+    const model_cfg *c = &m->cfg;
+    float *p = m->params;
+    memset(p, 0, m->nparams * sizeof(float));
+    const size_t C = c->C, F = c->F;
+    const double res = 1.0 / sqrt(2.0 * c->L);
+    init_matrix(p + m->tok_w, C, c->P + c->nfeat, 1.0, r);
+    init_matrix(p + m->e1_w, C, c->ncond + c->ntime, 1.0, r);
+    init_matrix(p + m->e2_w, C, C, 1.0, r);
+    for (int l = 0; l < c->L; l++) {
+        init_matrix(p + m->blk[l].qkv_w, 3 * C, C, 1.0, r);
+        init_matrix(p + m->blk[l].proj_w, C, C, res, r);
+        init_matrix(p + m->blk[l].fc1_w, F, C, 1.0, r);
+        init_matrix(p + m->blk[l].fc2_w, C, F, res, r);
+        for (size_t i = 0; i < C; i++) p[m->blk[l].ln1_g + i] = p[m->blk[l].ln2_g + i] = 1.f;
+    }
+    init_matrix(p + m->head_w, c->P, C, 0.1, r);
+    for (size_t i = 0; i < C; i++) p[m->lnf_g + i] = 1.f;
+}
+
+cs_status model_forward(model *m, int B, const float *xt, const float *feat,
+                        const float *cond, const float *t, float *v)
+{
+    const model_cfg *c = &m->cfg;
+    if (B < 1 || B > m->Bmax) return cs_err(CS_EINPUT, "model_forward: batch %d outside 1..%d", B, m->Bmax);
+    const int T = c->T, P = c->P, C = c->C, F = c->F, N = B * T;
+    const int I = P + c->nfeat, E = c->ncond + c->ntime, nh = c->ntime / 2;
+    const float *w = m->params;
+    const nn_attn_mode mode = c->joint ? NN_ATTN_JOINT : NN_ATTN_SELF;
+    m->B = B;
+    for (int r = 0; r < N; r++) {
+        memcpy(m->tin + (size_t)r * I, xt + (size_t)r * P, sizeof(float) * P);
+        memcpy(m->tin + (size_t)r * I + P, feat + (size_t)r * c->nfeat, sizeof(float) * c->nfeat);
+    }
+    for (int b = 0; b < B; b++) {
+        float *ci = m->cin + (size_t)b * E;
+        memcpy(ci, cond + (size_t)b * c->ncond, sizeof(float) * c->ncond);
+        double w0 = M_PI;
+        for (int k = 0; k < nh; k++, w0 *= 2) {
+            ci[c->ncond + k] = (float)sin(w0 * t[b]);
+            ci[c->ncond + nh + k] = (float)cos(w0 * t[b]);
+        }
+    }
+    nn_linear_forward(m->e1, m->cin, w + m->e1_w, w + m->e1_b, B, E, C);
+    nn_gelu_forward(m->e1g, m->e1, (size_t)B * C);
+    nn_linear_forward(m->e, m->e1g, w + m->e2_w, w + m->e2_b, B, C, C);
+    nn_linear_forward(m->x[0], m->tin, w + m->tok_w, w + m->tok_b, N, I, C);
+    for (int b = 0; b < B; b++)
+        for (int i = 0; i < T; i++) {
+            float *row = m->x[0] + ((size_t)b * T + i) * C;
+            nn_residual_forward(row, row, m->e + (size_t)b * C, C);
+        }
+    for (int l = 0; l < c->L; l++) {
+        const model_block_off *o = &m->blk[l];
+        nn_layernorm_forward(m->ln1[l], m->mu1[l], m->rs1[l], m->x[l], w + o->ln1_g, w + o->ln1_b, N, C);
+        nn_linear_forward(m->qkv[l], m->ln1[l], w + o->qkv_w, w + o->qkv_b, N, C, 3 * C);
+        nn_attention_forward(m->att[l], m->prob[l], m->qkv[l], B, T, C, c->H, mode, m->ascr);
+        nn_linear_forward(m->xm[l], m->att[l], w + o->proj_w, w + o->proj_b, N, C, C);
+        nn_residual_forward(m->xm[l], m->xm[l], m->x[l], (size_t)N * C);
+        nn_layernorm_forward(m->ln2[l], m->mu2[l], m->rs2[l], m->xm[l], w + o->ln2_g, w + o->ln2_b, N, C);
+        nn_linear_forward(m->h[l], m->ln2[l], w + o->fc1_w, w + o->fc1_b, N, C, F);
+        nn_gelu_forward_save(m->hg[l], m->hs[l], m->h[l], (size_t)N * F);
+        nn_linear_forward(m->x[l + 1], m->hg[l], w + o->fc2_w, w + o->fc2_b, N, F, C);
+        nn_residual_forward(m->x[l + 1], m->x[l + 1], m->xm[l], (size_t)N * C);
+    }
+    nn_layernorm_forward(m->lnf, m->muf, m->rsf, m->x[c->L], w + m->lnf_g, w + m->lnf_b, N, C);
+    nn_linear_forward(v, m->lnf, w + m->head_w, w + m->head_b, N, C, P);
+    return CS_OK;
+}
+
+void model_backward(model *m, const float *dv)
+{
+    const model_cfg *c = &m->cfg;
+    const int B = m->B, T = c->T, P = c->P, C = c->C, F = c->F, N = B * T;
+    const int I = P + c->nfeat, E = c->ncond + c->ntime;
+    const float *w = m->params;
+    float *g = m->grads;
+    const nn_attn_mode mode = c->joint ? NN_ATTN_JOINT : NN_ATTN_SELF;
+    memset(g, 0, m->nparams * sizeof(float));
+    nn_linear_backward(m->dln, g + m->head_w, g + m->head_b, dv, m->lnf, w + m->head_w, N, C, P);
+    memset(m->dx, 0, sizeof(float) * (size_t)N * C);
+    nn_layernorm_backward(m->dx, g + m->lnf_g, g + m->lnf_b, m->dln, m->x[c->L], m->muf, m->rsf, w + m->lnf_g, N, C);
+    for (int l = c->L - 1; l >= 0; l--) {
+        const model_block_off *o = &m->blk[l];
+        /* dx holds d x[l+1]; the residual passes it straight to xm[l]. */
+        nn_linear_backward(m->dh, g + o->fc2_w, g + o->fc2_b, m->dx, m->hg[l], w + o->fc2_w, N, F, C);
+        nn_gelu_backward_saved(m->dh, m->dh, m->h[l], m->hs[l], (size_t)N * F);
+        nn_linear_backward(m->dln, g + o->fc1_w, g + o->fc1_b, m->dh, m->ln2[l], w + o->fc1_w, N, C, F);
+        nn_layernorm_backward(m->dx, g + o->ln2_g, g + o->ln2_b, m->dln, m->xm[l], m->mu2[l], m->rs2[l], w + o->ln2_g, N, C);
+        nn_linear_backward(m->dtmp, g + o->proj_w, g + o->proj_b, m->dx, m->att[l], w + o->proj_w, N, C, C);
+        nn_attention_backward(m->dqkv, m->dtmp, m->qkv[l], m->prob[l], B, T, C, c->H, mode, m->ascr);
+        nn_linear_backward(m->dln, g + o->qkv_w, g + o->qkv_b, m->dqkv, m->ln1[l], w + o->qkv_w, N, C, 3 * C);
+        nn_layernorm_backward(m->dx, g + o->ln1_g, g + o->ln1_b, m->dln, m->x[l], m->mu1[l], m->rs1[l], w + o->ln1_g, N, C);
+    }
+    nn_linear_backward(NULL, g + m->tok_w, g + m->tok_b, m->dx, m->tin, w + m->tok_w, N, I, C);
+    memset(m->de, 0, sizeof(float) * (size_t)B * C);
+    for (int b = 0; b < B; b++)
+        for (int i = 0; i < T; i++)
+            nn_residual_backward(m->de + (size_t)b * C, m->dx + ((size_t)b * T + i) * C, C);
+    nn_linear_backward(m->de1, g + m->e2_w, g + m->e2_b, m->de, m->e1g, w + m->e2_w, B, C, C);
+    nn_gelu_backward(m->de1, m->de1, m->e1, (size_t)B * C);
+    nn_linear_backward(NULL, g + m->e1_w, g + m->e1_b, m->de1, m->cin, w + m->e1_w, B, E, C);
+}
+
+void model_fm_draw(gsl_rng *noise, int B, int n, const float *x1, float *xt, float *u, float *t)
+{
+    for (int b = 0; b < B; b++) {
+        float tb = (float)gsl_rng_uniform(noise);
+        t[b] = tb;
+        for (int k = 0; k < n; k++) {
+            size_t i = (size_t)b * n + k;
+            float x0 = (float)gsl_ran_gaussian_ziggurat(noise, 1.0);
+            xt[i] = (1.f - tb) * x0 + tb * x1[i];
+            u[i] = x1[i] - x0;
+        }
+    }
+}
+
+double model_fm_loss(const float *v, const float *u, size_t n, float *dv)
+{
+    double s = 0;
+    const float k = 2.f / (float)n;
+    for (size_t i = 0; i < n; i++) {
+        float d = v[i] - u[i];
+        s += (double)d * d;
+        if (dv) dv[i] = k * d;
+    }
+    return s / (double)n;
+}
+
+cs_status model_fm_grad(model *m, gsl_rng *noise, int B, const float *x1,
+                        const float *feat, const float *cond, double *loss)
+{
+    const int n = m->cfg.T * m->cfg.P;
+    if (B < 1 || B > m->Bmax) return cs_err(CS_EINPUT, "model_fm_grad: batch %d outside 1..%d", B, m->Bmax);
+    model_fm_draw(noise, B, n, x1, m->fm_xt, m->fm_u, m->fm_t);
+    cs_status st = model_forward(m, B, m->fm_xt, feat, cond, m->fm_t, m->fm_v);
+    if (st) return st;
+    double l = model_fm_loss(m->fm_v, m->fm_u, (size_t)B * n, m->fm_dv);
+    if (!isfinite(l)) return cs_err(CS_ENUMERIC, "flow-matching loss is not finite (%g)", l);
+    model_backward(m, m->fm_dv);
+    *loss = l;
+    return CS_OK;
+}
+
+cs_status model_sample(model *m, gsl_rng *noise, int B, const float *feat,
+                       const float *cond, int nsteps, float *x)
+{
+    const size_t n = (size_t)B * m->cfg.T * m->cfg.P;
+    if (B < 1 || B > m->Bmax) return cs_err(CS_EINPUT, "model_sample: batch %d outside 1..%d", B, m->Bmax);
+    if (nsteps < 1) return cs_err(CS_EINPUT, "model_sample: nsteps %d must be >= 1", nsteps);
+    for (size_t i = 0; i < n; i++) x[i] = (float)gsl_ran_gaussian_ziggurat(noise, 1.0);
+    const float dt = 1.f / (float)nsteps;
+    for (int k = 0; k < nsteps; k++) {
+        float tk = (float)k / (float)nsteps;
+        for (int b = 0; b < B; b++) m->fm_t[b] = tk;
+        cs_status st = model_forward(m, B, x, feat, cond, m->fm_t, m->fm_v);
+        if (st) return st;
+        for (size_t i = 0; i < n; i++) x[i] += dt * m->fm_v[i];
+    }
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(x[i])) return cs_err(CS_ENUMERIC, "model_sample: non-finite sample");
+    return CS_OK;
+}
+
+double model_train_flops(const model_cfg *c, int B)
+{
+    const double N = (double)B * c->T, C = c->C, F = c->F, T = c->T, hd = (double)c->C / c->H;
+    const double I = c->P + c->nfeat, E = c->ncond + c->ntime;
+    double gemm_fwd = 2 * N * (I * C + 3 * C * C * c->L + C * C * c->L + 2 * C * F * c->L + C * c->P)
+                    + 2.0 * B * (E * C + C * C);
+    /* backward: weight gradients for all, input gradients for all but the token and e1 layers */
+    double gemm_bwd = 2 * gemm_fwd - 2 * N * I * C - 2.0 * B * E * C;
+    double attn = c->joint ? 2.0 * B * c->H * T * T * hd * 2 * c->L : 0; /* QK^T and PV */
+    return gemm_fwd + gemm_bwd + 3 * attn; /* attention backward = 4 products = 2x forward */
+}

@@ -1,0 +1,100 @@
+/* model: the conditional flow-matching set transformer of paper §4.2 (SPEC §8).
+ * A patch is T tokens (T = 24 trees). Token i's input is its noisy deviation
+ * profile x_t,i (P = 24 values) and nfeat features ((p_i - p_focal)/d, rbar_i/d);
+ * the patch's condition vector (ncond values) and sinusoidal features of the
+ * flow time t go through one two-layer embedding that is ADDED to every token.
+ * Pre-LN blocks (LN -> MHA -> +, LN -> MLP(GELU) -> +), final LN, linear head to
+ * P velocity outputs per token. Joint arm: attention across the patch; the
+ * independent arm (joint = 0) lets each token attend only to itself and has
+ * the same parameters (paper Eq. 6).
+ *
+ * Memory: one flat float buffer each for parameters and gradients, in the same
+ * layout (all weight matrices first, then gains and biases: weight decay
+ * applies to the first model_ndecay floats); activations for up to Bmax
+ * patches are allocated once by model_alloc, so forward/backward never allocate.
+ * Loss: paper Eq. 2 (linear path, MSE on velocity, all T tokens). Sampler:
+ * Euler from N(0, I). */
+#ifndef MODEL_H
+#define MODEL_H
+#include "cs.h"
+#include "nn.h"
+#include <gsl/gsl_rng.h>
+#include <stddef.h>
+
+typedef struct {
+    int T;     /* tokens per patch */
+    int P;     /* profile values per token (sectors) */
+    int nfeat; /* per-token features */
+    int ncond; /* patch condition values */
+    int ntime; /* sinusoidal time features (even) */
+    int C;     /* width */
+    int L;     /* blocks */
+    int H;     /* heads (C % H == 0) */
+    int F;     /* MLP width */
+    int joint; /* 1: attention across the patch; 0: each token attends only to itself */
+} model_cfg;
+
+typedef struct {
+    size_t ln1_g, ln1_b, qkv_w, qkv_b, proj_w, proj_b, ln2_g, ln2_b, fc1_w, fc1_b, fc2_w, fc2_b;
+} model_block_off;
+
+typedef struct model {
+    model_cfg cfg;
+    int Bmax;
+    size_t nparams, ndecay;
+    float *params, *grads;
+    /* offsets into params/grads */
+    size_t tok_w, tok_b, e1_w, e1_b, e2_w, e2_b, lnf_g, lnf_b, head_w, head_b;
+    model_block_off *blk;
+    /* private: activations and scratch of the last forward */
+    int B;
+    float *mem;
+    float *tin, *cin, *e1, *e1g, *e, *lnf, *muf, *rsf, *out;
+    float **x, **ln1, **mu1, **rs1, **qkv, **prob, **att, **xm, **ln2, **mu2, **rs2, **h, **hs, **hg;
+    float *dx, *dtmp, *dln, *dqkv, *dh, *de, *de1, *ascr;
+    float *fm_xt, *fm_u, *fm_t, *fm_v, *fm_dv;
+} model;
+
+/* The reference configuration of SPEC §10: T = P = 24, nfeat = 3, ntime = 16,
+ * width 64, 3 blocks, 4 heads, MLP 256, joint arm; ncond as given. */
+model_cfg model_cfg_reference(int ncond);
+/* CS_EINPUT with a message naming the offending field if cfg is unusable. */
+cs_status model_cfg_check(const model_cfg *cfg);
+/* Number of parameters (independent of cfg->joint). */
+size_t model_nparams(const model_cfg *cfg);
+
+cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax);
+void model_free(model *m);
+/* Gaussian init (std 1/sqrt(fan_in); residual projections scaled by
+ * 1/sqrt(2L); head by 0.1), LN gains 1, biases 0. Draws only from `init`. */
+void model_init(model *m, gsl_rng *init);
+
+/* Velocity v[B*T*P] for x_t[B*T*P], feat[B*T*nfeat], cond[B*ncond], t[B].
+ * Keeps the activations for model_backward. B <= Bmax. */
+cs_status model_forward(model *m, int B, const float *xt, const float *feat,
+                        const float *cond, const float *t, float *v);
+/* Gradient of <dv, v> w.r.t. all parameters into m->grads (overwritten),
+ * for the activations of the last model_forward. */
+void model_backward(model *m, const float *dv);
+
+/* Flow-matching draw (paper Eq. 2): per patch t ~ U(0,1), then x0 ~ N(0, I)
+ * per value; x_t = (1 - t) x0 + t x1 and the target u = x1 - x0.
+ * n_per_patch = T*P. All draws from `noise`, in that order. */
+void model_fm_draw(gsl_rng *noise, int B, int n_per_patch, const float *x1,
+                   float *xt, float *u, float *t);
+/* mean over n of (v - u)^2; dv = its gradient w.r.t. v (may be NULL). */
+double model_fm_loss(const float *v, const float *u, size_t n, float *dv);
+/* One draw + forward + loss + backward on a batch; gradients in m->grads. */
+cs_status model_fm_grad(model *m, gsl_rng *noise, int B, const float *x1,
+                        const float *feat, const float *cond, double *loss);
+
+/* Generate x[B*T*P]: x ~ N(0, I) from `noise`, then nsteps Euler steps
+ * x += v(x, t_k)/nsteps, t_k = k/nsteps. */
+cs_status model_sample(model *m, gsl_rng *noise, int B, const float *feat,
+                       const float *cond, int nsteps, float *x);
+
+/* Model FLOPs of one training step (forward + backward) at batch B: GEMMs
+ * (2MNK each) plus the attention score and mix products. */
+double model_train_flops(const model_cfg *cfg, int B);
+
+#endif

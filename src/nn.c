@@ -1,0 +1,431 @@
+/* nn: layer kernels (see nn.h). The GEMMs go to cblas_sgemm; every other loop
+ * is written on 8-wide GCC/Clang vector types, because -O2 without fast-math
+ * will not vectorise float reductions by itself (reassociation is forbidden).
+ * The hot kernels are compiled twice (target_clones: AVX2 and baseline x86-64,
+ * picked at load time); both clones execute the same lane-wise IEEE operations
+ * in the same order, so their results are bit-identical - no -march=native,
+ * no FMA contraction (-ffp-contract=off), no fast-math. Reductions use a fixed
+ * lane order. Paper §4.2; SPEC §8, §10. */
+#include "nn.h"
+#include <cblas.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+/* The vector helpers are always inlined, so no vector crosses a call boundary. */
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(NN_NO_CLONES)
+#define HOT __attribute__((target_clones("avx2", "default")))
+#else
+#define HOT
+#endif
+#define INL static inline __attribute__((always_inline))
+
+typedef float vf __attribute__((vector_size(32)));
+typedef int vi __attribute__((vector_size(32)));
+enum { VL = 8 };
+
+INL vf ld(const float *p) { vf v; memcpy(&v, p, sizeof v); return v; }
+INL void st(float *p, vf v) { memcpy(p, &v, sizeof v); }
+INL vf splat(float a) { return (vf){a, a, a, a, a, a, a, a}; }
+INL float hsum(vf v) { return ((v[0] + v[1]) + (v[2] + v[3])) + ((v[4] + v[5]) + (v[6] + v[7])); }
+
+/* y[0..n) += a * x[0..n) */
+INL void axpy(float *restrict y, float a, const float *restrict x, int n)
+{
+    int i = 0;
+    vf va = splat(a);
+    for (; i + VL <= n; i += VL) st(y + i, ld(y + i) + va * ld(x + i));
+    for (; i < n; i++) y[i] += a * x[i];
+}
+
+/* sum of x[0..n), fixed order: 8 lanes, then the tail. */
+INL float vsum(const float *x, int n)
+{
+    vf acc = splat(0.f);
+    int i = 0;
+    for (; i + VL <= n; i += VL) acc += ld(x + i);
+    float s = hsum(acc);
+    for (; i < n; i++) s += x[i];
+    return s;
+}
+
+/* ---- exp ------------------------------------------------------------------ */
+/* exp(x) = 2^n * p(r), x = n ln2 + r, |r| <= ln2/2, p = Taylor to degree 7. */
+INL vf vexp(vf x)
+{
+    const vf lo = splat(-87.0f), hi = splat(88.0f);
+    vi mlo = x < lo, mhi = x > hi;
+    x = (vf)(((vi)x & ~mlo) | ((vi)lo & mlo));
+    x = (vf)(((vi)x & ~mhi) | ((vi)hi & mhi));
+    const vf shifter = splat(12582912.0f); /* 1.5*2^23: add-subtract rounds to nearest */
+    vf kn = (x * splat(1.44269504088896341f) + shifter) - shifter;
+    vf r = x - kn * splat(0.693145751953125f);      /* ln2 high part (kn*hi exact) */
+    r = r - kn * splat(1.428606765330187e-06f);     /* ln2 low part */
+    vf p = splat(1.f / 5040.f);
+    p = p * r + splat(1.f / 720.f);
+    p = p * r + splat(1.f / 120.f);
+    p = p * r + splat(1.f / 24.f);
+    p = p * r + splat(1.f / 6.f);
+    p = p * r + splat(0.5f);
+    p = p * r + splat(1.f);
+    p = p * r + splat(1.f);
+    vi n = __builtin_convertvector(kn, vi);
+    vi bits = (n + 127) << 23;
+    return p * (vf)bits;
+}
+
+/* Scalar tails go through the same lane arithmetic, so a value does not depend
+ * on whether it sat in a full vector or in the tail. */
+INL float sexp(float x) { return vexp(splat(x))[0]; }
+
+HOT void nn_expf(float *y, const float *x, size_t n)
+{
+    size_t i = 0;
+    for (; i + VL <= n; i += VL) st(y + i, vexp(ld(x + i)));
+    for (; i < n; i++) y[i] = sexp(x[i]);
+}
+
+/* ---- linear ----------------------------------------------------------------- */
+void nn_linear_forward(float *out, const float *in, const float *w, const float *b,
+                       int M, int K, int N)
+{
+    float beta = 0.f;
+    if (b) {
+        for (int r = 0; r < M; r++) memcpy(out + (size_t)r * N, b, sizeof(float) * N);
+        beta = 1.f;
+    }
+    cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasTrans, M, N, K, 1.f, in, K, w, K,
+                beta, out, N);
+}
+
+HOT static void colsum_add(float *db, const float *dout, int M, int N)
+{
+    for (int r = 0; r < M; r++) axpy(db, 1.f, dout + (size_t)r * N, N);
+}
+
+void nn_linear_backward(float *dinp, float *dw, float *db, const float *dout,
+                        const float *in, const float *w, int M, int K, int N)
+{
+    if (dinp)
+        cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasNoTrans, M, K, N, 1.f, dout, N, w, K,
+                    0.f, dinp, K);
+    cblas_sgemm(CblasRowMajor, CblasTrans, CblasNoTrans, N, K, M, 1.f, dout, N, in, K,
+                1.f, dw, K);
+    if (db) colsum_add(db, dout, M, N);
+}
+
+double nn_sgemm_gflops(int M, const int *sizes, int n, int reps)
+{
+    int mx = 1;
+    for (int i = 0; i < n; i++) mx = sizes[i] > mx ? sizes[i] : mx;
+    float *A = malloc(sizeof(float) * M * mx), *W = malloc(sizeof(float) * mx * mx);
+    float *Cm = malloc(sizeof(float) * M * mx);
+    if (!A || !W || !Cm) { free(A); free(W); free(Cm); return 0; }
+    for (size_t i = 0; i < (size_t)M * mx; i++) A[i] = (float)((i % 17) * 0.01 - 0.08);
+    for (size_t i = 0; i < (size_t)mx * mx; i++) W[i] = (float)((i % 13) * 0.01 - 0.06);
+    double fl = 0;
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    for (int a = 0; a < n; a++)
+        for (int b = 0; b < n; b++)
+            for (int k = 0; k < reps; k++) {
+                cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasTrans, M, sizes[a], sizes[b], 1.f,
+                            A, sizes[b], W, sizes[b], 0.f, Cm, sizes[a]);
+                fl += 2.0 * M * sizes[a] * sizes[b];
+            }
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    free(A); free(W); free(Cm);
+    return fl / ((t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec)) / 1e9;
+}
+
+/* ---- layer norm ---------------------------------------------------------------- */
+#define LN_EPS 1e-5f
+
+HOT void nn_layernorm_forward(float *out, float *mean, float *rstd, const float *in,
+                              const float *g, const float *b, int M, int C)
+{
+    const float invC = 1.f / (float)C;
+    for (int r = 0; r < M; r++) {
+        const float *x = in + (size_t)r * C;
+        float *y = out + (size_t)r * C;
+        float mu = vsum(x, C) * invC;
+        vf acc = splat(0.f), vm = splat(mu);
+        int c = 0;
+        for (; c + VL <= C; c += VL) { vf d = ld(x + c) - vm; acc += d * d; }
+        float var = hsum(acc);
+        for (; c < C; c++) { float d = x[c] - mu; var += d * d; }
+        float rs = 1.f / sqrtf(var * invC + LN_EPS);
+        vf vr = splat(rs);
+        for (c = 0; c + VL <= C; c += VL)
+            st(y + c, (ld(x + c) - vm) * vr * ld(g + c) + ld(b + c));
+        for (; c < C; c++) y[c] = (x[c] - mu) * rs * g[c] + b[c];
+        mean[r] = mu;
+        rstd[r] = rs;
+    }
+}
+
+HOT void nn_layernorm_backward(float *dinp, float *dg, float *db, const float *dout,
+                               const float *in, const float *mean, const float *rstd,
+                               const float *g, int M, int C)
+{
+    const float invC = 1.f / (float)C;
+    for (int r = 0; r < M; r++) {
+        const float *x = in + (size_t)r * C, *dy = dout + (size_t)r * C;
+        float *dx = dinp + (size_t)r * C;
+        vf vm = splat(mean[r]), vr = splat(rstd[r]);
+        vf s1 = splat(0.f), s2 = splat(0.f);
+        int c = 0;
+        for (; c + VL <= C; c += VL) {
+            vf xh = (ld(x + c) - vm) * vr, d = ld(dy + c);
+            vf dxh = d * ld(g + c);
+            s1 += dxh;
+            s2 += dxh * xh;
+            st(dg + c, ld(dg + c) + d * xh);
+            st(db + c, ld(db + c) + d);
+        }
+        float a1 = hsum(s1), a2 = hsum(s2);
+        for (; c < C; c++) {
+            float xh = (x[c] - mean[r]) * rstd[r], dxh = dy[c] * g[c];
+            a1 += dxh;
+            a2 += dxh * xh;
+            dg[c] += dy[c] * xh;
+            db[c] += dy[c];
+        }
+        a1 *= invC;
+        a2 *= invC;
+        vf va1 = splat(a1), va2 = splat(a2);
+        for (c = 0; c + VL <= C; c += VL) {
+            vf xh = (ld(x + c) - vm) * vr;
+            vf dxh = ld(dy + c) * ld(g + c);
+            st(dx + c, ld(dx + c) + vr * (dxh - va1 - xh * va2));
+        }
+        for (; c < C; c++) {
+            float xh = (x[c] - mean[r]) * rstd[r], dxh = dy[c] * g[c];
+            dx[c] += rstd[r] * (dxh - a1 - xh * a2);
+        }
+    }
+}
+
+/* ---- GELU ------------------------------------------------------------------------ */
+#define GELU_K 0.7978845608028654f /* sqrt(2/pi) */
+#define GELU_A 0.044715f
+
+/* sigmoid(2u) of the tanh-form GELU: gelu(x) = x * gsig(x). */
+INL vf vgsig(vf x)
+{
+    vf u = splat(GELU_K) * (x + splat(GELU_A) * x * x * x);
+    return splat(1.f) / (splat(1.f) + vexp(splat(-2.f) * u));
+}
+
+INL vf vgelu_grad(vf x, vf s)
+{
+    vf du = splat(GELU_K) * (splat(1.f) + splat(3.f * GELU_A) * (x * x));
+    return s + x * s * (splat(1.f) - s) * splat(2.f) * du;
+}
+
+HOT void nn_gelu_forward(float *out, const float *in, size_t n)
+{
+    size_t i = 0;
+    for (; i + VL <= n; i += VL) { vf x = ld(in + i); st(out + i, x * vgsig(x)); }
+    for (; i < n; i++) { vf x = splat(in[i]); out[i] = (x * vgsig(x))[0]; }
+}
+
+HOT void nn_gelu_forward_save(float *out, float *sig, const float *in, size_t n)
+{
+    size_t i = 0;
+    for (; i + VL <= n; i += VL) {
+        vf x = ld(in + i), s = vgsig(x);
+        st(sig + i, s);
+        st(out + i, x * s);
+    }
+    for (; i < n; i++) { vf x = splat(in[i]), s = vgsig(x); sig[i] = s[0]; out[i] = (x * s)[0]; }
+}
+
+HOT void nn_gelu_backward(float *dinp, const float *dout, const float *in, size_t n)
+{
+    size_t i = 0;
+    for (; i + VL <= n; i += VL) { vf x = ld(in + i); st(dinp + i, ld(dout + i) * vgelu_grad(x, vgsig(x))); }
+    for (; i < n; i++) { vf x = splat(in[i]); dinp[i] = dout[i] * vgelu_grad(x, vgsig(x))[0]; }
+}
+
+HOT void nn_gelu_backward_saved(float *dinp, const float *dout, const float *in,
+                                const float *sig, size_t n)
+{
+    size_t i = 0;
+    for (; i + VL <= n; i += VL) st(dinp + i, ld(dout + i) * vgelu_grad(ld(in + i), ld(sig + i)));
+    for (; i < n; i++) dinp[i] = dout[i] * vgelu_grad(splat(in[i]), splat(sig[i]))[0];
+}
+
+/* ---- residual ---------------------------------------------------------------------- */
+HOT void nn_residual_forward(float *out, const float *a, const float *b, size_t n)
+{
+    size_t i = 0;
+    for (; i + VL <= n; i += VL) st(out + i, ld(a + i) + ld(b + i));
+    for (; i < n; i++) out[i] = a[i] + b[i];
+}
+
+HOT void nn_residual_backward(float *acc, const float *x, size_t n)
+{
+    size_t i = 0;
+    for (; i + VL <= n; i += VL) st(acc + i, ld(acc + i) + ld(x + i));
+    for (; i < n; i++) acc[i] += x[i];
+}
+
+/* ---- attention -------------------------------------------------------------------- */
+/* Per patch and head the work is four small products on T x hd blocks. Two
+ * helpers cover all of them with accumulators held in registers:
+ *   rows_times_t: S[i][0..T) = sum_d a * A[i][d] * Bt[d][0..T)   (scores, dP)
+ *   mix_rows:     O[i][0..hd) = sum_j W[i][j] * X[j][0..hd)     (PV, dV, dQ, dK)
+ * The fast paths (T = 24; hd a multiple of 8) and the generic loops perform
+ * the same operations per element in the same order of summation. */
+
+size_t nn_attention_scratch_len(int T, int C, int H)
+{
+    int hd = C / H;
+    return (size_t)2 * hd * T + (size_t)3 * T * T;
+}
+
+INL void rows_times_t(float *S, const float *A, int lda, float a, const float *Bt,
+                      int T, int hd)
+{
+    for (int i = 0; i < T; i++) {
+        const float *ai = A + (size_t)i * lda;
+        float *s = S + (size_t)i * T;
+        if (T == 24) {
+            vf s0 = splat(0.f), s1 = splat(0.f), s2 = splat(0.f);
+            for (int d = 0; d < hd; d++) {
+                vf q = splat(ai[d] * a);
+                const float *b = Bt + (size_t)d * 24;
+                s0 += q * ld(b); s1 += q * ld(b + 8); s2 += q * ld(b + 16);
+            }
+            st(s, s0); st(s + 8, s1); st(s + 16, s2);
+        } else {
+            memset(s, 0, sizeof(float) * T);
+            for (int d = 0; d < hd; d++) axpy(s, ai[d] * a, Bt + (size_t)d * T, T);
+        }
+    }
+}
+
+/* W element (i, j): row-major W[i*T + j], or W[j*T + i] when tw (W^T used). */
+#define WAT(W, i, j) ((tw) ? (W)[(size_t)(j) * T + (i)] : (W)[(size_t)(i) * T + (j)])
+
+INL void mix_rows(float *O, int ldo, const float *W, int tw, const float *X, int ldx, int T, int hd)
+{
+    int i = 0;
+    if (hd % 8 == 0)
+        for (; i + 2 <= T; i += 2) {
+            float *o0 = O + (size_t)i * ldo, *o1 = o0 + ldo;
+            int c = 0;
+            for (; c + 16 <= hd; c += 16) {
+                vf a0 = splat(0.f), a1 = splat(0.f), b0 = splat(0.f), b1 = splat(0.f);
+                for (int j = 0; j < T; j++) {
+                    const float *x = X + (size_t)j * ldx + c;
+                    vf x0 = ld(x), x1 = ld(x + 8), p = splat(WAT(W, i, j)), q = splat(WAT(W, i + 1, j));
+                    a0 += p * x0; a1 += p * x1; b0 += q * x0; b1 += q * x1;
+                }
+                st(o0 + c, a0); st(o0 + c + 8, a1); st(o1 + c, b0); st(o1 + c + 8, b1);
+            }
+            for (; c < hd; c += 8) {
+                vf a0 = splat(0.f), b0 = splat(0.f);
+                for (int j = 0; j < T; j++) {
+                    vf x0 = ld(X + (size_t)j * ldx + c);
+                    a0 += splat(WAT(W, i, j)) * x0; b0 += splat(WAT(W, i + 1, j)) * x0;
+                }
+                st(o0 + c, a0); st(o1 + c, b0);
+            }
+        }
+    for (; i < T; i++) {
+        float *o = O + (size_t)i * ldo;
+        memset(o, 0, sizeof(float) * hd);
+        for (int j = 0; j < T; j++) axpy(o, WAT(W, i, j), X + (size_t)j * ldx, hd);
+    }
+}
+#undef WAT
+
+INL void transpose(float *dst, const float *src, int ld, int rows, int cols)
+{
+    for (int r = 0; r < rows; r++)
+        for (int c = 0; c < cols; c++) dst[(size_t)c * rows + r] = src[(size_t)r * ld + c];
+}
+
+/* In place softmax of s[0..n). */
+INL void softmax_row(float *s, int n)
+{
+    float mx = s[0];
+    for (int j = 1; j < n; j++) mx = s[j] > mx ? s[j] : mx;
+    int j = 0;
+    vf vm = splat(mx);
+    for (; j + VL <= n; j += VL) st(s + j, vexp(ld(s + j) - vm));
+    for (; j < n; j++) s[j] = sexp(s[j] - mx);
+    float inv = 1.f / vsum(s, n);
+    for (j = 0; j + VL <= n; j += VL) st(s + j, ld(s + j) * splat(inv));
+    for (; j < n; j++) s[j] *= inv;
+}
+
+HOT void nn_attention_forward(float *out, float *prob, const float *qkv,
+                              int B, int T, int C, int H, nn_attn_mode mode, float *scratch)
+{
+    const int hd = C / H, C3 = 3 * C;
+    if (mode == NN_ATTN_SELF) {
+        /* Softmax over one admissible key is exactly 1: the output is v itself. */
+        for (int r = 0; r < B * T; r++)
+            memcpy(out + (size_t)r * C, qkv + (size_t)r * C3 + 2 * C, sizeof(float) * C);
+        return;
+    }
+    const float scale = 1.f / sqrtf((float)hd);
+    float *kt = scratch; /* [hd x T]: K transposed so score rows vectorise over keys */
+    for (int b = 0; b < B; b++) {
+        const float *base = qkv + (size_t)b * T * C3;
+        for (int h = 0; h < H; h++) {
+            float *P = prob + ((size_t)b * H + h) * T * T;
+            transpose(kt, base + C + h * hd, C3, T, hd);
+            rows_times_t(P, base + h * hd, C3, scale, kt, T, hd);
+            for (int i = 0; i < T; i++) softmax_row(P + (size_t)i * T, T);
+            mix_rows(out + (size_t)b * T * C + h * hd, C, P, 0, base + 2 * C + h * hd, C3, T, hd);
+        }
+    }
+}
+
+HOT void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
+                               const float *prob, int B, int T, int C, int H,
+                               nn_attn_mode mode, float *scratch)
+{
+    const int hd = C / H, C3 = 3 * C;
+    if (mode == NN_ATTN_SELF) {
+        for (int r = 0; r < B * T; r++) {
+            float *g = dqkv + (size_t)r * C3;
+            memset(g, 0, sizeof(float) * 2 * C); /* q and k receive no gradient */
+            memcpy(g + 2 * C, dout + (size_t)r * C, sizeof(float) * C);
+        }
+        return;
+    }
+    const float scale = 1.f / sqrtf((float)hd);
+    float *vt = scratch;                 /* [hd x T] V transposed */
+    float *ds = vt + (size_t)hd * T;     /* [T x T] dP, then dS */
+    for (int b = 0; b < B; b++) {
+        const float *base = qkv + (size_t)b * T * C3;
+        const float *dO = dout + (size_t)b * T * C + 0;
+        float *gbase = dqkv + (size_t)b * T * C3;
+        for (int h = 0; h < H; h++) {
+            const float *P = prob + ((size_t)b * H + h) * T * T;
+            transpose(vt, base + 2 * C + h * hd, C3, T, hd);
+            rows_times_t(ds, dO + h * hd, C, 1.f, vt, T, hd); /* dP = dO V^T */
+            for (int i = 0; i < T; i++) {
+                const float *p = P + (size_t)i * T;
+                float *d = ds + (size_t)i * T;
+                float dot = 0.f;
+                for (int j = 0; j < T; j++) dot += p[j] * d[j];
+                int j = 0;
+                vf vd = splat(dot), vs = splat(scale);
+                for (; j + VL <= T; j += VL) st(d + j, ld(p + j) * (ld(d + j) - vd) * vs);
+                for (; j < T; j++) d[j] = p[j] * (d[j] - dot) * scale;
+            }
+            mix_rows(gbase + 2 * C + h * hd, C3, P, 1, dO + h * hd, C, T, hd);   /* dV = P^T dO */
+            mix_rows(gbase + h * hd, C3, ds, 0, base + C + h * hd, C3, T, hd);   /* dQ = dS K   */
+            mix_rows(gbase + C + h * hd, C3, ds, 1, base + h * hd, C3, T, hd);   /* dK = dS^T Q */
+        }
+    }
+}

@@ -1,0 +1,89 @@
+/* train: the flow-matching trainer (paper §4.2, Eq. 2; SPEC §8): batches of
+ * patches in an epoch-wise random order, AdamW with linear warm-up and cosine
+ * decay, atomic checkpoints that resume bit-identically, progress lines, and
+ * the trainer benchmark of SPEC §10.
+ *
+ * Randomness: three explicitly seeded gsl_rng_mt19937 streams - init
+ * (parameters), batch (epoch permutations), noise (t and x0 of Eq. 2) - never
+ * seeded from the environment. The checkpoint holds parameters, both AdamW
+ * moments, the step and epoch cursor, the current permutation and all three
+ * RNG states, so a run killed and resumed ends with the same bytes as a run
+ * that was never interrupted (one BLAS thread, same machine).
+ *
+ * Checkpoint file: magic "CSHYCKPT", version, model configuration, sizes, a
+ * fingerprint of the training data, the state above, and a 64-bit FNV-1a
+ * checksum of everything before it. Written to "<path>.tmp", fsync'd and
+ * renamed. A truncated, tampered, foreign or mismatched file is rejected with
+ * CS_EINPUT and a message naming the file and the problem. */
+#ifndef TRAIN_H
+#define TRAIN_H
+#include "adamw.h"
+#include "cs.h"
+#include "model.h"
+#include "patch.h"
+#include <stdio.h>
+
+typedef struct {
+    int batch;             /* patches per step (capped at the data size) */
+    long steps;            /* total optimiser steps */
+    double lr;             /* peak learning rate */
+    double warmup;         /* fraction of steps with linear warm-up */
+    double lr_final;       /* final lr as a fraction of the peak (cosine) */
+    adamw_hp hp;
+    unsigned long seed_init, seed_batch, seed_noise;
+} train_opts;
+
+/* batch 64, steps 1000, lr 2e-3, warm-up 5 %, final 0.1, AdamW defaults, seeds 1, 2, 3. */
+train_opts train_opts_default(void);
+
+typedef struct train {
+    model *m;
+    float *am, *av; /* AdamW moments, same layout as m->params */
+    train_opts o;
+    const patch_set *data; /* not owned; must be standardised */
+    unsigned long long data_hash;
+    gsl_rng *rng_init, *rng_batch, *rng_noise;
+    long step;  /* optimiser steps done */
+    int epoch;  /* epochs started */
+    int pos;    /* next index into perm */
+    int B;      /* effective batch */
+    int *perm;  /* [data->n] */
+    float *bx1, *bfeat, *bcond;
+    double loss; /* loss of the last step */
+} train;
+
+/* Build model and optimiser state; parameters from seed_init. */
+cs_status train_alloc(train **out, const model_cfg *cfg, const patch_set *data, const train_opts *o);
+void train_free(train *t);
+/* Learning rate used at 1-based step s. */
+double train_lr(const train_opts *o, long s);
+/* One optimiser step (batch draw, Eq. 2 loss and gradient, AdamW). */
+cs_status train_step(train *t, double *loss);
+/* Steps until t->step == until. Every ckpt_every steps (0: never) and at the
+ * end, an atomic checkpoint to ckpt (NULL: none). Progress lines to `progress`
+ * (NULL: silent) about every 2 % with epoch, step, loss and ETA. */
+cs_status train_run(train *t, long until, const char *ckpt, long ckpt_every, FILE *progress);
+
+/* Mean Eq. 2 loss of the current parameters over the first nbatch batches of
+ * `data` (in order), with its own noise stream seeded by `seed`; no update. */
+cs_status train_eval_loss(train *t, const patch_set *data, int nbatch, unsigned long seed, double *loss);
+
+cs_status train_save(const train *t, const char *path);
+/* Restore state saved by train_save into t (same config, options and data). */
+cs_status train_load(train *t, const char *path);
+/* Write only the model (config + parameters + checksum) / read it back into a
+ * freshly allocated model with that config (used by `crownshy sample`). */
+cs_status train_load_model(const char *path, model **out, int Bmax, double *scale);
+
+typedef struct {
+    double steps_per_s, model_gflops, sgemm_gflops, ratio;
+    double step_ms_median;
+    int repeats;
+} train_bench_result;
+
+/* SPEC §10: median over `repeats` timed runs of `steps` training steps at
+ * cfg and batch B on toy data, and cblas_sgemm GFLOP/s on the model's shapes
+ * (M = B*T, N, K in {C, 3C, F}) measured in the same run. */
+cs_status train_bench(const model_cfg *cfg, int B, int steps, int repeats, train_bench_result *r);
+
+#endif

@@ -1,0 +1,201 @@
+/* Tests for src/model.c: parameter layout, forward agreement with the double
+ * reference (tests/modelref.h), whole-model gradients against central finite
+ * differences for both arms, the independence of the self-attention arm, and
+ * the flow-matching loss pieces (paper Eq. 2). Tiny configuration. */
+#include "testutil.h"
+#include "modelref.h"
+#include "model.h"
+#include <gsl/gsl_randist.h>
+
+static model_cfg tiny(int joint)
+{
+    model_cfg c = {.T = 5, .P = 6, .nfeat = 3, .ncond = 2, .ntime = 4,
+                   .C = 8, .L = 2, .H = 2, .F = 12, .joint = joint};
+    return c;
+}
+
+typedef struct {
+    model *m; int B;
+    float *xt, *feat, *cond, *t, *v, *dv;
+    double *p, *xt_d, *feat_d, *cond_d, *t_d, *v_d, *dv_d;
+} fx;
+
+static void fx_make(fx *f, int joint, int B, unsigned seed)
+{
+    model_cfg c = tiny(joint);
+    assert_int_equal(model_alloc(&f->m, &c, B), CS_OK);
+    gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(r, 11);
+    model_init(f->m, r);
+    gsl_rng_free(r);
+    /* Perturb everything so LN gains/biases and zero-initialised biases matter. */
+    unsigned st = seed;
+    float *noise = malloc(sizeof(float) * f->m->nparams);
+    tu_fill(noise, f->m->nparams, 0.3f, &st);
+    for (size_t i = 0; i < f->m->nparams; i++) f->m->params[i] += noise[i];
+    free(noise);
+    f->B = B;
+    size_t nx = (size_t)B * c.T * c.P;
+    f->xt = malloc(sizeof(float) * nx); f->v = malloc(sizeof(float) * nx); f->dv = malloc(sizeof(float) * nx);
+    f->feat = malloc(sizeof(float) * B * c.T * c.nfeat); f->cond = malloc(sizeof(float) * B * c.ncond);
+    f->t = malloc(sizeof(float) * B);
+    tu_fill(f->xt, nx, 1.5f, &st); tu_fill(f->dv, nx, 1, &st);
+    tu_fill(f->feat, (size_t)B * c.T * c.nfeat, 1, &st); tu_fill(f->cond, (size_t)B * c.ncond, 1, &st);
+    for (int b = 0; b < B; b++) f->t[b] = 0.2f + 0.5f * b;
+    f->p = malloc(sizeof(double) * f->m->nparams); tu_f2d(f->p, f->m->params, f->m->nparams);
+    f->xt_d = malloc(sizeof(double) * nx); tu_f2d(f->xt_d, f->xt, nx);
+    f->dv_d = malloc(sizeof(double) * nx); tu_f2d(f->dv_d, f->dv, nx);
+    f->v_d = malloc(sizeof(double) * nx);
+    f->feat_d = malloc(sizeof(double) * B * c.T * c.nfeat); tu_f2d(f->feat_d, f->feat, (size_t)B * c.T * c.nfeat);
+    f->cond_d = malloc(sizeof(double) * B * c.ncond); tu_f2d(f->cond_d, f->cond, (size_t)B * c.ncond);
+    f->t_d = malloc(sizeof(double) * B); tu_f2d(f->t_d, f->t, B);
+}
+
+static void fx_free(fx *f)
+{
+    model_free(f->m);
+    free(f->xt); free(f->feat); free(f->cond); free(f->t); free(f->v); free(f->dv);
+    free(f->p); free(f->xt_d); free(f->feat_d); free(f->cond_d); free(f->t_d); free(f->v_d); free(f->dv_d);
+}
+
+static double fx_loss(void *ctx)
+{
+    fx *f = ctx;
+    ref_model_forward(f->m, f->p, f->B, f->xt_d, f->feat_d, f->cond_d, f->t_d, f->v_d);
+    return tu_dot(f->v_d, f->dv_d, (size_t)f->B * f->m->cfg.T * f->m->cfg.P);
+}
+
+static void test_arms_have_identical_parameter_count(void **s)
+{
+    (void)s;
+    model_cfg j = tiny(1), i = tiny(0);
+    assert_int_equal(model_nparams(&j), model_nparams(&i));
+    model_cfg rj = model_cfg_reference(5), ri = rj;
+    ri.joint = 0;
+    assert_int_equal(model_nparams(&rj), model_nparams(&ri));
+    model *mj, *mi;
+    assert_int_equal(model_alloc(&mj, &rj, 2), CS_OK);
+    assert_int_equal(model_alloc(&mi, &ri, 2), CS_OK);
+    assert_int_equal(mj->nparams, mi->nparams);
+    assert_int_equal(mj->nparams, model_nparams(&rj));
+    model_free(mj); model_free(mi);
+}
+
+static void test_bad_config_is_rejected(void **s)
+{
+    (void)s;
+    model_cfg c = tiny(1);
+    c.H = 3; /* 8 % 3 != 0 */
+    model *m = NULL;
+    assert_int_equal(model_alloc(&m, &c, 2), CS_EINPUT);
+    assert_null(m);
+    assert_non_null(strstr(cs_errmsg(), "heads"));
+}
+
+static void check_forward(int joint)
+{
+    fx f;
+    fx_make(&f, joint, 2, 21);
+    assert_int_equal(model_forward(f.m, f.B, f.xt, f.feat, f.cond, f.t, f.v), CS_OK);
+    fx_loss(&f);
+    ASSERT_GRAD(f.v, f.v_d, (size_t)f.B * 5 * 6, 2e-5, "model forward");
+    fx_free(&f);
+}
+static void test_forward_matches_reference_joint(void **s) { (void)s; check_forward(1); }
+static void test_forward_matches_reference_independent(void **s) { (void)s; check_forward(0); }
+
+static void check_gradients(int joint)
+{
+    fx f;
+    fx_make(&f, joint, 2, 31 + joint);
+    assert_int_equal(model_forward(f.m, f.B, f.xt, f.feat, f.cond, f.t, f.v), CS_OK);
+    model_backward(f.m, f.dv);
+    double *g = malloc(sizeof(double) * f.m->nparams);
+    tu_fd_grad(g, f.p, f.m->nparams, fx_loss, &f, 1e-5);
+    ASSERT_GRAD(f.m->grads, g, f.m->nparams, 5e-4, joint ? "joint model d/dparams" : "independent model d/dparams");
+    free(g);
+    fx_free(&f);
+}
+static void test_gradients_joint(void **s) { (void)s; check_gradients(1); }
+static void test_gradients_independent(void **s) { (void)s; check_gradients(0); }
+
+/* Changing every other token of the patch leaves token 0's velocity bit-identical
+ * in the independent arm, and changes it in the joint arm. */
+static void check_isolation(int joint)
+{
+    fx f;
+    fx_make(&f, joint, 1, 41);
+    const int T = 5, P = 6, nf = 3;
+    float v1[T * P], v2[T * P];
+    assert_int_equal(model_forward(f.m, 1, f.xt, f.feat, f.cond, f.t, v1), CS_OK);
+    for (int i = 1; i < T; i++) {
+        for (int k = 0; k < P; k++) f.xt[i * P + k] += 0.7f;
+        for (int k = 0; k < nf; k++) f.feat[i * nf + k] -= 0.4f;
+    }
+    assert_int_equal(model_forward(f.m, 1, f.xt, f.feat, f.cond, f.t, v2), CS_OK);
+    int same = 1;
+    for (int k = 0; k < P; k++) same &= (v1[k] == v2[k]);
+    assert_int_equal(same, !joint);
+    fx_free(&f);
+}
+static void test_independent_token_ignores_other_tokens(void **s) { (void)s; check_isolation(0); }
+static void test_joint_token_sees_other_tokens(void **s) { (void)s; check_isolation(1); }
+
+static void test_fm_draw_is_linear_path(void **s)
+{
+    (void)s;
+    enum { B = 3, n = 7 };
+    float x1[B * n], xt[B * n], u[B * n], t[B];
+    unsigned st = 5;
+    tu_fill(x1, B * n, 2, &st);
+    gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937), *r2 = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(r, 3); gsl_rng_set(r2, 3);
+    model_fm_draw(r, B, n, x1, xt, u, t);
+    for (int b = 0; b < B; b++) {
+        ASSERT_EXACT(t[b], (float)gsl_rng_uniform(r2));
+        assert_true(t[b] >= 0.f && t[b] < 1.f);
+        for (int k = 0; k < n; k++) {
+            float x0 = (float)gsl_ran_gaussian_ziggurat(r2, 1.0);
+            ASSERT_EXACT(u[b * n + k], x1[b * n + k] - x0);
+            ASSERT_EXACT(xt[b * n + k], (1.f - t[b]) * x0 + t[b] * x1[b * n + k]);
+        }
+    }
+    gsl_rng_free(r); gsl_rng_free(r2);
+}
+
+static void test_fm_loss_is_mse_with_its_gradient(void **s)
+{
+    (void)s;
+    float v[4] = {1, 2, 3, 4}, u[4] = {0, 2, 5, 4}, dv[4];
+    ASSERT_NEAR(model_fm_loss(v, u, 4, dv), (1.0 + 0 + 4 + 0) / 4, 1e-12);
+    ASSERT_NEAR(dv[0], 0.5, 1e-7);
+    ASSERT_NEAR(dv[2], -1.0, 1e-7);
+    ASSERT_EXACT(dv[1], 0.0);
+}
+
+static void test_forward_rejects_oversized_batch(void **s)
+{
+    (void)s;
+    fx f;
+    fx_make(&f, 1, 1, 51);
+    assert_int_equal(model_forward(f.m, 2, f.xt, f.feat, f.cond, f.t, f.v), CS_EINPUT);
+    fx_free(&f);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_arms_have_identical_parameter_count),
+        cmocka_unit_test(test_bad_config_is_rejected),
+        cmocka_unit_test(test_forward_matches_reference_joint),
+        cmocka_unit_test(test_forward_matches_reference_independent),
+        cmocka_unit_test(test_gradients_joint),
+        cmocka_unit_test(test_gradients_independent),
+        cmocka_unit_test(test_independent_token_ignores_other_tokens),
+        cmocka_unit_test(test_joint_token_sees_other_tokens),
+        cmocka_unit_test(test_fm_draw_is_linear_path),
+        cmocka_unit_test(test_fm_loss_is_mse_with_its_gradient),
+        cmocka_unit_test(test_forward_rejects_oversized_batch),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,318 @@
+/* Tests for src/adamw.c and src/train.c: the AdamW step, the learning-rate
+ * schedule, toy learning (a known profile; a neighbour-dependent target that
+ * only the joint arm can learn, paper Eq. 6), bit-identical determinism and
+ * kill-and-resume, and rejection of truncated / tampered / foreign checkpoints. */
+#include "testutil.h"
+#include "train.h"
+#include <gsl/gsl_randist.h>
+#include <unistd.h>
+
+static model_cfg small_cfg(int joint)
+{
+    model_cfg c = {.T = PATCH_T, .P = PATCH_P, .nfeat = PATCH_NFEAT, .ncond = PATCH_NCOND,
+                   .ntime = 4, .C = 32, .L = 1, .H = 2, .F = 64, .joint = joint};
+    return c;
+}
+
+/* A set of n patches with target x1 = S * u (u_s = sqrt(2) cos theta_s, unit RMS).
+ * mode 0: S = +1 everywhere (a known profile);
+ * mode 1: each token carries a random sign a_i in its third feature and every
+ *         token's target uses S = sign(sum of the patch's a_i) (redrawn until
+ *         non-zero): a token's profile depends on its neighbours' features, which
+ *         only attention across the patch can see. */
+static patch_set *toy_set(int n, int mode, unsigned long seed)
+{
+    patch_set *s;
+    assert_int_equal(patch_set_alloc(&s, n), CS_OK);
+    gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(g, seed);
+    s->n = n;
+    for (int k = 0; k < n; k++) {
+        float a[PATCH_T], sum = 0;
+        do {
+            sum = 0;
+            for (int i = 0; i < PATCH_T; i++) { a[i] = gsl_rng_uniform(g) < 0.5 ? -1.f : 1.f; sum += a[i]; }
+        } while (sum == 0);
+        float sign = mode ? (sum > 0 ? 1.f : -1.f) : 1.f;
+        for (int i = 0; i < PATCH_T; i++) {
+            float *f = s->feat + ((size_t)k * PATCH_T + i) * PATCH_NFEAT;
+            f[0] = (float)gsl_ran_gaussian(g, 1.0);
+            f[1] = (float)gsl_ran_gaussian(g, 1.0);
+            f[2] = mode ? a[i] : 0.5f;
+            for (int j = 0; j < PATCH_P; j++)
+                s->x1[((size_t)k * PATCH_T + i) * PATCH_P + j] = sign * (float)(sqrt(2.0) * cos(2 * M_PI * j / PATCH_P));
+        }
+        for (int c = 0; c < PATCH_NCOND; c++) s->cond[k * PATCH_NCOND + c] = 0.2f * c;
+    }
+    s->scale = 1.0;
+    gsl_rng_free(g);
+    return s;
+}
+
+static train_opts small_opts(long steps)
+{
+    train_opts o = train_opts_default();
+    o.batch = 16;
+    o.steps = steps;
+    o.lr = 5e-3;
+    return o;
+}
+
+/* ---- AdamW ------------------------------------------------------------------ */
+static void test_adamw_first_step_by_hand(void **s)
+{
+    (void)s;
+    float p[2] = {1.0f, 1.0f}, g[2] = {0.5f, 0.5f}, m[2] = {0}, v[2] = {0};
+    adamw_hp hp = adamw_defaults();
+    adamw_update(p, g, m, v, 2, 1, 1, 0.1, &hp);
+    /* step 1: mhat = g, vhat = g^2 -> update = g/(|g| + eps) ~ 1 */
+    ASSERT_NEAR(p[0], 1.0 * (1 - 0.1 * 0.01) - 0.1 * 0.5 / (0.5 + 1e-8), 1e-6); /* decayed */
+    ASSERT_NEAR(p[1], 1.0 - 0.1 * 0.5 / (0.5 + 1e-8), 1e-6);                    /* not decayed */
+    ASSERT_NEAR(m[0], 0.05, 1e-7);
+    ASSERT_NEAR(v[0], 0.00025, 1e-8);
+}
+
+static void test_lr_schedule_warms_up_and_decays(void **s)
+{
+    (void)s;
+    train_opts o = small_opts(1000);
+    ASSERT_NEAR(train_lr(&o, 25), o.lr * 0.5, 1e-12);
+    ASSERT_NEAR(train_lr(&o, 50), o.lr, 1e-12);
+    ASSERT_NEAR(train_lr(&o, 1000), o.lr * o.lr_final, 1e-12);
+    assert_true(train_lr(&o, 500) < o.lr && train_lr(&o, 500) > o.lr * o.lr_final);
+}
+
+/* ---- toy learning -------------------------------------------------------------- */
+static void test_known_profile_is_learned_and_sampled(void **s)
+{
+    (void)s;
+    patch_set *d = toy_set(32, 0, 1);
+    model_cfg c = small_cfg(1);
+    train_opts o = small_opts(600);
+    train *t;
+    assert_int_equal(train_alloc(&t, &c, d, &o), CS_OK);
+    double l0, l1;
+    assert_int_equal(train_eval_loss(t, d, 2, 99, &l0), CS_OK);
+    assert_int_equal(train_run(t, o.steps, NULL, 0, NULL), CS_OK);
+    assert_int_equal(train_eval_loss(t, d, 2, 99, &l1), CS_OK);
+    print_message("known profile: eval loss %.4f -> %.4f\n", l0, l1);
+    assert_true(l1 < 0.1 * l0);
+    /* 100 Euler steps from noise land on u */
+    const int B = 4;
+    float *x = malloc(sizeof(float) * B * PATCH_T * PATCH_P);
+    gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(g, 5);
+    assert_int_equal(model_sample(t->m, g, B, d->feat, d->cond, 100, x), CS_OK);
+    double se = 0;
+    for (int i = 0; i < B * PATCH_T * PATCH_P; i++) {
+        double e = x[i] - d->x1[i];
+        se += e * e;
+    }
+    double rms = sqrt(se / (B * PATCH_T * PATCH_P));
+    print_message("known profile: sample RMS error %.4f (target RMS 1)\n", rms);
+    assert_true(rms < 0.15);
+    free(x);
+    gsl_rng_free(g);
+    train_free(t);
+    patch_set_free(d);
+}
+
+/* Held-out eval loss and the fraction of sampled tokens whose profile has the
+ * sign of its target (projection on u). */
+static void toy_pair(int joint, double *loss, double *signacc)
+{
+    patch_set *d = toy_set(256, 1, 2), *e = toy_set(32, 1, 3);
+    model_cfg c = small_cfg(joint);
+    train_opts o = small_opts(400);
+    train *t;
+    assert_int_equal(train_alloc(&t, &c, d, &o), CS_OK);
+    assert_int_equal(train_run(t, o.steps, NULL, 0, NULL), CS_OK);
+    assert_int_equal(train_eval_loss(t, e, 2, 77, loss), CS_OK);
+    const int B = 8;
+    float *x = malloc(sizeof(float) * B * PATCH_T * PATCH_P);
+    gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(g, 5);
+    assert_int_equal(model_sample(t->m, g, B, e->feat, e->cond, 100, x), CS_OK);
+    int ok = 0;
+    for (int k = 0; k < B * PATCH_T; k++) {
+        double ps = 0, ts = 0;
+        for (int j = 0; j < PATCH_P; j++) {
+            ps += x[k * PATCH_P + j] * cos(2 * M_PI * j / PATCH_P);
+            ts += e->x1[k * PATCH_P + j] * cos(2 * M_PI * j / PATCH_P);
+        }
+        ok += (ps > 0) == (ts > 0);
+    }
+    *signacc = (double)ok / (B * PATCH_T);
+    free(x);
+    gsl_rng_free(g);
+    train_free(t);
+    patch_set_free(d);
+    patch_set_free(e);
+}
+
+static void test_joint_arm_learns_neighbour_dependence_independent_cannot(void **s)
+{
+    (void)s;
+    double lj, li, aj, ai;
+    toy_pair(1, &lj, &aj);
+    toy_pair(0, &li, &ai);
+    print_message("neighbour toy (held-out): eval loss joint %.4f, independent %.4f; "
+                  "sample sign accuracy joint %.3f, independent %.3f\n", lj, li, aj, ai);
+    assert_true(lj < 0.6 * li);
+    assert_true(aj > 0.75);
+    assert_true(ai < 0.62);
+}
+
+/* ---- determinism, checkpoints ------------------------------------------------------ */
+static void test_training_is_bit_identical_across_runs(void **s)
+{
+    (void)s;
+    patch_set *d = toy_set(40, 1, 4);
+    model_cfg c = small_cfg(1);
+    train_opts o = small_opts(12);
+    train *a, *b;
+    assert_int_equal(train_alloc(&a, &c, d, &o), CS_OK);
+    assert_int_equal(train_alloc(&b, &c, d, &o), CS_OK);
+    assert_int_equal(train_run(a, 12, NULL, 0, NULL), CS_OK);
+    assert_int_equal(train_run(b, 12, NULL, 0, NULL), CS_OK);
+    assert_memory_equal(a->m->params, b->m->params, sizeof(float) * a->m->nparams);
+    train_free(a); train_free(b);
+    patch_set_free(d);
+}
+
+static void check_resume(int joint)
+{
+    patch_set *d = toy_set(40, 1, 5); /* 40 patches, batch 16: epochs of 2 steps, cursor mid-epoch */
+    model_cfg c = small_cfg(joint);
+    train_opts o = small_opts(20);
+    const char *dir = tu_tmpdir(joint ? "resume_joint" : "resume_indep");
+    char path[600];
+    snprintf(path, sizeof path, "%s/run.ckpt", dir);
+    train *straight, *first, *second;
+    assert_int_equal(train_alloc(&straight, &c, d, &o), CS_OK);
+    assert_int_equal(train_run(straight, 20, NULL, 0, NULL), CS_OK);
+    /* killed run: checkpoints every 3 steps; only the checkpoint of step 9 survives */
+    assert_int_equal(train_alloc(&first, &c, d, &o), CS_OK);
+    assert_int_equal(train_run(first, 11, path, 3, NULL), CS_OK);
+    train_free(first);
+    assert_int_equal(train_alloc(&first, &c, d, &o), CS_OK);
+    assert_int_equal(train_run(first, 9, path, 3, NULL), CS_OK);
+    for (int k = 0; k < 2; k++) assert_int_equal(train_step(first, NULL), CS_OK); /* lost work */
+    train_free(first);
+    assert_int_equal(train_alloc(&second, &c, d, &o), CS_OK);
+    assert_int_equal(train_load(second, path), CS_OK);
+    assert_int_equal(second->step, 9);
+    assert_int_equal(train_run(second, 20, path, 3, NULL), CS_OK);
+    assert_int_equal(second->step, 20);
+    size_t nb = sizeof(float) * straight->m->nparams;
+    assert_memory_equal(second->m->params, straight->m->params, nb);
+    assert_memory_equal(second->am, straight->am, nb);
+    assert_memory_equal(second->av, straight->av, nb);
+    train_free(straight); train_free(second);
+    patch_set_free(d);
+}
+static void test_kill_and_resume_is_bit_identical_joint(void **s) { (void)s; check_resume(1); }
+static void test_kill_and_resume_is_bit_identical_independent(void **s) { (void)s; check_resume(0); }
+
+static void write_ckpt(const char *name, char *path, size_t n, train **t, patch_set **d)
+{
+    *d = toy_set(20, 0, 6);
+    model_cfg c = small_cfg(1);
+    train_opts o = small_opts(4);
+    snprintf(path, n, "%s/c.ckpt", tu_tmpdir(name));
+    assert_int_equal(train_alloc(t, &c, *d, &o), CS_OK);
+    assert_int_equal(train_run(*t, 2, path, 0, NULL), CS_OK);
+}
+
+static long file_size(const char *p) { struct stat st; return stat(p, &st) == 0 ? (long)st.st_size : -1; }
+
+static void test_truncated_checkpoint_is_rejected(void **s)
+{
+    (void)s;
+    char path[600];
+    train *t; patch_set *d;
+    write_ckpt("ckpt_trunc", path, sizeof path, &t, &d);
+    assert_int_equal(truncate(path, file_size(path) - 100), 0);
+    assert_int_equal(train_load(t, path), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "truncated"));
+    assert_int_equal(truncate(path, 5), 0);
+    assert_int_equal(train_load(t, path), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "truncated"));
+    train_free(t); patch_set_free(d);
+}
+
+static void test_tampered_checkpoint_is_rejected(void **s)
+{
+    (void)s;
+    char path[600];
+    train *t; patch_set *d;
+    write_ckpt("ckpt_tamper", path, sizeof path, &t, &d);
+    FILE *f = fopen(path, "r+b");
+    assert_non_null(f);
+    fseek(f, file_size(path) / 2, SEEK_SET);
+    int ch = fgetc(f);
+    fseek(f, file_size(path) / 2, SEEK_SET);
+    fputc(ch ^ 0x10, f);
+    fclose(f);
+    float before = t->m->params[0];
+    assert_int_equal(train_load(t, path), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "checksum"));
+    ASSERT_EXACT(t->m->params[0], before); /* state untouched */
+    train_free(t); patch_set_free(d);
+}
+
+static void test_foreign_missing_and_mismatched_checkpoints_are_rejected(void **s)
+{
+    (void)s;
+    char path[600], other[700];
+    train *t, *u; patch_set *d;
+    write_ckpt("ckpt_foreign", path, sizeof path, &t, &d);
+    snprintf(other, sizeof other, "%s.txt", path);
+    tu_write(other, "this is not a checkpoint at all, just some text that is long enough to have a header..........................................................................................................................................\n");
+    assert_int_equal(train_load(t, other), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "magic"));
+    snprintf(other, sizeof other, "%s.missing", path);
+    assert_int_equal(train_load(t, other), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "cannot open"));
+    model_cfg c = small_cfg(0); /* independent arm: same size, different model */
+    train_opts o = small_opts(4);
+    assert_int_equal(train_alloc(&u, &c, d, &o), CS_OK);
+    assert_int_equal(train_load(u, path), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "model configuration"));
+    train_free(u);
+    train_free(t); patch_set_free(d);
+}
+
+static void test_model_loads_from_checkpoint(void **s)
+{
+    (void)s;
+    char path[600];
+    train *t; patch_set *d;
+    write_ckpt("ckpt_model", path, sizeof path, &t, &d);
+    model *m;
+    double scale = 0;
+    assert_int_equal(train_load_model(path, &m, 3, &scale), CS_OK);
+    ASSERT_EXACT(scale, 1.0);
+    assert_int_equal(m->nparams, t->m->nparams);
+    assert_memory_equal(m->params, t->m->params, sizeof(float) * m->nparams);
+    model_free(m);
+    train_free(t); patch_set_free(d);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_adamw_first_step_by_hand),
+        cmocka_unit_test(test_lr_schedule_warms_up_and_decays),
+        cmocka_unit_test(test_known_profile_is_learned_and_sampled),
+        cmocka_unit_test(test_joint_arm_learns_neighbour_dependence_independent_cannot),
+        cmocka_unit_test(test_training_is_bit_identical_across_runs),
+        cmocka_unit_test(test_kill_and_resume_is_bit_identical_joint),
+        cmocka_unit_test(test_kill_and_resume_is_bit_identical_independent),
+        cmocka_unit_test(test_truncated_checkpoint_is_rejected),
+        cmocka_unit_test(test_tampered_checkpoint_is_rejected),
+        cmocka_unit_test(test_foreign_missing_and_mismatched_checkpoints_are_rejected),
+        cmocka_unit_test(test_model_loads_from_checkpoint),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
