@@ -8,6 +8,7 @@
 #include "gate.h"
 #include "tsv.h"
 #include "exp_main.h"
+#include "exp_field.h"
 #include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -224,6 +225,16 @@ static const cli_cmd cli_cmds[] = {
     {"trace", cmd_trace, "trace one macro to its value, file, function, gate and test"},
     {"pin", cmd_pin, "re-pin the estimator, teacher and gates (deliberate)"},
     {"hash-frozen", cmd_hash_frozen, "record the hashes of frozen/ (make freeze)"},
+    {"field-summary", cmd_field_summary, "summarise a raw field table (FIELD_TABLE) with the canonical estimator"},
+    {"field-calibrate", cmd_field_calibrate, "E5: calibrate die-back beta to the field tree-mean median clearance"},
+    {"field-beta", cmd_field_beta, "E5: print beta_field from a calibration table"},
+    {"field-heldout", cmd_field_heldout, "E5: held-out spread, elongation and uncoupled control at beta_field"},
+    {"aniso-lattice", cmd_aniso_lattice, "E6: anisotropy on the controlled lattice at beta_field"},
+    {"aniso-hardcore", cmd_aniso_hardcore, "E6: hard-core stem family sweep"},
+    {"aniso-jitter", cmd_aniso_jitter, "E6: jitter-amplitude family sweep"},
+    {"aniso-jitter-calibrate", cmd_aniso_jitter_calibrate, "E6: calibrate jitter a* to the field anisotropy median"},
+    {"aniso-heldout", cmd_aniso_heldout, "E6: held-out stands at a*"},
+    {"field-diagnose", cmd_field_diagnose, "E5/E6: diagnostics for the elongation and anisotropy verdicts"},
     {"version", cmd_version, "print the version"},
 };
 #define NCMDS (sizeof cli_cmds / sizeof cli_cmds[0])

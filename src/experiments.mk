@@ -34,37 +34,72 @@ TEACHER_STANDS := 1
 else
 TEACHER_STANDS := 8
 endif
-TEACHER_DEPS := $(CLI) gates/mechanism.gate gates/irreducibility.gate
+# $(CLI) is order-only below: rebuilding the binary must not invalidate finished units.
+TEACHER_DEPS := gates/mechanism.gate gates/irreducibility.gate
 MECH_UNITS := $(RESULTS)/mechanism/sweep.tsv $(RESULTS)/mechanism/ablation.tsv $(RESULTS)/mechanism/figure_crowns.tsv
 IRRED_UNITS := $(RESULTS)/irreducibility/perturb_train.tsv $(RESULTS)/irreducibility/refine_train.tsv \
                $(RESULTS)/irreducibility/reduction_train.tsv
 TEACHER_FIG_UNITS := $(RESULTS)/hero/figure_crowns.tsv $(RESULTS)/pointcloud/figure_crowns.tsv
 REPRODUCE_UNITS += $(MECH_UNITS) $(IRRED_UNITS) $(TEACHER_FIG_UNITS)
 
-$(RESULTS)/mechanism/sweep.tsv: $(TEACHER_DEPS)
+$(RESULTS)/mechanism/sweep.tsv: $(TEACHER_DEPS) | $(CLI)
 	$(CLI) run mechanism-sweep --stands $(TEACHER_STANDS) --out $(RESULTS)
-$(RESULTS)/mechanism/ablation.tsv: $(TEACHER_DEPS)
+$(RESULTS)/mechanism/ablation.tsv: $(TEACHER_DEPS) | $(CLI)
 	$(CLI) run mechanism-ablation --stands $(TEACHER_STANDS) --out $(RESULTS)
-$(RESULTS)/mechanism/figure_crowns.tsv: $(TEACHER_DEPS)
+$(RESULTS)/mechanism/figure_crowns.tsv: $(TEACHER_DEPS) | $(CLI)
 	$(CLI) run fig-mechanism --out $(RESULTS)
-$(RESULTS)/irreducibility/perturb_train.tsv: $(TEACHER_DEPS)
+$(RESULTS)/irreducibility/perturb_train.tsv: $(TEACHER_DEPS) | $(CLI)
 	$(CLI) run irreducibility-perturb --stands $(TEACHER_STANDS) --out $(RESULTS)
-$(RESULTS)/irreducibility/refine_train.tsv: $(TEACHER_DEPS)
+$(RESULTS)/irreducibility/refine_train.tsv: $(TEACHER_DEPS) | $(CLI)
 	$(CLI) run irreducibility-refine --stands $(TEACHER_STANDS) --out $(RESULTS)
-$(RESULTS)/irreducibility/reduction_train.tsv: $(TEACHER_DEPS)
+$(RESULTS)/irreducibility/reduction_train.tsv: $(TEACHER_DEPS) | $(CLI)
 	$(CLI) run irreducibility-reduction --stands $(TEACHER_STANDS) --out $(RESULTS)
-$(RESULTS)/hero/figure_crowns.tsv: $(TEACHER_DEPS)
-	$(CLI) run fig-hero --out $(RESULTS) $(if $(BETA_FIELD),--beta $(BETA_FIELD))
-$(RESULTS)/pointcloud/figure_crowns.tsv: $(TEACHER_DEPS)
+# second row at beta_field (E5): recomputed from the field calibration table
+$(RESULTS)/hero/figure_crowns.tsv: $(TEACHER_DEPS) $(RESULTS)/field/calibration.tsv | $(CLI)
+	$(CLI) run fig-hero --beta $$($(CLI) field-beta $(RESULTS)/field/calibration.tsv) --out $(RESULTS)
+$(RESULTS)/pointcloud/figure_crowns.tsv: $(TEACHER_DEPS) | $(CLI)
 	$(CLI) run fig-pointcloud --out $(RESULTS)
 
-# E2 at the field die-back (SPEC §7 E2 "at beta_train and at beta_field"): set
-# BETA_FIELD to the E5 calibration (e.g. make reproduce BETA_FIELD=0.19) and
-# the three field units are registered; the hero figure then gets its second row.
-ifneq ($(strip $(BETA_FIELD)),)
+# ---- E5 field validation and E6 anisotropy attribution (SPEC §7) -------------
+# Stand counts: full run 28 held-out stands (E5, E6 lattice, E6 held-out) and 12
+# per sweep level; smoke 3 and 2. Calibration seeds come from gates/field.gate.
+# E6 runs at beta_field, so every E6 unit depends on the E5 calibration.
+ifeq ($(SCALE),smoke)
+FIELD_STANDS := 3
+ANISO_SWEEP_STANDS := 2
+else
+FIELD_STANDS := 28
+ANISO_SWEEP_STANDS := 12
+endif
+FIELD_CAL := $(RESULTS)/field/calibration.tsv
+$(FIELD_CAL): | $(CLI)
+	$(CLI) field-calibrate --out $@
+$(RESULTS)/field/heldout.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) field-heldout --calibration $(FIELD_CAL) --stands $(FIELD_STANDS) --out $@
+$(RESULTS)/anisotropy/lattice.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) aniso-lattice --calibration $(FIELD_CAL) --stands $(FIELD_STANDS) --out $@
+$(RESULTS)/anisotropy/hardcore.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) aniso-hardcore --calibration $(FIELD_CAL) --stands $(ANISO_SWEEP_STANDS) --out $@
+$(RESULTS)/anisotropy/jitter.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) aniso-jitter --calibration $(FIELD_CAL) --stands $(ANISO_SWEEP_STANDS) --out $@
+$(RESULTS)/anisotropy/jitter_calibration.tsv: $(RESULTS)/anisotropy/jitter.tsv | $(CLI)
+	$(CLI) aniso-jitter-calibrate --sweep $< --out $@
+$(RESULTS)/anisotropy/heldout.tsv: $(FIELD_CAL) $(RESULTS)/anisotropy/jitter_calibration.tsv | $(CLI)
+	$(CLI) aniso-heldout --calibration $(FIELD_CAL) --jitter-calibration $(RESULTS)/anisotropy/jitter_calibration.tsv --stands $(FIELD_STANDS) --out $@
+REPRODUCE_UNITS += $(FIELD_CAL) $(RESULTS)/field/heldout.tsv $(RESULTS)/anisotropy/lattice.tsv \
+  $(RESULTS)/anisotropy/hardcore.tsv $(RESULTS)/anisotropy/jitter.tsv \
+  $(RESULTS)/anisotropy/jitter_calibration.tsv $(RESULTS)/anisotropy/heldout.tsv
+.PHONY: field anisotropy
+field: $(FIELD_CAL) $(RESULTS)/field/heldout.tsv
+anisotropy: $(RESULTS)/anisotropy/lattice.tsv $(RESULTS)/anisotropy/hardcore.tsv $(RESULTS)/anisotropy/heldout.tsv
+# E2 irreducibility again at the field operating point (SPEC §7 E2 "at beta_train
+# and at beta_field (E5)"): beta_field is recomputed from the E5 calibration table.
 IRRED_FIELD_UNITS := $(RESULTS)/irreducibility/perturb_field.tsv $(RESULTS)/irreducibility/refine_field.tsv \
                      $(RESULTS)/irreducibility/reduction_field.tsv
+$(RESULTS)/irreducibility/perturb_field.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) run irreducibility-perturb --stands $(TEACHER_STANDS) --beta $$($(CLI) field-beta $(FIELD_CAL)) --tag field --out $(RESULTS)
+$(RESULTS)/irreducibility/refine_field.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) run irreducibility-refine --stands $(TEACHER_STANDS) --beta $$($(CLI) field-beta $(FIELD_CAL)) --tag field --out $(RESULTS)
+$(RESULTS)/irreducibility/reduction_field.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) run irreducibility-reduction --stands $(TEACHER_STANDS) --beta $$($(CLI) field-beta $(FIELD_CAL)) --tag field --out $(RESULTS)
 REPRODUCE_UNITS += $(IRRED_FIELD_UNITS)
-$(RESULTS)/irreducibility/%_field.tsv: $(TEACHER_DEPS)
-	$(CLI) run irreducibility-$* --stands $(TEACHER_STANDS) --beta $(BETA_FIELD) --tag field --out $(RESULTS)
-endif
