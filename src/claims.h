@@ -53,6 +53,9 @@ cs_status claim_gate_load(const char *file, gate **g);
 #define CLAIMS_PENDING_FMT "\\pending{%s}"
 /* Write the generated file (atomic) from evaluated results. */
 cs_status claims_write_numbers(const char *path, const claims *c, const claim_result *res);
+/* Write paper/comparison.tex: every claim, the reference paper's value, ours,
+ * the gate verdict and whether the values agree (generated, atomic). */
+cs_status claims_write_comparison(const char *path, const claims *c, const claim_result *res);
 /* Parse a numbers.tex: value text of \newcommand{\NAME}{...}; NULL if absent. */
 typedef struct { size_t n; char (*name)[80]; char (*value)[192]; int *line; } numbers_tex;
 cs_status numbers_read(const char *path, numbers_tex *out);

@@ -255,10 +255,13 @@ static cs_status generate(model *m, int Bmax, const exp_main_plan *pl, const eva
                 int idx[PATCH_T];
                 for (int i = 0; i < PATCH_T; i++) idx[i] = i;
                 gsl_ran_shuffle(perm, idx, PATCH_T, sizeof *idx);
-                float pos[PATCH_T][2];
+                /* every positional feature moves with the position; rbar stays with its tree */
+                float pos[PATCH_T][PATCH_NFEAT];
                 float *f = feat + (size_t)k * PATCH_T * PATCH_NFEAT;
-                for (int i = 0; i < PATCH_T; i++) { pos[i][0] = f[i * PATCH_NFEAT]; pos[i][1] = f[i * PATCH_NFEAT + 1]; }
-                for (int i = 0; i < PATCH_T; i++) { f[i * PATCH_NFEAT] = pos[idx[i]][0]; f[i * PATCH_NFEAT + 1] = pos[idx[i]][1]; }
+                memcpy(pos, f, sizeof pos);
+                for (int i = 0; i < PATCH_T; i++)
+                    for (int q = 0; q < PATCH_NFEAT; q++)
+                        if (q != PATCH_FEAT_RBAR) f[i * PATCH_NFEAT + q] = pos[idx[i]][q];
             }
         }
         st = model_sample(m, noise, b, feat, e->ps->cond + (size_t)k0 * PATCH_NCOND, pl->euler, x);
@@ -312,6 +315,7 @@ int exp_main_cmd_run(int argc, char **argv)
     if ((st = patch_set_standardise(tr, data_scale))) { patch_set_free(tr); return fail_with(st); }
 
     model_cfg cfg = model_cfg_reference(PATCH_NCOND);
+    cfg.nfeat = PATCH_NFEAT;
     cfg.joint = joint;
     train_opts o = train_opts_default();
     o.batch = pl.batch;

@@ -79,7 +79,13 @@ cs_status patch_build(const patch_stand *s, int focal, patch *p)
         for (int j = 0; j < PATCH_P; j++) p->dev[k * PATCH_P + j] = r[j] - m;
         p->feat[k * PATCH_NFEAT + 0] = (float)(p->px[k] / d);
         p->feat[k * PATCH_NFEAT + 1] = (float)(p->py[k] / d);
-        p->feat[k * PATCH_NFEAT + 2] = (float)(m / d);
+        p->feat[k * PATCH_NFEAT + PATCH_FEAT_RBAR] = (float)(m / d);
+        double rho = hypot(p->px[k], p->py[k]), phi = atan2(p->py[k], p->px[k]);
+        for (int h = 1; h <= 4; h++) {
+            p->feat[k * PATCH_NFEAT + 1 + 2 * h] = rho > 0 ? (float)cos(h * phi) : 0.f;
+            p->feat[k * PATCH_NFEAT + 2 + 2 * h] = rho > 0 ? (float)sin(h * phi) : 0.f;
+        }
+        p->feat[k * PATCH_NFEAT + 11] = (float)(rho / d);
     }
     /* nearest-neighbour distance of each patch stem, over the whole stand */
     for (int k = 0; k < PATCH_T; k++) {

@@ -14,7 +14,15 @@
 
 #define PATCH_T 24     /* trees per patch */
 #define PATCH_P 24     /* sectors per crown */
-#define PATCH_NFEAT 3  /* (x_i - x_f)/d, (y_i - y_f)/d, rbar_i/d */
+/* Per-token features: (x_i - x_f)/d, (y_i - y_f)/d, rbar_i/d, then the same
+ * relative position in a polar Fourier basis: cos k phi_i, sin k phi_i for
+ * k = 1..4 (phi_i the bearing of stem i from the focal stem; 0 for the focal
+ * itself) and rho_i / d. The basis is a fixed function of (p_i - p_f)/d, so a
+ * token still carries only its own position and size (SPEC §8); it makes the
+ * map from a bearing to a crown profile linear, which the flow model
+ * otherwise failed to learn within the E3 budget (see paper, Method). */
+#define PATCH_NFEAT 12
+#define PATCH_FEAT_RBAR 2 /* index of rbar_i/d; every other feature is positional */
 /* Conditions: d/5 m; local density * d^2 (24 / (pi rho^2), rho = distance to the
  * 24th stem); mean and sd of the patch stems' nearest-neighbour distances / d;
  * stand median height / 25 m (0 when heights are not given). */
