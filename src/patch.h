@@ -92,4 +92,9 @@ cs_status patch_clearance_check(patch_clearance_ref ref, const double *px, const
  * r(theta) = R (1 - 0.2 cos(theta - theta_nn)). x, y [side^2], r [side^2 * 24]. */
 void patch_toy_stand(gsl_rng *rng, int side, double d, double *x, double *y, double *r);
 
+/* Append the patches of `nstands` toy stands (12 x 12 stems, spacing d) to s,
+ * one per interior stem (at least 2 d from the lattice edge: 64 per stand).
+ * Stand k draws from mt19937 seeded with seed + k. */
+cs_status patch_set_add_toy(patch_set *s, int nstands, double d, unsigned long seed);
+
 #endif

@@ -381,23 +381,10 @@ cs_status train_bench(const model_cfg *cfg, int B, int steps, int repeats, train
     memset(r, 0, sizeof *r);
     if (repeats < 1) repeats = 1;
     if (repeats > 15) repeats = 15;
-    /* toy data: B patches per stand of 12 x 12 stems, 2 batches worth */
-    enum { SIDE = 12 };
-    double x[SIDE * SIDE], y[SIDE * SIDE], *rr = malloc(sizeof(double) * SIDE * SIDE * PATCH_P);
+    /* toy data: two batches' worth of patches */
     patch_set *ps = NULL;
-    cs_status st = rr ? patch_set_alloc(&ps, 2 * B) : cs_err(CS_ENOMEM, "bench: out of memory");
-    gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
-    gsl_rng_set(g, 7);
-    for (int k = 0; !st && k < 2 * B; k++) {
-        if (k % 64 == 0) patch_toy_stand(g, SIDE, 4.5, x, y, rr);
-        patch_stand s;
-        patch p;
-        st = patch_stand_init(&s, SIDE * SIDE, x, y, rr, NULL, 4.5);
-        if (!st) st = patch_build(&s, 26 + (k % 64) % 8 + 12 * ((k % 64) / 8), &p);
-        if (!st) st = patch_set_add(ps, &p);
-    }
-    gsl_rng_free(g);
-    free(rr);
+    cs_status st = patch_set_alloc(&ps, 2 * B);
+    if (!st) st = patch_set_add_toy(ps, (2 * B + 63) / 64, 4.5, 7);
     if (!st) st = patch_set_standardise(ps, patch_set_rms(ps));
     train *t = NULL;
     train_opts o = train_opts_default();
