@@ -52,6 +52,33 @@ INL float vsum(const float *x, int n)
     return s;
 }
 
+INL vf vmax(vf a, vf b) { vi m = a > b; return (vf)(((vi)a & m) | ((vi)b & ~m)); }
+
+/* max of x[0..n), n >= 1 (max is exact, so the order does not matter). */
+INL float vmaxv(const float *x, int n)
+{
+    float mx = x[0];
+    int i = 0;
+    if (n >= VL) {
+        vf m = ld(x);
+        for (i = VL; i + VL <= n; i += VL) m = vmax(m, ld(x + i));
+        for (int k = 0; k < VL; k++) mx = m[k] > mx ? m[k] : mx;
+    }
+    for (; i < n; i++) mx = x[i] > mx ? x[i] : mx;
+    return mx;
+}
+
+/* sum of a[i]*b[i], fixed order: 8 lanes, then the tail. */
+INL float vdot(const float *a, const float *b, int n)
+{
+    vf acc = splat(0.f);
+    int i = 0;
+    for (; i + VL <= n; i += VL) acc += ld(a + i) * ld(b + i);
+    float s = hsum(acc);
+    for (; i < n; i++) s += a[i] * b[i];
+    return s;
+}
+
 /* ---- exp ------------------------------------------------------------------ */
 /* exp(x) = 2^n * p(r), x = n ln2 + r, |r| <= ln2/2, p = Taylor to degree 7. */
 INL vf vexp(vf x)
@@ -279,8 +306,11 @@ HOT void nn_residual_backward(float *acc, const float *x, size_t n)
  * helpers cover all of them with accumulators held in registers:
  *   rows_times_t: S[i][0..T) = sum_d a * A[i][d] * Bt[d][0..T)   (scores, dP)
  *   mix_rows:     O[i][0..hd) = sum_j W[i][j] * X[j][0..hd)     (PV, dV, dQ, dK)
- * The fast paths (T = 24; hd a multiple of 8) and the generic loops perform
- * the same operations per element in the same order of summation. */
+ * T = 24 (the paper's patch) has fused register paths for the score rows
+ * (scores_softmax24, dscores24); hd a multiple of 8 has a two-row path in
+ * mix_rows. Each fast path performs the same operations per element in the
+ * same order of summation as the generic loops, and both are tested against
+ * the double reference. */
 
 size_t nn_attention_scratch_len(int T, int C, int H)
 {
@@ -294,18 +324,8 @@ INL void rows_times_t(float *S, const float *A, int lda, float a, const float *B
     for (int i = 0; i < T; i++) {
         const float *ai = A + (size_t)i * lda;
         float *s = S + (size_t)i * T;
-        if (T == 24) {
-            vf s0 = splat(0.f), s1 = splat(0.f), s2 = splat(0.f);
-            for (int d = 0; d < hd; d++) {
-                vf q = splat(ai[d] * a);
-                const float *b = Bt + (size_t)d * 24;
-                s0 += q * ld(b); s1 += q * ld(b + 8); s2 += q * ld(b + 16);
-            }
-            st(s, s0); st(s + 8, s1); st(s + 16, s2);
-        } else {
-            memset(s, 0, sizeof(float) * T);
-            for (int d = 0; d < hd; d++) axpy(s, ai[d] * a, Bt + (size_t)d * T, T);
-        }
+        memset(s, 0, sizeof(float) * T);
+        for (int d = 0; d < hd; d++) axpy(s, ai[d] * a, Bt + (size_t)d * T, T);
     }
 }
 
@@ -354,8 +374,7 @@ INL void transpose(float *dst, const float *src, int ld, int rows, int cols)
 /* In place softmax of s[0..n). */
 INL void softmax_row(float *s, int n)
 {
-    float mx = s[0];
-    for (int j = 1; j < n; j++) mx = s[j] > mx ? s[j] : mx;
+    float mx = vmaxv(s, n);
     int j = 0;
     vf vm = splat(mx);
     for (; j + VL <= n; j += VL) st(s + j, vexp(ld(s + j) - vm));
@@ -363,6 +382,42 @@ INL void softmax_row(float *s, int n)
     float inv = 1.f / vsum(s, n);
     for (j = 0; j + VL <= n; j += VL) st(s + j, ld(s + j) * splat(inv));
     for (; j < n; j++) s[j] *= inv;
+}
+
+/* T = 24: one score row, its softmax and its store, in registers. Same
+ * operations and order as rows_times_t + softmax_row. */
+INL void scores_softmax24(float *p, const float *q, float scale, const float *kt, int hd)
+{
+    vf s0 = splat(0.f), s1 = splat(0.f), s2 = splat(0.f);
+    for (int d = 0; d < hd; d++) {
+        vf a = splat(q[d] * scale);
+        const float *b = kt + (size_t)d * 24;
+        s0 += a * ld(b); s1 += a * ld(b + 8); s2 += a * ld(b + 16);
+    }
+    vf m = vmax(vmax(s0, s1), s2);
+    float mx = m[0];
+    for (int k = 1; k < VL; k++) mx = m[k] > mx ? m[k] : mx;
+    vf vm = splat(mx);
+    s0 = vexp(s0 - vm); s1 = vexp(s1 - vm); s2 = vexp(s2 - vm);
+    vf inv = splat(1.f / hsum(((splat(0.f) + s0) + s1) + s2));
+    st(p, s0 * inv); st(p + 8, s1 * inv); st(p + 16, s2 * inv);
+}
+
+/* T = 24: dS row = P (dP - <P, dP>) scale with dP = dO_i V^T, in registers.
+ * Same operations and order as the generic backward path. */
+INL void dscores24(float *ds, const float *p, const float *dO, float scale, const float *vt, int hd)
+{
+    vf d0 = splat(0.f), d1 = splat(0.f), d2 = splat(0.f);
+    for (int d = 0; d < hd; d++) {
+        vf a = splat(dO[d] * 1.f);
+        const float *b = vt + (size_t)d * 24;
+        d0 += a * ld(b); d1 += a * ld(b + 8); d2 += a * ld(b + 16);
+    }
+    vf p0 = ld(p), p1 = ld(p + 8), p2 = ld(p + 16);
+    vf acc = splat(0.f);
+    acc += p0 * d0; acc += p1 * d1; acc += p2 * d2;
+    vf dot = splat(hsum(acc)), vs = splat(scale);
+    st(ds, p0 * (d0 - dot) * vs); st(ds + 8, p1 * (d1 - dot) * vs); st(ds + 16, p2 * (d2 - dot) * vs);
 }
 
 HOT void nn_attention_forward(float *out, float *prob, const float *qkv,
@@ -382,8 +437,12 @@ HOT void nn_attention_forward(float *out, float *prob, const float *qkv,
         for (int h = 0; h < H; h++) {
             float *P = prob + ((size_t)b * H + h) * T * T;
             transpose(kt, base + C + h * hd, C3, T, hd);
-            rows_times_t(P, base + h * hd, C3, scale, kt, T, hd);
-            for (int i = 0; i < T; i++) softmax_row(P + (size_t)i * T, T);
+            if (T == 24) {
+                for (int i = 0; i < 24; i++) scores_softmax24(P + (size_t)i * 24, base + (size_t)i * C3 + h * hd, scale, kt, hd);
+            } else {
+                rows_times_t(P, base + h * hd, C3, scale, kt, T, hd);
+                for (int i = 0; i < T; i++) softmax_row(P + (size_t)i * T, T);
+            }
             mix_rows(out + (size_t)b * T * C + h * hd, C, P, 0, base + 2 * C + h * hd, C3, T, hd);
         }
     }
@@ -412,12 +471,15 @@ HOT void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
         for (int h = 0; h < H; h++) {
             const float *P = prob + ((size_t)b * H + h) * T * T;
             transpose(vt, base + 2 * C + h * hd, C3, T, hd);
-            rows_times_t(ds, dO + h * hd, C, 1.f, vt, T, hd); /* dP = dO V^T */
-            for (int i = 0; i < T; i++) {
+            if (T == 24)
+                for (int i = 0; i < 24; i++)
+                    dscores24(ds + (size_t)i * 24, P + (size_t)i * 24, dO + (size_t)i * C + h * hd, scale, vt, hd);
+            else
+                rows_times_t(ds, dO + h * hd, C, 1.f, vt, T, hd); /* dP = dO V^T */
+            for (int i = 0; i < T && T != 24; i++) {
                 const float *p = P + (size_t)i * T;
                 float *d = ds + (size_t)i * T;
-                float dot = 0.f;
-                for (int j = 0; j < T; j++) dot += p[j] * d[j];
+                float dot = vdot(p, d, T);
                 int j = 0;
                 vf vd = splat(dot), vs = splat(scale);
                 for (; j + VL <= T; j += VL) st(d + j, ld(p + j) * (ld(d + j) - vd) * vs);
