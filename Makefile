@@ -26,7 +26,7 @@ TESTS := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_SRC))
 ASAN_TESTS := $(patsubst tests/%.c,$(B)/asan/tests/%,$(TEST_SRC))
 CLI := $(B)/crownshy
 
-.PHONY: all deps check check-fast verify bench reproduce freeze figures paper deps-paper audit clean
+.PHONY: all deps check check-fast verify bench reproduce freeze figures paper deps-paper audit numbers trace clean
 .DELETE_ON_ERROR:
 
 all: $(CLI) $(TESTS)
@@ -69,7 +69,7 @@ $(B)/obj $(B)/asan/obj $(B)/tests $(B)/asan/tests:
 # Every cmocka binary, then all of them again under ASan+UBSan; one aggregate line.
 check: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS) $(ASAN_TESTS)
-	@bash tests/run.sh $(TESTS) -- $(ASAN_TESTS)
+	@bash tests/run.sh $(TESTS) tests/tamper.sh -- $(ASAN_TESTS)
 
 check-fast: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS)
@@ -91,6 +91,54 @@ figures: deps
 bench: deps
 	@$(MAKE) --no-print-directory $(CLI)
 	@$(CLI) bench
+
+numbers: deps
+	@$(MAKE) --no-print-directory $(CLI)
+	@$(CLI) numbers
+
+# ---- the full run of the study ----------------------------------------------
+# One make target per unit (seed, arm, experiment) writing into $(RESULTS);
+# `make -j2 reproduce` uses both cores, and an interrupted run resumes because
+# finished units are files that make sees as up to date (written atomically).
+# SCALE=smoke runs the whole pipeline at toy size into build/smoke/ (never frozen).
+ifeq ($(SCALE),smoke)
+RESULTS := $(B)/smoke
+else
+RESULTS := $(B)/results
+endif
+REPRODUCE_UNITS :=
+-include src/experiments.mk
+
+reproduce: deps
+	@$(MAKE) --no-print-directory $(CLI)
+	@if [ -z "$(strip $(REPRODUCE_UNITS))" ]; then echo "reproduce: no experiment registered yet"; \
+	 else $(MAKE) --no-print-directory $(REPRODUCE_UNITS) && echo "reproduce: $(words $(REPRODUCE_UNITS)) units up to date in $(RESULTS)"; fi
+
+# Copy finished full-scale results into frozen/, record their hashes and
+# regenerate paper/numbers.tex. Smoke results are never frozen.
+freeze: deps
+	@$(MAKE) --no-print-directory $(CLI)
+	@if [ "$(SCALE)" = smoke ]; then echo "freeze: smoke results are never frozen" >&2; exit 2; fi
+	@if [ -d $(B)/results ]; then \
+	  for d in $(B)/results/*/; do [ -d "$$d" ] || continue; e=$$(basename $$d); mkdir -p frozen/$$e; \
+	    find $$d -name '*.tsv' ! -name '*.tmp' -exec cp {} frozen/$$e/ \; ; done; fi
+	@$(CLI) hash-frozen
+	@$(CLI) numbers
+
+trace: $(CLI)
+	@$(CLI) trace $(MACRO)
+
+# ---- the write-up -------------------------------------------------------------
+deps-paper:
+	@if command -v pdflatex >/dev/null; then exit 0; fi; \
+	if [ "$$(id -u)" = 0 ]; then DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends \
+	  texlive-latex-base texlive-latex-recommended texlive-latex-extra texlive-fonts-recommended >/dev/null; \
+	else echo "deps-paper: run: sudo apt-get install -y texlive-latex-base texlive-latex-recommended texlive-latex-extra texlive-fonts-recommended" >&2; exit 1; fi
+
+paper: $(CLI)
+	@$(CLI) numbers --check >/dev/null || { echo "paper: paper/numbers.tex is stale; run make numbers" >&2; exit 1; }
+	@if ! command -v pdflatex >/dev/null; then echo "paper: pdflatex not installed; run make deps-paper (Debian texlive packages)" >&2; exit 1; fi
+	@cd paper && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && echo "paper: wrote paper/main.pdf"
 
 clean:
 	rm -rf $(B)

@@ -39,7 +39,7 @@ static inline const char *tu_tmpdir(const char *name)
 {
     static char dir[512];
     snprintf(dir, sizeof dir, "build/test-tmp/%s", name);
-    char cmd[600];
+    char cmd[1200];
     snprintf(cmd, sizeof cmd, "rm -rf '%s' && mkdir -p '%s'", dir, dir);
     if (system(cmd) != 0) fail_msg("cannot create %s", dir);
     return dir;

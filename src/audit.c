@@ -1,0 +1,419 @@
+/* audit: traceability checks (SPEC §9; issue 7). Messages always name the
+ * file and the claims it feeds, so a tampered byte points at its culprit. */
+#include "audit.h"
+#include "prov.h"
+#include "tsv.h"
+#include <dirent.h>
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#if __has_include("teacher.h")
+#include "teacher.h"
+#define AUDIT_TEACHER_VERSION TEACHER_VERSION
+#else
+#define AUDIT_TEACHER_VERSION "teacher-1"
+#endif
+
+void checklist_add(checklist *cl, verdict v, const char *name, const char *fmt, ...)
+{
+    if (cl->n == cl->cap) {
+        size_t nc = cl->cap ? 2 * cl->cap : 64;
+        check_item *ni = realloc(cl->items, nc * sizeof *ni);
+        if (!ni) return;
+        cl->items = ni;
+        cl->cap = nc;
+    }
+    check_item *it = &cl->items[cl->n++];
+    it->v = v;
+    snprintf(it->name, sizeof it->name, "%s", name);
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(it->msg, sizeof it->msg, fmt, ap);
+    va_end(ap);
+}
+
+void checklist_free(checklist *cl)
+{
+    free(cl->items);
+    memset(cl, 0, sizeof *cl);
+}
+
+/* ---- list of files under a directory (recursive, sorted) ---- */
+typedef struct { char **p; size_t n, cap; } strlist;
+static void sl_add(strlist *l, const char *s)
+{
+    if (l->n == l->cap) {
+        size_t nc = l->cap ? 2 * l->cap : 64;
+        char **np = realloc(l->p, nc * sizeof *np);
+        if (!np) return;
+        l->p = np;
+        l->cap = nc;
+    }
+    l->p[l->n++] = strdup(s);
+}
+static void sl_free(strlist *l) { for (size_t i = 0; i < l->n; i++) free(l->p[i]); free(l->p); memset(l, 0, sizeof *l); }
+static int cmps(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+static void walk(const char *dir, strlist *out)
+{
+    DIR *d = opendir(dir);
+    if (!d) return;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        if (e->d_name[0] == '.') continue;
+        char p[1024];
+        snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
+        struct stat sb;
+        if (stat(p, &sb) != 0) continue;
+        if (S_ISDIR(sb.st_mode)) walk(p, out);
+        else if (S_ISREG(sb.st_mode) && !strstr(e->d_name, ".tmp")) sl_add(out, p);
+    }
+    closedir(d);
+}
+
+static int file_exists(const char *p) { struct stat sb; return stat(p, &sb) == 0; }
+
+/* Claims whose source is `path` or whose gate names `gatefile`, comma-joined. */
+static void claims_of(const claims *c, const char *path, const char *gatefile, char *buf, size_t n)
+{
+    size_t off = 0, cnt = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; i < c->n && off < n; i++) {
+        int hit = path && !strcmp(c->rows[i].source, path);
+        if (gatefile && !strncmp(c->rows[i].gate, gatefile, strlen(gatefile)) && c->rows[i].gate[strlen(gatefile)] == ':') hit = 1;
+        if (!hit) continue;
+        off += (size_t)snprintf(buf + off, n - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
+    }
+    if (!cnt) snprintf(buf, n, "(no claim)");
+}
+
+/* ---- pins ---- */
+typedef struct { char key[64], value[80], path[256]; } pin;
+
+static void current_pins(pin *p, size_t *n)
+{
+    size_t k = 0;
+    snprintf(p[k].key, sizeof p[k].key, "teacher_version");
+    snprintf(p[k].value, sizeof p[k].value, "%s", AUDIT_TEACHER_VERSION);
+    snprintf(p[k].path, sizeof p[k].path, "src/teacher.h");
+    k++;
+    const char *srcs[][2] = {{"teacher_sha256", "src/teacher.c"}, {"estimator_sha256", "src/estimator.c"}};
+    for (int i = 0; i < 2; i++, k++) {
+        snprintf(p[k].key, sizeof p[k].key, "%s", srcs[i][0]);
+        snprintf(p[k].path, sizeof p[k].path, "%s", srcs[i][1]);
+        if (!file_exists(srcs[i][1]) || prov_sha256_file(srcs[i][1], p[k].value))
+            snprintf(p[k].value, sizeof p[k].value, "absent");
+    }
+    snprintf(p[k].key, sizeof p[k].key, "gates_sha256");
+    snprintf(p[k].path, sizeof p[k].path, "gates");
+    if (prov_gates_sha256("gates", p[k].value)) snprintf(p[k].value, sizeof p[k].value, "absent");
+    k++;
+    strlist g = {0};
+    walk("gates", &g);
+    qsort(g.p, g.n, sizeof *g.p, cmps);
+    for (size_t i = 0; i < g.n && k < 62; i++, k++) {
+        snprintf(p[k].key, sizeof p[k].key, "gate_sha256");
+        snprintf(p[k].path, sizeof p[k].path, "%s", g.p[i]);
+        if (prov_sha256_file(g.p[i], p[k].value)) snprintf(p[k].value, sizeof p[k].value, "absent");
+    }
+    sl_free(&g);
+    *n = k;
+}
+
+cs_status audit_pin(void)
+{
+    pin p[64];
+    size_t n;
+    current_pins(p, &n);
+    tsv_writer *w;
+    cs_status st = tsv_writer_open(&w, AUDIT_PINS);
+    if (st) return st;
+    tsv_writer_meta(w, "what", "pins of the instrument: teacher version and source hash, estimator source hash, gate hashes");
+    tsv_writer_meta(w, "regenerate", "crownshy pin (deliberate: afterwards frozen/ must be regenerated with make reproduce freeze)");
+    tsv_writer_columns(w, "key\tvalue\tpath");
+    for (size_t i = 0; i < n; i++) {
+        tsv_writer_str(w, p[i].key); tsv_writer_str(w, p[i].value); tsv_writer_str(w, p[i].path);
+        tsv_writer_endrow(w);
+    }
+    return tsv_writer_commit(w);
+}
+
+static void check_pins(const claims *c, checklist *cl)
+{
+    tsv *t;
+    if (tsv_read(AUDIT_PINS, &t)) {
+        checklist_add(cl, VERDICT_FAIL, "pins", "%s", cs_errmsg());
+        return;
+    }
+    pin cur[64];
+    size_t n;
+    current_pins(cur, &n);
+    for (size_t r = 0; r < tsv_nrows(t); r++) {
+        const char *key = tsv_str(t, r, "key"), *val = tsv_str(t, r, "value"), *path = tsv_str(t, r, "path");
+        if (!key || !val || !path) { checklist_add(cl, VERDICT_FAIL, "pins", "%s:%d: missing key/value/path", AUDIT_PINS, tsv_line(t, r)); continue; }
+        const pin *m = NULL;
+        for (size_t i = 0; i < n; i++) if (!strcmp(cur[i].key, key) && !strcmp(cur[i].path, path)) m = &cur[i];
+        char name[96];
+        snprintf(name, sizeof name, "pin %s", path);
+        if (!m) { checklist_add(cl, VERDICT_FAIL, name, "%s:%d: pinned %s for %s, which no longer exists", AUDIT_PINS, tsv_line(t, r), key, path); continue; }
+        if (strcmp(m->value, val)) {
+            char affected[600];
+            if (!strcmp(key, "gate_sha256")) {
+                const char *base = strrchr(path, '/');
+                claims_of(c, NULL, base ? base + 1 : path, affected, sizeof affected);
+            } else if (!strcmp(key, "estimator_sha256") || !strcmp(key, "teacher_sha256") || !strcmp(key, "teacher_version")) {
+                size_t off = 0, cnt = 0;
+                affected[0] = '\0';
+                for (size_t i = 0; i < c->n && off < sizeof affected - 40; i++)
+                    if (!strcmp(c->rows[i].kind, "measured")) off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
+                if (!cnt) snprintf(affected, sizeof affected, "every measured claim");
+            } else snprintf(affected, sizeof affected, "(gates as a whole)");
+            checklist_add(cl, VERDICT_FAIL, name, "%s changed: %s is %.16s…, pinned %.16s… (%s:%d); claims affected: %s",
+                          path, key, m->value, val, AUDIT_PINS, tsv_line(t, r), affected);
+        } else checklist_add(cl, VERDICT_PASS, name, "%s %s matches the pin", key, strcmp(key, "teacher_version") ? "sha256" : val);
+    }
+    for (size_t i = 0; i < n; i++) {
+        if (tsv_find(t, "path", cur[i].path) < 0 && strcmp(cur[i].value, "absent")) {
+            char name[96];
+            snprintf(name, sizeof name, "pin %s", cur[i].path);
+            checklist_add(cl, VERDICT_FAIL, name, "%s is not pinned in %s (run crownshy pin deliberately)", cur[i].path, AUDIT_PINS);
+        }
+    }
+    tsv_free(t);
+}
+
+cs_status audit_hash_frozen(void)
+{
+    strlist l = {0};
+    walk("frozen", &l);
+    qsort(l.p, l.n, sizeof *l.p, cmps);
+    char tmp[] = AUDIT_FROZEN_HASHES ".tmp";
+    FILE *f = fopen(tmp, "w");
+    if (!f) { sl_free(&l); return cs_err(CS_EIO, "%s: cannot write", tmp); }
+    cs_status st = CS_OK;
+    for (size_t i = 0; i < l.n && !st; i++) {
+        char hex[65];
+        st = prov_sha256_file(l.p[i], hex);
+        if (!st) fprintf(f, "%s  %s\n", hex, l.p[i]);
+    }
+    sl_free(&l);
+    if (fclose(f) != 0 && !st) st = cs_err(CS_EIO, "%s: write failed", tmp);
+    if (!st && rename(tmp, AUDIT_FROZEN_HASHES) != 0) st = cs_err(CS_EIO, "%s: rename failed", tmp);
+    if (st) remove(tmp);
+    return st;
+}
+
+static void check_frozen(const claims *c, checklist *cl, strlist *frozen_files)
+{
+    FILE *f = fopen(AUDIT_FROZEN_HASHES, "r");
+    walk("frozen", frozen_files);
+    qsort(frozen_files->p, frozen_files->n, sizeof *frozen_files->p, cmps);
+    if (!f) {
+        if (frozen_files->n) checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s missing but frozen/ has %zu files (run make freeze)", AUDIT_FROZEN_HASHES, frozen_files->n);
+        else checklist_add(cl, VERDICT_PASS, "frozen hashes", "frozen/ is empty (no experiment frozen yet)");
+        return;
+    }
+    char line[2048];
+    int lineno = 0;
+    strlist listed = {0};
+    size_t ok = 0, bad = 0;
+    while (fgets(line, sizeof line, f)) {
+        lineno++;
+        char hex[65], path[1024];
+        if (sscanf(line, "%64s  %1023[^\n]", hex, path) != 2 || strlen(hex) != 64) {
+            checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s:%d: malformed line", AUDIT_FROZEN_HASHES, lineno);
+            bad++;
+            continue;
+        }
+        sl_add(&listed, path);
+        char cur[65], affected[600], name[96];
+        snprintf(name, sizeof name, "frozen %.80s", path);
+        claims_of(c, path, NULL, affected, sizeof affected);
+        if (!file_exists(path)) { checklist_add(cl, VERDICT_FAIL, name, "%s is listed in %s:%d but missing; claims affected: %s", path, AUDIT_FROZEN_HASHES, lineno, affected); bad++; continue; }
+        if (prov_sha256_file(path, cur) || strcmp(cur, hex)) {
+            checklist_add(cl, VERDICT_FAIL, name, "%s was modified after freezing (sha256 differs from %s:%d); claims affected: %s", path, AUDIT_FROZEN_HASHES, lineno, affected);
+            bad++;
+            continue;
+        }
+        ok++;
+    }
+    fclose(f);
+    for (size_t i = 0; i < frozen_files->n; i++) {
+        int found = 0;
+        for (size_t j = 0; j < listed.n && !found; j++) found = !strcmp(listed.p[j], frozen_files->p[i]);
+        if (!found) { checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s is not listed in %s (frozen by hand? run make freeze)", frozen_files->p[i], AUDIT_FROZEN_HASHES); bad++; }
+    }
+    sl_free(&listed);
+    if (!bad) checklist_add(cl, VERDICT_PASS, "frozen hashes", "%zu frozen files match %s", ok, AUDIT_FROZEN_HASHES);
+}
+
+static void check_provenance(checklist *cl, const strlist *frozen_files)
+{
+    pin cur[64];
+    size_t n;
+    current_pins(cur, &n);
+    size_t checked = 0, bad = 0;
+    for (size_t i = 0; i < frozen_files->n; i++) {
+        const char *p = frozen_files->p[i];
+        size_t len = strlen(p);
+        if (len < 4 || strcmp(p + len - 4, ".tsv")) continue;
+        tsv *t;
+        if (tsv_read(p, &t)) { checklist_add(cl, VERDICT_FAIL, "provenance", "%s", cs_errmsg()); bad++; continue; }
+        const char *keys[] = {"teacher_version", "teacher_sha256", "estimator_sha256", "gates_sha256"};
+        if (tsv_meta(t, "experiment") && tsv_meta(t, "teacher_version")) {
+            checked++;
+            for (int k = 0; k < 4; k++) {
+                const char *v = tsv_meta(t, keys[k]);
+                const char *want = NULL;
+                for (size_t j = 0; j < n; j++) if (!strcmp(cur[j].key, keys[k])) want = cur[j].value;
+                if (!v || !want || strcmp(v, want)) {
+                    checklist_add(cl, VERDICT_FAIL, "provenance", "%s: provenance %s = %.16s does not match the current pin %.16s (frozen with other code: regenerate)",
+                                  p, keys[k], v ? v : "(missing)", want ? want : "(none)");
+                    bad++;
+                }
+            }
+        }
+        tsv_free(t);
+    }
+    if (!bad) checklist_add(cl, VERDICT_PASS, "provenance", "%zu frozen tables carry provenance matching the pins", checked);
+}
+
+static void check_registry(const claims *c, checklist *cl)
+{
+    size_t bad = 0;
+    const char *const *fns = claims_fn_names();
+    for (size_t i = 0; fns[i]; i++) {
+        int used = 0;
+        for (size_t r = 0; r < c->n && !used; r++) used = !strcmp(c->rows[r].function, fns[i]);
+        if (!used) { checklist_add(cl, VERDICT_FAIL, "registry", "orphan computing function %s: no row of %s names it", fns[i], AUDIT_CLAIMS); bad++; }
+    }
+    for (size_t r = 0; r < c->n; r++) {
+        char want[128];
+        snprintf(want, sizeof want, "tests/test_claims.c:claim_%s", c->rows[r].macro);
+        if (strcmp(c->rows[r].test, want)) {
+            checklist_add(cl, VERDICT_FAIL, "registry", "%s:%d: claim %s names test '%s'; its test is %s", AUDIT_CLAIMS, c->rows[r].line, c->rows[r].macro, c->rows[r].test, want);
+            bad++;
+        }
+    }
+    if (!file_exists("tests/test_claims.c")) { checklist_add(cl, VERDICT_FAIL, "registry", "tests/test_claims.c missing: claims have no tests"); bad++; }
+    if (!bad) checklist_add(cl, VERDICT_PASS, "registry", "%zu claims, each with a computing function name and a test; no orphan function", c->n);
+}
+
+/* Macros used in the paper text must be claims (or their Gate verdicts). */
+static const char *latex_upper[] = {"LaTeX", "TeX", "Large", "LARGE", "Huge", "HUGE", "Roman", "Alph", "Ref", "S", "P", "L", "O", "AA", "AE", "OE", "Delta", "Gamma", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Upsilon", "Phi", "Psi", "Omega", "Bigl", "Bigr", "Big", "Biggl", "Biggr", "bibliographystyle", NULL};
+
+static int is_latex_upper(const char *name)
+{
+    for (int i = 0; latex_upper[i]; i++) if (!strcmp(latex_upper[i], name)) return 1;
+    return 0;
+}
+
+static void check_paper(const claims *c, const claim_result *res, checklist *cl)
+{
+    strlist tex = {0};
+    DIR *d = opendir("paper");
+    if (d) {
+        struct dirent *e;
+        while ((e = readdir(d))) {
+            size_t l = strlen(e->d_name);
+            if (l > 4 && !strcmp(e->d_name + l - 4, ".tex") && strcmp(e->d_name, "numbers.tex")) {
+                char p[600];
+                snprintf(p, sizeof p, "paper/%s", e->d_name);
+                sl_add(&tex, p);
+            }
+        }
+        closedir(d);
+    }
+    size_t bad = 0, used = 0;
+    for (size_t i = 0; i < tex.n; i++) {
+        FILE *f = fopen(tex.p[i], "r");
+        if (!f) continue;
+        char line[4096];
+        int lineno = 0, in_generated = 0;
+        while (fgets(line, sizeof line, f)) {
+            lineno++;
+            if (strstr(line, "%%BEGIN-GENERATED")) in_generated = 1;
+            if (strstr(line, "%%END-GENERATED")) { in_generated = 0; continue; }
+            if (in_generated) continue;
+            char *pct = line;
+            while ((pct = strchr(pct, '%'))) {
+                if (pct == line || pct[-1] != '\\') { *pct = '\0'; break; }
+                pct++;
+            }
+            for (char *s = line; (s = strchr(s, '\\')); s++) {
+                char name[80];
+                int k = 0;
+                while (k < 79 && ((s[1 + k] >= 'A' && s[1 + k] <= 'Z') || (s[1 + k] >= 'a' && s[1 + k] <= 'z'))) { name[k] = s[1 + k]; k++; }
+                name[k] = '\0';
+                if (!k || !(name[0] >= 'A' && name[0] <= 'Z') || is_latex_upper(name)) continue;
+                char base[80];
+                snprintf(base, sizeof base, "%s", name);
+                size_t bl = strlen(base);
+                if (bl > 4 && !strcmp(base + bl - 4, "Gate")) base[bl - 4] = '\0';
+                if (!claims_find(c, base)) {
+                    checklist_add(cl, VERDICT_FAIL, "paper macros", "%s:%d: \\%s has no row in %s", tex.p[i], lineno, name, AUDIT_CLAIMS);
+                    bad++;
+                } else used++;
+            }
+            /* A measured value typed by hand: the literal text of a measured
+             * claim (ours or the reference paper's) appearing in the prose. */
+            for (size_t r = 0; r < c->n; r++) {
+                if (strcmp(c->rows[r].kind, "measured") && strcmp(c->rows[r].kind, "needs-data")) continue;
+                const char *cands[2] = {res[r].status == VERDICT_PASS ? res[r].text : NULL, c->rows[r].reference};
+                for (int q = 0; q < 2; q++) {
+                    const char *v = cands[q];
+                    if (!v || strlen(v) < 4 || !strchr(v, '.')) continue; /* short integers are too common to police */
+                    const char *hit = strstr(line, v[0] == '+' ? v + 1 : v);
+                    if (hit) {
+                        checklist_add(cl, VERDICT_FAIL, "hand-typed numbers", "%s:%d: '%s' typed by hand; use \\%s", tex.p[i], lineno, v, c->rows[r].macro);
+                        bad++;
+                    }
+                }
+            }
+        }
+        fclose(f);
+    }
+    if (!bad) checklist_add(cl, VERDICT_PASS, "paper macros", "%zu paper files: %zu claim-macro uses, all registered; no measured number typed by hand", tex.n, used);
+    sl_free(&tex);
+}
+
+static void check_numbers(const claims *c, const claim_result *res, checklist *cl)
+{
+    const char *fresh = "build/numbers.fresh.tex";
+    if (claims_write_numbers(fresh, c, res)) { checklist_add(cl, VERDICT_FAIL, "numbers.tex", "%s", cs_errmsg()); return; }
+    FILE *a = fopen(fresh, "r"), *b = fopen(AUDIT_NUMBERS, "r");
+    if (!b) {
+        checklist_add(cl, VERDICT_FAIL, "numbers.tex", "%s missing (generate it with crownshy numbers)", AUDIT_NUMBERS);
+        if (a) fclose(a);
+        return;
+    }
+    char la[1024], lb[1024];
+    int lineno = 0, diff = 0;
+    for (;;) {
+        char *ra = a ? fgets(la, sizeof la, a) : NULL, *rb = fgets(lb, sizeof lb, b);
+        lineno++;
+        if (!ra && !rb) break;
+        if (!ra || !rb || strcmp(la, lb)) { diff = lineno; break; }
+    }
+    if (a) fclose(a);
+    fclose(b);
+    if (diff) {
+        lb[strcspn(lb, "\n")] = '\0';
+        checklist_add(cl, VERDICT_FAIL, "numbers.tex", "%s:%d differs from a fresh generation ('%s'): edited by hand or stale", AUDIT_NUMBERS, diff, lb);
+    } else checklist_add(cl, VERDICT_PASS, "numbers.tex", "%s equals a fresh generation from frozen/", AUDIT_NUMBERS);
+}
+
+cs_status audit_run(const claims *c, const claim_result *res, checklist *out)
+{
+    strlist frozen_files = {0};
+    check_pins(c, out);
+    check_frozen(c, out, &frozen_files);
+    check_provenance(out, &frozen_files);
+    sl_free(&frozen_files);
+    check_registry(c, out);
+    check_numbers(c, res, out);
+    check_paper(c, res, out);
+    return CS_OK;
+}

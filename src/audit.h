@@ -1,0 +1,33 @@
+/* audit: the traceability checks (SPEC §9): source pins (estimator hash,
+ * teacher version and hash, gate hashes), frozen-file hashes, frozen
+ * provenance vs pins, registry completeness (every paper macro has a row,
+ * every row a test and a function, no orphan function), numbers.tex equal
+ * to a fresh generation, and no measured number typed into the paper text.
+ * Each check is one item with a verdict and a message naming file and claim. */
+#ifndef AUDIT_H
+#define AUDIT_H
+#include "cs.h"
+#include "gate.h"
+#include "claims.h"
+
+typedef struct { verdict v; char name[96]; char msg[1024]; } check_item;
+typedef struct { check_item *items; size_t n, cap; } checklist;
+
+void checklist_add(checklist *cl, verdict v, const char *name, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+void checklist_free(checklist *cl);
+
+#define AUDIT_PINS "audit/pins.tsv"
+#define AUDIT_FROZEN_HASHES "audit/frozen.sha256"
+#define AUDIT_CLAIMS "audit/claims.tsv"
+#define AUDIT_NUMBERS "paper/numbers.tex"
+
+/* Run every audit check; `res` are the evaluated claims (same order as c). */
+cs_status audit_run(const claims *c, const claim_result *res, checklist *out);
+/* Rewrite audit/pins.tsv from the current sources (a deliberate act: after it,
+ * frozen/ must be regenerated, or the provenance check fails). */
+cs_status audit_pin(void);
+/* Rewrite audit/frozen.sha256 from the files under frozen/ (make freeze). */
+cs_status audit_hash_frozen(void);
+
+#endif

@@ -1,0 +1,284 @@
+/* claims: registry, evaluation and numbers.tex (SPEC §9). */
+#include "claims.h"
+#include "tsv.h"
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#define X(f) cs_status f(const claim_row *row, claim_result *res);
+#include "claims_list.h"
+#undef X
+
+static const struct { const char *name; claim_fn fn; } claim_table[] = {
+#define X(f) {#f, f},
+#include "claims_list.h"
+#undef X
+};
+#define NFN (sizeof claim_table / sizeof claim_table[0])
+
+claim_fn claims_lookup_fn(const char *name)
+{
+    for (size_t i = 0; i < NFN; i++) if (!strcmp(claim_table[i].name, name)) return claim_table[i].fn;
+    return NULL;
+}
+
+const char *const *claims_fn_names(void)
+{
+    static const char *names[NFN + 1];
+    for (size_t i = 0; i < NFN; i++) names[i] = claim_table[i].name;
+    names[NFN] = NULL;
+    return names;
+}
+
+void claims_free(claims *c)
+{
+    free(c->rows);
+    c->rows = NULL;
+    c->n = 0;
+}
+
+static cs_status copy_field(const tsv *t, size_t r, const char *col, char *dst, size_t n)
+{
+    const char *s = tsv_str(t, r, col);
+    if (!s) return cs_err(CS_EINPUT, "%s: field '%s': no such column", tsv_path(t), col);
+    if (!s[0] || strlen(s) >= n)
+        return cs_err(CS_EINPUT, "%s:%d: field '%s': %s", tsv_path(t), tsv_line(t, r), col, s[0] ? "too long" : "empty");
+    strcpy(dst, s);
+    return CS_OK;
+}
+
+cs_status claims_load(const char *path, claims *out)
+{
+    out->rows = NULL;
+    out->n = 0;
+    tsv *t;
+    cs_status st = tsv_read(path, &t);
+    if (st) return st;
+    size_t n = tsv_nrows(t);
+    claim_row *rows = calloc(n ? n : 1, sizeof *rows);
+    if (!rows) { tsv_free(t); return cs_err(CS_ENOMEM, "%s: out of memory", path); }
+    for (size_t r = 0; r < n && !st; r++) {
+        claim_row *w = &rows[r];
+        w->line = tsv_line(t, r);
+        if ((st = copy_field(t, r, "macro", w->macro, sizeof w->macro))) break;
+        if ((st = copy_field(t, r, "kind", w->kind, sizeof w->kind))) break;
+        if ((st = copy_field(t, r, "source", w->source, sizeof w->source))) break;
+        if ((st = copy_field(t, r, "function", w->function, sizeof w->function))) break;
+        if ((st = copy_field(t, r, "gate", w->gate, sizeof w->gate))) break;
+        if ((st = copy_field(t, r, "test", w->test, sizeof w->test))) break;
+        if ((st = copy_field(t, r, "section", w->section, sizeof w->section))) break;
+        if ((st = copy_field(t, r, "format", w->format, sizeof w->format))) break;
+        if ((st = copy_field(t, r, "reference", w->reference, sizeof w->reference))) break;
+        for (const char *c = w->macro; *c; c++)
+            if (!((*c >= 'A' && *c <= 'Z') || (*c >= 'a' && *c <= 'z'))) {
+                st = cs_err(CS_EINPUT, "%s:%d: field 'macro': '%s' is not a LaTeX macro name (letters only)", path, w->line, w->macro);
+                break;
+            }
+        if (st) break;
+        if (strcmp(w->kind, "measured") && strcmp(w->kind, "design") && strcmp(w->kind, "field") && strcmp(w->kind, "needs-data")) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'kind': unknown kind '%s' (measured, design, field, needs-data)", path, w->line, w->kind);
+            break;
+        }
+        if (strcmp(w->gate, "-")) {
+            const char *colon = strchr(w->gate, ':');
+            if (!colon || colon - w->gate < 6 || strncmp(colon - 5, ".gate", 5) || !colon[1]) {
+                st = cs_err(CS_EINPUT, "%s:%d: field 'gate': '%s' is not 'file.gate:key'", path, w->line, w->gate);
+                break;
+            }
+        }
+        if (strcmp(w->format, "text") && (w->format[0] != '%' || strchr(w->format + 1, '%'))) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'format': '%s' is not one printf conversion or 'text'", path, w->line, w->format);
+            break;
+        }
+        for (size_t q = 0; q < r; q++)
+            if (!strcmp(rows[q].macro, w->macro)) {
+                st = cs_err(CS_EINPUT, "%s:%d: field 'macro': duplicate of line %d", path, w->line, rows[q].line);
+                break;
+            }
+    }
+    tsv_free(t);
+    if (st) { free(rows); return st; }
+    out->rows = rows;
+    out->n = n;
+    return CS_OK;
+}
+
+const claim_row *claims_find(const claims *c, const char *macro)
+{
+    for (size_t i = 0; i < c->n; i++) if (!strcmp(c->rows[i].macro, macro)) return &c->rows[i];
+    return NULL;
+}
+
+void claim_pending(claim_result *res, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(res->why, sizeof res->why, fmt, ap);
+    va_end(ap);
+    res->status = VERDICT_PENDING;
+}
+
+void claim_set_value(const claim_row *row, claim_result *res, double v)
+{
+    res->value = v;
+    if (strcmp(row->format, "text")) {
+        snprintf(res->text, sizeof res->text, row->format, v);
+        /* "-0.00" and "+0.00" both mean zero at this precision: print it unsigned */
+        const char *p = res->text + (res->text[0] == '-' || res->text[0] == '+');
+        int allzero = *p != '\0';
+        for (const char *q = p; *q; q++) if (*q != '0' && *q != '.') allzero = 0;
+        if (allzero && res->text[0] == '-') memmove(res->text, res->text + 1, strlen(res->text));
+    }
+}
+
+cs_status claim_gate_load(const char *file, gate **g)
+{
+    char path[300];
+    snprintf(path, sizeof path, "gates/%s", file);
+    return gate_load(path, g);
+}
+
+void claim_judge(const claim_row *row, claim_result *res, gate_op op, double observed)
+{
+    char file[128];
+    const char *colon = strchr(row->gate, ':');
+    if (!colon) { res->gate = VERDICT_PENDING; return; }
+    snprintf(file, sizeof file, "%.*s", (int)(colon - row->gate), row->gate);
+    gate *g;
+    if (claim_gate_load(file, &g)) {
+        res->gate = VERDICT_FAIL;
+        snprintf(res->gate_detail, sizeof res->gate_detail, "%s", cs_errmsg());
+        return;
+    }
+    double lo = 0, hi = 0;
+    cs_status st = CS_OK;
+    if (op != GATE_TRUE) st = gate_value(g, colon + 1, 0, &lo);
+    if (!st && (op == GATE_IN || op == GATE_OUT)) st = gate_value(g, colon + 1, 1, &hi);
+    gate_free(g);
+    if (st) {
+        res->gate = VERDICT_FAIL;
+        snprintf(res->gate_detail, sizeof res->gate_detail, "%s", cs_errmsg());
+        return;
+    }
+    res->gate = gate_judge(op, observed, lo, hi);
+    if (op == GATE_IN || op == GATE_OUT)
+        snprintf(res->gate_detail, sizeof res->gate_detail, "%.6g %s [%g, %g]", observed, gate_op_text(op), lo, hi);
+    else if (op == GATE_TRUE)
+        snprintf(res->gate_detail, sizeof res->gate_detail, "%s", observed != 0 ? "holds" : "does not hold");
+    else
+        snprintf(res->gate_detail, sizeof res->gate_detail, "%.6g %s %g", observed, gate_op_text(op), lo);
+}
+
+void claims_eval(const claim_row *row, claim_result *res)
+{
+    memset(res, 0, sizeof *res);
+    res->status = VERDICT_PASS;
+    res->gate = VERDICT_PENDING;
+    res->value = NAN;
+    snprintf(res->where, sizeof res->where, "%s", row->source);
+    claim_fn fn = claims_lookup_fn(row->function);
+    if (!fn) {
+        claim_pending(res, "computing function %s not implemented yet", row->function);
+        return;
+    }
+    if (!strncmp(row->source, "frozen/", 7)) {
+        struct stat sb;
+        if (stat(row->source, &sb) != 0) {
+            claim_pending(res, "%s absent: experiment not yet run and frozen", row->source);
+            return;
+        }
+    }
+    cs_errclear();
+    cs_status st = fn(row, res);
+    if (st) {
+        res->status = VERDICT_FAIL;
+        snprintf(res->why, sizeof res->why, "%s", cs_errmsg());
+        return;
+    }
+    if (res->status == VERDICT_PASS && !res->text[0])
+        claim_set_value(row, res, res->value);
+}
+
+void claims_expected_text(const claim_row *row, const claim_result *res, char *buf, size_t n)
+{
+    if (res->status == VERDICT_PASS) snprintf(buf, n, "%s", res->text);
+    else snprintf(buf, n, CLAIMS_PENDING_FMT, row->macro);
+}
+
+cs_status claims_write_numbers(const char *path, const claims *c, const claim_result *res)
+{
+    char tmp[1024];
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *f = fopen(tmp, "w");
+    if (!f) return cs_err(CS_EIO, "%s: cannot write", tmp);
+    fprintf(f, "%% paper/numbers.tex: GENERATED by `crownshy numbers` from frozen/, gates/ and audit/claims.tsv.\n"
+               "%% Never edit by hand: `make verify` fails when it differs from a fresh generation.\n"
+               "%% A claim whose experiment has not run (or whose input data are missing) prints as pending.\n"
+               "\\providecommand{\\pending}[1]{\\textbf{[pending]}}\n");
+    for (size_t i = 0; i < c->n; i++) {
+        char v[256];
+        claims_expected_text(&c->rows[i], &res[i], v, sizeof v);
+        fprintf(f, "\\newcommand{\\%s}{%s}\n", c->rows[i].macro, v);
+        if (strcmp(c->rows[i].gate, "-"))
+            fprintf(f, "\\newcommand{\\%sGate}{%s}\n", c->rows[i].macro, verdict_name(res[i].gate));
+    }
+    if (fclose(f) != 0) { remove(tmp); return cs_err(CS_EIO, "%s: write failed", tmp); }
+    if (rename(tmp, path) != 0) { remove(tmp); return cs_err(CS_EIO, "%s: cannot rename into place", path); }
+    return CS_OK;
+}
+
+void numbers_free(numbers_tex *nt)
+{
+    free(nt->name); free(nt->value); free(nt->line);
+    memset(nt, 0, sizeof *nt);
+}
+
+cs_status numbers_read(const char *path, numbers_tex *out)
+{
+    memset(out, 0, sizeof *out);
+    FILE *f = fopen(path, "r");
+    if (!f) return cs_err(CS_EINPUT, "%s: cannot open (run `crownshy numbers` to generate it)", path);
+    size_t cap = 256;
+    out->name = malloc(cap * sizeof *out->name);
+    out->value = malloc(cap * sizeof *out->value);
+    out->line = malloc(cap * sizeof *out->line);
+    if (!out->name || !out->value || !out->line) { fclose(f); numbers_free(out); return cs_err(CS_ENOMEM, "out of memory"); }
+    char buf[1024];
+    int lineno = 0;
+    cs_status st = CS_OK;
+    while (fgets(buf, sizeof buf, f)) {
+        lineno++;
+        if (strncmp(buf, "\\newcommand{\\", 13)) continue;
+        char *name = buf + 13, *close = strchr(name, '}');
+        if (!close || close[1] != '{') { st = cs_err(CS_EINPUT, "%s:%d: malformed \\newcommand", path, lineno); break; }
+        *close = '\0';
+        char *v = close + 2;
+        int depth = 1;
+        char *e = v;
+        for (; *e && depth > 0; e++) {
+            if (*e == '{') depth++;
+            else if (*e == '}') depth--;
+        }
+        if (depth != 0) { st = cs_err(CS_EINPUT, "%s:%d: field '%s': unbalanced braces (truncated?)", path, lineno, name); break; }
+        e[-1] = '\0';
+        if (strlen(name) >= 80 || strlen(v) >= 192) { st = cs_err(CS_EINPUT, "%s:%d: field '%s': too long", path, lineno, name); break; }
+        if (out->n == cap) { st = cs_err(CS_EINPUT, "%s: more than %zu macros", path, cap); break; }
+        strcpy(out->name[out->n], name);
+        strcpy(out->value[out->n], v);
+        out->line[out->n] = lineno;
+        out->n++;
+    }
+    fclose(f);
+    if (st) numbers_free(out);
+    return st;
+}
+
+const char *numbers_get(const numbers_tex *nt, const char *name, int *line)
+{
+    for (size_t i = 0; i < nt->n; i++)
+        if (!strcmp(nt->name[i], name)) { if (line) *line = nt->line[i]; return nt->value[i]; }
+    return NULL;
+}

@@ -1,0 +1,64 @@
+/* claims: the claim registry (audit/claims.tsv) and its evaluation (SPEC §9).
+ * Every macro of the paper has one row naming its kind, frozen source,
+ * computing function, gate, test and paper section. A computing function
+ * recomputes the value from frozen/ (or a gate file, for design constants)
+ * with the same library code the pipeline used, formats it, and judges the
+ * row's gate. paper/numbers.tex is generated from these results only. */
+#ifndef CLAIMS_H
+#define CLAIMS_H
+#include "cs.h"
+#include "gate.h"
+#include <stddef.h>
+
+typedef struct {
+    char macro[64], kind[16], source[256], function[64], gate[128], test[160], section[16], format[16], reference[64];
+    int line; /* line in audit/claims.tsv */
+} claim_row;
+
+typedef struct {
+    verdict status;      /* PASS: computed; PENDING: cannot be computed yet (why); FAIL: error (why) */
+    double value;        /* in display units (e.g. percent for *Rel) */
+    char text[128];      /* what numbers.tex shows */
+    char why[512];       /* reason for PENDING/FAIL */
+    char where[512];     /* frozen file (and line) the value came from */
+    verdict gate;        /* verdict of the row's gate; PENDING when no gate or not judgeable */
+    char gate_detail[256];
+} claim_result;
+
+typedef cs_status (*claim_fn)(const claim_row *row, claim_result *res);
+
+typedef struct { claim_row *rows; size_t n; } claims;
+
+/* Load and validate the registry (unique macros, known kinds, gate refs "file.gate:key"). */
+cs_status claims_load(const char *path, claims *out);
+void claims_free(claims *c);
+const claim_row *claims_find(const claims *c, const char *macro);
+/* The computing function named in a row, or NULL. */
+claim_fn claims_lookup_fn(const char *name);
+/* Names of every registered computing function (NULL-terminated). */
+const char *const *claims_fn_names(void);
+/* Evaluate one row (never fails: errors become FAIL with the message in why). */
+void claims_eval(const claim_row *row, claim_result *res);
+
+/* Helpers for computing functions. */
+void claim_set_value(const claim_row *row, claim_result *res, double v);
+void claim_pending(claim_result *res, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* Judge the row's gate key with op against the gate file's value(s);
+ * for IN/OUT the key must hold two values. */
+void claim_judge(const claim_row *row, claim_result *res, gate_op op, double observed);
+/* Load gates/<file> named in the row's gate column (or `file` if given). */
+cs_status claim_gate_load(const char *file, gate **g);
+
+/* numbers.tex */
+#define CLAIMS_PENDING_FMT "\\pending{%s}"
+/* Write the generated file (atomic) from evaluated results. */
+cs_status claims_write_numbers(const char *path, const claims *c, const claim_result *res);
+/* Parse a numbers.tex: value text of \newcommand{\NAME}{...}; NULL if absent. */
+typedef struct { size_t n; char (*name)[80]; char (*value)[192]; int *line; } numbers_tex;
+cs_status numbers_read(const char *path, numbers_tex *out);
+void numbers_free(numbers_tex *nt);
+const char *numbers_get(const numbers_tex *nt, const char *name, int *line);
+/* The text numbers.tex must hold for a result (value, or \pending{macro}). */
+void claims_expected_text(const claim_row *row, const claim_result *res, char *buf, size_t n);
+
+#endif

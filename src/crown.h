@@ -1,0 +1,37 @@
+/* crown: the 24-sector radial crown, its one interpolation rule, and the
+ * per-tree crown draws (SPEC §1, §3; reference paper §3.1, Eq. 1).
+ * Sector s is centred on bearing 2*pi*s/24, counter-clockwise from east (+x);
+ * north (+y) is sector 6. Between sector centres the radius is linear in
+ * angle (periodic). crown_radius_at is the only implementation of that rule:
+ * teacher, estimator and renderers all call it. */
+#ifndef CROWN_H
+#define CROWN_H
+#include "cs.h"
+#include <stddef.h>
+#include <gsl/gsl_rng.h>
+
+#define CROWN_NSEC 24
+#define CROWN_PI 3.14159265358979323846
+#define CROWN_DTHETA (2.0 * CROWN_PI / CROWN_NSEC)
+
+/* Radius of crown r at bearing theta (any real theta, wrapped periodically). */
+double crown_radius_at(const double r[CROWN_NSEC], double theta);
+/* Bearing of sector s (radians). */
+double crown_theta(int s);
+
+/* One tree's draw (SPEC §3). */
+typedef struct {
+    double h;    /* height, m: N(25, 4^2) truncated to [12, 38] by redraw */
+    double R;    /* open-grown radius, m: 4 exp(0.15 z), z ~ N(0,1) */
+    double a;    /* lobing amplitude ~ U[0, 0.2] */
+    int k;       /* lobe count, uniform on {2,3,4,5} */
+    double phi;  /* lobe phase ~ U[0, 2 pi) */
+} crown_draw;
+
+/* Lobed target r*_s = R (1 + a cos(k theta_s + phi)) (paper Eq. 1). */
+void crown_target(const crown_draw *c, double rstar[CROWN_NSEC]);
+/* Draw n trees in index order from rng, fields drawn in the order h, z, a, k, phi.
+ * CS_ENUMERIC if the height redraw fails 1000 times (probability ~0). */
+cs_status crown_draw_n(gsl_rng *rng, size_t n, crown_draw *out);
+
+#endif

@@ -1,0 +1,59 @@
+/* estimator: the canonical instrument (SPEC §5; reference paper §4.3,
+ * Eqs. 5 and 6). Every clearance, W1, cover and directional statistic in the
+ * package is computed here; src/estimator.c is pinned by SHA-256.
+ * Crowns are CROWN_NSEC radii per tree (n x 24, row-major); stems x, y in m.
+ * Bearings are atan2(dy, dx), counter-clockwise from east. */
+#ifndef ESTIMATOR_H
+#define ESTIMATOR_H
+#include "cs.h"
+#include <stddef.h>
+
+/* Cardinal directions, in the order of est_cardinal_gaps' output. */
+enum { EST_E = 0, EST_N = 1, EST_W = 2, EST_S = 3 };
+
+/* Clearance g(i,j) = nu - r_i(theta_ij) - r_j(theta_ji) (paper Eq. 5);
+ * positive is a gap, negative is interpenetration. */
+double est_clearance(double xi, double yi, const double *ri, double xj, double yj, const double *rj);
+
+/* Index of the k-th (k >= 1) nearest other stem of i by stem distance, ties by
+ * lower index; -1 if fewer than k others. */
+long est_knn(const double *x, const double *y, size_t n, size_t i, int k);
+/* g(i, k-th nearest neighbour of i). CS_EINPUT if i has fewer than k neighbours. */
+cs_status est_knn_clearance(const double *x, const double *y, const double *r, size_t n,
+                            size_t i, int k, double *g);
+
+/* Exact W1 between two empirical distributions (paper Eq. 6): the integral over
+ * u in (0,1) of |Fa^{-1}(u) - Fb^{-1}(u)|, evaluated piece by piece on the merged
+ * breakpoints i/na and j/nb. est_w1_sorted needs both inputs sorted ascending;
+ * est_w1 sorts copies. CS_EINPUT on an empty sample or a non-finite value. */
+double est_w1_sorted(const double *a, size_t na, const double *b, size_t nb);
+cs_status est_w1(const double *a, size_t na, const double *b, size_t nb, double *w1);
+
+/* Canopy cover: fraction of the rectangle [x0,x1] x [y0,y1] (the interior
+ * area) inside at least one crown, on a grid of cell centres with spacing at
+ * most 0.05 m (nx = ceil((x1-x0)/0.05) cells across). */
+#define EST_COVER_GRID_M 0.05
+cs_status est_cover(const double *x, const double *y, const double *r, size_t n,
+                    double x0, double y0, double x1, double y1, double *cover);
+
+/* Cardinal gaps of tree i toward E, N, W, S: the smallest g(i,j) over all
+ * other trees j whose bearing theta_ij lies within +-45 deg (inclusive) of the
+ * direction; NaN where no tree lies in that cone. */
+void est_cardinal_gaps(const double *x, const double *y, const double *r, size_t n,
+                       size_t i, double gaps[4]);
+/* Tree-mean clearance: mean of the four cardinal gaps. */
+double est_tree_mean(const double gaps[4]);
+/* Anisotropy: widest / narrowest cardinal gap. Returns 0 (and leaves *aniso
+ * untouched) when a gap is non-positive or NaN: the tree is excluded and the
+ * caller counts it; 1 when *aniso was set. */
+int est_anisotropy(const double gaps[4], double *aniso);
+/* Elongation: longest / shortest of the two cardinal crown axes,
+ * r(N)+r(S) and r(E)+r(W). */
+double est_elongation(const double *ri);
+
+/* Median, quantile (GSL on a sorted copy) and spread (= interquartile range). */
+cs_status est_median(const double *v, size_t n, double *out);
+cs_status est_quantile(const double *v, size_t n, double q, double *out);
+cs_status est_spread(const double *gaps, size_t n, double *iqr);
+
+#endif

@@ -1,0 +1,146 @@
+/* prov: the provenance block of every frozen TSV (SPEC §9). Source hashes are
+ * computed from the files at run time (paths relative to the repository root,
+ * the working directory of every make target). */
+#include "prov.h"
+#include "sha256.h"
+#include <dirent.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#if __has_include("teacher.h")
+#include "teacher.h"
+#define PROV_TEACHER_VERSION TEACHER_VERSION
+#else
+#define PROV_TEACHER_VERSION "teacher-1"
+#endif
+
+double prov_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void prov_begin(prov *p, const char *experiment, int argc, char **argv)
+{
+    memset(p, 0, sizeof *p);
+    snprintf(p->experiment, sizeof p->experiment, "%s", experiment);
+    size_t off = 0;
+    off += (size_t)snprintf(p->command, sizeof p->command, "crownshy");
+    for (int i = 1; i < argc && off < sizeof p->command; i++)
+        off += (size_t)snprintf(p->command + off, sizeof p->command - off, " %s", argv[i]);
+    p->worst_overlap_m = -1.0;
+    p->t0 = prov_now();
+}
+
+static cs_status hash_into(sha256_ctx *c, const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return cs_err(CS_EINPUT, "%s: cannot open for hashing: %s", path, strerror(errno));
+    char buf[65536];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, f)) > 0) sha256_update(c, buf, n);
+    int bad = ferror(f);
+    fclose(f);
+    return bad ? cs_err(CS_EINPUT, "%s: read error while hashing", path) : CS_OK;
+}
+
+cs_status prov_sha256_file(const char *path, char hex[65])
+{
+    sha256_ctx c;
+    uint8_t d[32];
+    sha256_init(&c);
+    cs_status st = hash_into(&c, path);
+    if (st) return st;
+    sha256_final(&c, d);
+    sha256_tohex(d, hex);
+    return CS_OK;
+}
+
+static int cmpstr(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+cs_status prov_gates_sha256(const char *dir, char hex[65])
+{
+    DIR *d = opendir(dir);
+    if (!d) return cs_err(CS_EINPUT, "%s: cannot open gates directory", dir);
+    char *names[256];
+    size_t n = 0;
+    struct dirent *e;
+    while ((e = readdir(d)) && n < 256) {
+        size_t len = strlen(e->d_name);
+        if (len > 5 && !strcmp(e->d_name + len - 5, ".gate")) names[n++] = strdup(e->d_name);
+    }
+    closedir(d);
+    qsort(names, n, sizeof *names, cmpstr);
+    sha256_ctx c;
+    sha256_init(&c);
+    cs_status st = CS_OK;
+    for (size_t i = 0; i < n; i++) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+        /* the name is part of the hash: renaming a gate is a change */
+        sha256_update(&c, names[i], strlen(names[i]) + 1);
+        if (!st) st = hash_into(&c, path);
+        free(names[i]);
+    }
+    if (st) return st;
+    if (n == 0) return cs_err(CS_EINPUT, "%s: no .gate files", dir);
+    uint8_t dg[32];
+    sha256_final(&c, dg);
+    sha256_tohex(dg, hex);
+    return CS_OK;
+}
+
+static void git_commit(char *out, size_t n)
+{
+    snprintf(out, n, "unknown");
+    FILE *p = popen("git rev-parse HEAD 2>/dev/null", "r");
+    if (!p) return;
+    char buf[128] = {0};
+    if (fgets(buf, sizeof buf, p)) {
+        buf[strcspn(buf, "\n")] = '\0';
+        if (buf[0]) snprintf(out, n, "%s", buf);
+    }
+    pclose(p);
+    /* uncommitted source changes make the commit an incomplete description */
+    p = popen("git status --porcelain -- src gates Makefile 2>/dev/null", "r");
+    if (!p) return;
+    if (fgets(buf, sizeof buf, p) && buf[0]) {
+        size_t l = strlen(out);
+        snprintf(out + l, n - l, "-dirty");
+    }
+    pclose(p);
+}
+
+cs_status prov_write(tsv_writer *w, prov *p)
+{
+    char th[65] = "absent", eh[65] = "absent", gh[65];
+    cs_status st;
+    FILE *f;
+    if ((f = fopen("src/teacher.c", "rb"))) { fclose(f); if ((st = prov_sha256_file("src/teacher.c", th))) return st; }
+    if ((f = fopen("src/estimator.c", "rb"))) { fclose(f); if ((st = prov_sha256_file("src/estimator.c", eh))) return st; }
+    if ((st = prov_gates_sha256("gates", gh))) return st;
+    char commit[160];
+    git_commit(commit, sizeof commit);
+    time_t now = time(NULL);
+    struct tm tm;
+    gmtime_r(&now, &tm);
+    char date[32];
+    strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", &tm);
+    p->wall_s = prov_now() - p->t0;
+    tsv_writer_meta(w, "experiment", "%s", p->experiment);
+    tsv_writer_meta(w, "command", "%s", p->command);
+    tsv_writer_meta(w, "teacher_version", "%s", PROV_TEACHER_VERSION);
+    tsv_writer_meta(w, "teacher_sha256", "%s", th);
+    tsv_writer_meta(w, "estimator_sha256", "%s", eh);
+    tsv_writer_meta(w, "gates_sha256", "%s", gh);
+    tsv_writer_meta(w, "git_commit", "%s", commit);
+    tsv_writer_meta(w, "seeds", "%s", p->seeds[0] ? p->seeds : "-");
+    tsv_writer_meta(w, "date", "%s", date);
+    tsv_writer_meta(w, "wall_s", "%.3f", p->wall_s);
+    if (p->worst_overlap_m >= 0) tsv_writer_meta(w, "worst_overlap_m", "%.17g", p->worst_overlap_m);
+    else tsv_writer_meta(w, "worst_overlap_m", "n/a");
+    return CS_OK;
+}

@@ -1,0 +1,78 @@
+/* teacher: coupled crown growth with contact abrasion (SPEC §4; reference
+ * paper §3.1, Eqs. 1-3). Version string pinned by the audit.
+ *
+ * Rule: step Delta = median_i(R_i) / N; hbar = mean height as drawn (or an
+ * explicit override: a perturbation keeps the unperturbed mean). Start at
+ * r = 0.05 r*. Rounds: trees in descending height (ties by lower index); each
+ * tree advances, in sector order 0..23, every sector neither frozen nor at
+ * target to r' = min(r + Delta (h_i/hbar)^gamma, r*_s). Coupling on: if the
+ * proposed boundary would enter another crown, the sector freezes for good
+ * and dies back, r <- (1 - beta) r (Eq. 3); otherwise r <- r'. Coupling off:
+ * every sector ends at its target. Stop when a round changes nothing; more
+ * than 100 N rounds is an error.
+ *
+ * Contact test ("would enter"): moving sector s changes the boundary on the
+ * two arcs [theta_{s-1}, theta_{s+1}]. For every neighbour j that a cheap
+ * wedge/disk bound cannot exclude, the test rejects the proposal when
+ *   (a) a sample point of i's changed arcs lies strictly inside j's current crown,
+ *   (b) g(i,j) < 0 (Eq. 5, the estimator's own function), or
+ *   (c) a sample point of j's boundary lies strictly inside i's proposed crown.
+ * Sample points: 8 per sector interval, at bearings (8s+q) 2 pi/192, radius
+ * r_s + (q/8)(r_{s+1} - r_s). The self-check (teacher_worst_overlap) measures
+ * exactly the quantities (a)-(c) test, with the same arithmetic, so it cannot
+ * fire unless the rule is broken.
+ * Neighbours come from a uniform grid (pairs with nu < max r*_i + max r*_j):
+ * no all-pairs loops. Single-threaded, deterministic. */
+#ifndef TEACHER_H
+#define TEACHER_H
+#include "cs.h"
+#include "crown.h"
+#include <stddef.h>
+
+#define TEACHER_VERSION "teacher-1"
+#define TEACHER_SAMPLES_PER_SECTOR 8
+#define TEACHER_OVERLAP_MAX_M 1e-9
+
+typedef struct {
+    double beta;    /* die-back fraction (dimensionless) */
+    int coupled;    /* 1: occupancy + abrasion; 0: grow to target */
+    int nres;       /* growth resolution N (default 48) */
+    double gamma;   /* vigour exponent (1) */
+    double hbar;    /* > 0: use this stand mean height; <= 0: mean of h */
+} teacher_params;
+
+/* beta 0.06, coupled, N 48, gamma 1, hbar from the heights. */
+void teacher_params_default(teacher_params *p);
+
+typedef struct {
+    size_t n;
+    const double *x, *y;  /* stems, m */
+    const double *h;      /* heights, m: order and vigour (per-tree override = pass a modified copy) */
+    const double *R;      /* open-grown radii, m (Delta = median R / N) */
+    const double *rstar;  /* targets, n x CROWN_NSEC */
+} teacher_stand;
+
+typedef struct {
+    double step;          /* Delta, m */
+    double hbar;          /* mean height used, m */
+    long rounds;          /* rounds run (0 when uncoupled: targets copied) */
+    size_t frozen;        /* frozen sectors */
+    double worst_overlap; /* self-check, m (coupled runs); 0 when uncoupled */
+} teacher_info;
+
+/* Grow the stand; r (n x CROWN_NSEC) receives the final crowns. Errors:
+ * CS_EINPUT (bad parameters), CS_ENOMEM, CS_ENUMERIC (> 100 N rounds),
+ * CS_EINVARIANT (self-check above 1e-9 m; info->worst_overlap holds it). */
+cs_status teacher_grow(const teacher_stand *st, const teacher_params *p, double *r, teacher_info *info);
+
+/* Worst overlap of crowns r: max over stem pairs within reach of max(0, -g(i,j))
+ * and of the penetration of each crown's sample points (8 per sector) into the
+ * other. 0 when no crowns touch. */
+cs_status teacher_worst_overlap(const double *x, const double *y, const double *r, size_t n,
+                                double *worst);
+
+/* Bench (SPEC §10): ms per 144-tree controlled-lattice stand at d = 3.5 m,
+ * beta 0.06, for resolution nres, averaged over `reps` stands. */
+cs_status teacher_bench(int nres, int reps, double *ms_per_stand);
+
+#endif

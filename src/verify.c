@@ -1,0 +1,198 @@
+/* verify: the `make verify` driver and `crownshy trace` (SPEC §9). */
+#include "verify.h"
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+cs_status verify_eval_all(const claims *c, claim_result **out)
+{
+    claim_result *res = calloc(c->n ? c->n : 1, sizeof *res);
+    if (!res) return cs_err(CS_ENOMEM, "out of memory");
+    for (size_t i = 0; i < c->n; i++) claims_eval(&c->rows[i], &res[i]);
+    *out = res;
+    return CS_OK;
+}
+
+verdict verify_consistent(const claim_row *row, const claim_result *res, const numbers_tex *nt, char *msg, size_t n)
+{
+    char want[256];
+    claims_expected_text(row, res, want, sizeof want);
+    int line = 0;
+    const char *have = nt ? numbers_get(nt, row->macro, &line) : NULL;
+    if (res->status == VERDICT_FAIL) {
+        snprintf(msg, n, "%s: cannot recompute from %s: %s", row->macro, row->source, res->why);
+        return VERDICT_FAIL;
+    }
+    if (!have) {
+        snprintf(msg, n, "%s: \\%s missing from paper/numbers.tex", row->macro, row->macro);
+        return VERDICT_FAIL;
+    }
+    if (strcmp(have, want)) {
+        snprintf(msg, n, "%s: paper/numbers.tex:%d says '%s' but %s gives '%s'", row->macro, line, have, res->where, want);
+        return VERDICT_FAIL;
+    }
+    if (strcmp(row->gate, "-")) {
+        char gname[96];
+        snprintf(gname, sizeof gname, "%sGate", row->macro);
+        const char *gv = numbers_get(nt, gname, &line);
+        if (!gv || strcmp(gv, verdict_name(res->gate))) {
+            snprintf(msg, n, "%s: paper/numbers.tex:%d states gate %s as '%s' but %s judges it %s (%s)", row->macro, line,
+                     row->gate, gv ? gv : "(missing)", row->source, verdict_name(res->gate), res->gate_detail);
+            return VERDICT_FAIL;
+        }
+    }
+    if (res->status == VERDICT_PENDING) {
+        snprintf(msg, n, "%s", res->why);
+        return VERDICT_PENDING;
+    }
+    snprintf(msg, n, "%s", res->where);
+    return VERDICT_PASS;
+}
+
+verdict verify_claim(const claim_row *row, const claim_result *res, const numbers_tex *nt, char *msg, size_t n)
+{
+    verdict v = verify_consistent(row, res, nt, msg, n);
+    if (v != VERDICT_FAIL && strcmp(row->gate, "-") && res->gate == VERDICT_FAIL) {
+        snprintf(msg, n, "%s = %s fails its preregistered gate %s: %s (%s)", row->macro, res->text, row->gate, res->gate_detail, row->source);
+        return VERDICT_FAIL;
+    }
+    return v;
+}
+
+static int has_gnuplot(void)
+{
+    return system("command -v gnuplot >/dev/null 2>&1") == 0;
+}
+
+void verify_figures(checklist *cl)
+{
+    DIR *d = opendir("figures");
+    if (!d) return;
+    char *names[128];
+    size_t n = 0;
+    struct dirent *e;
+    while ((e = readdir(d)) && n < 128) {
+        size_t l = strlen(e->d_name);
+        if (l > 3 && !strcmp(e->d_name + l - 3, ".gp")) names[n++] = strdup(e->d_name);
+    }
+    closedir(d);
+    for (size_t i = 0; i < n; i++)
+        for (size_t j = i + 1; j < n; j++)
+            if (strcmp(names[i], names[j]) > 0) { char *t = names[i]; names[i] = names[j]; names[j] = t; }
+    int gp = has_gnuplot();
+    for (size_t i = 0; i < n; i++) {
+        char script[600], item[96];
+        snprintf(script, sizeof script, "figures/%s", names[i]);
+        snprintf(item, sizeof item, "figure %.*s", (int)(strlen(names[i]) - 3), names[i]);
+        /* "# data: path" lines declare the inputs; a figure whose data are not frozen yet is pending */
+        FILE *f = fopen(script, "r");
+        char line[1024], missing[1100] = "";
+        while (f && fgets(line, sizeof line, f)) {
+            if (strncmp(line, "# data: ", 8)) continue;
+            line[strcspn(line, "\n")] = '\0';
+            struct stat sb;
+            if (stat(line + 8, &sb) != 0 && !missing[0]) snprintf(missing, sizeof missing, "%s", line + 8);
+        }
+        if (f) fclose(f);
+        if (missing[0]) { checklist_add(cl, VERDICT_PENDING, item, "needs %s (not frozen yet)", missing); free(names[i]); continue; }
+        if (!gp) { checklist_add(cl, VERDICT_FAIL, item, "gnuplot not installed (make deps)"); free(names[i]); continue; }
+        char cmd[1400];
+        snprintf(cmd, sizeof cmd, "gnuplot '%s' > build/gnuplot-%s.log 2>&1", script, names[i]);
+        int rc = system(cmd);
+        if (rc != 0) checklist_add(cl, VERDICT_FAIL, item, "gnuplot %s failed (see build/gnuplot-%s.log)", script, names[i]);
+        else checklist_add(cl, VERDICT_PASS, item, "redrawn by gnuplot %s", script);
+        free(names[i]);
+    }
+}
+
+static void print_item(const char *tag, verdict v, const char *name, const char *msg)
+{
+    printf("  %-7s %-28s %s\n", verdict_name(v), name, msg);
+    (void)tag;
+}
+
+cs_status verify_run(const verify_opts *o)
+{
+    claims c;
+    cs_status st = claims_load(AUDIT_CLAIMS, &c);
+    if (st) return st;
+    claim_result *res;
+    if ((st = verify_eval_all(&c, &res))) { claims_free(&c); return st; }
+    numbers_tex nt;
+    int have_nt = numbers_read(AUDIT_NUMBERS, &nt) == CS_OK;
+    char nterr[512];
+    snprintf(nterr, sizeof nterr, "%s", have_nt ? "" : cs_errmsg());
+
+    size_t pass = 0, fail = 0, pend = 0;
+    checklist cl = {0};
+    audit_run(&c, res, &cl);
+    printf("== audit (pins, frozen hashes, provenance, registry, paper)\n");
+    for (size_t i = 0; i < cl.n; i++) {
+        print_item("audit", cl.items[i].v, cl.items[i].name, cl.items[i].msg);
+        if (cl.items[i].v == VERDICT_PASS) pass++; else if (cl.items[i].v == VERDICT_FAIL) fail++; else pend++;
+    }
+    checklist_free(&cl);
+
+    printf("\n== claims (recomputed from frozen/ and compared with paper/numbers.tex)\n");
+    printf("  %-7s %-19s %-12s %-10s %-8s %s\n", "status", "macro", "value", "kind", "gate", "source / reason");
+    if (!have_nt) { printf("  FAIL    paper/numbers.tex unreadable: %s\n", nterr); fail++; }
+    for (size_t i = 0; i < c.n; i++) {
+        char msg[1200];
+        verdict v = verify_claim(&c.rows[i], &res[i], have_nt ? &nt : NULL, msg, sizeof msg);
+        const char *val = res[i].status == VERDICT_PASS ? res[i].text : "-";
+        const char *g = strcmp(c.rows[i].gate, "-") ? verdict_name(res[i].gate) : "-";
+        printf("  %-7s %-19s %-12s %-10s %-8s %s\n", verdict_name(v), c.rows[i].macro, val, c.rows[i].kind, g, msg);
+        if (v == VERDICT_PASS) pass++; else if (v == VERDICT_FAIL) fail++; else pend++;
+    }
+
+    if (!o->no_figures) {
+        checklist fl = {0};
+        verify_figures(&fl);
+        printf("\n== figures (gnuplot)\n");
+        if (!fl.n) printf("  (no figure scripts yet)\n");
+        for (size_t i = 0; i < fl.n; i++) {
+            print_item("figure", fl.items[i].v, fl.items[i].name, fl.items[i].msg);
+            if (fl.items[i].v == VERDICT_PASS) pass++; else if (fl.items[i].v == VERDICT_FAIL) fail++; else pend++;
+        }
+        checklist_free(&fl);
+    }
+    printf("\n%zu pending (experiment not yet run and frozen, or input data missing: reason above; never counted as passed)\n", pend);
+    printf("%zu passed, %zu failed\n", pass, fail);
+    if (have_nt) numbers_free(&nt);
+    free(res);
+    claims_free(&c);
+    return fail ? CS_EFAIL : CS_OK;
+}
+
+cs_status verify_trace(const char *macro)
+{
+    claims c;
+    cs_status st = claims_load(AUDIT_CLAIMS, &c);
+    if (st) return st;
+    const claim_row *row = claims_find(&c, macro[0] == '\\' ? macro + 1 : macro);
+    if (!row) { claims_free(&c); return cs_err(CS_EINPUT, "%s: no claim named '%s'", AUDIT_CLAIMS, macro); }
+    claim_result r;
+    claims_eval(row, &r);
+    numbers_tex nt;
+    int line = 0;
+    const char *have = NULL;
+    if (numbers_read(AUDIT_NUMBERS, &nt) == CS_OK) have = numbers_get(&nt, row->macro, &line);
+    printf("macro        \\%s\n", row->macro);
+    printf("kind         %s\n", row->kind);
+    printf("value        %s%s%s\n", r.status == VERDICT_PASS ? r.text : verdict_name(r.status), r.status == VERDICT_PASS ? "" : ": ", r.status == VERDICT_PASS ? "" : r.why);
+    printf("numbers.tex  %s (paper/numbers.tex:%d)\n", have ? have : "(absent)", line);
+    printf("source       %s\n", r.where);
+    printf("function     %s (src/claim_*.c)\n", row->function);
+    printf("gate         %s%s%s%s\n", row->gate, strcmp(row->gate, "-") ? " -> " : "", strcmp(row->gate, "-") ? verdict_name(r.gate) : "",
+           r.gate_detail[0] ? "" : "");
+    if (r.gate_detail[0]) printf("gate detail  %s\n", r.gate_detail);
+    printf("test         %s\n", row->test);
+    printf("section      %s of the reference paper (reference value %s)\n", row->section, row->reference);
+    printf("registry     %s:%d\n", AUDIT_CLAIMS, row->line);
+    if (have) numbers_free(&nt);
+    claims_free(&c);
+    return CS_OK;
+}

@@ -1,0 +1,46 @@
+/* Claim tests: one cmocka test per row of audit/claims.tsv (named
+ * claim_<Macro>). Each recomputes its claim from frozen/ with the library
+ * code the pipeline used, and checks it against paper/numbers.tex: the value
+ * text, and the gate verdict the paper states. A claim whose experiment has
+ * not been frozen must appear as \pending in numbers.tex, with a reason.
+ * An honest gate FAIL is consistent (the paper must say FAIL); it is verify,
+ * not this test, that reports the failed gate. */
+#include "testutil.h"
+#include "claims.h"
+#include "verify.h"
+
+static numbers_tex g_nt;
+
+static void claim_test(void **state)
+{
+    const claim_row *row = *state;
+    claim_result r;
+    claims_eval(row, &r);
+    char msg[1200];
+    verdict v = verify_consistent(row, &r, &g_nt, msg, sizeof msg);
+    if (v == VERDICT_FAIL) fail_msg("%s", msg);
+    if (v == VERDICT_PENDING && !r.why[0]) fail_msg("%s pending without a reason", row->macro);
+    if (r.status == VERDICT_PASS && !r.text[0]) fail_msg("%s computed but empty", row->macro);
+    if (r.status == VERDICT_PASS && strcmp(row->format, "text") && !isfinite(r.value))
+        fail_msg("%s: non-finite value %.17g", row->macro, r.value);
+}
+
+int main(void)
+{
+    claims c;
+    if (claims_load("audit/claims.tsv", &c) != CS_OK) { fprintf(stderr, "%s\n", cs_errmsg()); return 1; }
+    if (numbers_read("paper/numbers.tex", &g_nt) != CS_OK) { fprintf(stderr, "%s\n", cs_errmsg()); return 1; }
+    struct CMUnitTest *t = calloc(c.n, sizeof *t);
+    char (*names)[80] = calloc(c.n, sizeof *names);
+    for (size_t i = 0; i < c.n; i++) {
+        snprintf(names[i], sizeof names[i], "claim_%s", c.rows[i].macro);
+        t[i].name = names[i];
+        t[i].test_func = claim_test;
+        t[i].initial_state = &c.rows[i];
+    }
+    int rc = _cmocka_run_group_tests("claims", t, c.n, NULL, NULL);
+    free(t); free(names);
+    numbers_free(&g_nt);
+    claims_free(&c);
+    return rc;
+}

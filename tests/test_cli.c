@@ -1,0 +1,116 @@
+/* Tests of the CLI's exit codes and messages (SPEC §11): 0 ok, 2 usage,
+ * 3 bad input naming file, line and field. Runs build/crownshy. */
+#include "testutil.h"
+#include <sys/wait.h>
+
+static int run(const char *args, char *out, size_t n)
+{
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "build/crownshy %s 2>&1", args);
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    size_t got = fread(out, 1, n - 1, p);
+    out[got] = '\0';
+    int st = pclose(p);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+static char out[65536];
+
+static void test_help_exits_zero(void **s)
+{
+    (void)s;
+    assert_int_equal(run("--help", out, sizeof out), 0);
+    const char *cmds[] = {"verify", "numbers", "audit", "trace", "gates", "check-tsv", "pin", "hash-frozen"};
+    for (size_t i = 0; i < sizeof cmds / sizeof *cmds; i++) {
+        char a[64];
+        snprintf(a, sizeof a, "%s --help", cmds[i]);
+        if (run(a, out, sizeof out) != 0) fail_msg("crownshy %s exit != 0: %s", a, out);
+        if (!strstr(out, "usage:")) fail_msg("crownshy %s printed no usage", a);
+    }
+}
+
+static void test_unknown_command_is_usage_error(void **s)
+{
+    (void)s;
+    assert_int_equal(run("frobnicate", out, sizeof out), 2);
+    assert_non_null(strstr(out, "frobnicate"));
+    assert_int_equal(run("verify --bogus", out, sizeof out), 2);
+}
+
+static void test_malformed_gate_exit_3_names_file_line_field(void **s)
+{
+    (void)s;
+    const char *dir = tu_tmpdir("cli_gate");
+    char p[600], a[700];
+    snprintf(p, sizeof p, "%s/bad.gate", dir);
+    tu_write(p, "# c\nseeds 12\nrel_improvement_min 0.2O\n");
+    snprintf(a, sizeof a, "gates %s", p);
+    assert_int_equal(run(a, out, sizeof out), 3);
+    assert_non_null(strstr(out, "bad.gate:3:"));
+    assert_non_null(strstr(out, "rel_improvement_min"));
+}
+
+static void test_truncated_tsv_exit_3_names_line_and_field(void **s)
+{
+    (void)s;
+    const char *dir = tu_tmpdir("cli_tsv");
+    char p[600], a[700];
+    snprintf(p, sizeof p, "%s/runs.tsv", dir);
+    tu_write(p, "# experiment: main\nseed\tarm\tw1\n1\tjoint\t0.4\n2\tjoint\n");
+    snprintf(a, sizeof a, "check-tsv %s", p);
+    assert_int_equal(run(a, out, sizeof out), 3);
+    assert_non_null(strstr(out, "runs.tsv:4:"));
+    assert_non_null(strstr(out, "'w1'"));
+}
+
+static void test_non_number_tsv_exit_3(void **s)
+{
+    (void)s;
+    const char *dir = tu_tmpdir("cli_nan");
+    char p[600], a[700];
+    snprintf(p, sizeof p, "%s/runs.tsv", dir);
+    tu_write(p, "seed\tw1\n1\t0.4\n2\t0.4x\n");
+    snprintf(a, sizeof a, "check-tsv %s", p);
+    assert_int_equal(run(a, out, sizeof out), 3);
+    assert_non_null(strstr(out, "runs.tsv:3:"));
+    assert_non_null(strstr(out, "'w1'"));
+}
+
+static void test_missing_file_exit_3(void **s)
+{
+    (void)s;
+    assert_int_equal(run("check-tsv build/test-tmp/nope.tsv", out, sizeof out), 3);
+    assert_non_null(strstr(out, "nope.tsv"));
+}
+
+static void test_shipped_gates_parse(void **s)
+{
+    (void)s;
+    assert_int_equal(run("gates", out, sizeof out), 0);
+    assert_non_null(strstr(out, "gates/main.gate: ok"));
+}
+
+static void test_trace_unknown_macro_exit_3(void **s)
+{
+    (void)s;
+    assert_int_equal(run("trace NoSuchMacro", out, sizeof out), 3);
+    assert_non_null(strstr(out, "NoSuchMacro"));
+    assert_int_equal(run("trace MainSeeds", out, sizeof out), 0);
+    assert_non_null(strstr(out, "gates/main.gate"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_help_exits_zero),
+        cmocka_unit_test(test_unknown_command_is_usage_error),
+        cmocka_unit_test(test_malformed_gate_exit_3_names_file_line_field),
+        cmocka_unit_test(test_truncated_tsv_exit_3_names_line_and_field),
+        cmocka_unit_test(test_non_number_tsv_exit_3),
+        cmocka_unit_test(test_missing_file_exit_3),
+        cmocka_unit_test(test_shipped_gates_parse),
+        cmocka_unit_test(test_trace_unknown_macro_exit_3),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

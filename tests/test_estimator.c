@@ -1,0 +1,192 @@
+/* Tests for src/estimator.c on hand-built stands: Eq. 5, k-NN, W1 (Eq. 6),
+ * cover, cardinal gaps, anisotropy, elongation, spread. */
+#include "testutil.h"
+#include "estimator.h"
+#include "crown.h"
+
+static void fill(double *r, double v) { for (int s = 0; s < CROWN_NSEC; s++) r[s] = v; }
+
+static void test_clearance_two_trees_by_hand(void **st)
+{
+    (void)st;
+    double ra[CROWN_NSEC], rb[CROWN_NSEC];
+    for (int s = 0; s < CROWN_NSEC; s++) { ra[s] = 1.0 + 0.1 * s; rb[s] = 2.0 - 0.05 * s; }
+    /* B at (3, 4) from A: nu = 5; bearing 53.13 deg (sector 3.542), back-bearing 233.13 deg (15.542). */
+    double ua = atan2(4.0, 3.0) / CROWN_DTHETA;
+    double ub = (atan2(-4.0, -3.0) + 2.0 * CROWN_PI) / CROWN_DTHETA;
+    double expect = 5.0 - (1.0 + 0.1 * ua) - (2.0 - 0.05 * ub);
+    ASSERT_NEAR(est_clearance(0.0, 0.0, ra, 3.0, 4.0, rb), expect, 1e-12);
+    ASSERT_NEAR(expect, 2.4228997, 1e-6); /* 5 - 1.3541997 - 1.2229006 */
+}
+
+static void test_clearance_is_negative_when_crowns_interpenetrate(void **st)
+{
+    (void)st;
+    double ra[CROWN_NSEC], rb[CROWN_NSEC];
+    fill(ra, 1.25);
+    fill(rb, 0.875);
+    ASSERT_EXACT(est_clearance(1.0, 1.0, ra, 1.0, 2.5, rb), 1.5 - 1.25 - 0.875);
+}
+
+/* Tree 0 at the origin; 1 east at 2, 4 south at 2.5, 2 north at 3, 3 west at 4. */
+static const double X5[5] = {0.0, 2.0, 0.0, -4.0, 0.0};
+static const double Y5[5] = {0.0, 0.0, 3.0, 0.0, -2.5};
+static void five(double r[5 * CROWN_NSEC])
+{
+    const double rad[5] = {0.5, 0.7, 0.9, 1.1, 0.3};
+    for (int i = 0; i < 5; i++) fill(r + i * CROWN_NSEC, rad[i]);
+}
+
+static void test_knn_orders_by_stem_distance(void **st)
+{
+    (void)st;
+    assert_int_equal(est_knn(X5, Y5, 5, 0, 1), 1);
+    assert_int_equal(est_knn(X5, Y5, 5, 0, 2), 4);
+    assert_int_equal(est_knn(X5, Y5, 5, 0, 3), 2);
+    assert_int_equal(est_knn(X5, Y5, 5, 0, 5), -1);
+}
+
+static void test_knn_clearance_three_neighbours_by_hand(void **st)
+{
+    (void)st;
+    double r[5 * CROWN_NSEC], g;
+    five(r);
+    assert_int_equal(est_knn_clearance(X5, Y5, r, 5, 0, 1, &g), CS_OK);
+    ASSERT_NEAR(g, 2.0 - 0.5 - 0.7, 1e-15);
+    assert_int_equal(est_knn_clearance(X5, Y5, r, 5, 0, 2, &g), CS_OK);
+    ASSERT_NEAR(g, 2.5 - 0.5 - 0.3, 1e-15);
+    assert_int_equal(est_knn_clearance(X5, Y5, r, 5, 0, 3, &g), CS_OK);
+    ASSERT_NEAR(g, 3.0 - 0.5 - 0.9, 1e-15);
+    assert_int_equal(est_knn_clearance(X5, Y5, r, 2, 0, 2, &g), CS_EINPUT);
+}
+
+static void test_knn_ties_go_to_the_lower_index(void **st)
+{
+    (void)st;
+    double x[3] = {0.0, 1.0, -1.0}, y[3] = {0.0, 0.0, 0.0};
+    assert_int_equal(est_knn(x, y, 3, 0, 1), 1);
+    assert_int_equal(est_knn(x, y, 3, 0, 2), 2);
+}
+
+static void test_cardinal_gaps_and_tree_mean(void **st)
+{
+    (void)st;
+    double r[5 * CROWN_NSEC], gaps[4];
+    five(r);
+    est_cardinal_gaps(X5, Y5, r, 5, 0, gaps);
+    ASSERT_NEAR(gaps[EST_E], 0.8, 1e-15);
+    ASSERT_NEAR(gaps[EST_N], 1.6, 1e-15);
+    ASSERT_NEAR(gaps[EST_W], 2.4, 1e-15);
+    ASSERT_NEAR(gaps[EST_S], 1.7, 1e-15);
+    ASSERT_NEAR(est_tree_mean(gaps), 1.625, 1e-15);
+    double a = 0.0;
+    assert_int_equal(est_anisotropy(gaps, &a), 1);
+    ASSERT_NEAR(a, 3.0, 1e-14);
+    /* Tree 3 (west end) has nobody to its west: NaN, and it is excluded. */
+    est_cardinal_gaps(X5, Y5, r, 5, 3, gaps);
+    assert_true(isnan(gaps[EST_W]));
+    assert_int_equal(est_anisotropy(gaps, &a), 0);
+}
+
+static void test_cardinal_gap_takes_the_smallest_in_the_cone(void **st)
+{
+    (void)st;
+    /* Two trees east of 0 within +-45 deg: a far big crown and a near small one. */
+    double x[3] = {0.0, 3.0, 5.0}, y[3] = {0.0, 2.0, -1.0}, r[3 * CROWN_NSEC], gaps[4];
+    fill(r, 1.0);
+    fill(r + CROWN_NSEC, 0.2);
+    fill(r + 2 * CROWN_NSEC, 3.5);
+    est_cardinal_gaps(x, y, r, 3, 0, gaps);
+    ASSERT_NEAR(gaps[EST_E], hypot(5.0, 1.0) - 1.0 - 3.5, 1e-14);
+    assert_true(isnan(gaps[EST_N]));
+}
+
+static void test_anisotropy_excludes_nonpositive_gaps(void **st)
+{
+    (void)st;
+    double gaps[4] = {0.3, -0.01, 0.5, 0.2}, a = 7.0;
+    assert_int_equal(est_anisotropy(gaps, &a), 0);
+    ASSERT_EXACT(a, 7.0);
+}
+
+static void test_elongation_of_an_oval(void **st)
+{
+    (void)st;
+    double r[CROWN_NSEC];
+    fill(r, 0.7);
+    r[0] = 1.0; r[12] = 1.2; r[6] = 0.6; r[18] = 0.8;
+    ASSERT_NEAR(est_elongation(r), 2.2 / 1.4, 1e-15);
+}
+
+static void test_w1_of_a_shift_is_the_shift(void **st)
+{
+    (void)st;
+    double a[7] = {0.3, -1.2, 2.5, 0.0, 0.7, 0.71, 4.0}, b[7];
+    for (int i = 0; i < 7; i++) b[i] = a[i] - 0.37;
+    double w = 0.0;
+    assert_int_equal(est_w1(a, 7, b, 7, &w), CS_OK);
+    ASSERT_NEAR(w, 0.37, 1e-15);
+}
+
+static void test_w1_different_sizes_by_hand(void **st)
+{
+    (void)st;
+    /* Quantile functions: a = 0 on [0,1/2), 1 on [1/2,1); b = 0, 0.5, 3 on thirds.
+     * |diff|: 0 on [0,1/3), 0.5 on [1/3,2/3), 2 on [2/3,1) -> 0 + 1/6 + 2/3 = 5/6. */
+    double a[2] = {1.0, 0.0}, b[3] = {3.0, 0.0, 0.5}, w = 0.0;
+    assert_int_equal(est_w1(a, 2, b, 3, &w), CS_OK);
+    ASSERT_NEAR(w, 5.0 / 6.0, 1e-15);
+    assert_int_equal(est_w1(b, 3, a, 2, &w), CS_OK);
+    ASSERT_NEAR(w, 5.0 / 6.0, 1e-15);
+}
+
+static void test_w1_rejects_empty_and_nonfinite(void **st)
+{
+    (void)st;
+    double a[2] = {1.0, NAN}, w;
+    assert_int_equal(est_w1(a, 0, a, 1, &w), CS_EINPUT);
+    assert_int_equal(est_w1(a, 2, a, 1, &w), CS_EINPUT);
+}
+
+static void test_cover_of_one_disk(void **st)
+{
+    (void)st;
+    double x = 0.0, y = 0.0, r[CROWN_NSEC], c = 0.0;
+    fill(r, 1.0);
+    assert_int_equal(est_cover(&x, &y, r, 1, -2.0, -2.0, 2.0, 2.0, &c), CS_OK);
+    ASSERT_NEAR(c, CROWN_PI / 16.0, 2e-3);
+    fill(r, 10.0);
+    assert_int_equal(est_cover(&x, &y, r, 1, -2.0, -2.0, 2.0, 2.0, &c), CS_OK);
+    ASSERT_EXACT(c, 1.0);
+}
+
+static void test_spread_is_the_iqr(void **st)
+{
+    (void)st;
+    double g[5] = {0.4, 0.1, 0.9, 0.2, 0.3}, q = 0.0, m = 0.0;
+    assert_int_equal(est_spread(g, 5, &q), CS_OK);
+    ASSERT_NEAR(q, 0.2, 1e-15);
+    assert_int_equal(est_median(g, 5, &m), CS_OK);
+    ASSERT_EXACT(m, 0.3);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_clearance_two_trees_by_hand),
+        cmocka_unit_test(test_clearance_is_negative_when_crowns_interpenetrate),
+        cmocka_unit_test(test_knn_orders_by_stem_distance),
+        cmocka_unit_test(test_knn_clearance_three_neighbours_by_hand),
+        cmocka_unit_test(test_knn_ties_go_to_the_lower_index),
+        cmocka_unit_test(test_cardinal_gaps_and_tree_mean),
+        cmocka_unit_test(test_cardinal_gap_takes_the_smallest_in_the_cone),
+        cmocka_unit_test(test_anisotropy_excludes_nonpositive_gaps),
+        cmocka_unit_test(test_elongation_of_an_oval),
+        cmocka_unit_test(test_w1_of_a_shift_is_the_shift),
+        cmocka_unit_test(test_w1_different_sizes_by_hand),
+        cmocka_unit_test(test_w1_rejects_empty_and_nonfinite),
+        cmocka_unit_test(test_cover_of_one_disk),
+        cmocka_unit_test(test_spread_is_the_iqr),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,188 @@
+/* Tests for the claim framework (src/claims.c, src/verify.c, src/audit.c):
+ * malformed registries, tampered numbers.tex, gate judgement in claims. */
+#include "testutil.h"
+#include "claims.h"
+#include "verify.h"
+#include "audit.h"
+
+static const char *HDR = "macro\tkind\tsource\tfunction\tgate\ttest\tsection\tformat\treference\n";
+
+static const char *registry(const char *name, const char *rows)
+{
+    static char path[600];
+    snprintf(path, sizeof path, "%s/claims.tsv", tu_tmpdir(name));
+    char buf[4096];
+    snprintf(buf, sizeof buf, "# what: test registry\n%s%s", HDR, rows);
+    tu_write(path, buf);
+    return path;
+}
+
+static void test_registry_rejects_unknown_kind(void **s)
+{
+    (void)s;
+    const char *p = registry("reg_kind", "MainSeeds\tguess\tgates/main.gate\tclaim_design_main_seeds\t-\tt\t4.4\t%.0f\t12\n");
+    claims c;
+    assert_int_equal(claims_load(p, &c), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "claims.tsv:3:"));
+    assert_non_null(strstr(cs_errmsg(), "'kind'"));
+}
+
+static void test_registry_rejects_duplicate_macro(void **s)
+{
+    (void)s;
+    const char *p = registry("reg_dup",
+        "MainSeeds\tdesign\tgates/main.gate\tclaim_design_main_seeds\t-\tt\t4.4\t%.0f\t12\n"
+        "MainSeeds\tdesign\tgates/main.gate\tclaim_design_main_seeds\t-\tt\t4.4\t%.0f\t12\n");
+    claims c;
+    assert_int_equal(claims_load(p, &c), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "claims.tsv:4:"));
+    assert_non_null(strstr(cs_errmsg(), "duplicate"));
+}
+
+static void test_registry_rejects_bad_gate_reference(void **s)
+{
+    (void)s;
+    const char *p = registry("reg_gate", "MainSeeds\tdesign\tgates/main.gate\tclaim_design_main_seeds\tmain:seeds\tt\t4.4\t%.0f\t12\n");
+    claims c;
+    assert_int_equal(claims_load(p, &c), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "'gate'"));
+}
+
+static void test_registry_rejects_truncated_row(void **s)
+{
+    (void)s;
+    const char *p = registry("reg_trunc", "MainSeeds\tdesign\tgates/main.gate\n");
+    claims c;
+    assert_int_equal(claims_load(p, &c), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "claims.tsv:3:"));
+    assert_non_null(strstr(cs_errmsg(), "'function'"));
+}
+
+static void test_design_claim_reads_gate_value(void **s)
+{
+    (void)s;
+    claim_row row = {.macro = "MainSeeds", .kind = "design", .source = "gates/main.gate", .function = "claim_design_main_seeds", .gate = "-", .format = "%.0f"};
+    claim_result r;
+    claims_eval(&row, &r);
+    assert_int_equal(r.status, VERDICT_PASS);
+    assert_string_equal(r.text, "12");
+    assert_non_null(strstr(r.where, "gates/main.gate:"));
+}
+
+static void test_unimplemented_function_is_pending_with_reason(void **s)
+{
+    (void)s;
+    claim_row row = {.macro = "MainRel", .kind = "measured", .source = "frozen/main/runs.tsv", .function = "claim_no_such_fn", .gate = "-", .format = "%.1f"};
+    claim_result r;
+    claims_eval(&row, &r);
+    assert_int_equal(r.status, VERDICT_PENDING);
+    assert_non_null(strstr(r.why, "claim_no_such_fn"));
+}
+
+static void test_tampered_numbers_value_is_named(void **s)
+{
+    (void)s;
+    const char *dir = tu_tmpdir("nt_tamper");
+    char p[600];
+    snprintf(p, sizeof p, "%s/numbers.tex", dir);
+    tu_write(p, "% x\n\\newcommand{\\MainSeeds}{11}\n");
+    numbers_tex nt;
+    assert_int_equal(numbers_read(p, &nt), CS_OK);
+    claim_row row = {.macro = "MainSeeds", .kind = "design", .source = "gates/main.gate", .function = "claim_design_main_seeds", .gate = "-", .format = "%.0f"};
+    claim_result r;
+    claims_eval(&row, &r);
+    char msg[1200];
+    assert_int_equal(verify_consistent(&row, &r, &nt, msg, sizeof msg), VERDICT_FAIL);
+    assert_non_null(strstr(msg, "MainSeeds"));
+    assert_non_null(strstr(msg, "numbers.tex:2"));
+    assert_non_null(strstr(msg, "'11'"));
+    numbers_free(&nt);
+}
+
+static void test_pending_claim_shown_as_value_is_inconsistent(void **s)
+{
+    (void)s;
+    const char *dir = tu_tmpdir("nt_pending");
+    char p[600];
+    snprintf(p, sizeof p, "%s/numbers.tex", dir);
+    tu_write(p, "\\newcommand{\\MainRel}{53.6}\n");
+    numbers_tex nt;
+    assert_int_equal(numbers_read(p, &nt), CS_OK);
+    claim_row row = {.macro = "MainRel", .kind = "measured", .source = "frozen/main/none.tsv", .function = "claim_design_main_seeds", .gate = "-", .format = "%.1f"};
+    claim_result r;
+    claims_eval(&row, &r);
+    assert_int_equal(r.status, VERDICT_PENDING);
+    char msg[1200];
+    assert_int_equal(verify_consistent(&row, &r, &nt, msg, sizeof msg), VERDICT_FAIL);
+    numbers_free(&nt);
+}
+
+static void test_truncated_numbers_tex_is_input_error(void **s)
+{
+    (void)s;
+    const char *dir = tu_tmpdir("nt_trunc");
+    char p[600];
+    snprintf(p, sizeof p, "%s/numbers.tex", dir);
+    tu_write(p, "\\newcommand{\\MainRel}{\\pending{Mai\n");
+    numbers_tex nt;
+    assert_int_equal(numbers_read(p, &nt), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "numbers.tex:1:"));
+    assert_non_null(strstr(cs_errmsg(), "MainRel"));
+}
+
+static void test_gate_failure_is_consistent_but_fails_verify(void **s)
+{
+    (void)s;
+    /* A claim whose value fails its gate: consistent with a paper that says
+     * FAIL, and a failure for verify. */
+    const char *dir = tu_tmpdir("gate_fail");
+    char p[600];
+    snprintf(p, sizeof p, "%s/numbers.tex", dir);
+    tu_write(p, "\\newcommand{\\MainRel}{12.0}\n\\newcommand{\\MainRelGate}{FAIL}\n");
+    numbers_tex nt;
+    assert_int_equal(numbers_read(p, &nt), CS_OK);
+    claim_row row = {.macro = "MainRel", .kind = "measured", .source = "x", .function = "f", .gate = "main.gate:rel_improvement_min", .format = "%.1f"};
+    claim_result r;
+    memset(&r, 0, sizeof r);
+    r.status = VERDICT_PASS;
+    claim_set_value(&row, &r, 12.0);
+    claim_judge(&row, &r, GATE_GE, 0.12);
+    assert_int_equal(r.gate, VERDICT_FAIL);
+    char msg[1200];
+    assert_int_equal(verify_consistent(&row, &r, &nt, msg, sizeof msg), VERDICT_PASS);
+    assert_int_equal(verify_claim(&row, &r, &nt, msg, sizeof msg), VERDICT_FAIL);
+    assert_non_null(strstr(msg, "main.gate:rel_improvement_min"));
+    numbers_free(&nt);
+}
+
+static void test_negative_zero_prints_unsigned(void **s)
+{
+    (void)s;
+    claim_row row = {.format = "%.2f"};
+    claim_result r = {0};
+    claim_set_value(&row, &r, -0.0000001);
+    assert_string_equal(r.text, "0.00");
+    claim_row row2 = {.format = "%+.3f"};
+    claim_set_value(&row2, &r, -0.0001);
+    assert_string_equal(r.text, "0.000");
+    claim_set_value(&row2, &r, 0.364);
+    assert_string_equal(r.text, "+0.364");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_registry_rejects_unknown_kind),
+        cmocka_unit_test(test_registry_rejects_duplicate_macro),
+        cmocka_unit_test(test_registry_rejects_bad_gate_reference),
+        cmocka_unit_test(test_registry_rejects_truncated_row),
+        cmocka_unit_test(test_design_claim_reads_gate_value),
+        cmocka_unit_test(test_unimplemented_function_is_pending_with_reason),
+        cmocka_unit_test(test_tampered_numbers_value_is_named),
+        cmocka_unit_test(test_pending_claim_shown_as_value_is_inconsistent),
+        cmocka_unit_test(test_truncated_numbers_tex_is_input_error),
+        cmocka_unit_test(test_gate_failure_is_consistent_but_fails_verify),
+        cmocka_unit_test(test_negative_zero_prints_unsigned),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,251 @@
+/* Tests for src/teacher.c (SPEC §4): exact targets for a lone tree and for
+ * coupling off, no overlap over random stands at every spacing and die-back
+ * of the sweeps, beta = 0 gaps within one step, bit-identical repeats, the
+ * self-check itself, and the perturbation rule (order and vigour by height). */
+#include "testutil.h"
+#include "teacher.h"
+#include "stand.h"
+#include "estimator.h"
+#include "crown.h"
+
+static void lobed(double *t, double R, double a, int k, double phi)
+{
+    crown_draw c = {.h = 25.0, .R = R, .a = a, .k = k, .phi = phi};
+    crown_target(&c, t);
+}
+
+static void test_lone_tree_reaches_its_target_exactly(void **st)
+{
+    (void)st;
+    double x = 10.0, y = 10.0, h = 21.3, R = 3.3, t[CROWN_NSEC], r[CROWN_NSEC];
+    lobed(t, R, 0.17, 4, 1.1);
+    teacher_stand s = {1, &x, &y, &h, &R, t};
+    teacher_params p;
+    teacher_params_default(&p);
+    teacher_info inf;
+    assert_int_equal(teacher_grow(&s, &p, r, &inf), CS_OK);
+    for (int k = 0; k < CROWN_NSEC; k++) ASSERT_EXACT(r[k], t[k]);
+    assert_int_equal(inf.frozen, 0);
+    ASSERT_EXACT(inf.step, 3.3 / 48.0);
+}
+
+static void test_coupling_off_equals_the_targets(void **st)
+{
+    (void)st;
+    stand *sd = NULL;
+    assert_int_equal(stand_alloc(&sd, STAND_LATTICE, 3.5, 42.0, 0.04, "test/teacher", 1), CS_OK);
+    teacher_stand v;
+    stand_view(sd, &v);
+    double *r = malloc(v.n * CROWN_NSEC * sizeof *r);
+    teacher_params p;
+    teacher_params_default(&p);
+    p.coupled = 0;
+    assert_int_equal(teacher_grow(&v, &p, r, NULL), CS_OK);
+    assert_memory_equal(r, sd->rstar, v.n * CROWN_NSEC * sizeof *r);
+    /* and at 3.5 m those targets interpenetrate */
+    double w = 0.0;
+    assert_int_equal(teacher_worst_overlap(v.x, v.y, r, v.n, &w), CS_OK);
+    assert_true(w > 1.0);
+    free(r);
+    stand_free(sd);
+}
+
+static void test_two_trees_meet_between_their_stems(void **st)
+{
+    (void)st;
+    /* Equal heights, circles of 3 m, stems 4 m apart: growth stops near 2 m each. */
+    double x[2] = {0.0, 4.0}, y[2] = {0.0, 0.0}, h[2] = {25.0, 25.0}, R[2] = {3.0, 3.0};
+    double t[2 * CROWN_NSEC], r[2 * CROWN_NSEC];
+    lobed(t, 3.0, 0.0, 2, 0.0);
+    lobed(t + CROWN_NSEC, 3.0, 0.0, 2, 0.0);
+    teacher_stand s = {2, x, y, h, R, t};
+    teacher_params p;
+    teacher_params_default(&p);
+    p.beta = 0.0;
+    teacher_info inf;
+    assert_int_equal(teacher_grow(&s, &p, r, &inf), CS_OK);
+    double g = est_clearance(x[0], y[0], r, x[1], y[1], r + CROWN_NSEC);
+    assert_true(g >= 0.0);
+    if (!(g <= inf.step)) fail_msg("beta=0 gap %.17g wider than one step %.17g", g, inf.step);
+    /* Far side untouched: sector 12 of tree 0 reaches its target. */
+    ASSERT_EXACT(r[12], 3.0);
+}
+
+static void test_taller_tree_claims_more_of_the_contested_space(void **st)
+{
+    (void)st;
+    double x[2] = {0.0, 4.0}, y[2] = {0.0, 0.0}, h[2] = {32.0, 18.0}, R[2] = {3.0, 3.0};
+    double t[2 * CROWN_NSEC], r[2 * CROWN_NSEC];
+    lobed(t, 3.0, 0.0, 2, 0.0);
+    lobed(t + CROWN_NSEC, 3.0, 0.0, 2, 0.0);
+    teacher_stand s = {2, x, y, h, R, t};
+    teacher_params p;
+    teacher_params_default(&p);
+    assert_int_equal(teacher_grow(&s, &p, r, NULL), CS_OK);
+    /* Sector 0 of the tall tree faces sector 12 of the short one. */
+    if (!(r[0] > r[CROWN_NSEC + 12] + 0.3))
+        fail_msg("tall %.17g vs short %.17g", r[0], r[CROWN_NSEC + 12]);
+}
+
+static void test_no_overlap_at_every_spacing_and_dieback(void **st)
+{
+    (void)st;
+    const double spacings[5] = {3.0, 3.5, 4.5, 5.5, 6.5};
+    const double betas[4] = {0.0, 0.03, 0.06, 0.09};
+    double worst = 0.0;
+    for (int a = 0; a < 5; a++)
+        for (int b = 0; b < 4; b++) {
+            stand *sd = NULL;
+            /* 8 d footprints (~64 trees) keep the test fast; hard-core on odd cells. */
+            stand_kind kind = ((a + b) & 1) ? STAND_HARDCORE : STAND_LATTICE;
+            double shape = kind == STAND_HARDCORE ? 0.5 : 0.04;
+            assert_int_equal(stand_alloc(&sd, kind, spacings[a], 8.0 * spacings[a], shape, "test/overlap", (unsigned)b), CS_OK);
+            teacher_stand v;
+            stand_view(sd, &v);
+            double *r = malloc(v.n * CROWN_NSEC * sizeof *r);
+            teacher_params p;
+            teacher_params_default(&p);
+            p.beta = betas[b];
+            teacher_info inf;
+            cs_status rc = teacher_grow(&v, &p, r, &inf);
+            if (rc) fail_msg("d=%g beta=%g: %s", spacings[a], betas[b], cs_errmsg());
+            if (inf.worst_overlap > worst) worst = inf.worst_overlap;
+            /* Independent of the self-check: every pair's Eq. 5 clearance >= 0. */
+            for (size_t i = 0; i < v.n; i++)
+                for (size_t j = i + 1; j < v.n; j++) {
+                    double g = est_clearance(v.x[i], v.y[i], r + i * CROWN_NSEC, v.x[j], v.y[j], r + j * CROWN_NSEC);
+                    if (g < -1e-9) fail_msg("d=%g beta=%g pair %zu,%zu g=%.17g", spacings[a], betas[b], i, j, g);
+                }
+            free(r);
+            stand_free(sd);
+        }
+    assert_true(worst <= 1e-9);
+}
+
+static void test_beta_zero_leaves_gaps_within_one_step(void **st)
+{
+    (void)st;
+    stand *sd = NULL;
+    assert_int_equal(stand_alloc(&sd, STAND_LATTICE, 3.5, 42.0, 0.04, "test/beta0", 0), CS_OK);
+    teacher_stand v;
+    stand_view(sd, &v);
+    double *r = malloc(v.n * CROWN_NSEC * sizeof *r);
+    double *g = malloc(v.n * sizeof *g);
+    teacher_params p;
+    teacher_params_default(&p);
+    p.beta = 0.0;
+    teacher_info inf;
+    assert_int_equal(teacher_grow(&v, &p, r, &inf), CS_OK);
+    size_t m = 0;
+    for (size_t i = 0; i < v.n; i++) {
+        if (!stems_interior(sd->s, i)) continue;
+        assert_int_equal(est_knn_clearance(v.x, v.y, r, v.n, i, 1, &g[m]), CS_OK);
+        m++;
+    }
+    double med = 0.0;
+    assert_int_equal(est_median(g, m, &med), CS_OK);
+    /* The fastest tree's step is at most Delta * 38 / hbar. */
+    double maxstep = inf.step * 38.0 / inf.hbar;
+    if (!(med >= 0.0 && med <= maxstep)) fail_msg("median k1 gap %.17g, one step %.17g", med, maxstep);
+    free(r); free(g);
+    stand_free(sd);
+}
+
+static void test_growth_is_bit_identical_on_repeat(void **st)
+{
+    (void)st;
+    stand *sd = NULL;
+    assert_int_equal(stand_alloc(&sd, STAND_HARDCORE, 4.5, 36.0, 0.5, "test/repeat", 2), CS_OK);
+    teacher_stand v;
+    stand_view(sd, &v);
+    size_t bytes = v.n * CROWN_NSEC * sizeof(double);
+    double *a = malloc(bytes), *b = malloc(bytes);
+    teacher_params p;
+    teacher_params_default(&p);
+    assert_int_equal(teacher_grow(&v, &p, a, NULL), CS_OK);
+    assert_int_equal(teacher_grow(&v, &p, b, NULL), CS_OK);
+    assert_memory_equal(a, b, bytes);
+    free(a); free(b);
+    stand_free(sd);
+}
+
+static void test_perturbation_keeps_hbar_and_moves_neighbours(void **st)
+{
+    (void)st;
+    stand *sd = NULL;
+    assert_int_equal(stand_alloc(&sd, STAND_LATTICE, 4.5, 54.0, 0.04, "test/perturb", 0), CS_OK);
+    teacher_stand v;
+    stand_view(sd, &v);
+    size_t n = v.n, bytes = n * CROWN_NSEC * sizeof(double);
+    double *a = malloc(bytes), *b = malloc(bytes), *h2 = malloc(n * sizeof *h2);
+    teacher_params p;
+    teacher_params_default(&p);
+    teacher_info ia, ib;
+    assert_int_equal(teacher_grow(&v, &p, a, &ia), CS_OK);
+    /* The interior tree nearest the centre, 30% taller, hbar kept. */
+    size_t f = 0;
+    double best = 1e9;
+    for (size_t i = 0; i < n; i++) {
+        double dd = hypot(v.x[i] - 27.0, v.y[i] - 27.0);
+        if (dd < best) { best = dd; f = i; }
+    }
+    memcpy(h2, v.h, n * sizeof *h2);
+    h2[f] *= 1.3;
+    v.h = h2;
+    p.hbar = ia.hbar;
+    assert_int_equal(teacher_grow(&v, &p, b, &ib), CS_OK);
+    ASSERT_EXACT(ib.hbar, ia.hbar);
+    int moved = 0;
+    for (int k = 1; k <= 4; k++) {
+        long j = est_knn(v.x, v.y, n, f, k);
+        for (int s = 0; s < CROWN_NSEC; s++)
+            if (fabs(a[(size_t)j * CROWN_NSEC + s] - b[(size_t)j * CROWN_NSEC + s]) > 1e-6) { moved++; break; }
+    }
+    assert_true(moved >= 2);
+    free(a); free(b); free(h2);
+    stand_free(sd);
+}
+
+static void test_self_check_measures_a_known_overlap(void **st)
+{
+    (void)st;
+    double x[2] = {0.0, 1.5}, y[2] = {0.0, 0.0}, r[2 * CROWN_NSEC], w = 0.0;
+    for (int k = 0; k < 2 * CROWN_NSEC; k++) r[k] = 1.0;
+    assert_int_equal(teacher_worst_overlap(x, y, r, 2, &w), CS_OK);
+    ASSERT_NEAR(w, 0.5, 1e-15);
+    x[1] = 2.25;
+    assert_int_equal(teacher_worst_overlap(x, y, r, 2, &w), CS_OK);
+    ASSERT_EXACT(w, 0.0);
+}
+
+static void test_bad_parameters_are_rejected(void **st)
+{
+    (void)st;
+    double x = 0, y = 0, h = 20, R = 3, t[CROWN_NSEC], r[CROWN_NSEC];
+    lobed(t, 3.0, 0.1, 3, 0.0);
+    teacher_stand s = {1, &x, &y, &h, &R, t};
+    teacher_params p;
+    teacher_params_default(&p);
+    p.beta = 1.0;
+    assert_int_equal(teacher_grow(&s, &p, r, NULL), CS_EINPUT);
+    teacher_params_default(&p);
+    p.nres = 0;
+    assert_int_equal(teacher_grow(&s, &p, r, NULL), CS_EINPUT);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_lone_tree_reaches_its_target_exactly),
+        cmocka_unit_test(test_coupling_off_equals_the_targets),
+        cmocka_unit_test(test_two_trees_meet_between_their_stems),
+        cmocka_unit_test(test_taller_tree_claims_more_of_the_contested_space),
+        cmocka_unit_test(test_no_overlap_at_every_spacing_and_dieback),
+        cmocka_unit_test(test_beta_zero_leaves_gaps_within_one_step),
+        cmocka_unit_test(test_growth_is_bit_identical_on_repeat),
+        cmocka_unit_test(test_perturbation_keeps_hbar_and_moves_neighbours),
+        cmocka_unit_test(test_self_check_measures_a_known_overlap),
+        cmocka_unit_test(test_bad_parameters_are_rejected),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
