@@ -29,15 +29,18 @@ enum { VL = 8 };
 
 INL vf ld(const float *p) { vf v; memcpy(&v, p, sizeof v); return v; }
 INL void st(float *p, vf v) { memcpy(p, &v, sizeof v); }
-INL vf splat(float a) { return (vf){a, a, a, a, a, a, a, a}; }
+/* A vector constructor {a, a, ...} is lowered to insert chains in the AVX2
+ * clone by GCC 12, while a scalar operand of a vector operation becomes one
+ * broadcast; so splat is written as 0 + a (exact except that -0 becomes +0,
+ * identically in both clones), and hot loops write `scalar * vector`. */
+INL vf splat(float a) { vf z = {0}; return z + a; }
 INL float hsum(vf v) { return ((v[0] + v[1]) + (v[2] + v[3])) + ((v[4] + v[5]) + (v[6] + v[7])); }
 
 /* y[0..n) += a * x[0..n) */
 INL void axpy(float *restrict y, float a, const float *restrict x, int n)
 {
     int i = 0;
-    vf va = splat(a);
-    for (; i + VL <= n; i += VL) st(y + i, ld(y + i) + va * ld(x + i));
+    for (; i + VL <= n; i += VL) st(y + i, ld(y + i) + a * ld(x + i));
     for (; i < n; i++) y[i] += a * x[i];
 }
 
@@ -343,7 +346,8 @@ INL void mix_rows(float *O, int ldo, const float *W, int tw, const float *X, int
                 vf a0 = splat(0.f), a1 = splat(0.f), b0 = splat(0.f), b1 = splat(0.f);
                 for (int j = 0; j < T; j++) {
                     const float *x = X + (size_t)j * ldx + c;
-                    vf x0 = ld(x), x1 = ld(x + 8), p = splat(WAT(W, i, j)), q = splat(WAT(W, i + 1, j));
+                    vf x0 = ld(x), x1 = ld(x + 8);
+                    float p = WAT(W, i, j), q = WAT(W, i + 1, j);
                     a0 += p * x0; a1 += p * x1; b0 += q * x0; b1 += q * x1;
                 }
                 st(o0 + c, a0); st(o0 + c + 8, a1); st(o1 + c, b0); st(o1 + c + 8, b1);
@@ -352,7 +356,7 @@ INL void mix_rows(float *O, int ldo, const float *W, int tw, const float *X, int
                 vf a0 = splat(0.f), b0 = splat(0.f);
                 for (int j = 0; j < T; j++) {
                     vf x0 = ld(X + (size_t)j * ldx + c);
-                    a0 += splat(WAT(W, i, j)) * x0; b0 += splat(WAT(W, i + 1, j)) * x0;
+                    a0 += WAT(W, i, j) * x0; b0 += WAT(W, i + 1, j) * x0;
                 }
                 st(o0 + c, a0); st(o1 + c, b0);
             }
@@ -390,7 +394,7 @@ INL void scores_softmax24(float *p, const float *q, float scale, const float *kt
 {
     vf s0 = splat(0.f), s1 = splat(0.f), s2 = splat(0.f);
     for (int d = 0; d < hd; d++) {
-        vf a = splat(q[d] * scale);
+        float a = q[d] * scale;
         const float *b = kt + (size_t)d * 24;
         s0 += a * ld(b); s1 += a * ld(b + 8); s2 += a * ld(b + 16);
     }
@@ -409,7 +413,7 @@ INL void dscores24(float *ds, const float *p, const float *dO, float scale, cons
 {
     vf d0 = splat(0.f), d1 = splat(0.f), d2 = splat(0.f);
     for (int d = 0; d < hd; d++) {
-        vf a = splat(dO[d] * 1.f);
+        float a = dO[d] * 1.f;
         const float *b = vt + (size_t)d * 24;
         d0 += a * ld(b); d1 += a * ld(b + 8); d2 += a * ld(b + 16);
     }
