@@ -34,7 +34,15 @@ INL void st(float *p, vf v) { memcpy(p, &v, sizeof v); }
  * broadcast; so splat is written as 0 + a (exact except that -0 becomes +0,
  * identically in both clones), and hot loops write `scalar * vector`. */
 INL vf splat(float a) { vf z = {0}; return z + a; }
-INL float hsum(vf v) { return ((v[0] + v[1]) + (v[2] + v[3])) + ((v[4] + v[5]) + (v[6] + v[7])); }
+/* Horizontal sum by butterfly, result in every lane:
+ * ((v0+v4)+(v2+v6)) + ((v1+v5)+(v3+v7)). One fixed order everywhere. */
+INL vf hsumv(vf v)
+{
+    v = v + __builtin_shuffle(v, (vi){4, 5, 6, 7, 0, 1, 2, 3});
+    v = v + __builtin_shuffle(v, (vi){2, 3, 0, 1, 6, 7, 4, 5});
+    return v + __builtin_shuffle(v, (vi){1, 0, 3, 2, 5, 4, 7, 6});
+}
+INL float hsum(vf v) { return hsumv(v)[0]; }
 
 /* y[0..n) += a * x[0..n) */
 INL void axpy(float *restrict y, float a, const float *restrict x, int n)
@@ -56,6 +64,13 @@ INL float vsum(const float *x, int n)
 }
 
 INL vf vmax(vf a, vf b) { vi m = a > b; return (vf)(((vi)a & m) | ((vi)b & ~m)); }
+/* Horizontal max by butterfly, result in every lane (max is exact). */
+INL vf hmaxv(vf v)
+{
+    v = vmax(v, __builtin_shuffle(v, (vi){4, 5, 6, 7, 0, 1, 2, 3}));
+    v = vmax(v, __builtin_shuffle(v, (vi){2, 3, 0, 1, 6, 7, 4, 5}));
+    return vmax(v, __builtin_shuffle(v, (vi){1, 0, 3, 2, 5, 4, 7, 6}));
+}
 
 /* max of x[0..n), n >= 1 (max is exact, so the order does not matter). */
 INL float vmaxv(const float *x, int n)
@@ -65,7 +80,7 @@ INL float vmaxv(const float *x, int n)
     if (n >= VL) {
         vf m = ld(x);
         for (i = VL; i + VL <= n; i += VL) m = vmax(m, ld(x + i));
-        for (int k = 0; k < VL; k++) mx = m[k] > mx ? m[k] : mx;
+        mx = hmaxv(m)[0];
     }
     for (; i < n; i++) mx = x[i] > mx ? x[i] : mx;
     return mx;
@@ -398,12 +413,9 @@ INL void scores_softmax24(float *p, const float *q, float scale, const float *kt
         const float *b = kt + (size_t)d * 24;
         s0 += a * ld(b); s1 += a * ld(b + 8); s2 += a * ld(b + 16);
     }
-    vf m = vmax(vmax(s0, s1), s2);
-    float mx = m[0];
-    for (int k = 1; k < VL; k++) mx = m[k] > mx ? m[k] : mx;
-    vf vm = splat(mx);
+    vf vm = hmaxv(vmax(vmax(s0, s1), s2));
     s0 = vexp(s0 - vm); s1 = vexp(s1 - vm); s2 = vexp(s2 - vm);
-    vf inv = splat(1.f / hsum(((splat(0.f) + s0) + s1) + s2));
+    vf inv = splat(1.f) / hsumv(((splat(0.f) + s0) + s1) + s2);
     st(p, s0 * inv); st(p + 8, s1 * inv); st(p + 16, s2 * inv);
 }
 
@@ -420,7 +432,8 @@ INL void dscores24(float *ds, const float *p, const float *dO, float scale, cons
     vf p0 = ld(p), p1 = ld(p + 8), p2 = ld(p + 16);
     vf acc = splat(0.f);
     acc += p0 * d0; acc += p1 * d1; acc += p2 * d2;
-    vf dot = splat(hsum(acc)), vs = splat(scale);
+    vf dot = hsumv(acc);
+    const float vs = scale;
     st(ds, p0 * (d0 - dot) * vs); st(ds + 8, p1 * (d1 - dot) * vs); st(ds + 16, p2 * (d2 - dot) * vs);
 }
 
