@@ -304,6 +304,33 @@ HOT void nn_gelu_backward_saved(float *dinp, const float *dout, const float *in,
     for (; i < n; i++) dinp[i] = dout[i] * vgelu_grad(splat(in[i]), splat(sig[i]))[0];
 }
 
+HOT void nn_bias_gelu_forward_save(float *h, float *sig, float *out, const float *b, int M, int N)
+{
+    for (int r = 0; r < M; r++) {
+        float *hr = h + (size_t)r * N, *sr = sig + (size_t)r * N, *orow = out + (size_t)r * N;
+        int c = 0;
+        for (; c + VL <= N; c += VL) {
+            vf x = ld(hr + c) + ld(b + c), sg = vgsig(x);
+            st(hr + c, x); st(sr + c, sg); st(orow + c, x * sg);
+        }
+        for (; c < N; c++) {
+            float x = hr[c] + b[c];
+            vf sg = vgsig(splat(x));
+            hr[c] = x; sr[c] = sg[0]; orow[c] = (x * sg)[0];
+        }
+    }
+}
+
+HOT void nn_bias_residual_forward(float *out, const float *y, const float *b, const float *x, int M, int N)
+{
+    for (int r = 0; r < M; r++) {
+        size_t o = (size_t)r * N;
+        int c = 0;
+        for (; c + VL <= N; c += VL) st(out + o + c, (ld(y + o + c) + ld(b + c)) + ld(x + o + c));
+        for (; c < N; c++) out[o + c] = (y[o + c] + b[c]) + x[o + c];
+    }
+}
+
 /* ---- residual ---------------------------------------------------------------------- */
 HOT void nn_residual_forward(float *out, const float *a, const float *b, size_t n)
 {

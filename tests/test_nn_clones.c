@@ -15,6 +15,8 @@
 #define nn_gelu_backward base_gelu_backward
 #define nn_gelu_backward_saved base_gelu_backward_saved
 #define nn_residual_forward base_residual_forward
+#define nn_bias_gelu_forward_save base_bias_gelu_forward_save
+#define nn_bias_residual_forward base_bias_residual_forward
 #define nn_residual_backward base_residual_backward
 #define nn_attention_forward base_attention_forward
 #define nn_attention_backward base_attention_backward
