@@ -8,6 +8,7 @@
 #include "tsv.h"
 #include "teacher.h"
 #include <dirent.h>
+#include "estimator.h"
 #include "model.h"
 #include "patch.h"
 #include "train.h"
@@ -118,6 +119,18 @@ static int cmd_train(int argc, char **argv)
     if (st) { fprintf(stderr, "crownshy train: %s\n", cs_errmsg()); return 2; }
     patch_set *ps;
     if ((st = toy_data(&ps, stands, d, 1000 + 1000 * (unsigned long)seed, 0))) return fail("train", st);
+    /* SPEC §5 / paper §4.3: the batched clearance estimator must agree with
+     * the canonical one before any training; abort on mismatch. */
+    {
+        int nchk = ps->n < 16 ? ps->n : 16;
+        double *rr = malloc(sizeof(double) * nchk * PATCH_T * PATCH_P), diff = 0;
+        if (!rr) { patch_set_free(ps); return fail("train", cs_err(CS_ENOMEM, "out of memory")); }
+        for (int k = 0; k < nchk; k++) patch_set_radii(ps, k, ps->x1 + (size_t)k * PATCH_T * PATCH_P, rr + (size_t)k * PATCH_T * PATCH_P);
+        st = patch_clearance_check(est_clearance, ps->px, ps->py, rr, nchk, &diff);
+        free(rr);
+        if (st) { patch_set_free(ps); return fail("train", st); }
+        fprintf(stderr, "clearance check: batched vs canonical estimator on %d patches, max |diff| %.2g m\n", nchk, diff);
+    }
     train_opts opt = train_opts_default();
     opt.steps = steps; opt.batch = (int)batch; opt.lr = lr;
     opt.seed_init = 3 * seed + 1; opt.seed_batch = 3 * seed + 2; opt.seed_noise = 3 * seed + 3;
