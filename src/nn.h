@@ -63,7 +63,7 @@ void nn_attention_forward(float *out, float *prob, const float *qkv,
 void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
                            const float *prob, int B, int T, int C, int H,
                            nn_attn_mode mode, float *scratch);
-/* Floats of scratch the attention kernels need. */
+/* Floats of scratch the attention kernels need (T*T). */
 size_t nn_attention_scratch_len(int T, int C, int H);
 
 /* y[i] = exp(x[i]) with a range-reduced polynomial (|rel err| < 4e-7 on
