@@ -60,6 +60,9 @@ cs_status train_alloc(train **out, const model_cfg *cfg, const patch_set *data, 
                       cfg->T, cfg->P, cfg->nfeat, cfg->ncond, PATCH_T, PATCH_P, PATCH_NFEAT, PATCH_NCOND);
     if (o->batch < 1 || o->steps < 1 || !(o->lr > 0))
         return cs_err(CS_EINPUT, "train: batch %d, steps %ld, lr %g must be positive", o->batch, o->steps, o->lr);
+    if (!(o->warmup >= 0 && o->warmup < 1) || !(o->lr_final >= 0 && o->lr_final <= 1))
+        return cs_err(CS_EINPUT, "train: warm-up fraction %g must be in [0,1) and final lr fraction %g in [0,1]",
+                      o->warmup, o->lr_final);
     train *t = calloc(1, sizeof *t);
     if (!t) return cs_err(CS_ENOMEM, "train: out of memory");
     t->o = *o;
@@ -328,7 +331,7 @@ cs_status train_load(train *t, const char *path)
     else if (memcmp(h.seeds, mine.seeds, sizeof h.seeds)) what = "seeds";
     else if (h.ndata != mine.ndata || h.data_hash != mine.data_hash || h.scale != mine.scale) what = "training data";
     else if (h.rng_size != mine.rng_size) what = "RNG type";
-    else if (h.step < 0 || h.step > h.steps || h.pos < 0 || h.pos > h.ndata) what = "step counters";
+    else if (h.step < 0 || h.step > h.steps || h.pos < 0 || h.pos > h.ndata || h.epoch < 0) what = "step counters";
     if (what) { free(p); return cs_err(CS_EINPUT, "%s: checkpoint belongs to a different run (%s differs)", path, what); }
     const unsigned char *q = p + 12 + sizeof h;
     memcpy(gsl_rng_state(t->rng_init), q, h.rng_size); q += h.rng_size;
