@@ -36,11 +36,20 @@ INL void st(float *p, vf v) { memcpy(p, &v, sizeof v); }
 INL vf splat(float a) { vf z = {0}; return z + a; }
 /* Horizontal sum by butterfly, result in every lane:
  * ((v0+v4)+(v2+v6)) + ((v1+v5)+(v3+v7)). One fixed order everywhere. */
+#if defined(__clang__)
+#define SWAP4(v) __builtin_shufflevector((v), (v), 4, 5, 6, 7, 0, 1, 2, 3)
+#define SWAP2(v) __builtin_shufflevector((v), (v), 2, 3, 0, 1, 6, 7, 4, 5)
+#define SWAP1(v) __builtin_shufflevector((v), (v), 1, 0, 3, 2, 5, 4, 7, 6)
+#else
+#define SWAP4(v) __builtin_shuffle((v), (vi){4, 5, 6, 7, 0, 1, 2, 3})
+#define SWAP2(v) __builtin_shuffle((v), (vi){2, 3, 0, 1, 6, 7, 4, 5})
+#define SWAP1(v) __builtin_shuffle((v), (vi){1, 0, 3, 2, 5, 4, 7, 6})
+#endif
 INL vf hsumv(vf v)
 {
-    v = v + __builtin_shuffle(v, (vi){4, 5, 6, 7, 0, 1, 2, 3});
-    v = v + __builtin_shuffle(v, (vi){2, 3, 0, 1, 6, 7, 4, 5});
-    return v + __builtin_shuffle(v, (vi){1, 0, 3, 2, 5, 4, 7, 6});
+    v = v + SWAP4(v);
+    v = v + SWAP2(v);
+    return v + SWAP1(v);
 }
 INL float hsum(vf v) { return hsumv(v)[0]; }
 
@@ -67,9 +76,9 @@ INL vf vmax(vf a, vf b) { vi m = a > b; return (vf)(((vi)a & m) | ((vi)b & ~m));
 /* Horizontal max by butterfly, result in every lane (max is exact). */
 INL vf hmaxv(vf v)
 {
-    v = vmax(v, __builtin_shuffle(v, (vi){4, 5, 6, 7, 0, 1, 2, 3}));
-    v = vmax(v, __builtin_shuffle(v, (vi){2, 3, 0, 1, 6, 7, 4, 5}));
-    return vmax(v, __builtin_shuffle(v, (vi){1, 0, 3, 2, 5, 4, 7, 6}));
+    v = vmax(v, SWAP4(v));
+    v = vmax(v, SWAP2(v));
+    return vmax(v, SWAP1(v));
 }
 
 /* max of x[0..n), n >= 1 (max is exact, so the order does not matter). */
