@@ -1,12 +1,14 @@
 /* crownshy: the one command-line entry point. Only this file decides how the
  * process dies; library calls return a cs_status (SPEC §11 exit codes). */
 #include "cs.h"
+#include "experiments.h"
 #include "audit.h"
 #include "claims.h"
 #include "verify.h"
 #include "gate.h"
 #include "tsv.h"
-#include "teacher.h"
+#include "exp_main.h"
+#include "exp_field.h"
 #include <dirent.h>
 #include "estimator.h"
 #include "model.h"
@@ -421,27 +423,12 @@ static int cmd_check_tsv(int argc, char **argv)
     return rc;
 }
 
-/* Teacher cost (SPEC §10): ms per 144-tree stand at N = 48 and N = 384. */
-static int cmd_bench_teacher(int argc, char **argv)
-{
-    if (argc > 1 && !strcmp(argv[1], "--help")) {
-        puts("usage: crownshy bench-teacher [reps]\n"
-             "prints teacher ms per 144-tree controlled-lattice stand (d = 3.5 m, beta 0.06) at N = 48 and N = 384");
-        return 0;
-    }
-    int reps = argc > 1 ? atoi(argv[1]) : 10;
-    if (reps < 1) { fprintf(stderr, "bench-teacher: reps must be >= 1\n"); return 2; }
-    int levels[2] = {48, 384};
-    for (int k = 0; k < 2; k++) {
-        double ms = 0.0;
-        cs_status st = teacher_bench(levels[k], k ? (reps + 3) / 4 : reps, &ms);
-        if (st) { fprintf(stderr, "bench-teacher: %s\n", cs_errmsg()); return cs_exit_code(st); }
-        printf("teacher_ms_per_stand_N%d\t%.3f\n", levels[k], ms);
-    }
-    return 0;
-}
-
 static const cli_cmd cli_cmds[] = {
+    {"main-run", exp_main_cmd_run, "E3/E4: one (seed, arm) training + evaluation unit"},
+    {"main-baselines", exp_main_cmd_baselines, "E3/E4: direction-blind baseline and noise floor"},
+    {"main-summary", exp_main_cmd_summary, "E3/E4: gather runs into frozen tables"},
+    {"bench-teacher", exp_cmd_bench_teacher, "teacher ms per 144-tree stand at N = 48 and 384"},
+    {"run", exp_cmd_run, "run one experiment unit of E1/E2/figure data (crownshy run --help)"},
     {"gates", cmd_gates, "parse and list the preregistered gate files"},
     {"check-tsv", cmd_check_tsv, "validate frozen TSV files"},
     {"verify", cmd_verify, "audit, recompute every claim, judge gates, redraw figures"},
@@ -450,7 +437,16 @@ static const cli_cmd cli_cmds[] = {
     {"trace", cmd_trace, "trace one macro to its value, file, function, gate and test"},
     {"pin", cmd_pin, "re-pin the estimator, teacher and gates (deliberate)"},
     {"hash-frozen", cmd_hash_frozen, "record the hashes of frozen/ (make freeze)"},
-    {"bench-teacher", cmd_bench_teacher, "teacher ms per 144-tree stand at N = 48 and 384"},
+    {"field-summary", cmd_field_summary, "summarise a raw field table (FIELD_TABLE) with the canonical estimator"},
+    {"field-calibrate", cmd_field_calibrate, "E5: calibrate die-back beta to the field tree-mean median clearance"},
+    {"field-beta", cmd_field_beta, "E5: print beta_field from a calibration table"},
+    {"field-heldout", cmd_field_heldout, "E5: held-out spread, elongation and uncoupled control at beta_field"},
+    {"aniso-lattice", cmd_aniso_lattice, "E6: anisotropy on the controlled lattice at beta_field"},
+    {"aniso-hardcore", cmd_aniso_hardcore, "E6: hard-core stem family sweep"},
+    {"aniso-jitter", cmd_aniso_jitter, "E6: jitter-amplitude family sweep"},
+    {"aniso-jitter-calibrate", cmd_aniso_jitter_calibrate, "E6: calibrate jitter a* to the field anisotropy median"},
+    {"aniso-heldout", cmd_aniso_heldout, "E6: held-out stands at a*"},
+    {"field-diagnose", cmd_field_diagnose, "E5/E6: diagnostics for the elongation and anisotropy verdicts"},
     {"version", cmd_version, "print the version"},
     {"train", cmd_train, "train the flow-matching generator (toy stands for now)"},
     {"sample", cmd_sample, "generate crowns with a trained checkpoint (100 Euler steps)"},

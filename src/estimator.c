@@ -207,3 +207,39 @@ cs_status est_spread(const double *gaps, size_t n, double *iqr)
     free(c);
     return CS_OK;
 }
+
+cs_status est_directional_summary(const double *x, const double *y, const double *r, size_t n,
+                                  const unsigned char *use, est_directional *out)
+{
+    memset(out, 0, sizeof *out);
+    out->aniso_median = NAN;
+    size_t m = n ? n : 1;
+    double *tm = malloc(m * sizeof *tm), *gp = malloc(4 * m * sizeof *gp);
+    double *an = malloc(m * sizeof *an), *el = malloc(m * sizeof *el);
+    if (!tm || !gp || !an || !el) {
+        free(tm); free(gp); free(an); free(el);
+        return cs_err(CS_ENOMEM, "estimator: out of memory");
+    }
+    size_t nt = 0, na = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (use && !use[i]) continue;
+        double g[4];
+        est_cardinal_gaps(x, y, r, n, i, g);
+        if (isnan(g[0]) || isnan(g[1]) || isnan(g[2]) || isnan(g[3])) { out->incomplete++; continue; }
+        for (int c = 0; c < 4; c++) gp[4 * nt + c] = g[c];
+        tm[nt] = est_tree_mean(g);
+        el[nt] = est_elongation(r + i * CROWN_NSEC);
+        if (est_anisotropy(g, &an[na])) na++;
+        else out->aniso_excluded++;
+        nt++;
+    }
+    cs_status st = CS_OK;
+    out->trees = nt;
+    if (nt == 0) st = cs_err(CS_EINPUT, "estimator: no complete tree to summarise");
+    if (!st) st = est_median(tm, nt, &out->tree_mean_median);
+    if (!st) st = est_spread(gp, 4 * nt, &out->spread);
+    if (!st) st = est_median(el, nt, &out->elong_median);
+    if (!st && na > 0) st = est_median(an, na, &out->aniso_median);
+    free(tm); free(gp); free(an); free(el);
+    return st;
+}

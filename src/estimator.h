@@ -51,6 +51,23 @@ int est_anisotropy(const double gaps[4], double *aniso);
  * r(N)+r(S) and r(E)+r(W). */
 double est_elongation(const double *ri);
 
+/* Directional summary of a set of trees (the field comparisons, SPEC §7 E5/E6):
+ * for every tree with use[i] != 0 (use NULL: all trees), its four cardinal
+ * gaps. A tree lacking a neighbour in some cardinal cone is "incomplete" and
+ * left out of every statistic (counted); a tree with a non-positive cardinal
+ * gap is left out of the anisotropy median only (counted). */
+typedef struct {
+    size_t trees;            /* complete trees used */
+    size_t incomplete;       /* trees without a neighbour in some cone (excluded) */
+    size_t aniso_excluded;   /* trees with a non-positive cardinal gap (excluded from anisotropy) */
+    double tree_mean_median; /* median over trees of the tree-mean clearance, m */
+    double spread;           /* IQR of the pooled cardinal gaps (4 per tree), m */
+    double aniso_median;     /* median anisotropy (NaN when every tree is excluded) */
+    double elong_median;     /* median elongation */
+} est_directional;
+cs_status est_directional_summary(const double *x, const double *y, const double *r, size_t n,
+                                  const unsigned char *use, est_directional *out);
+
 /* Median, quantile (GSL on a sorted copy) and spread (= interquartile range). */
 cs_status est_median(const double *v, size_t n, double *out);
 cs_status est_quantile(const double *v, size_t n, double q, double *out);

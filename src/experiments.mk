@@ -1,3 +1,105 @@
 # experiments.mk: one make target per unit of the full run (included by the
 # Makefile). Each experiment block appends its units to REPRODUCE_UNITS and
 # gives a rule writing $(RESULTS)/<experiment>/<unit>.tsv via the CLI.
+
+# ---- E3 main experiment + E4 extrapolation (src/exp_main.c) ------------------
+# One unit per (seed, arm); checkpoints in build/ckpt/<scale>/ make a killed
+# unit resume bit-identically. `make -j2 reproduce` runs two units at a time.
+ifeq ($(SCALE),smoke)
+MAIN_NSEEDS := 2
+else
+MAIN_NSEEDS := $(shell awk '$$1=="seeds"{print $$2}' gates/main.gate)
+endif
+MAIN_SEED_LIST := $(shell seq -f '%02g' 1 $(MAIN_NSEEDS))
+MAIN_RUNS := $(foreach s,$(MAIN_SEED_LIST),$(RESULTS)/main/run_s$(s)_joint.tsv $(RESULTS)/main/run_s$(s)_indep.tsv)
+
+$(RESULTS)/main/run_s%_joint.tsv: | $(CLI)
+	@mkdir -p $(B)/ckpt/$(SCALE)
+	$(CLI) main-run --seed $* --arm joint --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/main_s$*_joint.ckpt --out $@
+$(RESULTS)/main/run_s%_indep.tsv: | $(CLI)
+	@mkdir -p $(B)/ckpt/$(SCALE)
+	$(CLI) main-run --seed $* --arm indep --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/main_s$*_indep.ckpt --out $@
+$(RESULTS)/main/baselines.tsv: | $(CLI)
+	$(CLI) main-baselines --scale $(SCALE) --out $@
+$(RESULTS)/main/runs.tsv: $(MAIN_RUNS) $(RESULTS)/main/baselines.tsv | $(CLI)
+	$(CLI) main-summary --dir $(RESULTS) --seeds $(MAIN_NSEEDS)
+
+.PHONY: main-experiment
+main-experiment: $(RESULTS)/main/runs.tsv
+REPRODUCE_UNITS += $(RESULTS)/main/runs.tsv
+# ---- E1 mechanism, E2 irreducibility (teacher) and teacher figure data ----------
+# 8 stands per cell at full scale, 1 at smoke scale (each unit is one process).
+ifeq ($(SCALE),smoke)
+TEACHER_STANDS := 1
+else
+TEACHER_STANDS := 8
+endif
+# $(CLI) is order-only below: rebuilding the binary must not invalidate finished units.
+TEACHER_DEPS := gates/mechanism.gate gates/irreducibility.gate
+MECH_UNITS := $(RESULTS)/mechanism/sweep.tsv $(RESULTS)/mechanism/ablation.tsv $(RESULTS)/mechanism/figure_crowns.tsv
+IRRED_UNITS := $(RESULTS)/irreducibility/perturb_train.tsv $(RESULTS)/irreducibility/refine_train.tsv \
+               $(RESULTS)/irreducibility/reduction_train.tsv
+TEACHER_FIG_UNITS := $(RESULTS)/hero/figure_crowns.tsv $(RESULTS)/pointcloud/figure_crowns.tsv
+REPRODUCE_UNITS += $(MECH_UNITS) $(IRRED_UNITS) $(TEACHER_FIG_UNITS)
+
+$(RESULTS)/mechanism/sweep.tsv: $(TEACHER_DEPS) | $(CLI)
+	$(CLI) run mechanism-sweep --stands $(TEACHER_STANDS) --out $(RESULTS)
+$(RESULTS)/mechanism/ablation.tsv: $(TEACHER_DEPS) | $(CLI)
+	$(CLI) run mechanism-ablation --stands $(TEACHER_STANDS) --out $(RESULTS)
+$(RESULTS)/mechanism/figure_crowns.tsv: $(TEACHER_DEPS) | $(CLI)
+	$(CLI) run fig-mechanism --out $(RESULTS)
+$(RESULTS)/irreducibility/perturb_train.tsv: $(TEACHER_DEPS) | $(CLI)
+	$(CLI) run irreducibility-perturb --stands $(TEACHER_STANDS) --out $(RESULTS)
+$(RESULTS)/irreducibility/refine_train.tsv: $(TEACHER_DEPS) | $(CLI)
+	$(CLI) run irreducibility-refine --stands $(TEACHER_STANDS) --out $(RESULTS)
+$(RESULTS)/irreducibility/reduction_train.tsv: $(TEACHER_DEPS) | $(CLI)
+	$(CLI) run irreducibility-reduction --stands $(TEACHER_STANDS) --out $(RESULTS)
+# second row at beta_field (E5): recomputed from the field calibration table
+$(RESULTS)/hero/figure_crowns.tsv: $(TEACHER_DEPS) $(RESULTS)/field/calibration.tsv | $(CLI)
+	$(CLI) run fig-hero --beta $$($(CLI) field-beta $(RESULTS)/field/calibration.tsv) --out $(RESULTS)
+$(RESULTS)/pointcloud/figure_crowns.tsv: $(TEACHER_DEPS) | $(CLI)
+	$(CLI) run fig-pointcloud --out $(RESULTS)
+
+# ---- E5 field validation and E6 anisotropy attribution (SPEC §7) -------------
+# Stand counts: full run 28 held-out stands (E5, E6 lattice, E6 held-out) and 12
+# per sweep level; smoke 3 and 2. Calibration seeds come from gates/field.gate.
+# E6 runs at beta_field, so every E6 unit depends on the E5 calibration.
+ifeq ($(SCALE),smoke)
+FIELD_STANDS := 3
+ANISO_SWEEP_STANDS := 2
+else
+FIELD_STANDS := 28
+ANISO_SWEEP_STANDS := 12
+endif
+FIELD_CAL := $(RESULTS)/field/calibration.tsv
+$(FIELD_CAL): | $(CLI)
+	$(CLI) field-calibrate --out $@
+$(RESULTS)/field/heldout.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) field-heldout --calibration $(FIELD_CAL) --stands $(FIELD_STANDS) --out $@
+$(RESULTS)/anisotropy/lattice.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) aniso-lattice --calibration $(FIELD_CAL) --stands $(FIELD_STANDS) --out $@
+$(RESULTS)/anisotropy/hardcore.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) aniso-hardcore --calibration $(FIELD_CAL) --stands $(ANISO_SWEEP_STANDS) --out $@
+$(RESULTS)/anisotropy/jitter.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) aniso-jitter --calibration $(FIELD_CAL) --stands $(ANISO_SWEEP_STANDS) --out $@
+$(RESULTS)/anisotropy/jitter_calibration.tsv: $(RESULTS)/anisotropy/jitter.tsv | $(CLI)
+	$(CLI) aniso-jitter-calibrate --sweep $< --out $@
+$(RESULTS)/anisotropy/heldout.tsv: $(FIELD_CAL) $(RESULTS)/anisotropy/jitter_calibration.tsv | $(CLI)
+	$(CLI) aniso-heldout --calibration $(FIELD_CAL) --jitter-calibration $(RESULTS)/anisotropy/jitter_calibration.tsv --stands $(FIELD_STANDS) --out $@
+REPRODUCE_UNITS += $(FIELD_CAL) $(RESULTS)/field/heldout.tsv $(RESULTS)/anisotropy/lattice.tsv \
+  $(RESULTS)/anisotropy/hardcore.tsv $(RESULTS)/anisotropy/jitter.tsv \
+  $(RESULTS)/anisotropy/jitter_calibration.tsv $(RESULTS)/anisotropy/heldout.tsv
+.PHONY: field anisotropy
+field: $(FIELD_CAL) $(RESULTS)/field/heldout.tsv
+anisotropy: $(RESULTS)/anisotropy/lattice.tsv $(RESULTS)/anisotropy/hardcore.tsv $(RESULTS)/anisotropy/heldout.tsv
+# E2 irreducibility again at the field operating point (SPEC §7 E2 "at beta_train
+# and at beta_field (E5)"): beta_field is recomputed from the E5 calibration table.
+IRRED_FIELD_UNITS := $(RESULTS)/irreducibility/perturb_field.tsv $(RESULTS)/irreducibility/refine_field.tsv \
+                     $(RESULTS)/irreducibility/reduction_field.tsv
+$(RESULTS)/irreducibility/perturb_field.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) run irreducibility-perturb --stands $(TEACHER_STANDS) --beta $$($(CLI) field-beta $(FIELD_CAL)) --tag field --out $(RESULTS)
+$(RESULTS)/irreducibility/refine_field.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) run irreducibility-refine --stands $(TEACHER_STANDS) --beta $$($(CLI) field-beta $(FIELD_CAL)) --tag field --out $(RESULTS)
+$(RESULTS)/irreducibility/reduction_field.tsv: $(FIELD_CAL) | $(CLI)
+	$(CLI) run irreducibility-reduction --stands $(TEACHER_STANDS) --beta $$($(CLI) field-beta $(FIELD_CAL)) --tag field --out $(RESULTS)
+REPRODUCE_UNITS += $(IRRED_FIELD_UNITS)

@@ -29,7 +29,8 @@ void prov_begin(prov *p, const char *experiment, int argc, char **argv)
     snprintf(p->experiment, sizeof p->experiment, "%s", experiment);
     size_t off = 0;
     off += (size_t)snprintf(p->command, sizeof p->command, "crownshy");
-    for (int i = 1; i < argc && off < sizeof p->command; i++)
+    /* argv[0] is the subcommand name (the CLI passes argv + 1) */
+    for (int i = 0; i < argc && off < sizeof p->command; i++)
         off += (size_t)snprintf(p->command + off, sizeof p->command - off, " %s", argv[i]);
     p->worst_overlap_m = -1.0;
     p->t0 = prov_now();

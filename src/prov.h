@@ -17,7 +17,8 @@ typedef struct {
     double t0;           /* start time (internal) */
 } prov;
 
-/* Start: records experiment name, command line (argv joined) and start time. */
+/* Start: records experiment name, command line ("crownshy " + argv joined; argv[0]
+ * is the subcommand as the CLI passes it) and start time. */
 void prov_begin(prov *p, const char *experiment, int argc, char **argv);
 /* Write all provenance lines (computes wall time now, hashes, git commit, date). */
 cs_status prov_write(tsv_writer *w, prov *p);

@@ -21,6 +21,9 @@
  * r_s + (q/8)(r_{s+1} - r_s). The self-check (teacher_worst_overlap) measures
  * exactly the quantities (a)-(c) test, with the same arithmetic, so it cannot
  * fire unless the rule is broken.
+ * A stand whose starting crowns already overlap (stems closer than about
+ * 0.05 (r*_i + r*_j), possible under strong jitter) is refused with CS_EINPUT
+ * ("unbuildable") instead of being grown with a bent rule.
  * Neighbours come from a uniform grid (pairs with nu < max r*_i + max r*_j):
  * no all-pairs loops. Single-threaded, deterministic. */
 #ifndef TEACHER_H
@@ -39,9 +42,10 @@ typedef struct {
     int nres;       /* growth resolution N (default 48) */
     double gamma;   /* vigour exponent (1) */
     double hbar;    /* > 0: use this stand mean height; <= 0: mean of h */
+    unsigned char *frozen_out; /* optional, n x CROWN_NSEC: 1 where a sector froze on contact */
 } teacher_params;
 
-/* beta 0.06, coupled, N 48, gamma 1, hbar from the heights. */
+/* beta 0.06, coupled, N 48, gamma 1, hbar from the heights, no frozen output. */
 void teacher_params_default(teacher_params *p);
 
 typedef struct {
@@ -61,7 +65,7 @@ typedef struct {
 } teacher_info;
 
 /* Grow the stand; r (n x CROWN_NSEC) receives the final crowns. Errors:
- * CS_EINPUT (bad parameters), CS_ENOMEM, CS_ENUMERIC (> 100 N rounds),
+ * CS_EINPUT (bad parameters; starting crowns overlap: "unbuildable"), CS_ENOMEM, CS_ENUMERIC (> 100 N rounds),
  * CS_EINVARIANT (self-check above 1e-9 m; info->worst_overlap holds it). */
 cs_status teacher_grow(const teacher_stand *st, const teacher_params *p, double *r, teacher_info *info);
 
@@ -71,8 +75,8 @@ cs_status teacher_grow(const teacher_stand *st, const teacher_params *p, double 
 cs_status teacher_worst_overlap(const double *x, const double *y, const double *r, size_t n,
                                 double *worst);
 
-/* Bench (SPEC §10): ms per 144-tree controlled-lattice stand at d = 3.5 m,
- * beta 0.06, for resolution nres, averaged over `reps` stands. */
+/* Bench (SPEC §10): CPU ms (one core) per 144-tree controlled-lattice stand at
+ * d = 3.5 m, beta 0.06, for resolution nres, averaged over `reps` stands. */
 cs_status teacher_bench(int nres, int reps, double *ms_per_stand);
 
 #endif

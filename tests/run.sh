@@ -13,7 +13,8 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 for t in "$@"; do
   if [ "$t" = "--" ]; then label=" [asan+ubsan]"; continue; fi
   name=$(basename "$t")$label
-  log="$log_dir/$(basename "$(dirname "$t")")-$(basename "$t").log"
+  suffix=""; [ -n "$label" ] && suffix="-asan"
+  log="$log_dir/$(basename "$t")$suffix.log"
   "$t" > "$log" 2>&1; rc=$?
   p=$(sed -n 's/^\[  PASSED  \] \([0-9]*\) test.*/\1/p' "$log" | tail -1)
   f=$(sed -n 's/^\[  FAILED  \] \([0-9]*\) test.*/\1/p' "$log" | tail -1)

@@ -170,6 +170,27 @@ static void test_spread_is_the_iqr(void **st)
     ASSERT_EXACT(m, 0.3);
 }
 
+static void test_directional_summary_of_the_hand_built_stand(void **st)
+{
+    (void)st;
+    double r[5 * CROWN_NSEC];
+    five(r);
+    unsigned char use[5] = {1, 0, 0, 1, 0};
+    est_directional d;
+    assert_int_equal(est_directional_summary(X5, Y5, r, 5, use, &d), CS_OK);
+    /* Tree 3 has nobody to its west: incomplete, left out. Tree 0 only. */
+    assert_int_equal(d.trees, 1);
+    assert_int_equal(d.incomplete, 1);
+    assert_int_equal(d.aniso_excluded, 0);
+    ASSERT_NEAR(d.tree_mean_median, 1.625, 1e-15);
+    /* IQR of {0.8, 1.6, 1.7, 2.4} with GSL's interpolation: 1.875 - 1.4. */
+    ASSERT_NEAR(d.spread, 0.475, 1e-14);
+    ASSERT_NEAR(d.aniso_median, 3.0, 1e-14);
+    ASSERT_EXACT(d.elong_median, 1.0);
+    unsigned char none[5] = {0, 0, 0, 0, 0};
+    assert_int_equal(est_directional_summary(X5, Y5, r, 5, none, &d), CS_EINPUT);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -187,6 +208,7 @@ int main(void)
         cmocka_unit_test(test_w1_rejects_empty_and_nonfinite),
         cmocka_unit_test(test_cover_of_one_disk),
         cmocka_unit_test(test_spread_is_the_iqr),
+        cmocka_unit_test(test_directional_summary_of_the_hand_built_stand),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

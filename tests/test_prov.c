@@ -39,8 +39,8 @@ static void test_provenance_block_has_every_key(void **s)
     char path[600];
     snprintf(path, sizeof path, "%s/p.tsv", dir);
     prov p;
-    char *argv[] = {"crownshy", "run", "demo"};
-    prov_begin(&p, "demo", 3, argv);
+    char *argv[] = {"run", "demo"};
+    prov_begin(&p, "demo", 2, argv);
     snprintf(p.seeds, sizeof p.seeds, "seed_derive(demo,*,0..3,*)");
     p.worst_overlap_m = 0.0;
     tsv_writer *w;

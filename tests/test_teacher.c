@@ -218,6 +218,47 @@ static void test_self_check_measures_a_known_overlap(void **st)
     ASSERT_EXACT(w, 0.0);
 }
 
+static void test_stems_closer_than_the_starting_crowns_are_unbuildable(void **st)
+{
+    (void)st;
+    /* Starting radius 0.05 * 4 = 0.2 m each; stems 0.3 m apart overlap by 0.1 m. */
+    double x[2] = {5.0, 5.3}, y[2] = {5.0, 5.0}, h[2] = {25.0, 20.0}, R[2] = {4.0, 4.0};
+    double t[2 * CROWN_NSEC], r[2 * CROWN_NSEC];
+    lobed(t, 4.0, 0.0, 2, 0.0);
+    lobed(t + CROWN_NSEC, 4.0, 0.0, 2, 0.0);
+    teacher_stand s = {2, x, y, h, R, t};
+    teacher_params p;
+    teacher_params_default(&p);
+    cs_errclear();
+    assert_int_equal(teacher_grow(&s, &p, r, NULL), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "unbuildable"));
+    /* The uncoupled twin has no contact rule and grows. */
+    p.coupled = 0;
+    assert_int_equal(teacher_grow(&s, &p, r, NULL), CS_OK);
+}
+
+static void test_frozen_output_marks_contact_sectors_only(void **st)
+{
+    (void)st;
+    double x[2] = {0.0, 4.0}, y[2] = {0.0, 0.0}, h[2] = {25.0, 25.0}, R[2] = {3.0, 3.0};
+    double t[2 * CROWN_NSEC], r[2 * CROWN_NSEC];
+    unsigned char fz[2 * CROWN_NSEC];
+    lobed(t, 3.0, 0.0, 2, 0.0);
+    lobed(t + CROWN_NSEC, 3.0, 0.0, 2, 0.0);
+    teacher_stand s = {2, x, y, h, R, t};
+    teacher_params p;
+    teacher_params_default(&p);
+    p.frozen_out = fz;
+    teacher_info inf;
+    assert_int_equal(teacher_grow(&s, &p, r, &inf), CS_OK);
+    assert_int_equal(fz[0], 1);              /* tree 0 facing east, toward tree 1 */
+    assert_int_equal(fz[12], 0);             /* tree 0 facing west: free */
+    assert_int_equal(fz[CROWN_NSEC + 12], 1); /* tree 1 facing west, toward tree 0 */
+    size_t cnt = 0;
+    for (int k = 0; k < 2 * CROWN_NSEC; k++) cnt += fz[k];
+    assert_int_equal(cnt, inf.frozen);
+}
+
 static void test_bad_parameters_are_rejected(void **st)
 {
     (void)st;
@@ -245,6 +286,8 @@ int main(void)
         cmocka_unit_test(test_growth_is_bit_identical_on_repeat),
         cmocka_unit_test(test_perturbation_keeps_hbar_and_moves_neighbours),
         cmocka_unit_test(test_self_check_measures_a_known_overlap),
+        cmocka_unit_test(test_stems_closer_than_the_starting_crowns_are_unbuildable),
+        cmocka_unit_test(test_frozen_output_marks_contact_sectors_only),
         cmocka_unit_test(test_bad_parameters_are_rejected),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,0 +1,251 @@
+/* claim_main: computing functions for the E3 main and E4 extrapolation
+ * claims (reference paper §5.1-§5.2; gates/main.gate, gates/extrapolation.gate),
+ * from frozen/main/runs.tsv, frozen/main/baselines.tsv and
+ * frozen/extrapolation/runs.tsv written by src/exp_main.c. m_J and m_I are
+ * medians over seeds of the per-run error; p is the exact two-sided Wilcoxon
+ * signed-rank test of the paired per-seed errors. */
+#include "claims.h"
+#include "stats.h"
+#include "tsv.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAXSEED 64
+
+typedef struct { int n; double joint[MAXSEED], indep[MAXSEED], shuffled[MAXSEED]; } main_runs;
+
+static cs_status gate_num(const char *file, const char *key, double *v)
+{
+    gate *g;
+    cs_status st = claim_gate_load(file, &g);
+    if (st) return st;
+    st = gate_value(g, key, 0, v);
+    gate_free(g);
+    return st;
+}
+
+static cs_status read_runs(const char *path, main_runs *r, claim_result *res)
+{
+    tsv *t;
+    cs_status st = tsv_read(path, &t);
+    if (st) return st;
+    int seen[MAXSEED][3] = {{0}};
+    int maxs = 0;
+    for (size_t i = 0; i < tsv_nrows(t) && !st; i++) {
+        long s;
+        double e;
+        if ((st = tsv_long(t, i, "seed", &s)) || (st = tsv_double(t, i, "error", &e))) break;
+        const char *arm = tsv_str(t, i, "arm"), *probe = tsv_str(t, i, "probe");
+        if (s < 1 || s > MAXSEED || !arm || !probe) { st = cs_err(CS_EINPUT, "%s:%d: field 'seed': out of range or arm/probe missing", path, tsv_line(t, i)); break; }
+        int k = !strcmp(arm, "joint") && !strcmp(probe, "generated") ? 0 : !strcmp(arm, "indep") && !strcmp(probe, "generated") ? 1
+              : !strcmp(arm, "joint") && !strcmp(probe, "shuffled") ? 2 : -1;
+        if (k < 0) { st = cs_err(CS_EINPUT, "%s:%d: field 'arm'/'probe': unexpected '%s'/'%s'", path, tsv_line(t, i), arm, probe); break; }
+        if (seen[s - 1][k]++) { st = cs_err(CS_EINPUT, "%s:%d: field 'seed': seed %ld %s/%s appears twice", path, tsv_line(t, i), s, arm, probe); break; }
+        (k == 0 ? r->joint : k == 1 ? r->indep : r->shuffled)[s - 1] = e;
+        if (s > maxs) maxs = (int)s;
+    }
+    for (int s = 0; s < maxs && !st; s++)
+        for (int k = 0; k < 3; k++)
+            if (!seen[s][k]) { st = cs_err(CS_EINPUT, "%s: seed %d lacks its %s row", path, s + 1, k == 0 ? "joint" : k == 1 ? "indep" : "shuffled"); break; }
+    double want;
+    if (!st && !(st = gate_num("main.gate", "seeds", &want)) && maxs != (int)want)
+        st = cs_err(CS_EINPUT, "%s: %d seeds, gates/main.gate requires %g", path, maxs, want);
+    r->n = maxs;
+    snprintf(res->where, sizeof res->where, "%s (%d seeds x 2 arms)", path, maxs);
+    tsv_free(t);
+    return st;
+}
+
+static double med(const double *x, int n)
+{
+    double m = NAN;
+    stats_median(x, (size_t)n, &m);
+    return m;
+}
+
+/* mean over the unseen spacings of the direction-blind or noise-floor W1 */
+static cs_status read_baseline(const char *col, const char *split, double d_only, double *out, char *where, size_t wn)
+{
+    const char *path = "frozen/main/baselines.tsv";
+    tsv *t;
+    cs_status st = tsv_read(path, &t);
+    if (st) return st;
+    double s = 0;
+    int n = 0;
+    for (size_t i = 0; i < tsv_nrows(t) && !st; i++) {
+        double v, d;
+        const char *sp = tsv_str(t, i, "split");
+        if ((st = tsv_double(t, i, col, &v)) || (st = tsv_double(t, i, "spacing", &d))) break;
+        if (!sp) { st = cs_err(CS_EINPUT, "%s:%d: field 'split' missing", path, tsv_line(t, i)); break; }
+        if (strcmp(sp, split) || (d_only > 0 && fabs(d - d_only) > 1e-9)) continue;
+        s += v;
+        n++;
+    }
+    if (!st && n == 0) st = cs_err(CS_EINPUT, "%s: no %s rows%s", path, split, d_only > 0 ? " at that spacing" : "");
+    if (!st) *out = s / n;
+    if (where) snprintf(where, wn, "%s (%s, %s)", path, col, split);
+    tsv_free(t);
+    return st;
+}
+
+cs_status claim_main_median(const claim_row *row, claim_result *res)
+{
+    main_runs r;
+    cs_status st = read_runs(row->source, &r, res);
+    if (st) return st;
+    claim_set_value(row, res, med(strcmp(row->macro, "MainJoint") ? r.indep : r.joint, r.n));
+    return CS_OK;
+}
+
+cs_status claim_main_range(const claim_row *row, claim_result *res)
+{
+    main_runs r;
+    cs_status st = read_runs(row->source, &r, res);
+    if (st) return st;
+    const double *x = !strncmp(row->macro, "MainJoint", 9) ? r.joint : r.indep;
+    int hi = strstr(row->macro, "Hi") != NULL;
+    claim_set_value(row, res, hi ? stats_max(x, (size_t)r.n) : stats_min(x, (size_t)r.n));
+    return CS_OK;
+}
+
+cs_status claim_main_rel(const claim_row *row, claim_result *res)
+{
+    main_runs r;
+    cs_status st = read_runs(row->source, &r, res);
+    if (st) return st;
+    double mj = med(r.joint, r.n), mi = med(r.indep, r.n);
+    double rel = (mi - mj) / mi;
+    claim_set_value(row, res, 100.0 * rel);
+    claim_judge(row, res, GATE_GE, rel);
+    return CS_OK;
+}
+
+cs_status claim_main_p(const claim_row *row, claim_result *res)
+{
+    main_runs r;
+    cs_status st = read_runs(row->source, &r, res);
+    if (st) return st;
+    double p;
+    if ((st = stats_wilcoxon_exact(r.indep, r.joint, (size_t)r.n, &p, NULL, NULL))) return st;
+    claim_set_value(row, res, p);
+    claim_judge(row, res, GATE_LT, p);
+    return CS_OK;
+}
+
+cs_status claim_main_geom_ratio(const claim_row *row, claim_result *res)
+{
+    main_runs r;
+    cs_status st = read_runs(row->source, &r, res);
+    if (st) return st;
+    double ratio = med(r.shuffled, r.n) / med(r.joint, r.n);
+    claim_set_value(row, res, ratio);
+    claim_judge(row, res, GATE_GE, ratio);
+    return CS_OK;
+}
+
+cs_status claim_main_noise(const claim_row *row, claim_result *res)
+{
+    double v;
+    cs_status st = read_baseline("noise_floor_w1", "unseen", 0, &v, res->where, sizeof res->where);
+    if (st) return st;
+    claim_set_value(row, res, v);
+    return CS_OK;
+}
+
+cs_status claim_main_iso(const claim_row *row, claim_result *res)
+{
+    double v;
+    cs_status st = read_baseline("direction_blind_w1", "unseen", 0, &v, res->where, sizeof res->where);
+    if (st) return st;
+    claim_set_value(row, res, v);
+    /* precondition: m_J <= 0.5 x direction-blind error (needs the runs) */
+    main_runs r;
+    claim_result tmp = *res;
+    if (read_runs("frozen/main/runs.tsv", &r, &tmp) == CS_OK)
+        claim_judge(row, res, GATE_LE, med(r.joint, r.n) / v);
+    else {
+        res->gate = VERDICT_PENDING;
+        snprintf(res->gate_detail, sizeof res->gate_detail, "needs frozen/main/runs.tsv: %s", cs_errmsg());
+    }
+    return CS_OK;
+}
+
+/* extrapolation: per spacing, median over seeds of each arm's W1 */
+typedef struct { int n; double d[4]; double joint[4][MAXSEED], indep[4][MAXSEED]; int nj[4], ni[4]; } extrap_runs;
+
+static cs_status read_extrap(const char *path, extrap_runs *e, claim_result *res)
+{
+    memset(e, 0, sizeof *e);
+    tsv *t;
+    cs_status st = tsv_read(path, &t);
+    if (st) return st;
+    for (size_t i = 0; i < tsv_nrows(t) && !st; i++) {
+        long s;
+        double d, w1;
+        if ((st = tsv_long(t, i, "seed", &s)) || (st = tsv_double(t, i, "spacing", &d)) || (st = tsv_double(t, i, "w1", &w1))) break;
+        const char *arm = tsv_str(t, i, "arm");
+        int k = 0;
+        while (k < e->n && fabs(e->d[k] - d) > 1e-9) k++;
+        if (k == e->n) { if (e->n == 4) { st = cs_err(CS_EINPUT, "%s:%d: more than 4 spacings", path, tsv_line(t, i)); break; } e->d[e->n++] = d; }
+        if (s < 1 || s > MAXSEED || !arm) { st = cs_err(CS_EINPUT, "%s:%d: field 'seed' or 'arm' invalid", path, tsv_line(t, i)); break; }
+        if (!strcmp(arm, "joint")) e->joint[k][e->nj[k]++] = w1;
+        else if (!strcmp(arm, "indep")) e->indep[k][e->ni[k]++] = w1;
+        else { st = cs_err(CS_EINPUT, "%s:%d: field 'arm': '%s'", path, tsv_line(t, i), arm); break; }
+    }
+    for (int k = 0; k < e->n && !st; k++)
+        if (e->nj[k] != e->ni[k] || e->nj[k] < 1) st = cs_err(CS_EINPUT, "%s: spacing %.1f has %d joint and %d indep runs", path, e->d[k], e->nj[k], e->ni[k]);
+    snprintf(res->where, sizeof res->where, "%s", path);
+    tsv_free(t);
+    return st;
+}
+
+cs_status claim_extrap_rel(const claim_row *row, claim_result *res)
+{
+    extrap_runs e;
+    cs_status st = read_extrap(row->source, &e, res);
+    if (st) return st;
+    gate *g;
+    if ((st = claim_gate_load("extrapolation.gate", &g))) return st;
+    double dlo, dhi;
+    st = gate_value(g, "spacings_m", 0, &dlo);
+    if (!st) st = gate_value(g, "spacings_m", 1, &dhi);
+    gate_free(g);
+    if (st) return st;
+    double want = !strcmp(row->macro, "ExtrapLowRel") ? dlo : dhi;
+    int k = 0;
+    while (k < e.n && fabs(e.d[k] - want) > 1e-9) k++;
+    if (k == e.n) return cs_err(CS_EINPUT, "%s: no runs at %.1f m", row->source, want);
+    double mj = med(e.joint[k], e.nj[k]), mi = med(e.indep[k], e.ni[k]);
+    double rel = (mi - mj) / mi;
+    claim_set_value(row, res, 100.0 * rel);
+    claim_judge(row, res, GATE_GE, rel);
+    /* judged per spacing, together with: the joint arm below the direction-blind error there */
+    double blind;
+    if ((st = read_baseline("direction_blind_w1", "extrap", want, &blind, NULL, 0))) {
+        res->gate = VERDICT_PENDING;
+        snprintf(res->gate_detail, sizeof res->gate_detail, "needs frozen/main/baselines.tsv: %s", cs_errmsg());
+        return CS_OK;
+    }
+    if (res->gate == VERDICT_PASS && !(mj < blind)) res->gate = VERDICT_FAIL;
+    size_t l = strlen(res->gate_detail);
+    snprintf(res->gate_detail + l, sizeof res->gate_detail - l, "; joint %.4g %s direction-blind %.4g at %.1f m", mj, mj < blind ? "<" : ">=", blind, want);
+    return CS_OK;
+}
+
+cs_status claim_extrap_p(const claim_row *row, claim_result *res)
+{
+    extrap_runs e;
+    cs_status st = read_extrap(row->source, &e, res);
+    if (st) return st;
+    double a[4 * MAXSEED], b[4 * MAXSEED];
+    size_t n = 0;
+    for (int k = 0; k < e.n; k++)
+        for (int i = 0; i < e.nj[k]; i++) { a[n] = e.indep[k][i]; b[n] = e.joint[k][i]; n++; }
+    double p;
+    if ((st = stats_wilcoxon_exact(a, b, n, &p, NULL, NULL))) return st;
+    claim_set_value(row, res, p);
+    claim_judge(row, res, GATE_LT, p);
+    return CS_OK;
+}

@@ -1,0 +1,364 @@
+/* claim_teacher: computing functions for the teacher claims — E1 mechanism
+ * (paper §3.2; gates/mechanism.gate), E2 irreducibility (§3.3;
+ * gates/irreducibility.gate), the hero figure (E9) and the point-cloud figure
+ * (E8) — from the frozen tables written by src/experiments.c. Row verdicts are
+ * recomputed from the clearances and the gate thresholds, never read from a
+ * stored pass column. */
+#include "claims.h"
+#include "stats.h"
+#include "tsv.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static cs_status gnum(const char *file, const char *key, size_t i, double *v)
+{
+    gate *g;
+    cs_status st = claim_gate_load(file, &g);
+    if (st) return st;
+    st = gate_value(g, key, i, v);
+    gate_free(g);
+    return st;
+}
+
+/* Row of `t` whose text column `col` equals `val`; error naming the file otherwise. */
+static cs_status find_row(const tsv *t, const char *col, const char *val, size_t *row)
+{
+    long r = tsv_find(t, col, val);
+    if (r < 0) return cs_err(CS_EINPUT, "%s: no row with %s = %s", tsv_path(t), col, val);
+    *row = (size_t)r;
+    return CS_OK;
+}
+
+static void where_row(claim_result *res, const tsv *t, size_t row, const char *col)
+{
+    snprintf(res->where, sizeof res->where, "%s:%d (%s)", tsv_path(t), tsv_line(t, row), col);
+}
+
+/* ---- E1 mechanism ---- */
+
+cs_status claim_mech_ablation_k(const claim_row *row, claim_result *res)
+{
+    const char *arm, *col, *gkey = NULL;
+    gate_op op = GATE_GE;
+    const char *m = row->macro;
+    if (!strncmp(m, "MechCoupOff", 11)) { arm = "coupling_off"; op = GATE_LT; gkey = "coupling_off_k1_max_m"; }
+    else if (!strcmp(m, "MechAbrOff")) { arm = "abrasion_off"; op = GATE_LT; gkey = "abrasion_off_k1_max_m"; }
+    else arm = "both_on";
+    col = strstr(m, "KTwo") ? "k2_m" : strstr(m, "KThree") ? "k3_m" : "k1_m";
+    tsv *t;
+    cs_status st = tsv_read(row->source, &t);
+    if (st) return st;
+    size_t r = 0;
+    double v;
+    if (!(st = find_row(t, "arm", arm, &r)) && !(st = tsv_double(t, r, col, &v))) {
+        where_row(res, t, r, col);
+        claim_set_value(row, res, v);
+        if (strcmp(row->gate, "-")) claim_judge(row, res, op, v);
+        (void)gkey;
+    }
+    tsv_free(t);
+    return st;
+}
+
+cs_status claim_mech_cover(const claim_row *row, claim_result *res)
+{
+    tsv *t;
+    cs_status st = tsv_read(row->source, &t);
+    if (st) return st;
+    size_t r = 0;
+    double v;
+    if (!(st = find_row(t, "arm", "both_on", &r)) && !(st = tsv_double(t, r, "cover", &v))) {
+        where_row(res, t, r, "cover");
+        claim_set_value(row, res, v);
+        claim_judge(row, res, GATE_GE, v);
+    }
+    tsv_free(t);
+    return st;
+}
+
+/* Worst self-check overlap over every coupled growth of E1 (sweep and ablation). */
+cs_status claim_mech_overlap(const claim_row *row, claim_result *res)
+{
+    double worst = 0.0;
+    tsv *t;
+    cs_status st = tsv_read(row->source, &t);
+    if (st) return st;
+    for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+        long coupled;
+        double o;
+        if ((st = tsv_long(t, r, "coupled", &coupled)) || (st = tsv_double(t, r, "overlap_m", &o))) break;
+        if (coupled && o > worst) worst = o;
+    }
+    tsv_free(t);
+    if (st) return st;
+    const char *sweep = "frozen/mechanism/sweep.tsv";
+    if ((st = tsv_read(sweep, &t))) return st;
+    for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+        double o;
+        if ((st = tsv_double(t, r, "worst_overlap_m", &o))) break;
+        if (o > worst) worst = o;
+    }
+    tsv_free(t);
+    if (st) return st;
+    snprintf(res->where, sizeof res->where, "%s (coupled arms) and %s (worst_overlap_m)", row->source, sweep);
+    claim_set_value(row, res, worst);
+    claim_judge(row, res, GATE_LE, worst);
+    return CS_OK;
+}
+
+/* A sweep row passes when k1, k2, k3 and cover clear the gate's bars. */
+static cs_status sweep_row_pass(const tsv *t, size_t r, int *pass)
+{
+    double k[3], cover, kmin[3], cmin;
+    const char *kc[3] = {"k1_m", "k2_m", "k3_m"}, *gk[3] = {"clearance_k1_min_m", "clearance_k2_min_m", "clearance_k3_min_m"};
+    cs_status st = CS_OK;
+    for (int i = 0; i < 3 && !st; i++) {
+        st = tsv_double(t, r, kc[i], &k[i]);
+        if (!st) st = gnum("mechanism.gate", gk[i], 0, &kmin[i]);
+    }
+    if (!st) st = tsv_double(t, r, "cover", &cover);
+    if (!st) st = gnum("mechanism.gate", "cover_min", 0, &cmin);
+    if (st) return st;
+    *pass = k[0] >= kmin[0] && k[1] >= kmin[1] && k[2] >= kmin[2] && cover >= cmin;
+    return CS_OK;
+}
+
+cs_status claim_mech_hits(const claim_row *row, claim_result *res)
+{
+    tsv *t;
+    cs_status st = tsv_read(row->source, &t);
+    if (st) return st;
+    int hits = 0;
+    for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+        int p;
+        if (!(st = sweep_row_pass(t, r, &p))) hits += p;
+    }
+    snprintf(res->where, sizeof res->where, "%s (%zu rows, verdicts recomputed from gates/mechanism.gate)", row->source, tsv_nrows(t));
+    tsv_free(t);
+    if (st) return st;
+    claim_set_value(row, res, hits);
+    return CS_OK;
+}
+
+/* The preregistered training operating point passes at every spacing. */
+cs_status claim_mech_train_row(const claim_row *row, claim_result *res, double beta)
+{
+    const char *sweep = "frozen/mechanism/sweep.tsv";
+    tsv *t;
+    cs_status st = tsv_read(sweep, &t);
+    if (st) return st;
+    int rows = 0, passed = 0;
+    for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+        double b;
+        int p;
+        if ((st = tsv_double(t, r, "beta", &b))) break;
+        if (fabs(b - beta) > 1e-9) continue;
+        if ((st = sweep_row_pass(t, r, &p))) break;
+        rows++;
+        passed += p;
+    }
+    tsv_free(t);
+    if (st) return st;
+    size_t nsp = 0;
+    gate *g;
+    if (!(st = claim_gate_load("mechanism.gate", &g))) { nsp = gate_count(g, "spacings_m"); gate_free(g); }
+    if (st) return st;
+    res->gate = rows == (int)nsp && passed == rows ? VERDICT_PASS : VERDICT_FAIL;
+    snprintf(res->gate_detail, sizeof res->gate_detail, "beta %.2f row passes at %d of %d spacings (%s)", beta, passed, (int)nsp, sweep);
+    (void)row;
+    return CS_OK;
+}
+
+/* ---- E2 irreducibility ---- */
+
+cs_status claim_irred_resp_lo(const claim_row *row, claim_result *res)
+{
+    tsv *t;
+    cs_status st = tsv_read(row->source, &t);
+    if (st) return st;
+    double lo = INFINITY;
+    size_t n = tsv_nrows(t);
+    for (size_t r = 0; r < n && !st; r++) {
+        double f;
+        if (!(st = tsv_double(t, r, "response_fraction", &f)) && f < lo) lo = f;
+    }
+    size_t want = 0;
+    gate *g;
+    if (!st && !(st = claim_gate_load("irreducibility.gate", &g))) { want = gate_count(g, "spacings_m"); gate_free(g); }
+    if (!st && n != want) st = cs_err(CS_EINPUT, "%s: %zu spacings, gates/irreducibility.gate lists %zu", row->source, n, want);
+    snprintf(res->where, sizeof res->where, "%s (min response_fraction over %zu spacings)", row->source, n);
+    tsv_free(t);
+    if (st) return st;
+    claim_set_value(row, res, 100.0 * lo);
+    claim_judge(row, res, GATE_GE, lo);
+    return CS_OK;
+}
+
+cs_status claim_irred_resp_hi(const claim_row *row, claim_result *res)
+{
+    tsv *t;
+    cs_status st = tsv_read(row->source, &t);
+    if (st) return st;
+    double hi = -INFINITY;
+    for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+        double f;
+        if (!(st = tsv_double(t, r, "response_fraction", &f)) && f > hi) hi = f;
+    }
+    snprintf(res->where, sizeof res->where, "%s (max response_fraction)", row->source);
+    tsv_free(t);
+    if (st) return st;
+    claim_set_value(row, res, 100.0 * hi);
+    return CS_OK;
+}
+
+/* Pooled row at the finest refinement level. */
+static cs_status refine_finest(const char *path, size_t *row, tsv **out)
+{
+    tsv *t;
+    cs_status st = tsv_read(path, &t);
+    if (st) return st;
+    double levels_hi;
+    size_t nl = 0;
+    gate *g;
+    if ((st = claim_gate_load("irreducibility.gate", &g))) { tsv_free(t); return st; }
+    nl = gate_count(g, "refine_levels");
+    st = gate_value(g, "refine_levels", nl - 1, &levels_hi);
+    gate_free(g);
+    long found = -1;
+    for (size_t r = 0; r < tsv_nrows(t) && !st && found < 0; r++) {
+        const char *scope = tsv_str(t, r, "scope");
+        double nres;
+        if ((st = tsv_double(t, r, "nres", &nres))) break;
+        if (scope && !strcmp(scope, "pooled") && nres == levels_hi) found = (long)r;
+    }
+    if (!st && found < 0) st = cs_err(CS_EINPUT, "%s: no pooled row at N = %g", path, levels_hi);
+    if (st) { tsv_free(t); return st; }
+    *row = (size_t)found;
+    *out = t;
+    return CS_OK;
+}
+
+cs_status claim_irred_resp_shrink(const claim_row *row, claim_result *res)
+{
+    tsv *t;
+    size_t r = 0;
+    cs_status st = refine_finest(row->source, &r, &t);
+    if (st) return st;
+    double v;
+    if (!(st = tsv_double(t, r, "magnitude_ratio", &v))) {
+        where_row(res, t, r, "magnitude_ratio");
+        claim_set_value(row, res, v);
+        claim_judge(row, res, GATE_GE, v);
+    }
+    tsv_free(t);
+    return st;
+}
+
+cs_status claim_irred_step_shrink(const claim_row *row, claim_result *res)
+{
+    tsv *t;
+    size_t r = 0;
+    cs_status st = refine_finest(row->source, &r, &t);
+    if (st) return st;
+    double v;
+    if (!(st = tsv_double(t, r, "step_ratio", &v))) {
+        where_row(res, t, r, "step_ratio");
+        claim_set_value(row, res, v);
+    }
+    tsv_free(t);
+    return st;
+}
+
+static cs_status reduction_pooled(const claim_row *row, claim_result *res, const char *col, int judge)
+{
+    tsv *t;
+    cs_status st = tsv_read(row->source, &t);
+    if (st) return st;
+    size_t r = 0;
+    double v;
+    if (!(st = find_row(t, "scope", "pooled", &r)) && !(st = tsv_double(t, r, col, &v))) {
+        where_row(res, t, r, col);
+        claim_set_value(row, res, v);
+        if (judge) claim_judge(row, res, GATE_GE, v);
+    }
+    tsv_free(t);
+    return st;
+}
+
+cs_status claim_irred_steps(const claim_row *row, claim_result *res) { return reduction_pooled(row, res, "miss_steps", 1); }
+cs_status claim_irred_miss(const claim_row *row, claim_result *res) { return reduction_pooled(row, res, "miss_m", 0); }
+
+/* ---- figures: hero (E9) and point cloud (E8) ---- */
+
+/* Stems drawn in one panel of a figure-crowns table. */
+static cs_status panel_stems(const char *path, const char *panel, double d, double *n, claim_result *res)
+{
+    tsv *t;
+    cs_status st = tsv_read(path, &t);
+    if (st) return st;
+    long cnt = 0;
+    for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+        double dd;
+        const char *p = tsv_str(t, r, "panel");
+        if ((st = tsv_double(t, r, "spacing_m", &dd))) break;
+        if (p && !strcmp(p, panel) && fabs(dd - d) < 1e-9) cnt++;
+    }
+    snprintf(res->where, sizeof res->where, "%s (rows of panel %s at %.1f m)", path, panel, d);
+    tsv_free(t);
+    if (!st && cnt == 0) st = cs_err(CS_EINPUT, "%s: no stems in panel %s at %.1f m", path, panel, d);
+    *n = (double)cnt;
+    return st;
+}
+
+cs_status claim_hero_stems(const claim_row *row, claim_result *res)
+{
+    double d = !strcmp(row->macro, "HeroStemsDense") ? 3.0 : 6.5, n;
+    cs_status st = panel_stems(row->source, "beta_train", d, &n, res);
+    if (st) return st;
+    claim_set_value(row, res, n);
+    return CS_OK;
+}
+
+cs_status claim_pc_stand(const claim_row *row, claim_result *res)
+{
+    const char *m = row->macro;
+    double d = strstr(m, "OtherA") ? 5.0 : strstr(m, "OtherB") ? 4.0 : 3.0;
+    if (strstr(m, "Trees")) {
+        double n;
+        cs_status st = panel_stems(row->source, "coupled", d, &n, res);
+        if (st) return st;
+        claim_set_value(row, res, n);
+        return CS_OK;
+    }
+    tsv *t;
+    cs_status st = tsv_read(row->source, &t);
+    if (st) return st;
+    char ds[16];
+    snprintf(ds, sizeof ds, "%g", d);
+    size_t r = 0;
+    double v;
+    if (!(st = find_row(t, "spacing_m", ds, &r)) && !(st = tsv_double(t, r, "contact_fraction", &v))) {
+        where_row(res, t, r, "contact_fraction");
+        claim_set_value(row, res, 100.0 * v);
+    }
+    tsv_free(t);
+    return st;
+}
+
+cs_status claim_pc_clearance(const claim_row *row, claim_result *res)
+{
+    tsv *t;
+    cs_status st = tsv_read(row->source, &t);
+    if (st) return st;
+    const char *col = !strcmp(row->macro, "PcCoupled") ? "k1_coupled_m" : "k1_uncoupled_m";
+    size_t r = 0;
+    double v;
+    if (!(st = find_row(t, "spacing_m", "3", &r)) && !(st = tsv_double(t, r, col, &v))) {
+        where_row(res, t, r, col);
+        claim_set_value(row, res, v);
+    }
+    tsv_free(t);
+    return st;
+}

@@ -1,0 +1,98 @@
+/* Smoke tests for src/experiments.c: units run at one stand per cell into a
+ * scratch directory, write provenance and the documented columns, and keep the
+ * ablation's ordering (coupling off interpenetrates, both on opens gaps). */
+#include "testutil.h"
+#include "experiments.h"
+#include "tsv.h"
+
+static int run(const char *unit, const char *out)
+{
+    char *argv[] = {"run", (char *)unit, "--stands", "1", "--out", (char *)out, NULL};
+    return exp_cmd_run(6, argv);
+}
+
+static double cell(const tsv *t, size_t row, const char *col)
+{
+    double v = NAN;
+    if (tsv_double(t, row, col, &v) != CS_OK) fail_msg("%s", cs_errmsg());
+    return v;
+}
+
+static void test_ablation_unit_writes_three_arms_in_order(void **st)
+{
+    (void)st;
+    const char *dir = tu_tmpdir("exp_ablation");
+    assert_int_equal(run("mechanism-ablation", dir), 0);
+    char path[600];
+    snprintf(path, sizeof path, "%s/mechanism/ablation.tsv", dir);
+    tsv *t = NULL;
+    assert_int_equal(tsv_read(path, &t), CS_OK);
+    assert_int_equal(tsv_nrows(t), 3);
+    assert_string_equal(tsv_str(t, 0, "arm"), "coupling_off");
+    assert_string_equal(tsv_str(t, 2, "arm"), "both_on");
+    assert_non_null(tsv_meta(t, "teacher_version"));
+    assert_non_null(tsv_meta(t, "worst_overlap_m"));
+    assert_true(cell(t, 0, "k1_m") < 0.0);
+    assert_true(cell(t, 2, "k1_m") > cell(t, 1, "k1_m"));
+    assert_true(cell(t, 2, "overlap_m") <= 1e-9);
+    tsv_free(t);
+}
+
+static void test_perturb_unit_judges_four_neighbours_per_stand(void **st)
+{
+    (void)st;
+    const char *dir = tu_tmpdir("exp_perturb");
+    assert_int_equal(run("irreducibility-perturb", dir), 0);
+    char path[600];
+    snprintf(path, sizeof path, "%s/irreducibility/perturb_train.tsv", dir);
+    tsv *t = NULL;
+    assert_int_equal(tsv_read(path, &t), CS_OK);
+    assert_int_equal(tsv_nrows(t), 5);
+    for (size_t r = 0; r < 5; r++) {
+        ASSERT_EXACT(cell(t, r, "judged"), 4.0);
+        double f = cell(t, r, "response_fraction");
+        assert_true(f >= 0.0 && f <= 1.0);
+    }
+    ASSERT_EXACT(cell(t, 0, "spacing_m"), 3.0);
+    tsv_free(t);
+}
+
+static void test_reduction_unit_reports_a_pooled_sigma(void **st)
+{
+    (void)st;
+    const char *dir = tu_tmpdir("exp_reduction");
+    assert_int_equal(run("irreducibility-reduction", dir), 0);
+    char path[600];
+    snprintf(path, sizeof path, "%s/irreducibility/reduction_train.tsv", dir);
+    tsv *t = NULL;
+    assert_int_equal(tsv_read(path, &t), CS_OK);
+    assert_int_equal(tsv_nrows(t), 6);
+    assert_string_equal(tsv_str(t, 0, "scope"), "pooled");
+    double m = cell(t, 0, "miss_m"), s = cell(t, 0, "step_m");
+    ASSERT_NEAR(cell(t, 0, "miss_steps"), m / s, 1e-12);
+    /* The pooled sigma's miss can only be at least each spacing's own best. */
+    for (size_t r = 1; r < 6; r++) assert_true(cell(t, r, "own_miss_m") <= cell(t, r, "miss_m"));
+    tsv_free(t);
+}
+
+static void test_bad_usage_exits_2(void **st)
+{
+    (void)st;
+    char *a1[] = {"run", "no-such-unit", NULL};
+    assert_int_equal(exp_cmd_run(2, a1), 2);
+    char *a2[] = {"run", "mechanism-sweep", "--stands", "0", NULL};
+    assert_int_equal(exp_cmd_run(4, a2), 2);
+    char *a3[] = {"run", "irreducibility-perturb", "--tag", "field", NULL};
+    assert_int_equal(exp_cmd_run(4, a3), 2);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_ablation_unit_writes_three_arms_in_order),
+        cmocka_unit_test(test_perturb_unit_judges_four_neighbours_per_stand),
+        cmocka_unit_test(test_reduction_unit_reports_a_pooled_sigma),
+        cmocka_unit_test(test_bad_usage_exits_2),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
