@@ -290,3 +290,32 @@ cs_status patch_set_add_toy(patch_set *s, int nstands, double d, unsigned long s
     gsl_rng_free(g);
     return st;
 }
+
+void patch_shuffle_positions(float *feat, int n, gsl_rng *rng)
+{
+    int perm[PATCH_T];
+    float pos[PATCH_T * 2];
+    for (int k = 0; k < n; k++) {
+        float *f = feat + (size_t)k * PATCH_T * PATCH_NFEAT;
+        for (int i = 0; i < PATCH_T; i++) {
+            perm[i] = i;
+            pos[2 * i] = f[i * PATCH_NFEAT];
+            pos[2 * i + 1] = f[i * PATCH_NFEAT + 1];
+        }
+        gsl_ran_shuffle(rng, perm, PATCH_T, sizeof(int));
+        for (int i = 0; i < PATCH_T; i++) {
+            f[i * PATCH_NFEAT] = pos[2 * perm[i]];
+            f[i * PATCH_NFEAT + 1] = pos[2 * perm[i] + 1];
+        }
+    }
+}
+
+void patch_direction_blind(const double *r, int ncrowns, double *out)
+{
+    for (int i = 0; i < ncrowns; i++) {
+        double m = 0;
+        for (int s = 0; s < PATCH_P; s++) m += r[i * PATCH_P + s];
+        m /= PATCH_P;
+        for (int s = 0; s < PATCH_P; s++) out[i * PATCH_P + s] = m;
+    }
+}
