@@ -10,9 +10,17 @@
 #include "exp_main.h"
 #include "exp_field.h"
 #include <dirent.h>
+#include "estimator.h"
+#include "model.h"
+#include "patch.h"
+#include "train.h"
+#include <errno.h>
+#include <gsl/gsl_rng.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 typedef int (*cmd_fn)(int argc, char **argv);
 typedef struct { const char *name; cmd_fn fn; const char *help; } cli_cmd;
@@ -21,6 +29,210 @@ static int cmd_version(int argc, char **argv)
 {
     (void)argc; (void)argv;
     puts("crownshy 0.1");
+    return 0;
+}
+
+/* ---- option parsing (shared by the model commands) ---------------------------- */
+typedef struct { const char *name; char type; void *dst; const char *help; } cli_opt;
+
+/* Parse "--name value" pairs; 2 on a usage error (message printed), 1 on --help. */
+static int parse_opts(const char *cmd, int argc, char **argv, const cli_opt *opts, int nopt,
+                      const char *synopsis)
+{
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            printf("usage: crownshy %s %s\n\noptions:\n", cmd, synopsis);
+            for (int k = 0; k < nopt; k++) printf("  --%-14s %s\n", opts[k].name, opts[k].help);
+            printf("\nexit codes: 0 ok, 2 usage error, 3 bad or missing input\n");
+            return 1;
+        }
+        int k = 0;
+        for (; k < nopt; k++)
+            if (!strncmp(argv[i], "--", 2) && !strcmp(argv[i] + 2, opts[k].name)) break;
+        if (k == nopt) { fprintf(stderr, "crownshy %s: unknown option '%s' (see --help)\n", cmd, argv[i]); return 2; }
+        if (i + 1 >= argc) { fprintf(stderr, "crownshy %s: option --%s needs a value\n", cmd, opts[k].name); return 2; }
+        const char *v = argv[++i];
+        char *end;
+        errno = 0;
+        if (opts[k].type == 'l') {
+            long x = strtol(v, &end, 10);
+            if (errno || *end || end == v) { fprintf(stderr, "crownshy %s: --%s: not an integer: '%s'\n", cmd, opts[k].name, v); return 2; }
+            *(long *)opts[k].dst = x;
+        } else if (opts[k].type == 'd') {
+            double x = strtod(v, &end);
+            if (errno || *end || end == v || !isfinite(x)) { fprintf(stderr, "crownshy %s: --%s: not a number: '%s'\n", cmd, opts[k].name, v); return 2; }
+            *(double *)opts[k].dst = x;
+        } else {
+            *(const char **)opts[k].dst = v;
+        }
+    }
+    return 0;
+}
+
+static int fail(const char *cmd, cs_status st)
+{
+    fprintf(stderr, "crownshy %s: %s\n", cmd, cs_errmsg());
+    return cs_exit_code(st);
+}
+
+/* Toy data until the teacher supplies stands: patches of toy stands (patch.h). */
+static cs_status toy_data(patch_set **out, long nstands, double d, unsigned long seed, double scale)
+{
+    patch_set *ps;
+    cs_status st = patch_set_alloc(&ps, (int)(64 * nstands));
+    if (!st) st = patch_set_add_toy(ps, (int)nstands, d, seed);
+    if (!st) st = patch_set_standardise(ps, scale > 0 ? scale : patch_set_rms(ps));
+    if (st) { patch_set_free(ps); return st; }
+    *out = ps;
+    return CS_OK;
+}
+
+static int cmd_train(int argc, char **argv)
+{
+    const char *arm = "joint", *ckpt = NULL;
+    long steps = 2000, batch = 64, width = 64, depth = 3, heads = 4, mlp = 256, seed = 1, stands = 8, every = 200;
+    double lr = 2e-3, d = 4.5;
+    const cli_opt o[] = {
+        {"arm", 's', &arm, "joint (attention across the patch) or independent (default joint)"},
+        {"steps", 'l', &steps, "optimiser steps (default 2000)"},
+        {"batch", 'l', &batch, "patches per step (default 64)"},
+        {"lr", 'd', &lr, "peak learning rate (default 2e-3)"},
+        {"width", 'l', &width, "model width (default 64)"},
+        {"depth", 'l', &depth, "transformer blocks (default 3)"},
+        {"heads", 'l', &heads, "attention heads (default 4)"},
+        {"mlp", 'l', &mlp, "MLP width (default 256)"},
+        {"seed", 'l', &seed, "run seed: init/batch/noise streams use 3s+1, 3s+2, 3s+3 (default 1)"},
+        {"stands", 'l', &stands, "toy training stands, 64 patches each (default 8)"},
+        {"spacing", 'd', &d, "toy stand spacing in m (default 4.5)"},
+        {"ckpt", 's', &ckpt, "checkpoint file; resumed from when it exists (default none)"},
+        {"ckpt-every", 'l', &every, "steps between checkpoints (default 200)"},
+    };
+    int rc = parse_opts("train", argc, argv, o, sizeof o / sizeof *o, "[options]   (trains on toy stands)");
+    if (rc) return rc == 1 ? 0 : 2;
+    int joint = !strcmp(arm, "joint") ? 1 : !strcmp(arm, "independent") ? 0 : -1;
+    if (joint < 0) { fprintf(stderr, "crownshy train: --arm must be joint or independent, not '%s'\n", arm); return 2; }
+    if (steps < 1 || batch < 1 || stands < 1 || stands > 100000 || seed < 0 || !(lr > 0) || !(d > 0) || every < 0) {
+        fprintf(stderr, "crownshy train: steps, batch, stands, lr and spacing must be positive\n");
+        return 2;
+    }
+    model_cfg cfg = model_cfg_reference(PATCH_NCOND);
+    cfg.C = (int)width; cfg.L = (int)depth; cfg.H = (int)heads; cfg.F = (int)mlp; cfg.joint = joint;
+    cs_status st = model_cfg_check(&cfg);
+    if (st) { fprintf(stderr, "crownshy train: %s\n", cs_errmsg()); return 2; }
+    patch_set *ps;
+    if ((st = toy_data(&ps, stands, d, 1000 + 1000 * (unsigned long)seed, 0))) return fail("train", st);
+    /* SPEC §5 / paper §4.3: the batched clearance estimator must agree with
+     * the canonical one before any training; abort on mismatch. */
+    {
+        int nchk = ps->n < 16 ? ps->n : 16;
+        double *rr = malloc(sizeof(double) * nchk * PATCH_T * PATCH_P), diff = 0;
+        if (!rr) { patch_set_free(ps); return fail("train", cs_err(CS_ENOMEM, "out of memory")); }
+        for (int k = 0; k < nchk; k++) patch_set_radii(ps, k, ps->x1 + (size_t)k * PATCH_T * PATCH_P, rr + (size_t)k * PATCH_T * PATCH_P);
+        st = patch_clearance_check(est_clearance, ps->px, ps->py, rr, nchk, &diff);
+        free(rr);
+        if (st) { patch_set_free(ps); return fail("train", st); }
+        fprintf(stderr, "clearance check: batched vs canonical estimator on %d patches, max |diff| %.2g m\n", nchk, diff);
+    }
+    train_opts opt = train_opts_default();
+    opt.steps = steps; opt.batch = (int)batch; opt.lr = lr;
+    opt.seed_init = 3 * seed + 1; opt.seed_batch = 3 * seed + 2; opt.seed_noise = 3 * seed + 3;
+    train *t;
+    if ((st = train_alloc(&t, &cfg, ps, &opt))) { patch_set_free(ps); return fail("train", st); }
+    if (ckpt && access(ckpt, F_OK) == 0) {
+        if ((st = train_load(t, ckpt))) { train_free(t); patch_set_free(ps); return fail("train", st); }
+        fprintf(stderr, "resumed from %s at step %ld\n", ckpt, t->step);
+    }
+    fprintf(stderr, "train: %s arm, %zu parameters, %d patches (scale %.4g m), %ld steps of %d\n",
+            joint ? "joint" : "independent", t->m->nparams, ps->n, ps->scale, steps, t->B);
+    st = train_run(t, steps, ckpt, every, stderr);
+    double l = NAN;
+    if (!st) st = train_eval_loss(t, ps, 4, 12345, &l);
+    if (!st) printf("final step %ld  train loss %.6f  eval loss %.6f\n", t->step, t->loss, l);
+    train_free(t);
+    patch_set_free(ps);
+    return st ? fail("train", st) : 0;
+}
+
+static int cmd_sample(int argc, char **argv)
+{
+    const char *ckpt = NULL;
+    long n = 16, seed = 1, steps = 100;
+    double d = 4.5;
+    const cli_opt o[] = {
+        {"ckpt", 's', &ckpt, "checkpoint written by crownshy train (required)"},
+        {"n", 'l', &n, "patches to generate from held-out toy stands (default 16)"},
+        {"euler", 'l', &steps, "Euler steps (default 100)"},
+        {"seed", 'l', &seed, "noise seed (default 1)"},
+        {"spacing", 'd', &d, "toy stand spacing in m (default 4.5)"},
+    };
+    int rc = parse_opts("sample", argc, argv, o, sizeof o / sizeof *o, "--ckpt FILE [options]");
+    if (rc) return rc == 1 ? 0 : 2;
+    if (!ckpt) { fprintf(stderr, "crownshy sample: --ckpt is required\n"); return 2; }
+    if (n < 1 || n > 4096 || steps < 1 || seed < 0 || !(d > 0)) { fprintf(stderr, "crownshy sample: bad --n, --euler, --seed or --spacing\n"); return 2; }
+    model *m;
+    double scale;
+    cs_status st = train_load_model(ckpt, &m, (int)n, &scale);
+    if (st) return fail("sample", st);
+    patch_set *ps;
+    /* held-out toy stands: seeds far from any training seed */
+    if ((st = toy_data(&ps, (n + 63) / 64, d, 900000 + (unsigned long)seed, scale))) { model_free(m); return fail("sample", st); }
+    const size_t TP = PATCH_T * PATCH_P;
+    float *x = malloc(sizeof(float) * n * TP);
+    double *rg = malloc(sizeof(double) * n * TP), *rt = malloc(sizeof(double) * n * TP);
+    double *gg = malloc(sizeof(double) * n * 3), *gt = malloc(sizeof(double) * n * 3);
+    gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
+    if (!x || !rg || !rt || !gg || !gt || !g) st = cs_err(CS_ENOMEM, "out of memory");
+    if (!st) { gsl_rng_set(g, (unsigned long)seed); st = model_sample(m, g, (int)n, ps->feat, ps->cond, (int)steps, x); }
+    if (!st) {
+        for (long k = 0; k < n; k++) {
+            patch_set_radii(ps, (int)k, x + k * TP, rg + k * TP);
+            patch_set_radii(ps, (int)k, ps->x1 + k * TP, rt + k * TP);
+        }
+        st = patch_focal_clearances(ps->px, ps->py, rg, (int)n, 3, gg);
+        if (!st) st = patch_focal_clearances(ps->px, ps->py, rt, (int)n, 3, gt);
+    }
+    if (!st) {
+        printf("patch\tk\tclearance_true_m\tclearance_generated_m\n");
+        double e = 0;
+        for (long k = 0; k < n; k++)
+            for (int j = 0; j < 3; j++) {
+                printf("%ld\t%d\t%.6f\t%.6f\n", k, j + 1, gt[k * 3 + j], gg[k * 3 + j]);
+                e += fabs(gt[k * 3 + j] - gg[k * 3 + j]);
+            }
+        fprintf(stderr, "sample: %ld patches, %ld Euler steps, mean |clearance error| %.4f m\n", n, steps, e / (3.0 * n));
+    }
+    free(x); free(rg); free(rt); free(gg); free(gt);
+    if (g) gsl_rng_free(g);
+    patch_set_free(ps);
+    model_free(m);
+    return st ? fail("sample", st) : 0;
+}
+
+static int cmd_bench_model(int argc, char **argv)
+{
+    long repeats = 5, steps = 20, batch = 64;
+    const cli_opt o[] = {
+        {"repeats", 'l', &repeats, "timed repeats, the median is reported (default 5)"},
+        {"steps", 'l', &steps, "training steps per repeat (default 20)"},
+        {"batch", 'l', &batch, "patches per step (default 64)"},
+    };
+    int rc = parse_opts("bench-model", argc, argv, o, sizeof o / sizeof *o,
+                        "[options]   (reference configuration of SPEC §10; set OPENBLAS_NUM_THREADS=1)");
+    if (rc) return rc == 1 ? 0 : 2;
+    if (repeats < 1 || repeats > 15 || steps < 1 || batch < 1) { fprintf(stderr, "crownshy bench-model: repeats 1..15, steps and batch >= 1\n"); return 2; }
+    model_cfg cfg = model_cfg_reference(PATCH_NCOND);
+    train_bench_result r;
+    cs_status st = train_bench(&cfg, (int)batch, (int)steps, (int)repeats, &r);
+    if (st) return fail("bench-model", st);
+    const char *thr = getenv("OPENBLAS_NUM_THREADS");
+    printf("model bench: 3 blocks, width 64, 4 heads, MLP 256, batch %ld x 24 tokens, OPENBLAS_NUM_THREADS=%s, median of %d\n",
+           batch, thr ? thr : "(unset)", r.repeats);
+    printf("trainer_steps_per_s\t%.2f\n", r.steps_per_s);
+    printf("trainer_step_ms\t%.3f\n", r.step_ms_median);
+    printf("model_gflops\t%.2f\n", r.model_gflops);
+    printf("sgemm_gflops\t%.2f\n", r.sgemm_gflops);
+    printf("model_to_sgemm_ratio\t%.3f\n", r.ratio);
+    printf("goals: >= 55 steps/s, ratio >= 0.60: %s\n", r.steps_per_s >= 55 && r.ratio >= 0.6 ? "met" : "not met");
     return 0;
 }
 
@@ -237,6 +449,9 @@ static const cli_cmd cli_cmds[] = {
     {"aniso-heldout", cmd_aniso_heldout, "E6: held-out stands at a*"},
     {"field-diagnose", cmd_field_diagnose, "E5/E6: diagnostics for the elongation and anisotropy verdicts"},
     {"version", cmd_version, "print the version"},
+    {"train", cmd_train, "train the flow-matching generator (toy stands for now)"},
+    {"sample", cmd_sample, "generate crowns with a trained checkpoint (100 Euler steps)"},
+    {"bench-model", cmd_bench_model, "trainer steps/s, model and sgemm GFLOP/s (SPEC §10)"},
 };
 #define NCMDS (sizeof cli_cmds / sizeof cli_cmds[0])
 

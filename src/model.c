@@ -189,13 +189,15 @@ cs_status model_forward(model *m, int B, const float *xt, const float *feat,
         nn_layernorm_forward(m->ln1[l], m->mu1[l], m->rs1[l], m->x[l], w + o->ln1_g, w + o->ln1_b, N, C);
         nn_linear_forward(m->qkv[l], m->ln1[l], w + o->qkv_w, w + o->qkv_b, N, C, 3 * C);
         nn_attention_forward(m->att[l], m->prob[l], m->qkv[l], B, T, C, c->H, mode, m->ascr);
-        nn_linear_forward(m->xm[l], m->att[l], w + o->proj_w, w + o->proj_b, N, C, C);
-        nn_residual_forward(m->xm[l], m->xm[l], m->x[l], (size_t)N * C);
+        /* biases of proj, fc1 and fc2 are added in the fused pass that follows
+         * each GEMM (same values as adding them in the GEMM, one pass fewer) */
+        nn_linear_forward(m->xm[l], m->att[l], w + o->proj_w, NULL, N, C, C);
+        nn_bias_residual_forward(m->xm[l], m->xm[l], w + o->proj_b, m->x[l], N, C);
         nn_layernorm_forward(m->ln2[l], m->mu2[l], m->rs2[l], m->xm[l], w + o->ln2_g, w + o->ln2_b, N, C);
-        nn_linear_forward(m->h[l], m->ln2[l], w + o->fc1_w, w + o->fc1_b, N, C, F);
-        nn_gelu_forward_save(m->hg[l], m->hs[l], m->h[l], (size_t)N * F);
-        nn_linear_forward(m->x[l + 1], m->hg[l], w + o->fc2_w, w + o->fc2_b, N, F, C);
-        nn_residual_forward(m->x[l + 1], m->x[l + 1], m->xm[l], (size_t)N * C);
+        nn_linear_forward(m->h[l], m->ln2[l], w + o->fc1_w, NULL, N, C, F);
+        nn_bias_gelu_forward_save(m->h[l], m->hs[l], m->hg[l], w + o->fc1_b, N, F);
+        nn_linear_forward(m->x[l + 1], m->hg[l], w + o->fc2_w, NULL, N, F, C);
+        nn_bias_residual_forward(m->x[l + 1], m->x[l + 1], w + o->fc2_b, m->xm[l], N, C);
     }
     nn_layernorm_forward(m->lnf, m->muf, m->rsf, m->x[c->L], w + m->lnf_g, w + m->lnf_b, N, C);
     nn_linear_forward(v, m->lnf, w + m->head_w, w + m->head_b, N, C, P);

@@ -82,7 +82,9 @@ void model_backward(model *m, const float *dv);
  * n_per_patch = T*P. All draws from `noise`, in that order. */
 void model_fm_draw(gsl_rng *noise, int B, int n_per_patch, const float *x1,
                    float *xt, float *u, float *t);
-/* mean over n of (v - u)^2; dv = its gradient w.r.t. v (may be NULL). */
+/* mean over n of (v - u)^2; dv = its gradient w.r.t. v (may be NULL).
+ * This is paper Eq. 2 (squared norm over all T tokens x P values) divided by
+ * the constant T*P, so that loss values do not depend on the patch size. */
 double model_fm_loss(const float *v, const float *u, size_t n, float *dv);
 /* One draw + forward + loss + backward on a batch; gradients in m->grads. */
 cs_status model_fm_grad(model *m, gsl_rng *noise, int B, const float *x1,

@@ -42,6 +42,12 @@ void nn_gelu_forward_save(float *out, float *sig, const float *in, size_t n);
 void nn_gelu_backward_saved(float *dinp, const float *dout, const float *in,
                             const float *sig, size_t n);
 
+/* Fused forms used by the model (one pass instead of two; same values as the
+ * unfused kernels): h[M x N] += b row-wise, then nn_gelu_forward_save(out, sig, h). */
+void nn_bias_gelu_forward_save(float *h, float *sig, float *out, const float *b, int M, int N);
+/* out[M x N] = (y + b) + x, row-wise bias (out may alias y or x). */
+void nn_bias_residual_forward(float *out, const float *y, const float *b, const float *x, int M, int N);
+
 /* out[n] = a + b (out may alias a). */
 void nn_residual_forward(float *out, const float *a, const float *b, size_t n);
 /* acc[n] += x (backward of a residual add into one branch). */
@@ -57,7 +63,7 @@ void nn_attention_forward(float *out, float *prob, const float *qkv,
 void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
                            const float *prob, int B, int T, int C, int H,
                            nn_attn_mode mode, float *scratch);
-/* Floats of scratch the attention kernels need. */
+/* Floats of scratch the attention kernels need (T*T). */
 size_t nn_attention_scratch_len(int T, int C, int H);
 
 /* y[i] = exp(x[i]) with a range-reduced polynomial (|rel err| < 4e-7 on

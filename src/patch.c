@@ -273,3 +273,55 @@ void patch_toy_stand(gsl_rng *rng, int side, double d, double *x, double *y, dou
             r[i * PATCH_P + s] = R * (1 - 0.2 * cos(2 * M_PI * s / PATCH_P - th));
     }
 }
+
+cs_status patch_set_add_toy(patch_set *s, int nstands, double d, unsigned long seed)
+{
+    enum { SIDE = 12, NS = SIDE * SIDE };
+    double x[NS], y[NS], r[NS * PATCH_P];
+    gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
+    if (!g) return cs_err(CS_ENOMEM, "toy stands: out of memory");
+    cs_status st = CS_OK;
+    for (int k = 0; k < nstands && !st; k++) {
+        gsl_rng_set(g, seed + (unsigned long)k);
+        patch_toy_stand(g, SIDE, d, x, y, r);
+        patch_stand ps;
+        st = patch_stand_init(&ps, NS, x, y, r, NULL, d);
+        for (int a = 2; a < SIDE - 2 && !st; a++)
+            for (int b = 2; b < SIDE - 2 && !st; b++) {
+                patch p;
+                st = patch_build(&ps, a * SIDE + b, &p);
+                if (!st) st = patch_set_add(s, &p);
+            }
+    }
+    gsl_rng_free(g);
+    return st;
+}
+
+void patch_shuffle_positions(float *feat, int n, gsl_rng *rng)
+{
+    int perm[PATCH_T];
+    float pos[PATCH_T * 2];
+    for (int k = 0; k < n; k++) {
+        float *f = feat + (size_t)k * PATCH_T * PATCH_NFEAT;
+        for (int i = 0; i < PATCH_T; i++) {
+            perm[i] = i;
+            pos[2 * i] = f[i * PATCH_NFEAT];
+            pos[2 * i + 1] = f[i * PATCH_NFEAT + 1];
+        }
+        gsl_ran_shuffle(rng, perm, PATCH_T, sizeof(int));
+        for (int i = 0; i < PATCH_T; i++) {
+            f[i * PATCH_NFEAT] = pos[2 * perm[i]];
+            f[i * PATCH_NFEAT + 1] = pos[2 * perm[i] + 1];
+        }
+    }
+}
+
+void patch_direction_blind(const double *r, int ncrowns, double *out)
+{
+    for (int i = 0; i < ncrowns; i++) {
+        double m = 0;
+        for (int s = 0; s < PATCH_P; s++) m += r[i * PATCH_P + s];
+        m /= PATCH_P;
+        for (int s = 0; s < PATCH_P; s++) out[i * PATCH_P + s] = m;
+    }
+}

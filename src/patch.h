@@ -100,4 +100,18 @@ cs_status patch_clearance_check(patch_clearance_ref ref, const double *px, const
  * r(theta) = R (1 - 0.2 cos(theta - theta_nn)). x, y [side^2], r [side^2 * 24]. */
 void patch_toy_stand(gsl_rng *rng, int side, double d, double *x, double *y, double *r);
 
+/* Shuffled-geometry probe (SPEC §8): permute the position features
+ * ((x - x_f)/d, (y - y_f)/d) among the T tokens of each of n patches in
+ * feat[n*T*NFEAT] (uniform permutation from rng; rbar_i/d stays with its
+ * token). Generation then sees wrong geometry; evaluate with the true positions. */
+void patch_shuffle_positions(float *feat, int n, gsl_rng *rng);
+/* Direction-blind baseline (SPEC §8): every crown of r[ncrowns*P] replaced by
+ * its circular mean (all sectors equal to the mean radius); in place allowed. */
+void patch_direction_blind(const double *r, int ncrowns, double *out);
+
+/* Append the patches of `nstands` toy stands (12 x 12 stems, spacing d) to s,
+ * one per interior stem (at least 2 d from the lattice edge: 64 per stand).
+ * Stand k draws from mt19937 seeded with seed + k. */
+cs_status patch_set_add_toy(patch_set *s, int nstands, double d, unsigned long seed);
+
 #endif

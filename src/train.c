@@ -60,6 +60,9 @@ cs_status train_alloc(train **out, const model_cfg *cfg, const patch_set *data, 
                       cfg->T, cfg->P, cfg->nfeat, cfg->ncond, PATCH_T, PATCH_P, PATCH_NFEAT, PATCH_NCOND);
     if (o->batch < 1 || o->steps < 1 || !(o->lr > 0))
         return cs_err(CS_EINPUT, "train: batch %d, steps %ld, lr %g must be positive", o->batch, o->steps, o->lr);
+    if (!(o->warmup >= 0 && o->warmup < 1) || !(o->lr_final >= 0 && o->lr_final <= 1))
+        return cs_err(CS_EINPUT, "train: warm-up fraction %g must be in [0,1) and final lr fraction %g in [0,1]",
+                      o->warmup, o->lr_final);
     train *t = calloc(1, sizeof *t);
     if (!t) return cs_err(CS_ENOMEM, "train: out of memory");
     t->o = *o;
@@ -328,7 +331,7 @@ cs_status train_load(train *t, const char *path)
     else if (memcmp(h.seeds, mine.seeds, sizeof h.seeds)) what = "seeds";
     else if (h.ndata != mine.ndata || h.data_hash != mine.data_hash || h.scale != mine.scale) what = "training data";
     else if (h.rng_size != mine.rng_size) what = "RNG type";
-    else if (h.step < 0 || h.step > h.steps || h.pos < 0 || h.pos > h.ndata) what = "step counters";
+    else if (h.step < 0 || h.step > h.steps || h.pos < 0 || h.pos > h.ndata || h.epoch < 0) what = "step counters";
     if (what) { free(p); return cs_err(CS_EINPUT, "%s: checkpoint belongs to a different run (%s differs)", path, what); }
     const unsigned char *q = p + 12 + sizeof h;
     memcpy(gsl_rng_state(t->rng_init), q, h.rng_size); q += h.rng_size;
@@ -381,23 +384,10 @@ cs_status train_bench(const model_cfg *cfg, int B, int steps, int repeats, train
     memset(r, 0, sizeof *r);
     if (repeats < 1) repeats = 1;
     if (repeats > 15) repeats = 15;
-    /* toy data: B patches per stand of 12 x 12 stems, 2 batches worth */
-    enum { SIDE = 12 };
-    double x[SIDE * SIDE], y[SIDE * SIDE], *rr = malloc(sizeof(double) * SIDE * SIDE * PATCH_P);
+    /* toy data: two batches' worth of patches */
     patch_set *ps = NULL;
-    cs_status st = rr ? patch_set_alloc(&ps, 2 * B) : cs_err(CS_ENOMEM, "bench: out of memory");
-    gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
-    gsl_rng_set(g, 7);
-    for (int k = 0; !st && k < 2 * B; k++) {
-        if (k % 64 == 0) patch_toy_stand(g, SIDE, 4.5, x, y, rr);
-        patch_stand s;
-        patch p;
-        st = patch_stand_init(&s, SIDE * SIDE, x, y, rr, NULL, 4.5);
-        if (!st) st = patch_build(&s, 26 + (k % 64) % 8 + 12 * ((k % 64) / 8), &p);
-        if (!st) st = patch_set_add(ps, &p);
-    }
-    gsl_rng_free(g);
-    free(rr);
+    cs_status st = patch_set_alloc(&ps, 2 * B);
+    if (!st) st = patch_set_add_toy(ps, (2 * B + 63) / 64, 4.5, 7);
     if (!st) st = patch_set_standardise(ps, patch_set_rms(ps));
     train *t = NULL;
     train_opts o = train_opts_default();

@@ -150,6 +150,24 @@ static void test_gelu_saved_path_matches_plain_path(void **s)
     for (int i = 0; i < n; i++) { ASSERT_EXACT(o2[i], o1[i]); ASSERT_EXACT(d2[i], d1[i]); }
 }
 
+/* The fused bias passes give exactly the values of the unfused kernels. */
+static void test_fused_bias_passes_match_unfused(void **s)
+{
+    (void)s;
+    enum { M = 3, N = 21 };
+    unsigned st = 13;
+    float h[M * N], h2[M * N], b[N], x[M * N], sig[M * N], sig2[M * N], o1[M * N], o2[M * N];
+    tu_fill(h, M * N, 3, &st); tu_fill(b, N, 1, &st); tu_fill(x, M * N, 1, &st);
+    for (int r = 0; r < M; r++)
+        for (int c = 0; c < N; c++) h2[r * N + c] = h[r * N + c] + b[c];
+    nn_gelu_forward_save(o2, sig2, h2, M * N);
+    nn_bias_gelu_forward_save(h, sig, o1, b, M, N);
+    for (int i = 0; i < M * N; i++) { ASSERT_EXACT(h[i], h2[i]); ASSERT_EXACT(sig[i], sig2[i]); ASSERT_EXACT(o1[i], o2[i]); }
+    nn_bias_residual_forward(o1, h, b, x, M, N);
+    for (int r = 0; r < M; r++)
+        for (int c = 0; c < N; c++) ASSERT_EXACT(o1[r * N + c], (h[r * N + c] + b[c]) + x[r * N + c]);
+}
+
 /* ---- residual ---------------------------------------------------------------------- */
 static void test_residual_forward_and_backward(void **s)
 {
@@ -222,6 +240,7 @@ int main(void)
         cmocka_unit_test(test_layernorm_forward_and_gradients),
         cmocka_unit_test(test_gelu_forward_and_gradient),
         cmocka_unit_test(test_residual_forward_and_backward),
+        cmocka_unit_test(test_fused_bias_passes_match_unfused),
         cmocka_unit_test(test_attention_joint_odd_sizes),
         cmocka_unit_test(test_attention_joint_patch_of_24),
         cmocka_unit_test(test_attention_joint_reference_head_width),

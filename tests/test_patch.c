@@ -3,6 +3,7 @@
  * check against a reference estimator passed by pointer. */
 #include "testutil.h"
 #include "patch.h"
+#include "estimator.h"
 #include <gsl/gsl_rng.h>
 
 /* Independent reference for the check: bracket the bearing by sector index. */
@@ -198,6 +199,22 @@ static void test_check_passes_against_reference_and_focal_clearances_agree(void 
     patch_set_free(ps);
 }
 
+/* The canonical estimator (src/estimator.c, pinned) and the batched copy agree
+ * within 1e-6 m on every pair of toy patches (SPEC §5, paper §4.3). */
+static void test_batched_clearance_agrees_with_canonical_estimator(void **s)
+{
+    (void)s;
+    patch_set *ps;
+    build_set(&ps, 9, 12);
+    double *r = malloc(sizeof(double) * ps->n * 24 * 24), diff = -1;
+    set_radii(ps, r);
+    assert_int_equal(patch_clearance_check(est_clearance, ps->px, ps->py, r, ps->n, &diff), CS_OK);
+    print_message("batched vs canonical clearance: max |diff| %.3g m over %d patches\n", diff, ps->n);
+    assert_true(diff <= 1e-6);
+    free(r);
+    patch_set_free(ps);
+}
+
 static void test_check_rejects_a_disagreeing_estimator(void **s)
 {
     (void)s;
@@ -212,6 +229,43 @@ static void test_check_rejects_a_disagreeing_estimator(void **s)
     patch_set_free(ps);
 }
 
+static void test_shuffled_geometry_permutes_positions_only(void **s)
+{
+    (void)s;
+    patch_set *ps;
+    build_set(&ps, 10, 3);
+    size_t nf = (size_t)ps->n * 24 * 3;
+    float *f = malloc(sizeof(float) * nf);
+    memcpy(f, ps->feat, sizeof(float) * nf);
+    gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(g, 4);
+    patch_shuffle_positions(f, ps->n, g);
+    gsl_rng_free(g);
+    int moved = 0;
+    for (int k = 0; k < ps->n; k++) {
+        double sx = 0, sx0 = 0;
+        for (int i = 0; i < 24; i++) {
+            const float *a = f + (k * 24 + i) * 3, *b = ps->feat + (k * 24 + i) * 3;
+            ASSERT_EXACT(a[2], b[2]); /* rbar stays with its token */
+            moved += a[0] != b[0];
+            sx += a[0]; sx0 += b[0];
+        }
+        ASSERT_NEAR(sx, sx0, 1e-4); /* the same positions, permuted */
+    }
+    assert_true(moved > 24);
+    free(f);
+    patch_set_free(ps);
+}
+
+static void test_direction_blind_is_circular_mean(void **s)
+{
+    (void)s;
+    double r[2 * 24], o[2 * 24];
+    for (int i = 0; i < 48; i++) r[i] = 1.0 + (i % 24) * 0.01 + (i / 24);
+    patch_direction_blind(r, 2, o);
+    for (int s2 = 0; s2 < 24; s2++) { ASSERT_NEAR(o[s2], 1.115, 1e-12); ASSERT_NEAR(o[24 + s2], 2.115, 1e-12); }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -223,7 +277,10 @@ int main(void)
         cmocka_unit_test(test_clearance_of_two_circles),
         cmocka_unit_test(test_standardise_gives_unit_rms_and_radii_round_trip),
         cmocka_unit_test(test_check_passes_against_reference_and_focal_clearances_agree),
+        cmocka_unit_test(test_batched_clearance_agrees_with_canonical_estimator),
         cmocka_unit_test(test_check_rejects_a_disagreeing_estimator),
+        cmocka_unit_test(test_shuffled_geometry_permutes_positions_only),
+        cmocka_unit_test(test_direction_blind_is_circular_mean),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

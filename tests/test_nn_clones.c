@@ -1,0 +1,123 @@
+/* The hot kernels of src/nn.c are built as AVX2 and baseline x86-64 clones
+ * picked at load time. This test compiles a second, baseline-only copy of
+ * nn.c (NN_NO_CLONES, symbols renamed) and checks that it gives bit-identical
+ * results to the library's dispatched kernels on the reference shapes, so a
+ * run does not depend on which clone the machine selects. */
+#include "testutil.h"
+#define NN_NO_CLONES
+#define nn_expf base_expf
+#define nn_linear_forward base_linear_forward
+#define nn_linear_backward base_linear_backward
+#define nn_layernorm_forward base_layernorm_forward
+#define nn_layernorm_backward base_layernorm_backward
+#define nn_gelu_forward base_gelu_forward
+#define nn_gelu_forward_save base_gelu_forward_save
+#define nn_gelu_backward base_gelu_backward
+#define nn_gelu_backward_saved base_gelu_backward_saved
+#define nn_residual_forward base_residual_forward
+#define nn_bias_gelu_forward_save base_bias_gelu_forward_save
+#define nn_bias_residual_forward base_bias_residual_forward
+#define nn_residual_backward base_residual_backward
+#define nn_attention_forward base_attention_forward
+#define nn_attention_backward base_attention_backward
+#define nn_attention_scratch_len base_attention_scratch_len
+#define nn_sgemm_gflops base_sgemm_gflops
+#include "nn.c"
+#undef nn_expf
+#undef nn_layernorm_forward
+#undef nn_layernorm_backward
+#undef nn_gelu_forward_save
+#undef nn_gelu_backward_saved
+#undef nn_attention_forward
+#undef nn_attention_backward
+#undef nn_attention_scratch_len
+/* the library's (dispatched) kernels; nn.h was consumed by the renamed copy */
+void nn_expf(float *y, const float *x, size_t n);
+void nn_layernorm_forward(float *out, float *mean, float *rstd, const float *in,
+                          const float *g, const float *b, int M, int C);
+void nn_layernorm_backward(float *dinp, float *dg, float *db, const float *dout,
+                           const float *in, const float *mean, const float *rstd,
+                           const float *g, int M, int C);
+void nn_gelu_forward_save(float *out, float *sig, const float *in, size_t n);
+void nn_gelu_backward_saved(float *dinp, const float *dout, const float *in,
+                            const float *sig, size_t n);
+void nn_attention_forward(float *out, float *prob, const float *qkv,
+                          int B, int T, int C, int H, nn_attn_mode mode, float *scratch);
+void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
+                           const float *prob, int B, int T, int C, int H,
+                           nn_attn_mode mode, float *scratch);
+size_t nn_attention_scratch_len(int T, int C, int H);
+
+static void tu_fill(float *x, size_t n, float a, unsigned *state)
+{
+    for (size_t i = 0; i < n; i++) {
+        unsigned s = *state;
+        s ^= s << 13; s ^= s >> 17; s ^= s << 5;
+        *state = s;
+        x[i] = a * (2.0f * (float)(s >> 8) / 16777216.0f - 1.0f);
+    }
+}
+
+static void same(const float *a, const float *b, size_t n, const char *what)
+{
+    if (memcmp(a, b, n * sizeof(float)) != 0) {
+        size_t i = 0;
+        while (a[i] == b[i]) i++;
+        print_error("%s: clone results differ at %zu: %.9g vs %.9g\n", what, i, a[i], b[i]);
+        fail();
+    }
+}
+
+static void test_baseline_and_dispatched_kernels_agree_bitwise(void **s)
+{
+    (void)s;
+    enum { B = 4, T = 24, C = 64, H = 4, F = 256, N = B * T };
+    unsigned st = 17;
+    float *qkv = malloc(sizeof(float) * N * 3 * C), *dout = malloc(sizeof(float) * N * C);
+    float *o1 = malloc(sizeof(float) * N * 3 * C), *o2 = malloc(sizeof(float) * N * 3 * C);
+    float *p1 = malloc(sizeof(float) * B * H * T * T), *p2 = malloc(sizeof(float) * B * H * T * T);
+    float *scr = malloc(sizeof(float) * nn_attention_scratch_len(T, C, H));
+    float *h = malloc(sizeof(float) * N * F), *g1 = malloc(sizeof(float) * N * F), *g2 = malloc(sizeof(float) * N * F);
+    float *s1 = malloc(sizeof(float) * N * F), *s2 = malloc(sizeof(float) * N * F);
+    float gam[C], bet[C], mu[N], rs[N], dg1[C] = {0}, db1[C] = {0}, dg2[C] = {0}, db2[C] = {0};
+    tu_fill(qkv, (size_t)N * 3 * C, 2, &st); tu_fill(dout, (size_t)N * C, 1, &st);
+    tu_fill(h, (size_t)N * F, 4, &st); tu_fill(gam, C, 1, &st); tu_fill(bet, C, 1, &st);
+
+    nn_attention_forward(o1, p1, qkv, B, T, C, H, NN_ATTN_JOINT, scr);
+    base_attention_forward(o2, p2, qkv, B, T, C, H, NN_ATTN_JOINT, scr);
+    same(o1, o2, (size_t)N * C, "attention forward");
+    same(p1, p2, (size_t)B * H * T * T, "attention probabilities");
+    nn_attention_backward(o1, dout, qkv, p1, B, T, C, H, NN_ATTN_JOINT, scr);
+    base_attention_backward(o2, dout, qkv, p1, B, T, C, H, NN_ATTN_JOINT, scr);
+    same(o1, o2, (size_t)N * 3 * C, "attention backward");
+
+    nn_gelu_forward_save(g1, s1, h, (size_t)N * F);
+    base_gelu_forward_save(g2, s2, h, (size_t)N * F);
+    same(g1, g2, (size_t)N * F, "gelu forward");
+    nn_gelu_backward_saved(g1, h, h, s1, (size_t)N * F);
+    base_gelu_backward_saved(g2, h, h, s1, (size_t)N * F);
+    same(g1, g2, (size_t)N * F, "gelu backward");
+
+    nn_layernorm_forward(o1, mu, rs, qkv, gam, bet, N, C);
+    base_layernorm_forward(o2, mu, rs, qkv, gam, bet, N, C);
+    same(o1, o2, (size_t)N * C, "layernorm forward");
+    memset(o1, 0, sizeof(float) * N * C); memset(o2, 0, sizeof(float) * N * C);
+    nn_layernorm_backward(o1, dg1, db1, dout, qkv, mu, rs, gam, N, C);
+    base_layernorm_backward(o2, dg2, db2, dout, qkv, mu, rs, gam, N, C);
+    same(o1, o2, (size_t)N * C, "layernorm backward");
+    same(dg1, dg2, C, "layernorm dg");
+
+    nn_expf(o1, h, (size_t)N * 3);
+    base_expf(o2, h, (size_t)N * 3);
+    same(o1, o2, (size_t)N * 3, "exp");
+    free(qkv); free(dout); free(o1); free(o2); free(p1); free(p2); free(scr);
+    free(h); free(g1); free(g2); free(s1); free(s2);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_baseline_and_dispatched_kernels_agree_bitwise),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
