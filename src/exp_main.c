@@ -250,20 +250,7 @@ static cs_status generate(model *m, int Bmax, const exp_main_plan *pl, const eva
     for (int k0 = 0; k0 < G && !st; k0 += Bmax) {
         int b = G - k0 < Bmax ? G - k0 : Bmax;
         memcpy(feat, e->ps->feat + (size_t)k0 * PATCH_T * PATCH_NFEAT, (size_t)b * PATCH_T * PATCH_NFEAT * sizeof *feat);
-        if (shuffle) {
-            for (int k = 0; k < b; k++) {
-                int idx[PATCH_T];
-                for (int i = 0; i < PATCH_T; i++) idx[i] = i;
-                gsl_ran_shuffle(perm, idx, PATCH_T, sizeof *idx);
-                /* every positional feature moves with the position; rbar stays with its tree */
-                float pos[PATCH_T][PATCH_NFEAT];
-                float *f = feat + (size_t)k * PATCH_T * PATCH_NFEAT;
-                memcpy(pos, f, sizeof pos);
-                for (int i = 0; i < PATCH_T; i++)
-                    for (int q = 0; q < PATCH_NFEAT; q++)
-                        if (q != PATCH_FEAT_RBAR) f[i * PATCH_NFEAT + q] = pos[idx[i]][q];
-            }
-        }
+        if (shuffle) patch_shuffle_positions(feat, b, perm);
         st = model_sample(m, noise, b, feat, e->ps->cond + (size_t)k0 * PATCH_NCOND, pl->euler, x);
         if (!st) st = focal_nn(e->ps, k0, b, x, rbuf, gen + k0);
     }
@@ -315,7 +302,6 @@ int exp_main_cmd_run(int argc, char **argv)
     if ((st = patch_set_standardise(tr, data_scale))) { patch_set_free(tr); return fail_with(st); }
 
     model_cfg cfg = model_cfg_reference(PATCH_NCOND);
-    cfg.nfeat = PATCH_NFEAT;
     cfg.joint = joint;
     train_opts o = train_opts_default();
     o.batch = pl.batch;

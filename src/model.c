@@ -2,6 +2,7 @@
  * SPEC §8). The block is pre-LN: x += Proj(MHA(LN1 x)); x += FC2(GELU(FC1(LN2 x))).
  * Time features: sin/cos of pi*2^k*t, k < ntime/2 (t in [0,1]). */
 #include "model.h"
+#include "patch.h"
 #include <gsl/gsl_randist.h>
 #include <math.h>
 #include <stdlib.h>
@@ -9,7 +10,7 @@
 
 model_cfg model_cfg_reference(int ncond)
 {
-    model_cfg c = {.T = 24, .P = 24, .nfeat = 3, .ncond = ncond, .ntime = 16,
+    model_cfg c = {.T = 24, .P = 24, .nfeat = PATCH_NFEAT, .ncond = ncond, .ntime = 16,
                    .C = 64, .L = 3, .H = 4, .F = 256, .joint = 1};
     return c;
 }

@@ -55,7 +55,7 @@ typedef struct model {
     float *fm_xt, *fm_u, *fm_t, *fm_v, *fm_dv;
 } model;
 
-/* The reference configuration of SPEC §10: T = P = 24, nfeat = 3, ntime = 16,
+/* The reference configuration of SPEC §10: T = P = 24, nfeat = PATCH_NFEAT, ntime = 16,
  * width 64, 3 blocks, 4 heads, MLP 256, joint arm; ncond as given. */
 model_cfg model_cfg_reference(int ncond);
 /* CS_EINPUT with a message naming the offending field if cfg is unusable. */

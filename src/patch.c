@@ -300,19 +300,16 @@ cs_status patch_set_add_toy(patch_set *s, int nstands, double d, unsigned long s
 void patch_shuffle_positions(float *feat, int n, gsl_rng *rng)
 {
     int perm[PATCH_T];
-    float pos[PATCH_T * 2];
+    float pos[PATCH_T * PATCH_NFEAT];
     for (int k = 0; k < n; k++) {
         float *f = feat + (size_t)k * PATCH_T * PATCH_NFEAT;
-        for (int i = 0; i < PATCH_T; i++) {
-            perm[i] = i;
-            pos[2 * i] = f[i * PATCH_NFEAT];
-            pos[2 * i + 1] = f[i * PATCH_NFEAT + 1];
-        }
+        memcpy(pos, f, sizeof pos);
+        for (int i = 0; i < PATCH_T; i++) perm[i] = i;
         gsl_ran_shuffle(rng, perm, PATCH_T, sizeof(int));
-        for (int i = 0; i < PATCH_T; i++) {
-            f[i * PATCH_NFEAT] = pos[2 * perm[i]];
-            f[i * PATCH_NFEAT + 1] = pos[2 * perm[i] + 1];
-        }
+        /* every positional feature moves with its position; rbar stays with its tree */
+        for (int i = 0; i < PATCH_T; i++)
+            for (int q = 0; q < PATCH_NFEAT; q++)
+                if (q != PATCH_FEAT_RBAR) f[i * PATCH_NFEAT + q] = pos[perm[i] * PATCH_NFEAT + q];
     }
 }
 

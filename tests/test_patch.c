@@ -90,12 +90,12 @@ static void test_features_conditions_and_deviations(void **s)
     assert_int_equal(patch_build(&st, focal, &p), CS_OK);
     for (int k = 0; k < PATCH_T; k++) {
         int i = p.idx[k];
-        ASSERT_NEAR(p.feat[k * 3 + 0], (X[i] - X[focal]) / d, 1e-6);
-        ASSERT_NEAR(p.feat[k * 3 + 1], (Y[i] - Y[focal]) / d, 1e-6);
+        ASSERT_NEAR(p.feat[k * PATCH_NFEAT + 0], (X[i] - X[focal]) / d, 1e-6);
+        ASSERT_NEAR(p.feat[k * PATCH_NFEAT + 1], (Y[i] - Y[focal]) / d, 1e-6);
         double m = 0, sdev = 0;
         for (int j = 0; j < 24; j++) m += R[i * 24 + j];
         m /= 24;
-        ASSERT_NEAR(p.feat[k * 3 + 2], m / d, 1e-6);
+        ASSERT_NEAR(p.feat[k * PATCH_NFEAT + 2], m / d, 1e-6);
         for (int j = 0; j < 24; j++) sdev += p.dev[k * 24 + j];
         ASSERT_NEAR(sdev, 0.0, 1e-12);
         ASSERT_NEAR(p.dev[k * 24 + 5], R[i * 24 + 5] - m, 1e-12);
@@ -234,7 +234,7 @@ static void test_shuffled_geometry_permutes_positions_only(void **s)
     (void)s;
     patch_set *ps;
     build_set(&ps, 10, 3);
-    size_t nf = (size_t)ps->n * 24 * 3;
+    size_t nf = (size_t)ps->n * 24 * PATCH_NFEAT;
     float *f = malloc(sizeof(float) * nf);
     memcpy(f, ps->feat, sizeof(float) * nf);
     gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
@@ -245,8 +245,8 @@ static void test_shuffled_geometry_permutes_positions_only(void **s)
     for (int k = 0; k < ps->n; k++) {
         double sx = 0, sx0 = 0;
         for (int i = 0; i < 24; i++) {
-            const float *a = f + (k * 24 + i) * 3, *b = ps->feat + (k * 24 + i) * 3;
-            ASSERT_EXACT(a[2], b[2]); /* rbar stays with its token */
+            const float *a = f + (k * 24 + i) * PATCH_NFEAT, *b = ps->feat + (k * 24 + i) * PATCH_NFEAT;
+            ASSERT_EXACT(a[PATCH_FEAT_RBAR], b[PATCH_FEAT_RBAR]); /* rbar stays with its token */
             moved += a[0] != b[0];
             sx += a[0]; sx0 += b[0];
         }
