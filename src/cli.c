@@ -8,6 +8,7 @@
 #include "gate.h"
 #include "tsv.h"
 #include "exp_main.h"
+#include "exp_comp.h"
 #include "exp_field.h"
 #include <dirent.h>
 #include "estimator.h"
@@ -428,6 +429,7 @@ static const cli_cmd cli_cmds[] = {
     {"main-run", exp_main_cmd_run, "E3/E4: one (seed, arm) training + evaluation unit"},
     {"main-baselines", exp_main_cmd_baselines, "E3/E4: direction-blind baseline and noise floor"},
     {"main-summary", exp_main_cmd_summary, "E3/E4: gather runs into frozen tables"},
+    {"comp-run", exp_comp_cmd_run, "E7: comparison patch (teacher, joint, independent) and dart probe"},
     {"bench-teacher", exp_cmd_bench_teacher, "teacher ms per 144-tree stand at N = 48 and 384"},
     {"run", exp_cmd_run, "run one experiment unit of E1/E2/figure data (crownshy run --help)"},
     {"gates", cmd_gates, "parse and list the preregistered gate files"},

@@ -32,6 +32,7 @@
  *  pointcloud/stats.tsv    spacing_m trees contact_fraction overlap_fraction_coupled
  *                          overlap_fraction_uncoupled k1_coupled_m k1_uncoupled_m */
 #include "experiments.h"
+#include "figdata.h"
 #include "crown.h"
 #include "estimator.h"
 #include "gate.h"
@@ -651,20 +652,6 @@ static void crown_columns(tsv_writer *w)
     tsv_writer_columns(w, cols);
 }
 
-/* Top-down polygons of one panel for gnuplot (filledcurves): each crown's
- * boundary at 4 points per sector (crown_radius_at) plus the closing point,
- * 97 rows per tree, trees in ascending height so that taller crowns are drawn
- * last (on top). Millimetre precision: display data, not a result. */
-#define POLY_PER_SECTOR 4
-#define POLY_ROWS (CROWN_NSEC * POLY_PER_SECTOR + 1)
-static const double *poly_h;
-static int poly_cmp(const void *a, const void *b)
-{
-    size_t i = *(const size_t *)a, j = *(const size_t *)b;
-    if (poly_h[i] != poly_h[j]) return poly_h[i] < poly_h[j] ? -1 : 1;
-    return (i > j) - (i < j);
-}
-
 static cs_status write_polygons(const exp_opts *o, prov *pv, const char *experiment, const char *panel, double d,
                                 const stand *sd, const double *r, double k1)
 {
@@ -676,31 +663,10 @@ static cs_status write_polygons(const exp_opts *o, prov *pv, const char *experim
     st = prov_write(w, pv);
     if (st) { tsv_writer_abort(w); return st; }
     size_t n = sd->s->n;
-    size_t *ord = malloc((n ? n : 1) * sizeof *ord);
-    if (!ord) { tsv_writer_abort(w); return cs_err(CS_ENOMEM, "experiments: out of memory"); }
-    for (size_t i = 0; i < n; i++) ord[i] = i;
-    poly_h = sd->h;
-    qsort(ord, n, sizeof *ord, poly_cmp);
-    tsv_writer_meta(w, "panel", "%s, spacing %.2f m, footprint %.0f m, %zu trees, %d rows per tree", panel, d, sd->s->L, n, POLY_ROWS);
+    tsv_writer_meta(w, "panel", "%s, spacing %.2f m, footprint %.0f m, %zu trees, %d rows per tree", panel, d, sd->s->L, n, FIGDATA_ROWS);
     tsv_writer_meta(w, "k1_median_m", "%.3f", k1);
-    tsv_writer_columns(w, "tree	x_m	y_m	h_m");
-    char buf[64];
-    for (size_t t = 0; t < n; t++) {
-        size_t i = ord[t];
-        for (int q = 0; q < POLY_ROWS; q++) {
-            double th = (2.0 * CROWN_PI / (CROWN_NSEC * POLY_PER_SECTOR)) * (double)(q % (POLY_ROWS - 1));
-            double rho = crown_radius_at(r + i * NS, th);
-            tsv_writer_long(w, (long)i);
-            snprintf(buf, sizeof buf, "%.3f", sd->s->x[i] + rho * cos(th));
-            tsv_writer_str(w, buf);
-            snprintf(buf, sizeof buf, "%.3f", sd->s->y[i] + rho * sin(th));
-            tsv_writer_str(w, buf);
-            snprintf(buf, sizeof buf, "%.2f", sd->h[i]);
-            tsv_writer_str(w, buf);
-            tsv_writer_endrow(w);
-        }
-    }
-    free(ord);
+    st = figdata_write_polygons(w, n, sd->s->x, sd->s->y, sd->h, r, NULL, NULL);
+    if (st) { tsv_writer_abort(w); return st; }
     return tsv_writer_commit(w);
 }
 

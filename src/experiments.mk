@@ -103,3 +103,8 @@ $(RESULTS)/irreducibility/refine_field.tsv: $(FIELD_CAL) | $(CLI)
 $(RESULTS)/irreducibility/reduction_field.tsv: $(FIELD_CAL) | $(CLI)
 	$(CLI) run irreducibility-reduction --stands $(TEACHER_STANDS) --beta $$($(CLI) field-beta $(FIELD_CAL)) --tag field --out $(RESULTS)
 REPRODUCE_UNITS += $(IRRED_FIELD_UNITS)
+
+# ---- E7 comparison patch and dart probe (src/exp_comp.c): E3 seed-1 models ----
+$(RESULTS)/comparison/patch.tsv: $(RESULTS)/main/run_s01_joint.tsv $(RESULTS)/main/run_s01_indep.tsv | $(CLI)
+	$(CLI) comp-run --joint $(B)/ckpt/$(SCALE)/main_s01_joint.ckpt --indep $(B)/ckpt/$(SCALE)/main_s01_indep.ckpt --out $(RESULTS)
+REPRODUCE_UNITS += $(RESULTS)/comparison/patch.tsv
