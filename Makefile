@@ -26,7 +26,7 @@ TESTS := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_SRC))
 ASAN_TESTS := $(patsubst tests/%.c,$(B)/asan/tests/%,$(TEST_SRC))
 CLI := $(B)/crownshy
 
-.PHONY: all deps check check-fast verify bench reproduce freeze figures paper deps-paper audit numbers trace clean
+.PHONY: all deps check check-fast verify bench reproduce freeze figures paper deps-paper audit numbers trace fuzz clean
 .DELETE_ON_ERROR:
 
 all: $(CLI) $(TESTS)
@@ -88,9 +88,13 @@ figures: deps
 	@$(MAKE) --no-print-directory $(CLI)
 	@$(CLI) figures
 
+# Speed (SPEC §10), measured here and never by a timed test: teacher ms per
+# 144-tree stand at N = 48 and 384; trainer steps/s, model and same-run sgemm
+# GFLOP/s at the reference configuration, and their ratio.
 bench: deps
 	@$(MAKE) --no-print-directory $(CLI)
-	@$(CLI) bench
+	@$(CLI) bench-teacher
+	@$(CLI) bench-model
 
 numbers: deps
 	@$(MAKE) --no-print-directory $(CLI)
@@ -139,6 +143,30 @@ paper: $(CLI)
 	@$(CLI) numbers --check >/dev/null || { echo "paper: paper/numbers.tex is stale; run make numbers" >&2; exit 1; }
 	@if ! command -v pdflatex >/dev/null; then echo "paper: pdflatex not installed; run make deps-paper (Debian texlive packages)" >&2; exit 1; fi
 	@cd paper && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && echo "paper: wrote paper/main.pdf"
+
+# ---- fuzzing (issue 7): libFuzzer on the four parsers, FUZZ_SECONDS each ------
+# Needs clang with libFuzzer (Debian: clang, libclang-rt-14-dev). Seeds: the
+# committed frozen tables, gates, numbers.tex and a fresh smoke checkpoint.
+# A crash leaves its input in build/fuzz/<target>/crash-*; copy it into
+# tests/data/fuzz/ and add a regression case to tests/test_fuzz_regress.c.
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS := tsv gate ckpt numbers
+FUZZ_CC := clang
+FUZZ_FLAGS := -g -O1 -fsanitize=fuzzer,address,undefined -Isrc -Itests/fuzz -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
+$(B)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(LIB_SRC) $(wildcard src/*.h) tests/fuzz/fuzz_common.h
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(FUZZ_FLAGS) $< $(LIB_SRC) $(LDLIBS) -o $@
+fuzz: $(addprefix $(B)/fuzz/fuzz_,$(FUZZ_TARGETS))
+	@command -v $(FUZZ_CC) >/dev/null || { echo "fuzz: clang not installed (apt-get install clang libclang-rt-14-dev)" >&2; exit 1; }
+	@for t in $(FUZZ_TARGETS); do mkdir -p $(B)/fuzz/$$t/corpus; done
+	@cp frozen/*/*.tsv audit/claims.tsv $(B)/fuzz/tsv/corpus/ 2>/dev/null; cp gates/*.gate $(B)/fuzz/gate/corpus/
+	@cp paper/numbers.tex $(B)/fuzz/numbers/corpus/
+	@ls $(B)/ckpt/smoke/*.ckpt >/dev/null 2>&1 && cp $(B)/ckpt/smoke/*.ckpt $(B)/fuzz/ckpt/corpus/ || true
+	@for t in $(FUZZ_TARGETS); do \
+	  echo "fuzz: $$t for $(FUZZ_SECONDS) s"; \
+	  (cd $(B)/fuzz/$$t && ../fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -max_len=65536 -print_final_stats=1 corpus > log 2>&1); rc=$$?; \
+	  grep -E "stat::number_of_executed_units|Done" $(B)/fuzz/$$t/log | tail -1; \
+	  if [ $$rc -ne 0 ]; then echo "fuzz: $$t FOUND A CRASH (build/fuzz/$$t/log)"; exit 1; fi; done
 
 clean:
 	rm -rf $(B)

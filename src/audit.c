@@ -302,7 +302,7 @@ static void check_registry(const claims *c, checklist *cl)
 }
 
 /* Macros used in the paper text must be claims (or their Gate verdicts). */
-static const char *latex_upper[] = {"LaTeX", "TeX", "Large", "LARGE", "Huge", "HUGE", "Roman", "Alph", "Ref", "S", "P", "L", "O", "AA", "AE", "OE", "Delta", "Gamma", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Upsilon", "Phi", "Psi", "Omega", "Bigl", "Bigr", "Big", "Biggl", "Biggr", "bibliographystyle", NULL};
+static const char *latex_upper[] = {"LaTeX", "TeX", "Large", "LARGE", "Huge", "HUGE", "Roman", "Alph", "Ref", "S", "P", "L", "O", "AA", "AE", "OE", "Delta", "Gamma", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Upsilon", "Phi", "Psi", "Omega", "Bigl", "Bigr", "Big", "Biggl", "Biggr", "bibliographystyle", "IfFileExists", NULL};
 
 static int is_latex_upper(const char *name)
 {

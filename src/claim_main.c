@@ -239,12 +239,21 @@ cs_status claim_extrap_p(const claim_row *row, claim_result *res)
     extrap_runs e;
     cs_status st = read_extrap(row->source, &e, res);
     if (st) return st;
-    double a[4 * MAXSEED], b[4 * MAXSEED];
-    size_t n = 0;
-    for (int k = 0; k < e.n; k++)
-        for (int i = 0; i < e.nj[k]; i++) { a[n] = e.indep[k][i]; b[n] = e.joint[k][i]; n++; }
+    /* Pooled over the extrapolation spacings at the level of the seed: the two
+     * spacings of one seed share one trained model, so the independent unit of
+     * the paired test is the seed (mean W1 over the spacings per arm). Rows are
+     * written seed by seed, so index i is the same seed at every spacing. */
+    double a[MAXSEED], b[MAXSEED];
+    int n = e.nj[0];
+    for (int k = 1; k < e.n; k++)
+        if (e.nj[k] != n) return cs_err(CS_EINPUT, "%s: spacings have different seed counts", row->source);
+    for (int i = 0; i < n; i++) {
+        a[i] = b[i] = 0;
+        for (int k = 0; k < e.n; k++) { a[i] += e.indep[k][i] / e.n; b[i] += e.joint[k][i] / e.n; }
+    }
     double p;
-    if ((st = stats_wilcoxon_exact(a, b, n, &p, NULL, NULL))) return st;
+    if ((st = stats_wilcoxon_exact(a, b, (size_t)n, &p, NULL, NULL))) return st;
+    snprintf(res->where, sizeof res->where, "%s (%d seeds, mean over %d spacings per seed)", row->source, n, e.n);
     claim_set_value(row, res, p);
     claim_judge(row, res, GATE_LT, p);
     return CS_OK;

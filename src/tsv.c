@@ -118,8 +118,10 @@ cs_status tsv_read(const char *path, tsv **out)
             return st;
         }
         if (n > t->ncols) {
+            /* message first: it reads the table (a use-after-free found by make fuzz) */
+            cs_status st = cs_err(CS_EINPUT, "%s:%d: %zu fields, header has %zu", path, lineno, n, t->ncols);
             tsv_free(t);
-            return cs_err(CS_EINPUT, "%s:%d: %zu fields, header has %zu", path, lineno, n, t->ncols);
+            return st;
         }
         t->lines[row++] = lineno;
     }

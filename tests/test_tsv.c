@@ -162,6 +162,27 @@ static void test_bad_meta_line_rejected(void **s)
     assert_non_null(strstr(cs_errmsg(), "t.tsv:1:"));
 }
 
+/* Regression (make fuzz, libFuzzer crash in tsv_read): a row with more fields
+ * than the header was reported after the table had been freed. */
+static void test_extra_field_is_rejected_without_use_after_free(void **s)
+{
+    (void)s;
+    const char *p = fixture("tsv_extra", "# experiment: x\na\tb\n1\t2\t3\n");
+    tsv *t = NULL;
+    assert_int_equal(tsv_read(p, &t), CS_EINPUT);
+    assert_null(t);
+    assert_non_null(strstr(cs_errmsg(), "t.tsv:3: 3 fields, header has 2"));
+}
+
+/* The crash input itself, kept as found. */
+static void test_fuzz_crash_input_is_clean_error(void **s)
+{
+    (void)s;
+    tsv *t = NULL;
+    assert_int_equal(tsv_read("tests/data/fuzz/tsv-crash-extra-field.tsv", &t), CS_EINPUT);
+    assert_null(t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -176,6 +197,8 @@ int main(void)
         cmocka_unit_test(test_empty_file_is_input_error),
         cmocka_unit_test(test_no_final_newline_is_truncation),
         cmocka_unit_test(test_bad_meta_line_rejected),
+        cmocka_unit_test(test_extra_field_is_rejected_without_use_after_free),
+        cmocka_unit_test(test_fuzz_crash_input_is_clean_error),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
