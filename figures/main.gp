@@ -41,8 +41,9 @@ do for [term = 1:2] {
   set ylabel "relative advantage of joint (%)"
   set xtics ("3.0" 0, "7.5" 1)
   set xrange [-0.6:1.6]
-  set yrange [*:*]
-  set offsets 0, 0, 5, 5
+  lo = rel3 < rel7 ? rel3 : rel7
+  set yrange [(lo < 0 ? lo - 5 : 0):*]
+  set offsets 0, 0, 5, 0
   set key top right box
   set style fill solid 0.8 border -1
   set boxwidth 0.5

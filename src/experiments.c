@@ -881,7 +881,7 @@ static const char *RUN_HELP =
     "units (each writes DIR/<experiment>/<file>.tsv, DIR defaults to build/results):\n"
     "  mechanism-sweep          E1: 16 rows beta x d on the controlled lattice -> mechanism/sweep.tsv\n"
     "  mechanism-ablation       E1: coupling off / abrasion off / both on at 3.5 m -> mechanism/ablation.tsv\n"
-    "  irreducibility-perturb   E2: one tree 30%% taller, 5 spacings -> irreducibility/perturb_<tag>.tsv\n"
+    "  irreducibility-perturb   E2: one tree 30% taller, 5 spacings -> irreducibility/perturb_<tag>.tsv\n"
     "  irreducibility-refine    E2: N in {48,96,192,384} -> irreducibility/refine_<tag>.tsv\n"
     "  irreducibility-reduction E2: best-fit Voronoi reduction -> irreducibility/reduction_<tag>.tsv\n"
     "  fig-mechanism            crowns of the three mechanism panels (hard-core, 3.5 m, L = 36 m)\n"
@@ -896,7 +896,7 @@ int exp_cmd_run(int argc, char **argv)
     exp_opts o = {.out = "build/results", .stands = EXP_STANDS_DEFAULT, .beta = NAN, .tag = "train",
                   .argc = argc, .argv = argv};
     for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) { printf(RUN_HELP); return 0; }
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) { fputs(RUN_HELP, stdout); return 0; }
         int more = i + 1 < argc;
         if (!strcmp(argv[i], "--stands") && more) o.stands = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--out") && more) o.out = argv[++i];
