@@ -30,6 +30,7 @@ do for [fmt in "png pdf"] {
   # ---- left: calibration
   unset label; unset arrow; unset object
   set title "Calibration (3 seeds): one scalar"
+  set xtics autofreq   # the right panel's tics must not leak into this one on the second pass
   set xlabel "die-back fraction {/Symbol b}"
   set ylabel "median tree-mean clearance (m)"
   set key top left

@@ -20,6 +20,7 @@ do for [term = 1:2] {
   set key top center horizontal
   set grid ytics
   set xlabel "stem spacing d (m)"
+  set xtics autofreq   # the right panel's tics must not leak into this one on the second pass
   set ylabel "neighbours responding"
   set xrange [2.7:6.8]
   set yrange [0:1.3]

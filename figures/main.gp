@@ -25,7 +25,11 @@ rel7 = 100.0 * (I7_median - J7_median) / I7_median
 do for [term = 1:2] {
   if (term == 1) { set terminal pngcairo size 1400,560 font ",14"; set output outdir.'/main.png' }
   else { set terminal pdfcairo size 7in,2.8in font ",9"; set output outdir.'/main.pdf' }
+  PS = (term == 1) ? 1.4 : 0.5
   set multiplot layout 1,2
+  # the right panel's settings must not leak into the left one on the second pass
+  set offsets 0, 0, 0, 0
+  unset style fill
   set key bottom right opaque box
   set xlabel "seed"
   set xrange [0.5:S_max + 0.5]
@@ -33,8 +37,8 @@ do for [term = 1:2] {
   set xtics 1
   set yrange [0:*]
   set title "joint vs independent, matched capacity"
-  plot runs using ((strcol(2) eq "indep" && strcol(3) eq "generated") ? $1 : NaN):4 with points pt 5 ps 1.4 lc rgb '#b2182b' title "independent", \
-       runs using ((strcol(2) eq "joint" && strcol(3) eq "generated") ? $1 : NaN):4 with points pt 7 ps 1.4 lc rgb '#2166ac' title "joint", \
+  plot runs using ((strcol(2) eq "indep" && strcol(3) eq "generated") ? $1 : NaN):4 with points pt 5 ps PS lc rgb '#b2182b' title "independent", \
+       runs using ((strcol(2) eq "joint" && strcol(3) eq "generated") ? $1 : NaN):4 with points pt 7 ps PS lc rgb '#2166ac' title "joint", \
        BLIND_mean with lines dt 3 lw 2 lc rgb '#333333' title "direction-blind"
   set title "outside the training range"
   set xlabel "stem spacing (m)"

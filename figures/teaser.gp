@@ -24,6 +24,7 @@ do for [term = 1:2] {
   else { set terminal pdfcairo size 9in,2.6in font ",9"; set output outdir.'/teaser.pdf' }
   set multiplot layout 1,4
   set title "(a) lidar canopy height model"
+  unset xlabel   # panel d's label must not leak into this one on the second pass
   set xrange [-W:W]
   set yrange [-W:W]
   set object 1 rectangle from -W,-W to W,W fillcolor rgb '#f4f4f4' fillstyle solid 1.0 behind
