@@ -6,50 +6,47 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-cs_status claim_mech_train_row(const claim_row *row, claim_result *res, double beta);
-#if __has_include("crown.h")
 #include "crown.h"
-#endif
 
-static cs_status gate_get(const char *file, const char *key, size_t idx, double *v, size_t *count)
+/* One load of gates/<file>: value idx of key (v may be NULL), its number of
+ * values (count may be NULL), and res->where naming the file line. */
+static cs_status gate_get(claim_result *res, const char *file, const char *key, size_t idx, double *v, size_t *count)
 {
     gate *g;
     cs_status st = claim_gate_load(file, &g);
     if (st) return st;
     if (count) *count = gate_count(g, key);
-    st = gate_value(g, key, idx, v);
+    double tmp;
+    st = gate_value(g, key, idx, v ? v : &tmp);
+    if (!st) snprintf(res->where, sizeof res->where, "gates/%s:%d (%s)", file, gate_line(g, key), key);
     gate_free(g);
     return st;
 }
 
-static void where_gate(claim_result *res, const char *file, const char *key)
+/* A design claim that is one gate value times `scale`. */
+static cs_status gate_claim(const claim_row *row, claim_result *res, const char *file, const char *key, double scale)
 {
-    gate *g;
-    if (claim_gate_load(file, &g) == CS_OK) {
-        snprintf(res->where, sizeof res->where, "gates/%s:%d (%s)", file, gate_line(g, key), key);
-        gate_free(g);
-    }
+    double v;
+    cs_status st = gate_get(res, file, key, 0, &v, NULL);
+    if (!st) claim_set_value(row, res, scale * v);
+    return st;
 }
 
 cs_status claim_design_mech_rows(const claim_row *row, claim_result *res)
 {
-    double v;
     size_t nb, ns;
-    cs_status st = gate_get("mechanism.gate", "dieback_sweep", 0, &v, &nb);
-    if (!st) st = gate_get("mechanism.gate", "spacings_m", 0, &v, &ns);
+    cs_status st = gate_get(res, "mechanism.gate", "spacings_m", 0, NULL, &ns);
+    if (!st) st = gate_get(res, "mechanism.gate", "dieback_sweep", 0, NULL, &nb);
     if (st) return st;
-    where_gate(res, "mechanism.gate", "dieback_sweep");
     claim_set_value(row, res, (double)(nb * ns));
     return CS_OK;
 }
 
 cs_status claim_design_irred_spacings(const claim_row *row, claim_result *res)
 {
-    double v;
     size_t n;
-    cs_status st = gate_get("irreducibility.gate", "spacings_m", 0, &v, &n);
+    cs_status st = gate_get(res, "irreducibility.gate", "spacings_m", 0, NULL, &n);
     if (st) return st;
-    where_gate(res, "irreducibility.gate", "spacings_m");
     claim_set_value(row, res, (double)n);
     return CS_OK;
 }
@@ -58,10 +55,9 @@ cs_status claim_design_irred_refine_max(const claim_row *row, claim_result *res)
 {
     double lo, hi;
     size_t n;
-    cs_status st = gate_get("irreducibility.gate", "refine_levels", 0, &lo, &n);
-    if (!st) st = gate_get("irreducibility.gate", "refine_levels", n - 1, &hi, NULL);
+    cs_status st = gate_get(res, "irreducibility.gate", "refine_levels", 0, &lo, &n);
+    if (!st) st = gate_get(res, "irreducibility.gate", "refine_levels", n - 1, &hi, NULL);
     if (st) return st;
-    where_gate(res, "irreducibility.gate", "refine_levels");
     claim_set_value(row, res, hi / lo);
     return CS_OK;
 }
@@ -69,9 +65,8 @@ cs_status claim_design_irred_refine_max(const claim_row *row, claim_result *res)
 cs_status claim_design_dieback_train(const claim_row *row, claim_result *res)
 {
     double v;
-    cs_status st = gate_get("mechanism.gate", "dieback_train", 0, &v, NULL);
+    cs_status st = gate_get(res, "mechanism.gate", "dieback_train", 0, &v, NULL);
     if (st) return st;
-    where_gate(res, "mechanism.gate", "dieback_train");
     claim_set_value(row, res, v);
     /* Its gate (the row passes at every spacing) is judged from the frozen
      * sweep; until the mechanism experiment is frozen it stays pending. */
@@ -87,22 +82,12 @@ cs_status claim_design_dieback_train(const claim_row *row, claim_result *res)
 
 cs_status claim_design_main_seeds(const claim_row *row, claim_result *res)
 {
-    double v;
-    cs_status st = gate_get("main.gate", "seeds", 0, &v, NULL);
-    if (st) return st;
-    where_gate(res, "main.gate", "seeds");
-    claim_set_value(row, res, v);
-    return CS_OK;
+    return gate_claim(row, res, "main.gate", "seeds", 1.0);
 }
 
 cs_status claim_design_main_epochs(const claim_row *row, claim_result *res)
 {
-    double v;
-    cs_status st = gate_get("main.gate", "epochs", 0, &v, NULL);
-    if (st) return st;
-    where_gate(res, "main.gate", "epochs");
-    claim_set_value(row, res, v);
-    return CS_OK;
+    return gate_claim(row, res, "main.gate", "epochs", 1.0);
 }
 
 cs_status claim_design_train_spacings(const claim_row *row, claim_result *res)
@@ -127,53 +112,29 @@ cs_status claim_design_train_spacings(const claim_row *row, claim_result *res)
 
 cs_status claim_design_calib_target(const claim_row *row, claim_result *res)
 {
-    double v;
-    cs_status st = gate_get("field.gate", "calibration_target_m", 0, &v, NULL);
-    if (st) return st;
-    where_gate(res, "field.gate", "calibration_target_m");
-    claim_set_value(row, res, v);
-    return CS_OK;
+    return gate_claim(row, res, "field.gate", "calibration_target_m", 1.0);
 }
 
 cs_status claim_design_calib_seeds(const claim_row *row, claim_result *res)
 {
-    double v;
-    cs_status st = gate_get("field.gate", "calibration_seeds", 0, &v, NULL);
-    if (st) return st;
-    where_gate(res, "field.gate", "calibration_seeds");
-    claim_set_value(row, res, v);
-    return CS_OK;
+    return gate_claim(row, res, "field.gate", "calibration_seeds", 1.0);
 }
 
 cs_status claim_design_jitter_canonical_pct(const claim_row *row, claim_result *res)
 {
-    double v;
-    cs_status st = gate_get("anisotropy.gate", "canonical_jitter", 0, &v, NULL);
-    if (st) return st;
-    where_gate(res, "anisotropy.gate", "canonical_jitter");
-    claim_set_value(row, res, 100.0 * v);
-    return CS_OK;
+    return gate_claim(row, res, "anisotropy.gate", "canonical_jitter", 100.0);
 }
 
 cs_status claim_design_nsec(const claim_row *row, claim_result *res)
 {
-#ifdef CROWN_NSEC
     snprintf(res->where, sizeof res->where, "src/crown.h (CROWN_NSEC)");
     claim_set_value(row, res, (double)CROWN_NSEC);
-#else
-    claim_pending(res, "src/crown.h (CROWN_NSEC) not in this build yet");
-#endif
     return CS_OK;
 }
 
 cs_status claim_design_patch_trees(const claim_row *row, claim_result *res)
 {
-    double v;
-    cs_status st = gate_get("main.gate", "patch_trees", 0, &v, NULL);
-    if (st) return st;
-    where_gate(res, "main.gate", "patch_trees");
-    claim_set_value(row, res, v);
-    return CS_OK;
+    return gate_claim(row, res, "main.gate", "patch_trees", 1.0);
 }
 
 cs_status claim_design_gencomp_spacing(const claim_row *row, claim_result *res)

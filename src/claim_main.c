@@ -16,16 +16,6 @@
 
 typedef struct { int n; double joint[MAXSEED], indep[MAXSEED], shuffled[MAXSEED]; } main_runs;
 
-static cs_status gate_num(const char *file, const char *key, double *v)
-{
-    gate *g;
-    cs_status st = claim_gate_load(file, &g);
-    if (st) return st;
-    st = gate_value(g, key, 0, v);
-    gate_free(g);
-    return st;
-}
-
 static cs_status read_runs(const char *path, main_runs *r, claim_result *res)
 {
     tsv *t;
@@ -50,7 +40,7 @@ static cs_status read_runs(const char *path, main_runs *r, claim_result *res)
         for (int k = 0; k < 3; k++)
             if (!seen[s][k]) { st = cs_err(CS_EINPUT, "%s: seed %d lacks its %s row", path, s + 1, k == 0 ? "joint" : k == 1 ? "indep" : "shuffled"); break; }
     double want;
-    if (!st && !(st = gate_num("main.gate", "seeds", &want)) && maxs != (int)want)
+    if (!st && !(st = gate_read_value("gates/main.gate", "seeds", 0, &want)) && maxs != (int)want)
         st = cs_err(CS_EINPUT, "%s: %d seeds, gates/main.gate requires %g", path, maxs, want);
     r->n = maxs;
     snprintf(res->where, sizeof res->where, "%s (%d seeds x 2 arms)", path, maxs);

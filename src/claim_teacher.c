@@ -12,16 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static cs_status gnum(const char *file, const char *key, size_t i, double *v)
-{
-    gate *g;
-    cs_status st = claim_gate_load(file, &g);
-    if (st) return st;
-    st = gate_value(g, key, i, v);
-    gate_free(g);
-    return st;
-}
-
 /* Row of `t` whose text column `col` equals `val`; error naming the file otherwise. */
 static cs_status find_row(const tsv *t, const char *col, const char *val, size_t *row)
 {
@@ -116,10 +106,10 @@ static cs_status sweep_row_pass(const tsv *t, size_t r, int *pass)
     cs_status st = CS_OK;
     for (int i = 0; i < 3 && !st; i++) {
         st = tsv_double(t, r, kc[i], &k[i]);
-        if (!st) st = gnum("mechanism.gate", gk[i], 0, &kmin[i]);
+        if (!st) st = gate_read_value("gates/mechanism.gate", gk[i], 0, &kmin[i]);
     }
     if (!st) st = tsv_double(t, r, "cover", &cover);
-    if (!st) st = gnum("mechanism.gate", "cover_min", 0, &cmin);
+    if (!st) st = gate_read_value("gates/mechanism.gate", "cover_min", 0, &cmin);
     if (st) return st;
     *pass = k[0] >= kmin[0] && k[1] >= kmin[1] && k[2] >= kmin[2] && cover >= cmin;
     return CS_OK;

@@ -93,12 +93,9 @@ int exp_comp_cmd_run(int argc, char **argv)
     if (!cj || !ci || !dir) { fprintf(stderr, "usage: crownshy comp-run --joint CKPT --indep CKPT --out DIR\n"); return 2; }
     prov pv;
     prov_begin(&pv, "comparison", argc, argv);
-    double beta;
-    gate *gt;
-    cs_status st = gate_load("gates/mechanism.gate", &gt);
-    if (!st) { st = gate_value(gt, "dieback_train", 0, &beta); gate_free(gt); }
-    double jitter = 0;
-    if (!st && !(st = gate_load("gates/anisotropy.gate", &gt))) { st = gate_value(gt, "canonical_jitter", 0, &jitter); gate_free(gt); }
+    double beta = 0, jitter = 0;
+    cs_status st = gate_read_value("gates/mechanism.gate", "dieback_train", 0, &beta);
+    if (!st) st = gate_read_value("gates/anisotropy.gate", "canonical_jitter", 0, &jitter);
     model *mj = NULL, *mi = NULL;
     double sj = 0, si = 0;
     if (!st) st = train_load_model(cj, &mj, 64, &sj);

@@ -76,29 +76,6 @@ static int fs_parse(const char *cmd, int argc, char **argv, fs_opts *o, unsigned
     return 0;
 }
 
-static cs_status gate_get1(const char *file, const char *key, size_t idx, double *v)
-{
-    gate *g;
-    cs_status st = gate_load(file, &g);
-    if (st) return st;
-    st = gate_value(g, key, idx, v);
-    gate_free(g);
-    return st;
-}
-
-static cs_status gate_list(const char *file, const char *key, double *v, size_t max, size_t *n)
-{
-    gate *g;
-    cs_status st = gate_load(file, &g);
-    if (st) return st;
-    const double *vals;
-    st = gate_values(g, key, &vals, n);
-    if (!st && *n > max) st = cs_err(CS_EINPUT, "%s: field '%s': more than %zu values", file, key, max);
-    if (!st) memcpy(v, vals, *n * sizeof *v);
-    gate_free(g);
-    return st;
-}
-
 /* One group of stands: `nstands` stands of one stem process at one level. */
 typedef struct {
     const char *seed_exp;
@@ -166,7 +143,7 @@ static cs_status fs_write(const char *out, prov *p, const fs_trees *acc, const f
 
 static cs_status fs_canonical_jitter(double *a)
 {
-    return gate_get1("gates/anisotropy.gate", "canonical_jitter", 0, a);
+    return gate_read_value("gates/anisotropy.gate", "canonical_jitter", 0, a);
 }
 
 /* ---------------------------------------------------------------- E5 ---- */
@@ -231,10 +208,10 @@ int cmd_field_calibrate(int argc, char **argv)
     prov p;
     prov_begin(&p, "field", argc, argv);
     double lo, hi, step, seeds, a;
-    cs_status st = gate_get1("gates/field.gate", "dieback_grid", 0, &lo);
-    if (!st) st = gate_get1("gates/field.gate", "dieback_grid", 1, &hi);
-    if (!st) st = gate_get1("gates/field.gate", "dieback_grid", 2, &step);
-    if (!st) st = gate_get1("gates/field.gate", "calibration_seeds", 0, &seeds);
+    cs_status st = gate_read_value("gates/field.gate", "dieback_grid", 0, &lo);
+    if (!st) st = gate_read_value("gates/field.gate", "dieback_grid", 1, &hi);
+    if (!st) st = gate_read_value("gates/field.gate", "dieback_grid", 2, &step);
+    if (!st) st = gate_read_value("gates/field.gate", "calibration_seeds", 0, &seeds);
     if (!st) st = fs_canonical_jitter(&a);
     if (st) return fs_die("field-calibrate", st);
     size_t nb = (size_t)lround((hi - lo) / step) + 1;
@@ -405,7 +382,7 @@ static int aniso_family(const char *cmd, int argc, char **argv, stand_kind kind,
     prov_begin(&p, "anisotropy", argc, argv);
     double lv[32];
     size_t nl;
-    cs_status st = gate_list("gates/anisotropy.gate", key, lv, 32, &nl);
+    cs_status st = gate_read_values("gates/anisotropy.gate", key, lv, 32, &nl);
     if (st) return fs_die(cmd, st);
     fs_job jobs[32];
     fs_trees acc;
@@ -565,7 +542,7 @@ int cmd_field_diagnose(int argc, char **argv)
     /* 1. open-grown target elongation on the E5 held-out stands' draws */
     size_t n[6] = {0}, ge[6] = {0}, tot = 0, totge = 0;
     double emax = 0, lo;
-    if ((st = gate_get1("gates/field.gate", "elongation_band", 0, &lo))) return fs_die("field-diagnose", st);
+    if ((st = gate_read_value("gates/field.gate", "elongation_band", 0, &lo))) return fs_die("field-diagnose", st);
     for (unsigned s = 0; s < o.stands && !st; s++) {
         stand *sd;
         if ((st = stand_alloc(&sd, STAND_LATTICE, d, L, a, "field/heldout", s))) break;

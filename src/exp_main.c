@@ -35,34 +35,15 @@ typedef struct {
     size_t ntrain, nunseen, nextrap;
 } main_design;
 
-static cs_status load_values(const char *file, const char *key, double *v, size_t *n)
-{
-    gate *g;
-    cs_status st = gate_load(file, &g);
-    if (st) return st;
-    const double *vals;
-    size_t k;
-    st = gate_values(g, key, &vals, &k);
-    if (!st) {
-        if (k > MAXSP && n) st = cs_err(CS_EINPUT, "%s: field '%s': more than %d values", file, key, MAXSP);
-        else {
-            for (size_t i = 0; i < k && (n || i < 1); i++) v[i] = vals[i];
-            if (n) *n = k;
-        }
-    }
-    gate_free(g);
-    return st;
-}
-
 static cs_status design_get(main_design *d)
 {
     cs_status st;
-    if ((st = load_values("gates/mechanism.gate", "dieback_train", &d->beta, NULL))) return st;
-    if ((st = load_values("gates/anisotropy.gate", "canonical_jitter", &d->jitter, NULL))) return st;
-    if ((st = load_values("gates/main.gate", "estimator_agreement_tol_m", &d->tol, NULL))) return st;
-    if ((st = load_values("gates/main.gate", "train_spacings_m", d->train_d, &d->ntrain))) return st;
-    if ((st = load_values("gates/main.gate", "unseen_spacings_m", d->unseen_d, &d->nunseen))) return st;
-    if ((st = load_values("gates/extrapolation.gate", "spacings_m", d->extrap_d, &d->nextrap))) return st;
+    if ((st = gate_read_value("gates/mechanism.gate", "dieback_train", 0, &d->beta))) return st;
+    if ((st = gate_read_value("gates/anisotropy.gate", "canonical_jitter", 0, &d->jitter))) return st;
+    if ((st = gate_read_value("gates/main.gate", "estimator_agreement_tol_m", 0, &d->tol))) return st;
+    if ((st = gate_read_values("gates/main.gate", "train_spacings_m", d->train_d, MAXSP, &d->ntrain))) return st;
+    if ((st = gate_read_values("gates/main.gate", "unseen_spacings_m", d->unseen_d, MAXSP, &d->nunseen))) return st;
+    if ((st = gate_read_values("gates/extrapolation.gate", "spacings_m", d->extrap_d, MAXSP, &d->nextrap))) return st;
     return CS_OK;
 }
 
@@ -70,8 +51,8 @@ cs_status exp_main_plan_get(const char *scale, exp_main_plan *p)
 {
     double epochs, euler;
     cs_status st;
-    if ((st = load_values("gates/main.gate", "epochs", &epochs, NULL))) return st;
-    if ((st = load_values("gates/main.gate", "euler_steps", &euler, NULL))) return st;
+    if ((st = gate_read_value("gates/main.gate", "epochs", 0, &epochs))) return st;
+    if ((st = gate_read_value("gates/main.gate", "euler_steps", 0, &euler))) return st;
     memset(p, 0, sizeof *p);
     p->euler = (int)euler;
     p->batch = 64;

@@ -64,12 +64,7 @@ static cs_status gate_get1(const char *file, const char *key, double *v)
 {
     char path[256];
     snprintf(path, sizeof path, GATES_DIR "/%s", file);
-    gate *g = NULL;
-    cs_status st = gate_load(path, &g);
-    if (st) return st;
-    st = gate_value(g, key, 0, v);
-    gate_free(g);
-    return st;
+    return gate_read_value(path, key, 0, v);
 }
 
 /* Copy all values of a gate key into v (at most cap). */
@@ -77,17 +72,7 @@ static cs_status gate_getv(const char *file, const char *key, double *v, size_t 
 {
     char path[256];
     snprintf(path, sizeof path, GATES_DIR "/%s", file);
-    gate *g = NULL;
-    cs_status st = gate_load(path, &g);
-    if (st) return st;
-    const double *vals;
-    st = gate_values(g, key, &vals, n);
-    if (!st) {
-        if (*n > cap) st = cs_err(CS_EINPUT, "%s: key '%s' has more than %zu values", path, key, cap);
-        else memcpy(v, vals, *n * sizeof *v);
-    }
-    gate_free(g);
-    return st;
+    return gate_read_values(path, key, v, cap, n);
 }
 
 /* Grow one stand; keeps the worst self-check overlap seen in *worst. */

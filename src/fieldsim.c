@@ -268,16 +268,6 @@ void fs_fraction_text(double v, char *buf, size_t n)
  * JitterStarPct), so a* is rounded to 0.01. */
 #define FS_JITTER_STEP 0.01
 
-static cs_status fs_gate_value(const char *file, const char *key, size_t idx, double *v)
-{
-    gate *g;
-    cs_status st = gate_load(file, &g);
-    if (st) return st;
-    st = gate_value(g, key, idx, v);
-    gate_free(g);
-    return st;
-}
-
 static cs_status fs_curve_calibrate(const char *path, const double *x, const double *y, const int *lines, size_t n,
                                     double target, double step, fs_calibration *out)
 {
@@ -296,8 +286,8 @@ cs_status fs_beta_field(const char *calibration_path, fs_calibration *out)
 {
     memset(out, 0, sizeof *out);
     double target, step;
-    cs_status st = fs_gate_value("gates/field.gate", "calibration_target_m", 0, &target);
-    if (!st) st = fs_gate_value("gates/field.gate", "dieback_grid", 2, &step);
+    cs_status st = gate_read_value("gates/field.gate", "calibration_target_m", 0, &target);
+    if (!st) st = gate_read_value("gates/field.gate", "dieback_grid", 2, &step);
     if (st) return st;
     tsv *t;
     fs_trees tr;
@@ -328,7 +318,7 @@ cs_status fs_jitter_star(const char *path, fs_calibration *out)
 {
     memset(out, 0, sizeof *out);
     double target;
-    cs_status st = fs_gate_value("gates/anisotropy.gate", "field_median", 0, &target);
+    cs_status st = gate_read_value("gates/anisotropy.gate", "field_median", 0, &target);
     if (st) return st;
     tsv *t;
     if ((st = tsv_read(path, &t))) return st;

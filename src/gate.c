@@ -110,6 +110,29 @@ cs_status gate_values(const gate *g, const char *key, const double **vals, size_
     return CS_OK;
 }
 
+cs_status gate_read_value(const char *path, const char *key, size_t idx, double *out)
+{
+    gate *g;
+    cs_status st = gate_load(path, &g);
+    if (st) return st;
+    st = gate_value(g, key, idx, out);
+    gate_free(g);
+    return st;
+}
+
+cs_status gate_read_values(const char *path, const char *key, double *v, size_t cap, size_t *n)
+{
+    gate *g;
+    cs_status st = gate_load(path, &g);
+    if (st) return st;
+    const double *vals = NULL;
+    st = gate_values(g, key, &vals, n);
+    if (!st && *n > cap) st = cs_err(CS_EINPUT, "%s: field '%s': more than %zu values", path, key, cap);
+    if (!st) memcpy(v, vals, *n * sizeof *v);
+    gate_free(g);
+    return st;
+}
+
 const char *verdict_name(verdict v)
 {
     return v == VERDICT_PASS ? "PASS" : v == VERDICT_FAIL ? "FAIL" : "PENDING";

@@ -21,6 +21,11 @@ cs_status gate_value(const gate *g, const char *key, size_t idx, double *out);
 cs_status gate_values(const gate *g, const char *key, const double **vals, size_t *n);
 /* Line number of key in the file (0 if absent), for traces. */
 int gate_line(const gate *g, const char *key);
+/* One-off lookups (load `path`, read, free): value idx of key, or every value
+ * of key copied into v[cap] with its count in *n (more than cap is an error
+ * naming file and key). */
+cs_status gate_read_value(const char *path, const char *key, size_t idx, double *out);
+cs_status gate_read_values(const char *path, const char *key, double *v, size_t cap, size_t *n);
 
 /* Verdict of one preregistered check. */
 typedef enum { VERDICT_PASS = 0, VERDICT_FAIL = 1, VERDICT_PENDING = 2 } verdict;
