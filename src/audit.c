@@ -1,6 +1,7 @@
 /* audit: traceability checks (SPEC §9; issue 7). Messages always name the
  * file and the claims it feeds, so a tampered byte points at its culprit. */
 #include "audit.h"
+#include "afile.h"
 #include "prov.h"
 #include "tsv.h"
 #include <dirent.h>
@@ -184,19 +185,18 @@ cs_status audit_hash_frozen(void)
     strlist l = {0};
     walk("frozen", &l);
     qsort(l.p, l.n, sizeof *l.p, cmps);
-    char tmp[] = AUDIT_FROZEN_HASHES ".tmp";
-    FILE *f = fopen(tmp, "w");
-    if (!f) { sl_free(&l); return cs_err(CS_EIO, "%s: cannot write", tmp); }
-    cs_status st = CS_OK;
+    afile a;
+    cs_status st = afile_open(&a, AUDIT_FROZEN_HASHES);
+    if (st) { sl_free(&l); return st; }
     for (size_t i = 0; i < l.n && !st; i++) {
         char hex[65];
         st = prov_sha256_file(l.p[i], hex);
-        if (!st) fprintf(f, "%s  %s\n", hex, l.p[i]);
+        if (!st) fprintf(a.f, "%s  %s\n", hex, l.p[i]);
     }
     sl_free(&l);
-    if (fclose(f) != 0 && !st) st = cs_err(CS_EIO, "%s: write failed", tmp);
-    if (!st && rename(tmp, AUDIT_FROZEN_HASHES) != 0) st = cs_err(CS_EIO, "%s: rename failed", tmp);
-    if (st) remove(tmp);
+    if (st) { afile_abort(&a); return st; }
+    if (ferror(a.f)) a.err = 1;
+    st = afile_commit(&a);
     return st;
 }
 

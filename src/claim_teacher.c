@@ -230,36 +230,26 @@ static cs_status refine_finest(const char *path, size_t *row, tsv **out)
     return CS_OK;
 }
 
-cs_status claim_irred_resp_shrink(const claim_row *row, claim_result *res)
+/* Column `col` of the pooled row at the finest refinement level; judge != 0
+ * judges the row's gate on it (at or above the threshold). */
+static cs_status refine_pooled(const claim_row *row, claim_result *res, const char *col, int judge)
 {
     tsv *t;
     size_t r = 0;
     cs_status st = refine_finest(row->source, &r, &t);
     if (st) return st;
     double v;
-    if (!(st = tsv_double(t, r, "magnitude_ratio", &v))) {
-        where_row(res, t, r, "magnitude_ratio");
+    if (!(st = tsv_double(t, r, col, &v))) {
+        where_row(res, t, r, col);
         claim_set_value(row, res, v);
-        claim_judge(row, res, GATE_GE, v);
+        if (judge) claim_judge(row, res, GATE_GE, v);
     }
     tsv_free(t);
     return st;
 }
 
-cs_status claim_irred_step_shrink(const claim_row *row, claim_result *res)
-{
-    tsv *t;
-    size_t r = 0;
-    cs_status st = refine_finest(row->source, &r, &t);
-    if (st) return st;
-    double v;
-    if (!(st = tsv_double(t, r, "step_ratio", &v))) {
-        where_row(res, t, r, "step_ratio");
-        claim_set_value(row, res, v);
-    }
-    tsv_free(t);
-    return st;
-}
+cs_status claim_irred_resp_shrink(const claim_row *row, claim_result *res) { return refine_pooled(row, res, "magnitude_ratio", 1); }
+cs_status claim_irred_step_shrink(const claim_row *row, claim_result *res) { return refine_pooled(row, res, "step_ratio", 0); }
 
 static cs_status reduction_pooled(const claim_row *row, claim_result *res, const char *col, int judge)
 {

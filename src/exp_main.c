@@ -7,6 +7,7 @@
  * (patch_focal_clearances), checked against est_clearance to 1e-6 m before
  * every run (paper §4.3); a mismatch aborts the run. */
 #include "exp_main.h"
+#include "afile.h"
 #include "estimator.h"
 #include "gate.h"
 #include "model.h"
@@ -292,12 +293,8 @@ int exp_main_cmd_run(int argc, char **argv)
     o.seed_init = (unsigned long)seed_derive("main-model", 0, seed, "init");
     o.seed_batch = (unsigned long)seed_derive("main-model", 0, seed, "batch");
     o.seed_noise = (unsigned long)seed_derive("main-model", 0, seed, "noise");
-    if (ckpt) { /* the checkpoint's directory must exist before the first atomic write */
-        char dirbuf[1024];
-        snprintf(dirbuf, sizeof dirbuf, "%s", ckpt);
-        for (char *c = dirbuf + 1; *c; c++)
-            if (*c == '/') { *c = '\0'; mkdir(dirbuf, 0777); *c = '/'; }
-    }
+    /* the checkpoint's directory must exist before the first atomic write */
+    if (ckpt && (st = afile_mkdir_parents(ckpt))) { patch_set_free(tr); return fail_with(st); }
     train *t = NULL;
     if ((st = train_alloc(&t, &cfg, tr, &o))) { patch_set_free(tr); return fail_with(st); }
     if (ckpt && file_exists(ckpt)) {

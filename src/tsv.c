@@ -3,14 +3,13 @@
  * message "file:line: field 'name': what". The writer prints doubles as %.17g
  * (round-trips exactly) and publishes the file by rename only on commit. */
 #include "tsv.h"
+#include "afile.h"
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 struct tsv {
     char *path;
@@ -211,41 +210,19 @@ long tsv_find(const tsv *t, const char *col, const char *value)
 
 /* ---- writer ---- */
 struct tsv_writer {
-    char *path, *tmp;
-    FILE *f;
+    afile a;   /* the temp file, published by rename on commit */
+    FILE *f;   /* == a.f */
     int ncell; /* cells written in the current row */
-    int err;
 };
-
-static int mkdir_p(const char *path)
-{
-    char buf[4096];
-    snprintf(buf, sizeof buf, "%s", path);
-    for (char *s = buf + 1; *s; s++) {
-        if (*s != '/') continue;
-        *s = '\0';
-        if (mkdir(buf, 0777) != 0 && errno != EEXIST) return -1;
-        *s = '/';
-    }
-    return 0;
-}
 
 cs_status tsv_writer_open(tsv_writer **out, const char *path)
 {
     *out = NULL;
-    if (mkdir_p(path) != 0) return cs_err(CS_EIO, "%s: cannot create parent directory: %s", path, strerror(errno));
     tsv_writer *w = calloc(1, sizeof *w);
     if (!w) return cs_err(CS_ENOMEM, "%s: out of memory", path);
-    w->path = strdup(path);
-    w->tmp = malloc(strlen(path) + 5);
-    if (!w->path || !w->tmp) { free(w->path); free(w->tmp); free(w); return cs_err(CS_ENOMEM, "%s: out of memory", path); }
-    sprintf(w->tmp, "%s.tmp", path);
-    w->f = fopen(w->tmp, "w");
-    if (!w->f) {
-        cs_status st = cs_err(CS_EIO, "%s: cannot write: %s", w->tmp, strerror(errno));
-        free(w->path); free(w->tmp); free(w);
-        return st;
-    }
+    cs_status st = afile_open(&w->a, path);
+    if (st) { free(w); return st; }
+    w->f = w->a.f;
     *out = w;
     return CS_OK;
 }
@@ -259,68 +236,53 @@ void tsv_writer_meta(tsv_writer *w, const char *key, const char *fmt, ...)
     va_end(ap);
     /* A newline or tab inside a value would corrupt the file: flatten it. */
     for (char *c = val; *c; c++) if (*c == '\n' || *c == '\r' || *c == '\t') *c = ' ';
-    if (fprintf(w->f, "# %s: %s\n", key, val[0] ? val : "-") < 0) w->err = 1;
+    if (fprintf(w->f, "# %s: %s\n", key, val[0] ? val : "-") < 0) w->a.err = 1;
 }
 
 void tsv_writer_columns(tsv_writer *w, const char *cols)
 {
-    if (fprintf(w->f, "%s\n", cols) < 0) w->err = 1;
+    if (fprintf(w->f, "%s\n", cols) < 0) w->a.err = 1;
 }
 
 static void sep(tsv_writer *w)
 {
-    if (w->ncell++ > 0 && fputc('\t', w->f) == EOF) w->err = 1;
+    if (w->ncell++ > 0 && fputc('\t', w->f) == EOF) w->a.err = 1;
 }
 
 void tsv_writer_str(tsv_writer *w, const char *s)
 {
     sep(w);
     for (; *s; s++)
-        if (fputc(*s == '\t' || *s == '\n' ? ' ' : *s, w->f) == EOF) w->err = 1;
+        if (fputc(*s == '\t' || *s == '\n' ? ' ' : *s, w->f) == EOF) w->a.err = 1;
 }
 
 void tsv_writer_dbl(tsv_writer *w, double x)
 {
     sep(w);
-    if (fprintf(w->f, "%.17g", x) < 0) w->err = 1;
+    if (fprintf(w->f, "%.17g", x) < 0) w->a.err = 1;
 }
 
 void tsv_writer_long(tsv_writer *w, long x)
 {
     sep(w);
-    if (fprintf(w->f, "%ld", x) < 0) w->err = 1;
+    if (fprintf(w->f, "%ld", x) < 0) w->a.err = 1;
 }
 
 void tsv_writer_endrow(tsv_writer *w)
 {
-    if (fputc('\n', w->f) == EOF) w->err = 1;
+    if (fputc('\n', w->f) == EOF) w->a.err = 1;
     w->ncell = 0;
-}
-
-static void writer_free(tsv_writer *w)
-{
-    free(w->path); free(w->tmp); free(w);
 }
 
 cs_status tsv_writer_commit(tsv_writer *w)
 {
-    cs_status st = CS_OK;
-    if (fflush(w->f) != 0 || fsync(fileno(w->f)) != 0) w->err = 1;
-    if (fclose(w->f) != 0) w->err = 1;
-    if (w->err) {
-        st = cs_err(CS_EIO, "%s: write failed", w->tmp);
-        unlink(w->tmp);
-    } else if (rename(w->tmp, w->path) != 0) {
-        st = cs_err(CS_EIO, "%s: cannot rename to %s: %s", w->tmp, w->path, strerror(errno));
-        unlink(w->tmp);
-    }
-    writer_free(w);
+    cs_status st = afile_commit(&w->a);
+    free(w);
     return st;
 }
 
 void tsv_writer_abort(tsv_writer *w)
 {
-    fclose(w->f);
-    unlink(w->tmp);
-    writer_free(w);
+    afile_abort(&w->a);
+    free(w);
 }

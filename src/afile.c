@@ -1,0 +1,69 @@
+/* afile: atomic file writes (see afile.h). */
+#include "afile.h"
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+cs_status afile_mkdir_parents(const char *path)
+{
+    char buf[4096];
+    snprintf(buf, sizeof buf, "%s", path);
+    for (char *s = buf + 1; *s; s++) {
+        if (*s != '/') continue;
+        *s = '\0';
+        if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+            return cs_err(CS_EIO, "%s: cannot create parent directory: %s", path, strerror(errno));
+        *s = '/';
+    }
+    return CS_OK;
+}
+
+static void release(afile *a)
+{
+    free(a->path);
+    free(a->tmp);
+    a->path = a->tmp = NULL;
+    a->f = NULL;
+}
+
+cs_status afile_open(afile *a, const char *path)
+{
+    memset(a, 0, sizeof *a);
+    cs_status st = afile_mkdir_parents(path);
+    if (st) return st;
+    a->path = strdup(path);
+    a->tmp = malloc(strlen(path) + 5);
+    if (!a->path || !a->tmp) { release(a); return cs_err(CS_ENOMEM, "%s: out of memory", path); }
+    sprintf(a->tmp, "%s.tmp", path);
+    a->f = fopen(a->tmp, "w");
+    if (!a->f) {
+        st = cs_err(CS_EIO, "%s: cannot write: %s", a->tmp, strerror(errno));
+        release(a);
+    }
+    return st;
+}
+
+cs_status afile_commit(afile *a)
+{
+    cs_status st = CS_OK;
+    if (fflush(a->f) != 0 || fsync(fileno(a->f)) != 0) a->err = 1;
+    if (fclose(a->f) != 0) a->err = 1;
+    if (a->err) {
+        st = cs_err(CS_EIO, "%s: write failed", a->tmp);
+        unlink(a->tmp);
+    } else if (rename(a->tmp, a->path) != 0) {
+        st = cs_err(CS_EIO, "%s: cannot rename to %s: %s", a->tmp, a->path, strerror(errno));
+        unlink(a->tmp);
+    }
+    release(a);
+    return st;
+}
+
+void afile_abort(afile *a)
+{
+    fclose(a->f);
+    unlink(a->tmp);
+    release(a);
+}

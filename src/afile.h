@@ -1,0 +1,26 @@
+/* afile: atomic file writes (SPEC §11). A file is written as "<path>.tmp"
+ * and renamed over <path> only on commit, after flush and fsync, so a killed
+ * run never leaves a half-written result that later counts as done. Used by
+ * the TSV writer, numbers.tex / comparison.tex and audit/frozen.sha256. */
+#ifndef AFILE_H
+#define AFILE_H
+#include "cs.h"
+#include <stdio.h>
+
+typedef struct {
+    FILE *f;         /* write here between open and commit */
+    char *path, *tmp;
+    int err;         /* set by the caller when a write fails; commit then fails */
+} afile;
+
+/* Create the parent directories of `path` (mkdir -p of its directory part). */
+cs_status afile_mkdir_parents(const char *path);
+/* Parent directories, then "<path>.tmp" opened for writing. */
+cs_status afile_open(afile *a, const char *path);
+/* Flush, fsync, close and rename into place; on any failure the temp file is
+ * removed and the error names it. Releases a either way. */
+cs_status afile_commit(afile *a);
+/* Close and remove the temp file; releases a. */
+void afile_abort(afile *a);
+
+#endif
