@@ -4,6 +4,7 @@
  * from training. Clearances use the pinned estimator (est_clearance,
  * est_knn_clearance) on the patch trees. */
 #include "exp_comp.h"
+#include "exp_main.h"
 #include "design.h"
 #include "estimator.h"
 #include "figdata.h"
@@ -65,18 +66,11 @@ static cs_status patch_stats(const double *x, const double *y, const double *r, 
 /* Generate the crowns (radii, m) of the patches of ps with model m. */
 static cs_status gen_radii(model *m, const patch_set *ps, int Bmax, uint64_t seed, double *r)
 {
-    size_t tp = (size_t)PATCH_T * PATCH_P;
-    float *x = malloc((size_t)Bmax * tp * sizeof *x);
     gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
-    cs_status st = x && g ? CS_OK : cs_err(CS_ENOMEM, "out of memory");
-    if (!st) gsl_rng_set(g, (unsigned long)seed);
-    for (int k0 = 0; k0 < ps->n && !st; k0 += Bmax) {
-        int b = ps->n - k0 < Bmax ? ps->n - k0 : Bmax;
-        st = model_sample(m, g, b, ps->feat + (size_t)k0 * PATCH_T * PATCH_NFEAT, ps->cond + (size_t)k0 * PATCH_NCOND, 100, x);
-        for (int k = 0; k < b && !st; k++) patch_set_radii(ps, k0 + k, x + (size_t)k * tp, r + (size_t)(k0 + k) * tp);
-    }
-    free(x);
-    if (g) gsl_rng_free(g);
+    if (!g) return cs_err(CS_ENOMEM, "out of memory");
+    gsl_rng_set(g, (unsigned long)seed);
+    cs_status st = exp_main_sample_radii(m, Bmax, ps, ps->n, 100, g, NULL, r);
+    gsl_rng_free(g);
     return st;
 }
 

@@ -214,30 +214,41 @@ static cs_status build_train(const main_design *ds, const exp_main_plan *pl, pat
 /* Generate pl->gen_patches (or fewer) patches of e with model m; shuffle != 0
  * permutes the position features among the tokens of each patch (the
  * shuffled-geometry probe), evaluation keeps the true positions. */
+cs_status exp_main_sample_radii(model *m, int Bmax, const patch_set *ps, int n, int nsteps,
+                                gsl_rng *noise, gsl_rng *perm, double *r)
+{
+    size_t tp = (size_t)PATCH_T * PATCH_P;
+    float *x = malloc((size_t)Bmax * tp * sizeof *x);
+    float *feat = malloc((size_t)Bmax * PATCH_T * PATCH_NFEAT * sizeof *feat);
+    cs_status st = x && feat ? CS_OK : cs_err(CS_ENOMEM, "out of memory");
+    for (int k0 = 0; k0 < n && !st; k0 += Bmax) {
+        int b = n - k0 < Bmax ? n - k0 : Bmax;
+        memcpy(feat, ps->feat + (size_t)k0 * PATCH_T * PATCH_NFEAT, (size_t)b * PATCH_T * PATCH_NFEAT * sizeof *feat);
+        if (perm) patch_shuffle_positions(feat, b, perm);
+        st = model_sample(m, noise, b, feat, ps->cond + (size_t)k0 * PATCH_NCOND, nsteps, x);
+        for (int k = 0; k < b && !st; k++)
+            patch_set_radii(ps, k0 + k, x + (size_t)k * tp, r + (size_t)(k0 + k) * tp);
+    }
+    free(x);
+    free(feat);
+    return st;
+}
+
 static cs_status generate(model *m, int Bmax, const exp_main_plan *pl, const eval_set *e, unsigned seed,
                           int shuffle, double *gen, int *ngen)
 {
     int G = e->ps->n < pl->gen_patches ? e->ps->n : pl->gen_patches;
-    size_t tp = (size_t)PATCH_T * PATCH_P;
-    float *x = malloc((size_t)Bmax * tp * sizeof *x);
-    float *feat = malloc((size_t)Bmax * PATCH_T * PATCH_NFEAT * sizeof *feat);
-    double *rbuf = malloc((size_t)Bmax * tp * sizeof *rbuf);
+    double *r = malloc((size_t)G * PATCH_T * PATCH_P * sizeof *r);
     gsl_rng *noise = gsl_rng_alloc(gsl_rng_mt19937), *perm = gsl_rng_alloc(gsl_rng_mt19937);
-    cs_status st = CS_OK;
-    if (!x || !feat || !rbuf || !noise || !perm) st = cs_err(CS_ENOMEM, "out of memory");
+    cs_status st = r && noise && perm ? CS_OK : cs_err(CS_ENOMEM, "out of memory");
     if (!st) {
         gsl_rng_set(noise, (unsigned long)seed_derive(shuffle ? "main-model-shuffled" : "main-model", e->d, seed, "sample"));
         gsl_rng_set(perm, (unsigned long)seed_derive("main-model", e->d, seed, "shuffle"));
+        st = exp_main_sample_radii(m, Bmax, e->ps, G, pl->euler, noise, shuffle ? perm : NULL, r);
     }
-    for (int k0 = 0; k0 < G && !st; k0 += Bmax) {
-        int b = G - k0 < Bmax ? G - k0 : Bmax;
-        memcpy(feat, e->ps->feat + (size_t)k0 * PATCH_T * PATCH_NFEAT, (size_t)b * PATCH_T * PATCH_NFEAT * sizeof *feat);
-        if (shuffle) patch_shuffle_positions(feat, b, perm);
-        st = model_sample(m, noise, b, feat, e->ps->cond + (size_t)k0 * PATCH_NCOND, pl->euler, x);
-        if (!st) st = focal_nn(e->ps, k0, b, x, rbuf, gen + k0);
-    }
+    if (!st) st = patch_focal_clearances(e->ps->px, e->ps->py, r, G, 1, gen);
     *ngen = G;
-    free(x); free(feat); free(rbuf);
+    free(r);
     if (noise) gsl_rng_free(noise);
     if (perm) gsl_rng_free(perm);
     return st;
