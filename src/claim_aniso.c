@@ -113,7 +113,9 @@ static cs_status family_curve(const char *path, double *lv, double *an, size_t m
     *n = 0;
     *unbuildable = 0;
     for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
-        if (strcmp(tsv_str(t, r, "arm"), "coupled")) continue;
+        const char *arm;
+        if ((st = tsv_text(t, r, "arm", &arm))) break;
+        if (strcmp(arm, "coupled")) continue;
         long trees;
         if ((st = tsv_long(t, r, "trees", &trees))) break;
         if (trees == 0) { (*unbuildable)++; continue; }

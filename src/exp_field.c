@@ -457,7 +457,9 @@ int cmd_aniso_jitter_calibrate(int argc, char **argv)
     for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
         double lv, am;
         long n;
-        if (strcmp(tsv_str(t, r, "arm"), "coupled")) continue;
+        const char *arm;
+        if ((st = tsv_text(t, r, "arm", &arm))) break;
+        if (strcmp(arm, "coupled")) continue;
         if ((st = tsv_double(t, r, "level", &lv)) || (st = tsv_double(t, r, "aniso_median", &am)) || (st = tsv_long(t, r, "aniso_trees", &n))) break;
         tsv_writer_dbl(w, lv);
         tsv_writer_dbl(w, am);

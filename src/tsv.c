@@ -166,6 +166,11 @@ static cs_status cell(const tsv *t, size_t row, const char *col, const char **s)
     return CS_OK;
 }
 
+cs_status tsv_text(const tsv *t, size_t row, const char *col, const char **out)
+{
+    return cell(t, row, col, out);
+}
+
 static cs_status parse_double(const tsv *t, size_t row, const char *col, double *out, int allow_nf)
 {
     const char *s;

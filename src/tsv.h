@@ -29,6 +29,9 @@ int tsv_line(const tsv *t, size_t row);
 
 /* Cell as text; NULL if the column does not exist. */
 const char *tsv_str(const tsv *t, size_t row, const char *col);
+/* Cell as text; CS_EINPUT naming file, line and field when the column or row
+ * does not exist (tsv_str's NULL, turned into a message). */
+cs_status tsv_text(const tsv *t, size_t row, const char *col, const char **out);
 /* Cell as a finite double ("nan"/"inf" rejected unless allow_nonfinite).
  * Error names file, line and field: "f.tsv:12: field 'w1': not a number: 'abc'". */
 cs_status tsv_double(const tsv *t, size_t row, const char *col, double *out);

@@ -162,6 +162,21 @@ static void test_bad_meta_line_rejected(void **s)
     assert_non_null(strstr(cs_errmsg(), "t.tsv:1:"));
 }
 
+static void test_text_cell_missing_column_names_field(void **s)
+{
+    (void)s;
+    const char *p = fixture("tsv_text", "level\taniso_median\n0.04\t1.5\n");
+    tsv *t;
+    assert_int_equal(tsv_read(p, &t), CS_OK);
+    const char *v = NULL;
+    assert_int_equal(tsv_text(t, 0, "level", &v), CS_OK);
+    assert_string_equal(v, "0.04");
+    assert_int_equal(tsv_text(t, 0, "arm", &v), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "t.tsv:2:"));
+    assert_non_null(strstr(cs_errmsg(), "'arm'"));
+    tsv_free(t);
+}
+
 /* Regression (make fuzz, libFuzzer crash in tsv_read): a row with more fields
  * than the header was reported after the table had been freed. */
 static void test_extra_field_is_rejected_without_use_after_free(void **s)
@@ -197,6 +212,7 @@ int main(void)
         cmocka_unit_test(test_empty_file_is_input_error),
         cmocka_unit_test(test_no_final_newline_is_truncation),
         cmocka_unit_test(test_bad_meta_line_rejected),
+        cmocka_unit_test(test_text_cell_missing_column_names_field),
         cmocka_unit_test(test_extra_field_is_rejected_without_use_after_free),
         cmocka_unit_test(test_fuzz_crash_input_is_clean_error),
     };
