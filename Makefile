@@ -140,6 +140,7 @@ deps-paper:
 	else echo "deps-paper: run: sudo apt-get install -y texlive-latex-base texlive-latex-recommended texlive-latex-extra texlive-fonts-recommended" >&2; exit 1; fi
 
 paper: $(CLI)
+	@$(CLI) figures >/dev/null || { echo "paper: a figure failed to draw (make figures)" >&2; exit 1; }
 	@$(CLI) numbers --check >/dev/null || { echo "paper: paper/numbers.tex is stale; run make numbers" >&2; exit 1; }
 	@if ! command -v pdflatex >/dev/null; then echo "paper: pdflatex not installed; run make deps-paper (Debian texlive packages)" >&2; exit 1; fi
 	@cd paper && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && echo "paper: wrote paper/main.pdf"

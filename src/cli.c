@@ -425,7 +425,27 @@ static int cmd_check_tsv(int argc, char **argv)
     return rc;
 }
 
+static int cmd_figures(int argc, char **argv)
+{
+    if (want_help(argc, argv,
+                  "usage: crownshy figures\n"
+                  "Redraw every figure (figures/ *.gp, gnuplot) whose frozen data exist; the same step as\n"
+                  "in crownshy verify. Exit 1 if a script fails.\n"))
+        return 0;
+    if (argc > 1) { fprintf(stderr, "crownshy figures: unknown option '%s'\n", argv[1]); return 2; }
+    checklist cl = {0};
+    verify_figures(&cl);
+    int bad = 0;
+    for (size_t i = 0; i < cl.n; i++) {
+        printf("  %-7s %-28s %s\n", verdict_name(cl.items[i].v), cl.items[i].name, cl.items[i].msg);
+        bad |= cl.items[i].v == VERDICT_FAIL;
+    }
+    checklist_free(&cl);
+    return bad ? 1 : 0;
+}
+
 static const cli_cmd cli_cmds[] = {
+    {"figures", cmd_figures, "redraw every figure with gnuplot from frozen data"},
     {"main-run", exp_main_cmd_run, "E3/E4: one (seed, arm) training + evaluation unit"},
     {"main-baselines", exp_main_cmd_baselines, "E3/E4: direction-blind baseline and noise floor"},
     {"main-summary", exp_main_cmd_summary, "E3/E4: gather runs into frozen tables"},

@@ -21,7 +21,7 @@ static void test_help_exits_zero(void **s)
 {
     (void)s;
     assert_int_equal(run("--help", out, sizeof out), 0);
-    const char *cmds[] = {"verify", "numbers", "audit", "trace", "gates", "check-tsv", "pin", "hash-frozen"};
+    const char *cmds[] = {"verify", "numbers", "audit", "trace", "gates", "check-tsv", "pin", "hash-frozen", "figures"};
     for (size_t i = 0; i < sizeof cmds / sizeof *cmds; i++) {
         char a[64];
         snprintf(a, sizeof a, "%s --help", cmds[i]);
