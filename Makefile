@@ -48,9 +48,9 @@ deps:
 	fi
 
 # ---- build ------------------------------------------------------------------
-$(B)/obj/%.o: src/%.c $(wildcard src/*.h) | $(B)/obj
+$(B)/obj/%.o: src/%.c $(wildcard src/*.h src/*.inc) | $(B)/obj
 	$(CC) $(CPPFLAGS) $(CFLAGS) -c $< -o $@
-$(B)/asan/obj/%.o: src/%.c $(wildcard src/*.h) | $(B)/asan/obj
+$(B)/asan/obj/%.o: src/%.c $(wildcard src/*.h src/*.inc) | $(B)/asan/obj
 	$(CC) $(CPPFLAGS) $(CFLAGS) $(SANFLAGS) -c $< -o $@
 $(B)/libcrownshy.a: $(LIB_OBJ)
 	ar rcs $@ $^

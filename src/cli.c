@@ -15,6 +15,7 @@
 #include "model.h"
 #include "patch.h"
 #include "train.h"
+#include "gemm.h"
 #include <errno.h>
 #include <gsl/gsl_rng.h>
 #include <math.h>
@@ -232,6 +233,8 @@ static int cmd_bench_model(int argc, char **argv)
     printf("trainer_step_ms\t%.3f\n", r.step_ms_median);
     printf("model_gflops\t%.2f\n", r.model_gflops);
     printf("sgemm_gflops\t%.2f\n", r.sgemm_gflops);
+    printf("gemm_fma_gflops\t%.2f\n", r.gemm_fma_gflops);
+    printf("gemm_path\t%s\n", gemm_isa_name());
     printf("model_to_sgemm_ratio\t%.3f\n", r.ratio);
     printf("goals: >= 55 steps/s, ratio >= 0.60: %s\n", r.steps_per_s >= 55 && r.ratio >= 0.6 ? "met" : "not met");
     return 0;

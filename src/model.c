@@ -95,12 +95,19 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
     const size_t N = (size_t)Bmax * cfg->T, C = cfg->C, F = cfg->F, B = Bmax;
     const size_t I = cfg->P + cfg->nfeat, E = cfg->ncond + cfg->ntime, TP = (size_t)cfg->T * cfg->P;
     const size_t probn = cfg->joint ? B * cfg->H * cfg->T * cfg->T : 0;
+    /* scratch for one transposed weight matrix: C x max(I, E, 3C, F, P) */
+    size_t wtn = 3 * C;
+    if (I > wtn) wtn = I;
+    if (E > wtn) wtn = E;
+    if (F > wtn) wtn = F;
+    if ((size_t)cfg->P > wtn) wtn = cfg->P;
+    wtn *= C;
     size_t per_block = N * C * 4 + N * 4 + N * 3 * C + probn + N * F * 3;
     size_t total = N * I + B * E + 3 * B * C + N * C + 2 * N + N * cfg->P
                  + (size_t)(L + 1) * N * C + (size_t)L * per_block
                  + 3 * N * C + N * 3 * C + N * F + 2 * B * C
                  + nn_attention_scratch_len(cfg->T, cfg->C, cfg->H)
-                 + 4 * B * TP + B;
+                 + 4 * B * TP + B + wtn;
     m->mem = calloc(total, sizeof(float));
     if (!m->params || !m->grads || !m->mem) { model_free(m); return cs_err(CS_ENOMEM, "model: out of memory"); }
     float *p = m->mem;
@@ -120,6 +127,7 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
     m->ascr = TAKE(nn_attention_scratch_len(cfg->T, cfg->C, cfg->H));
     m->fm_xt = TAKE(B * TP); m->fm_u = TAKE(B * TP); m->fm_v = TAKE(B * TP); m->fm_dv = TAKE(B * TP);
     m->fm_t = TAKE(B);
+    m->wt = TAKE(wtn);
 #undef TAKE
     if ((size_t)(p - m->mem) != total) { model_free(m); return cs_err(CS_EINVARIANT, "model: activation layout mismatch"); }
     *out = m;
@@ -176,32 +184,37 @@ cs_status model_forward(model *m, int B, const float *xt, const float *feat,
             ci[c->ncond + nh + k] = (float)cos(w0 * t[b]);
         }
     }
-    nn_linear_forward(m->e1, m->cin, w + m->e1_w, w + m->e1_b, B, E, C);
+    nn_linear_forward(m->e1, m->cin, w + m->e1_w, w + m->e1_b, B, E, C, m->wt);
     nn_gelu_forward(m->e1g, m->e1, (size_t)B * C);
-    nn_linear_forward(m->e, m->e1g, w + m->e2_w, w + m->e2_b, B, C, C);
-    nn_linear_forward(m->x[0], m->tin, w + m->tok_w, w + m->tok_b, N, I, C);
+    nn_linear_forward(m->e, m->e1g, w + m->e2_w, w + m->e2_b, B, C, C, m->wt);
+    nn_linear_forward(m->x[0], m->tin, w + m->tok_w, w + m->tok_b, N, I, C, m->wt);
     for (int b = 0; b < B; b++)
         for (int i = 0; i < T; i++) {
             float *row = m->x[0] + ((size_t)b * T + i) * C;
             nn_residual_forward(row, row, m->e + (size_t)b * C, C);
         }
+    nn_layernorm_forward(m->ln1[0], m->mu1[0], m->rs1[0], m->x[0], w + m->blk[0].ln1_g,
+                         w + m->blk[0].ln1_b, N, C);
     for (int l = 0; l < c->L; l++) {
         const model_block_off *o = &m->blk[l];
-        nn_layernorm_forward(m->ln1[l], m->mu1[l], m->rs1[l], m->x[l], w + o->ln1_g, w + o->ln1_b, N, C);
-        nn_linear_forward(m->qkv[l], m->ln1[l], w + o->qkv_w, w + o->qkv_b, N, C, 3 * C);
-        nn_attention_forward(m->att[l], m->prob[l], m->qkv[l], B, T, C, c->H, mode, m->ascr);
-        /* biases of proj, fc1 and fc2 are added in the fused pass that follows
-         * each GEMM (same values as adding them in the GEMM, one pass fewer) */
-        nn_linear_forward(m->xm[l], m->att[l], w + o->proj_w, NULL, N, C, C);
-        nn_bias_residual_forward(m->xm[l], m->xm[l], w + o->proj_b, m->x[l], N, C);
-        nn_layernorm_forward(m->ln2[l], m->mu2[l], m->rs2[l], m->xm[l], w + o->ln2_g, w + o->ln2_b, N, C);
-        nn_linear_forward(m->h[l], m->ln2[l], w + o->fc1_w, NULL, N, C, F);
-        nn_bias_gelu_forward_save(m->h[l], m->hs[l], m->hg[l], w + o->fc1_b, N, F);
-        nn_linear_forward(m->x[l + 1], m->hg[l], w + o->fc2_w, NULL, N, F, C);
-        nn_bias_residual_forward(m->x[l + 1], m->x[l + 1], w + o->fc2_b, m->xm[l], N, C);
+        /* Every layer runs fused with its product (nn.h): each strip of rows
+         * gets its attention (per patch), bias, residual and the following
+         * layer norm, or bias and GELU, while in cache; values as unfused. */
+        nn_linear_attention_forward(m->qkv[l], m->att[l], m->prob[l], m->ln1[l], w + o->qkv_w,
+                                    w + o->qkv_b, B, T, C, c->H, mode, m->wt, m->ascr);
+        nn_linear_bias_residual_forward(m->xm[l], m->att[l], w + o->proj_w, w + o->proj_b, m->x[l],
+                                        m->ln2[l], m->mu2[l], m->rs2[l], w + o->ln2_g, w + o->ln2_b,
+                                        N, C, C, m->wt);
+        nn_linear_bias_gelu_forward(m->h[l], m->hs[l], m->hg[l], m->ln2[l], w + o->fc1_w, w + o->fc1_b,
+                                    N, C, F, m->wt);
+        const int last = l + 1 == c->L;
+        const size_t g_next = last ? m->lnf_g : m->blk[l + 1].ln1_g, b_next = last ? m->lnf_b : m->blk[l + 1].ln1_b;
+        nn_linear_bias_residual_forward(m->x[l + 1], m->hg[l], w + o->fc2_w, w + o->fc2_b, m->xm[l],
+                                        last ? m->lnf : m->ln1[l + 1], last ? m->muf : m->mu1[l + 1],
+                                        last ? m->rsf : m->rs1[l + 1], w + g_next, w + b_next,
+                                        N, F, C, m->wt);
     }
-    nn_layernorm_forward(m->lnf, m->muf, m->rsf, m->x[c->L], w + m->lnf_g, w + m->lnf_b, N, C);
-    nn_linear_forward(v, m->lnf, w + m->head_w, w + m->head_b, N, C, P);
+    nn_linear_forward(v, m->lnf, w + m->head_w, w + m->head_b, N, C, P, m->wt);
     return CS_OK;
 }
 
@@ -220,12 +233,12 @@ void model_backward(model *m, const float *dv)
     for (int l = c->L - 1; l >= 0; l--) {
         const model_block_off *o = &m->blk[l];
         /* dx holds d x[l+1]; the residual passes it straight to xm[l]. */
-        nn_linear_backward(m->dh, g + o->fc2_w, g + o->fc2_b, m->dx, m->hg[l], w + o->fc2_w, N, F, C);
-        nn_gelu_backward_saved(m->dh, m->dh, m->h[l], m->hs[l], (size_t)N * F);
+        nn_linear_backward_gelu(m->dh, g + o->fc2_w, g + o->fc2_b, m->dx, m->hg[l], w + o->fc2_w,
+                                m->h[l], m->hs[l], N, F, C);
         nn_linear_backward(m->dln, g + o->fc1_w, g + o->fc1_b, m->dh, m->ln2[l], w + o->fc1_w, N, C, F);
         nn_layernorm_backward(m->dx, g + o->ln2_g, g + o->ln2_b, m->dln, m->xm[l], m->mu2[l], m->rs2[l], w + o->ln2_g, N, C);
-        nn_linear_backward(m->dtmp, g + o->proj_w, g + o->proj_b, m->dx, m->att[l], w + o->proj_w, N, C, C);
-        nn_attention_backward(m->dqkv, m->dtmp, m->qkv[l], m->prob[l], B, T, C, c->H, mode, m->ascr);
+        nn_linear_backward_attention(m->dqkv, m->dtmp, g + o->proj_w, g + o->proj_b, m->dx, m->att[l],
+                                     w + o->proj_w, m->qkv[l], m->prob[l], B, T, C, c->H, mode, m->ascr);
         nn_linear_backward(m->dln, g + o->qkv_w, g + o->qkv_b, m->dqkv, m->ln1[l], w + o->qkv_w, N, C, 3 * C);
         nn_layernorm_backward(m->dx, g + o->ln1_g, g + o->ln1_b, m->dln, m->x[l], m->mu1[l], m->rs1[l], w + o->ln1_g, N, C);
     }

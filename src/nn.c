@@ -1,5 +1,6 @@
-/* nn: layer kernels (see nn.h). The GEMMs go to cblas_sgemm; every other loop
- * is written on 8-wide GCC/Clang vector types, because -O2 without fast-math
+/* nn: layer kernels (see nn.h). The matrix products go to gemm_fma (src/gemm.h:
+ * bit-identical on every ISA); cblas_sgemm remains only as the benchmark's
+ * yardstick (nn_sgemm_gflops). Every other loop is written on 8-wide GCC/Clang vector types, because -O2 without fast-math
  * will not vectorise float reductions by itself (reassociation is forbidden).
  * The hot kernels are compiled twice (target_clones: AVX2 and baseline x86-64,
  * picked at load time); both clones execute the same lane-wise IEEE operations
@@ -7,6 +8,7 @@
  * no FMA contraction (-ffp-contract=off), no fast-math. Reductions use a fixed
  * lane order. Paper §4.2; SPEC §8, §10. */
 #include "nn.h"
+#include "gemm.h"
 #include <cblas.h>
 #include <math.h>
 #include <stdlib.h>
@@ -143,16 +145,17 @@ HOT void nn_expf(float *y, const float *x, size_t n)
 }
 
 /* ---- linear ----------------------------------------------------------------- */
+/* All three products go to gemm_fma (one fma chain per output element, the
+ * same bits on every ISA). The forward needs w as a row-major [K x N] B
+ * operand, so it is transposed into the caller's scratch first: K*N floats,
+ * cheap next to the M*K*N product at the model's M = B*T rows. */
 void nn_linear_forward(float *out, const float *in, const float *w, const float *b,
-                       int M, int K, int N)
+                       int M, int K, int N, float *wt)
 {
-    float beta = 0.f;
-    if (b) {
+    if (b)
         for (int r = 0; r < M; r++) memcpy(out + (size_t)r * N, b, sizeof(float) * N);
-        beta = 1.f;
-    }
-    cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasTrans, M, N, K, 1.f, in, K, w, K,
-                beta, out, N);
+    gemm_transpose(wt, w, N, K);
+    gemm_fma(M, N, K, in, K, 1, wt, N, out, N, b != NULL);
 }
 
 HOT static void colsum_add(float *db, const float *dout, int M, int N)
@@ -163,15 +166,12 @@ HOT static void colsum_add(float *db, const float *dout, int M, int N)
 void nn_linear_backward(float *dinp, float *dw, float *db, const float *dout,
                         const float *in, const float *w, int M, int K, int N)
 {
-    if (dinp)
-        cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasNoTrans, M, K, N, 1.f, dout, N, w, K,
-                    0.f, dinp, K);
-    cblas_sgemm(CblasRowMajor, CblasTrans, CblasNoTrans, N, K, M, 1.f, dout, N, in, K,
-                1.f, dw, K);
+    if (dinp) gemm_fma(M, K, N, dout, N, 1, w, K, dinp, K, 0);
+    gemm_fma(N, K, M, dout, 1, N, in, K, dw, K, 1);
     if (db) colsum_add(db, dout, M, N);
 }
 
-double nn_sgemm_gflops(int M, const int *sizes, int n, int reps)
+double nn_sgemm_gflops(int M, const int *sizes, int n, int reps, int blas)
 {
     int mx = 1;
     for (int i = 0; i < n; i++) mx = sizes[i] > mx ? sizes[i] : mx;
@@ -186,8 +186,11 @@ double nn_sgemm_gflops(int M, const int *sizes, int n, int reps)
     for (int a = 0; a < n; a++)
         for (int b = 0; b < n; b++)
             for (int k = 0; k < reps; k++) {
-                cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasTrans, M, sizes[a], sizes[b], 1.f,
-                            A, sizes[b], W, sizes[b], 0.f, Cm, sizes[a]);
+                if (blas)
+                    cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasTrans, M, sizes[a], sizes[b], 1.f,
+                                A, sizes[b], W, sizes[b], 0.f, Cm, sizes[a]);
+                else /* W read as the transposed operand, as after nn_linear_forward's transpose */
+                    gemm_fma(M, sizes[a], sizes[b], A, sizes[b], 1, W, sizes[a], Cm, sizes[a], 0);
                 fl += 2.0 * M * sizes[a] * sizes[b];
             }
     clock_gettime(CLOCK_MONOTONIC, &t1);
@@ -340,6 +343,70 @@ HOT void nn_bias_residual_forward(float *out, const float *y, const float *b, co
     }
 }
 
+/* ---- fused linear layers ------------------------------------------------------------ */
+/* The product's epilogue runs the element-wise pass on each strip of finished
+ * rows while they are in L1, instead of a second sweep over M x N floats. The
+ * element-wise kernels are the ones above, called on row ranges: they treat
+ * rows independently and never depend on a value's position in a vector, so
+ * the results are bit-identical to the unfused sequence (tested). */
+typedef struct {
+    float *h, *sig, *out, *ln, *mean, *rstd;
+    const float *b, *x, *g, *beta, *hin, *hsig;
+    int N;
+} fuse_ctx;
+
+static void epi_bias_gelu(void *p, int i0, int rows)
+{
+    const fuse_ctx *f = p;
+    size_t o = (size_t)i0 * f->N;
+    nn_bias_gelu_forward_save(f->h + o, f->sig + o, f->out + o, f->b, rows, f->N);
+}
+
+static void epi_bias_residual_ln(void *p, int i0, int rows)
+{
+    const fuse_ctx *f = p;
+    size_t o = (size_t)i0 * f->N;
+    nn_bias_residual_forward(f->out + o, f->out + o, f->b, f->x + o, rows, f->N);
+    if (f->ln)
+        nn_layernorm_forward(f->ln + o, f->mean + i0, f->rstd + i0, f->out + o, f->g, f->beta, rows, f->N);
+}
+
+static void epi_gelu_backward(void *p, int i0, int rows)
+{
+    const fuse_ctx *f = p;
+    size_t o = (size_t)i0 * f->N, n = (size_t)rows * f->N;
+    nn_gelu_backward_saved(f->h + o, f->h + o, f->hin + o, f->hsig + o, n);
+}
+
+void nn_linear_bias_gelu_forward(float *h, float *sig, float *out, const float *in,
+                                 const float *w, const float *b, int M, int K, int N, float *wt)
+{
+    fuse_ctx f = {.h = h, .sig = sig, .out = out, .b = b, .N = N};
+    gemm_transpose(wt, w, N, K);
+    gemm_fma_epi(M, N, K, in, K, 1, wt, N, h, N, 0, epi_bias_gelu, &f);
+}
+
+void nn_linear_bias_residual_forward(float *out, const float *in, const float *w,
+                                     const float *b, const float *x, float *ln, float *mean,
+                                     float *rstd, const float *g, const float *beta,
+                                     int M, int K, int N, float *wt)
+{
+    fuse_ctx f = {.out = out, .ln = ln, .mean = mean, .rstd = rstd, .b = b, .x = x,
+                  .g = g, .beta = beta, .N = N};
+    gemm_transpose(wt, w, N, K);
+    gemm_fma_epi(M, N, K, in, K, 1, wt, N, out, N, 0, epi_bias_residual_ln, &f);
+}
+
+void nn_linear_backward_gelu(float *dinp, float *dw, float *db, const float *dout,
+                             const float *in, const float *w, const float *h,
+                             const float *sig, int M, int K, int N)
+{
+    fuse_ctx f = {.h = dinp, .hin = h, .hsig = sig, .N = K};
+    gemm_fma_epi(M, K, N, dout, N, 1, w, K, dinp, K, 0, epi_gelu_backward, &f);
+    gemm_fma(N, K, M, dout, 1, N, in, K, dw, K, 1);
+    if (db) colsum_add(db, dout, M, N);
+}
+
 /* ---- residual ---------------------------------------------------------------------- */
 HOT void nn_residual_forward(float *out, const float *a, const float *b, size_t n)
 {
@@ -357,16 +424,22 @@ HOT void nn_residual_backward(float *acc, const float *x, size_t n)
 
 /* ---- attention -------------------------------------------------------------------- */
 /* Per patch and head the work is six small products on T x hd blocks
- * (T = 24, hd = 16 at the reference configuration). They go to cblas_sgemm
- * with leading dimensions that address the head's columns of qkv in place,
- * so no transposes or copies are needed; measured faster than register-
- * blocked loops on this machine. The softmax and the softmax backward are
- * vector loops. */
+ * (T = 24, hd = 16 at the reference configuration), all through gemm_fma,
+ * which reads the head's columns of qkv in place through its strides. The
+ * two products against K^T and V^T take a transposed copy of the head's keys
+ * or values (hd x T) from the scratch; the score scale 1/sqrt(hd) is folded
+ * into that copy of the keys. The softmax and its backward are vector loops. */
 
 size_t nn_attention_scratch_len(int T, int C, int H)
 {
-    (void)C; (void)H;
-    return (size_t)T * T;
+    return (size_t)T * T + (size_t)(C / H) * T;
+}
+
+/* dst[hd x T] = s * src^T for the T rows of one head (row stride ld). */
+static void head_transpose(float *dst, const float *src, int T, int hd, int ld, float s)
+{
+    for (int j = 0; j < T; j++)
+        for (int d = 0; d < hd; d++) dst[(size_t)d * T + j] = s * src[(size_t)j * ld + d];
 }
 
 /* In place softmax of s[0..n). */
@@ -403,7 +476,6 @@ HOT static void softmax_backward_rows(float *ds, const float *P, int T, float sc
 void nn_attention_forward(float *out, float *prob, const float *qkv,
                           int B, int T, int C, int H, nn_attn_mode mode, float *scratch)
 {
-    (void)scratch;
     const int hd = C / H, C3 = 3 * C;
     if (mode == NN_ATTN_SELF) {
         /* Softmax over one admissible key is exactly 1: the output is v itself. */
@@ -412,16 +484,16 @@ void nn_attention_forward(float *out, float *prob, const float *qkv,
         return;
     }
     const float scale = 1.f / sqrtf((float)hd);
+    float *kt = scratch; /* [hd x T] scale K^T of one head */
     for (int b = 0; b < B; b++) {
         const float *base = qkv + (size_t)b * T * C3;
         for (int h = 0; h < H; h++) {
             float *P = prob + ((size_t)b * H + h) * T * T;
-            /* P = scale Q K^T, softmax by rows, out = P V */
-            cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasTrans, T, T, hd, scale,
-                        base + h * hd, C3, base + C + h * hd, C3, 0.f, P, T);
+            /* P = Q (scale K^T), softmax by rows, out = P V */
+            head_transpose(kt, base + C + h * hd, T, hd, C3, scale);
+            gemm_fma(T, T, hd, base + h * hd, C3, 1, kt, T, P, T, 0);
             softmax_rows(P, T);
-            cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasNoTrans, T, hd, T, 1.f,
-                        P, T, base + 2 * C + h * hd, C3, 0.f, out + (size_t)b * T * C + h * hd, C);
+            gemm_fma(T, hd, T, P, T, 1, base + 2 * C + h * hd, C3, out + (size_t)b * T * C + h * hd, C, 0);
         }
     }
 }
@@ -440,7 +512,7 @@ void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
         return;
     }
     const float scale = 1.f / sqrtf((float)hd);
-    float *ds = scratch; /* [T x T] dP, then dS */
+    float *ds = scratch, *vt = scratch + (size_t)T * T; /* [T x T] dP then dS; [hd x T] V^T */
     for (int b = 0; b < B; b++) {
         const float *base = qkv + (size_t)b * T * C3;
         const float *dO = dout + (size_t)b * T * C;
@@ -449,15 +521,74 @@ void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
             const float *P = prob + ((size_t)b * H + h) * T * T;
             const float *q = base + h * hd, *k = base + C + h * hd, *v = base + 2 * C + h * hd;
             /* dP = dO V^T; dS = softmax backward; dV = P^T dO; dQ = dS K; dK = dS^T Q */
-            cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasTrans, T, T, hd, 1.f,
-                        dO + h * hd, C, v, C3, 0.f, ds, T);
+            head_transpose(vt, v, T, hd, C3, 1.f);
+            gemm_fma(T, T, hd, dO + h * hd, C, 1, vt, T, ds, T, 0);
             softmax_backward_rows(ds, P, T, scale);
-            cblas_sgemm(CblasRowMajor, CblasTrans, CblasNoTrans, T, hd, T, 1.f,
-                        P, T, dO + h * hd, C, 0.f, g + 2 * C + h * hd, C3);
-            cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasNoTrans, T, hd, T, 1.f,
-                        ds, T, k, C3, 0.f, g + h * hd, C3);
-            cblas_sgemm(CblasRowMajor, CblasTrans, CblasNoTrans, T, hd, T, 1.f,
-                        ds, T, q, C3, 0.f, g + C + h * hd, C3);
+            gemm_fma(T, hd, T, P, 1, T, dO + h * hd, C, g + 2 * C + h * hd, C3, 0);
+            gemm_fma(T, hd, T, ds, T, 1, k, C3, g + h * hd, C3, 0);
+            gemm_fma(T, hd, T, ds, 1, T, q, C3, g + C + h * hd, C3, 0);
         }
     }
+}
+
+/* ---- attention fused into its neighbouring products ------------------------------- */
+/* A patch's attention runs as soon as the product has finished the patch's T
+ * rows, while they are still in L1/L2 (at the model's batch the whole qkv does
+ * not fit L2). The per-patch calls are the kernels above with B = 1, so the
+ * values are those of the unfused sequence (tested). */
+typedef struct {
+    float *out, *prob;
+    const float *qkv, *dout, *cprob;
+    int T, C, H, next;
+    nn_attn_mode mode;
+    float *scratch;
+} attn_ctx;
+
+static void epi_attention_forward(void *p, int i0, int rows)
+{
+    attn_ctx *a = p;
+    const size_t T = a->T, C = a->C, H = a->H;
+    for (int done = (i0 + rows) / a->T; a->next < done; a->next++) {
+        size_t b = a->next;
+        nn_attention_forward(a->out + b * T * C, a->prob ? a->prob + b * H * T * T : NULL,
+                             a->qkv + b * T * 3 * C, 1, a->T, a->C, a->H, a->mode, a->scratch);
+    }
+}
+
+static void epi_attention_backward(void *p, int i0, int rows)
+{
+    attn_ctx *a = p;
+    const size_t T = a->T, C = a->C, H = a->H;
+    for (int done = (i0 + rows) / a->T; a->next < done; a->next++) {
+        size_t b = a->next;
+        nn_attention_backward(a->out + b * T * 3 * C, a->dout + b * T * C, a->qkv + b * T * 3 * C,
+                              a->cprob ? a->cprob + b * H * T * T : NULL, 1, a->T, a->C, a->H,
+                              a->mode, a->scratch);
+    }
+}
+
+void nn_linear_attention_forward(float *qkv, float *out, float *prob, const float *in,
+                                 const float *w, const float *b, int B, int T, int C, int H,
+                                 nn_attn_mode mode, float *wt, float *scratch)
+{
+    const int M = B * T, N = 3 * C;
+    attn_ctx a = {.out = out, .prob = prob, .qkv = qkv, .T = T, .C = C, .H = H, .mode = mode,
+                  .scratch = scratch};
+    if (b)
+        for (int r = 0; r < M; r++) memcpy(qkv + (size_t)r * N, b, sizeof(float) * N);
+    gemm_transpose(wt, w, N, C);
+    gemm_fma_epi(M, N, C, in, C, 1, wt, N, qkv, N, b != NULL, epi_attention_forward, &a);
+}
+
+void nn_linear_backward_attention(float *dqkv, float *datt, float *dw, float *db,
+                                  const float *dout, const float *att, const float *w,
+                                  const float *qkv, const float *prob, int B, int T, int C,
+                                  int H, nn_attn_mode mode, float *scratch)
+{
+    const int M = B * T;
+    attn_ctx a = {.out = dqkv, .qkv = qkv, .dout = datt, .cprob = prob, .T = T, .C = C, .H = H,
+                  .mode = mode, .scratch = scratch};
+    gemm_fma_epi(M, C, C, dout, C, 1, w, C, datt, C, 0, epi_attention_backward, &a);
+    gemm_fma(C, C, M, dout, 1, C, att, C, dw, C, 1);
+    if (db) colsum_add(db, dout, M, C);
 }

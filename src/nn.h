@@ -1,5 +1,5 @@
 /* nn: layer kernels of the flow-matching set transformer (SPEC §8, paper §4.2):
- * linear (cblas_sgemm), layer norm, GELU (tanh form), residual add, and
+ * linear (gemm_fma), layer norm, GELU (tanh form), residual add, and
  * multi-head self-attention over groups of T tokens (one group = one patch)
  * with two masks: joint (every token sees the whole patch) and self (each token
  * sees only itself, paper Eq. 6 "independent" arm; same parameters).
@@ -7,8 +7,9 @@
  * Conventions: activations are row-major [rows x channels]; weights are stored
  * [out x in] so that y = x W^T + b. Backward kernels ACCUMULATE parameter
  * gradients (+=); input gradients are overwritten unless a comment says "+=".
- * Kernels never allocate and run on the calling thread; for one build on one
- * machine (one BLAS thread) they are bit-reproducible. Float only: tests keep
+ * Kernels never allocate and run on the calling thread; their results are
+ * bit-identical on every x86-64 machine (gemm.h; the vector loops below are
+ * lane-wise IEEE in a fixed order). Float only: tests keep
  * naive double-precision references for every kernel. */
 #ifndef NN_H
 #define NN_H
@@ -16,9 +17,10 @@
 
 typedef enum { NN_ATTN_JOINT = 0, NN_ATTN_SELF = 1 } nn_attn_mode;
 
-/* out[M x N] = in[M x K] . w[N x K]^T + b[N]   (b may be NULL). */
+/* out[M x N] = in[M x K] . w[N x K]^T + b[N]   (b may be NULL);
+ * wt: scratch of K*N floats (receives w^T). */
 void nn_linear_forward(float *out, const float *in, const float *w, const float *b,
-                       int M, int K, int N);
+                       int M, int K, int N, float *wt);
 /* dinp[M x K] = dout . w (skipped when dinp == NULL);
  * dw[N x K] += dout^T . in;  db[N] += column sums of dout (skipped when NULL). */
 void nn_linear_backward(float *dinp, float *dw, float *db, const float *dout,
@@ -48,6 +50,22 @@ void nn_bias_gelu_forward_save(float *h, float *sig, float *out, const float *b,
 /* out[M x N] = (y + b) + x, row-wise bias (out may alias y or x). */
 void nn_bias_residual_forward(float *out, const float *y, const float *b, const float *x, int M, int N);
 
+/* Fused linear layers (same values as the unfused sequences, one sweep):
+ * nn_linear_forward(h, in, w, NULL) then nn_bias_gelu_forward_save(h, sig, out, b). */
+void nn_linear_bias_gelu_forward(float *h, float *sig, float *out, const float *in,
+                                 const float *w, const float *b, int M, int K, int N, float *wt);
+/* nn_linear_forward(out, in, w, NULL), nn_bias_residual_forward(out, out, b, x), then,
+ * unless ln == NULL, nn_layernorm_forward(ln, mean, rstd, out, g, beta). x must not alias out. */
+void nn_linear_bias_residual_forward(float *out, const float *in, const float *w,
+                                     const float *b, const float *x, float *ln, float *mean,
+                                     float *rstd, const float *g, const float *beta,
+                                     int M, int K, int N, float *wt);
+/* nn_linear_backward(dinp, dw, db, dout, in, w) then
+ * nn_gelu_backward_saved(dinp, dinp, h, sig) over the M x K input gradient. */
+void nn_linear_backward_gelu(float *dinp, float *dw, float *db, const float *dout,
+                             const float *in, const float *w, const float *h,
+                             const float *sig, int M, int K, int N);
+
 /* out[n] = a + b (out may alias a). */
 void nn_residual_forward(float *out, const float *a, const float *b, size_t n);
 /* acc[n] += x (backward of a residual add into one branch). */
@@ -63,17 +81,31 @@ void nn_attention_forward(float *out, float *prob, const float *qkv,
 void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
                            const float *prob, int B, int T, int C, int H,
                            nn_attn_mode mode, float *scratch);
-/* Floats of scratch the attention kernels need (T*T). */
+/* Floats of scratch the attention kernels need (T*T + T*C/H). */
 size_t nn_attention_scratch_len(int T, int C, int H);
+
+/* Attention fused with its neighbouring products (same values, better locality):
+ * nn_linear_forward(qkv, in, w[3C x C], b) then nn_attention_forward(out, prob, qkv). */
+void nn_linear_attention_forward(float *qkv, float *out, float *prob, const float *in,
+                                 const float *w, const float *b, int B, int T, int C, int H,
+                                 nn_attn_mode mode, float *wt, float *scratch);
+/* For the output projection w[C x C] applied to att:
+ * nn_linear_backward(datt, dw, db, dout, att, w) then
+ * nn_attention_backward(dqkv, datt, qkv, prob). */
+void nn_linear_backward_attention(float *dqkv, float *datt, float *dw, float *db,
+                                  const float *dout, const float *att, const float *w,
+                                  const float *qkv, const float *prob, int B, int T, int C,
+                                  int H, nn_attn_mode mode, float *scratch);
 
 /* y[i] = exp(x[i]) with a range-reduced polynomial (|rel err| < 4e-7 on
  * [-87, 88]; inputs are clamped to that range). Vectorised; used by softmax
  * and GELU so that neither depends on libm speed. */
 void nn_expf(float *y, const float *x, size_t n);
 
-/* GFLOP/s of cblas_sgemm (NoTrans x Trans, as in nn_linear_forward) over all
- * shapes M x N x K with N, K in sizes[0..n), each run `reps` times, timed
- * together; 0 on allocation failure. For the benchmark of SPEC §10. */
-double nn_sgemm_gflops(int M, const int *sizes, int n, int reps);
+/* GFLOP/s of cblas_sgemm (blas = 1; NoTrans x Trans) or of gemm_fma (blas = 0;
+ * the product nn_linear_forward runs) over all shapes M x N x K with N, K in
+ * sizes[0..n), each run `reps` times, timed together; 0 on allocation
+ * failure. For the benchmark of SPEC §10. */
+double nn_sgemm_gflops(int M, const int *sizes, int n, int reps, int blas);
 
 #endif

@@ -411,13 +411,16 @@ cs_status train_bench(const model_cfg *cfg, int B, int steps, int repeats, train
     r->model_gflops = model_train_flops(cfg, B) / (r->step_ms_median * 1e6);
     /* sgemm on the model's shapes: M = B*T tokens, N, K in {C, 3C, F} */
     const int sz[3] = {cfg->C, 3 * cfg->C, cfg->F};
-    double rate[15];
+    double rate[15], own[15];
     for (int rep = 0; rep < repeats; rep++) {
-        rate[rep] = nn_sgemm_gflops(B * cfg->T, sz, 3, 4);
-        if (!(rate[rep] > 0)) return cs_err(CS_ENOMEM, "bench: out of memory");
+        rate[rep] = nn_sgemm_gflops(B * cfg->T, sz, 3, 4, 1);
+        own[rep] = nn_sgemm_gflops(B * cfg->T, sz, 3, 4, 0);
+        if (!(rate[rep] > 0) || !(own[rep] > 0)) return cs_err(CS_ENOMEM, "bench: out of memory");
     }
     qsort(rate, repeats, sizeof *rate, cmp_dbl);
+    qsort(own, repeats, sizeof *own, cmp_dbl);
     r->sgemm_gflops = rate[repeats / 2];
+    r->gemm_fma_gflops = own[repeats / 2];
     r->ratio = r->model_gflops / r->sgemm_gflops;
     return CS_OK;
 }

@@ -77,13 +77,15 @@ cs_status train_load_model(const char *path, model **out, int Bmax, double *scal
 
 typedef struct {
     double steps_per_s, model_gflops, sgemm_gflops, ratio;
+    double gemm_fma_gflops; /* the model's own product on the same shapes */
     double step_ms_median;
     int repeats;
 } train_bench_result;
 
 /* SPEC §10: median over `repeats` timed runs of `steps` training steps at
  * cfg and batch B on toy data, and cblas_sgemm GFLOP/s on the model's shapes
- * (M = B*T, N, K in {C, 3C, F}) measured in the same run. */
+ * (M = B*T, N, K in {C, 3C, F}) measured in the same run (ratio = model /
+ * sgemm), and gemm_fma's GFLOP/s on those shapes. */
 cs_status train_bench(const model_cfg *cfg, int B, int steps, int repeats, train_bench_result *r);
 
 #endif

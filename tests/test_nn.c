@@ -44,7 +44,8 @@ static void test_linear_forward_and_gradients(void **s)
     double din_d[M * K], w_d[N * K], b_d[N], dout_d[M * N], out_d[M * N], g[N * K];
     tu_f2d(din_d, in, M * K); tu_f2d(w_d, w, N * K); tu_f2d(b_d, b, N); tu_f2d(dout_d, dout, M * N);
     lin_ctx c = {M, K, N, din_d, w_d, b_d, dout_d, out_d};
-    nn_linear_forward(out, in, w, b, M, K, N);
+    float wt[K * N];
+    nn_linear_forward(out, in, w, b, M, K, N, wt);
     lin_loss(&c);
     ASSERT_GRAD(out, out_d, M * N, FWD_TOL, "linear forward");
     memset(dw, 0, sizeof dw); memset(db, 0, sizeof db);
@@ -168,6 +169,106 @@ static void test_fused_bias_passes_match_unfused(void **s)
         for (int c = 0; c < N; c++) ASSERT_EXACT(o1[r * N + c], (h[r * N + c] + b[c]) + x[r * N + c]);
 }
 
+/* ---- fused linear layers: bit-identical to the unfused sequences ---------------- */
+/* M = 13 rows gives two full strips and a short one; N, K not multiples of 16. */
+enum { FM = 13, FK = 19, FN = 37 };
+typedef struct { float in[FM * FK], w[FN * FK], b[FN], x[FM * FN], g[FN], beta[FN], wt[FK * FN]; } fused_in;
+static void fused_fill(fused_in *f, unsigned seed)
+{
+    tu_fill(f->in, FM * FK, 1, &seed); tu_fill(f->w, FN * FK, 1, &seed); tu_fill(f->b, FN, 1, &seed);
+    tu_fill(f->x, FM * FN, 2, &seed); tu_fill(f->g, FN, 1, &seed); tu_fill(f->beta, FN, 1, &seed);
+}
+static void same_bits(const float *a, const float *b, size_t n, const char *what)
+{
+    for (size_t i = 0; i < n; i++)
+        if (memcmp(a + i, b + i, sizeof(float)) != 0) {
+            print_error("%s[%zu]: fused %.17g, unfused %.17g\n", what, i, (double)a[i], (double)b[i]);
+            fail();
+        }
+}
+
+static void test_fused_linear_gelu_matches_unfused(void **s)
+{
+    (void)s;
+    static fused_in f;
+    fused_fill(&f, 31);
+    float h1[FM * FN], s1[FM * FN], o1[FM * FN], h2[FM * FN], s2[FM * FN], o2[FM * FN];
+    nn_linear_bias_gelu_forward(h1, s1, o1, f.in, f.w, f.b, FM, FK, FN, f.wt);
+    nn_linear_forward(h2, f.in, f.w, NULL, FM, FK, FN, f.wt);
+    nn_bias_gelu_forward_save(h2, s2, o2, f.b, FM, FN);
+    same_bits(h1, h2, FM * FN, "h"); same_bits(s1, s2, FM * FN, "sig"); same_bits(o1, o2, FM * FN, "gelu");
+}
+
+static void test_fused_linear_residual_layernorm_matches_unfused(void **s)
+{
+    (void)s;
+    static fused_in f;
+    fused_fill(&f, 37);
+    float y1[FM * FN], l1[FM * FN], m1[FM], r1[FM], y2[FM * FN], l2[FM * FN], m2[FM], r2[FM];
+    nn_linear_bias_residual_forward(y1, f.in, f.w, f.b, f.x, l1, m1, r1, f.g, f.beta, FM, FK, FN, f.wt);
+    nn_linear_forward(y2, f.in, f.w, NULL, FM, FK, FN, f.wt);
+    nn_bias_residual_forward(y2, y2, f.b, f.x, FM, FN);
+    nn_layernorm_forward(l2, m2, r2, y2, f.g, f.beta, FM, FN);
+    same_bits(y1, y2, FM * FN, "residual"); same_bits(l1, l2, FM * FN, "ln");
+    same_bits(m1, m2, FM, "mean"); same_bits(r1, r2, FM, "rstd");
+    /* without a layer norm only the residual is written */
+    float y3[FM * FN];
+    nn_linear_bias_residual_forward(y3, f.in, f.w, f.b, f.x, NULL, NULL, NULL, NULL, NULL, FM, FK, FN, f.wt);
+    same_bits(y3, y2, FM * FN, "residual without ln");
+}
+
+static void test_fused_linear_backward_gelu_matches_unfused(void **s)
+{
+    (void)s;
+    static fused_in f;
+    fused_fill(&f, 41);
+    /* layer in[FM x FK] -> out[FM x FN]; h, sig are the GELU's saved input side of `in` */
+    float dout[FM * FN], h[FM * FK], sig[FM * FK], gl[FM * FK];
+    unsigned st = 43;
+    tu_fill(dout, FM * FN, 1, &st); tu_fill(h, FM * FK, 3, &st);
+    nn_gelu_forward_save(gl, sig, h, FM * FK);
+    float d1[FM * FK], d2[FM * FK], dw1[FN * FK] = {0}, dw2[FN * FK] = {0}, db1[FN] = {0}, db2[FN] = {0};
+    nn_linear_backward_gelu(d1, dw1, db1, dout, f.in, f.w, h, sig, FM, FK, FN);
+    nn_linear_backward(d2, dw2, db2, dout, f.in, f.w, FM, FK, FN);
+    nn_gelu_backward_saved(d2, d2, h, sig, FM * FK);
+    same_bits(d1, d2, FM * FK, "dinp"); same_bits(dw1, dw2, FN * FK, "dw"); same_bits(db1, db2, FN, "db");
+}
+
+/* T = 5 puts patch ends inside the 6-row strips; T = 24 is the reference patch. */
+static void check_fused_attention(int B, int T, int C, int H, nn_attn_mode mode, unsigned seed)
+{
+    const size_t N = (size_t)B * T, C3 = 3 * (size_t)C, np = (size_t)B * H * T * T;
+    float *in = malloc(sizeof(float) * N * C), *w = malloc(sizeof(float) * C3 * C), *b = malloc(sizeof(float) * C3);
+    float *wp = malloc(sizeof(float) * C * C), *dout = malloc(sizeof(float) * N * C), *wt = malloc(sizeof(float) * C3 * C);
+    float *scr = malloc(sizeof(float) * nn_attention_scratch_len(T, C, H));
+    float *q1 = malloc(sizeof(float) * N * C3), *q2 = malloc(sizeof(float) * N * C3);
+    float *o1 = malloc(sizeof(float) * N * C), *o2 = malloc(sizeof(float) * N * C);
+    float *p1 = calloc(np, sizeof(float)), *p2 = calloc(np, sizeof(float));
+    float *g1 = malloc(sizeof(float) * N * C3), *g2 = malloc(sizeof(float) * N * C3);
+    float *da1 = malloc(sizeof(float) * N * C), *da2 = malloc(sizeof(float) * N * C);
+    float *dw1 = calloc((size_t)C * C, sizeof(float)), *dw2 = calloc((size_t)C * C, sizeof(float));
+    float *db1 = calloc(C, sizeof(float)), *db2 = calloc(C, sizeof(float));
+    tu_fill(in, N * C, 1, &seed); tu_fill(w, C3 * C, 1, &seed); tu_fill(b, C3, 1, &seed);
+    tu_fill(wp, (size_t)C * C, 1, &seed); tu_fill(dout, N * C, 1, &seed);
+    nn_linear_attention_forward(q1, o1, p1, in, w, b, B, T, C, H, mode, wt, scr);
+    nn_linear_forward(q2, in, w, b, (int)N, C, (int)C3, wt);
+    nn_attention_forward(o2, p2, q2, B, T, C, H, mode, scr);
+    same_bits(q1, q2, N * C3, "qkv"); same_bits(o1, o2, N * C, "attention out");
+    if (mode == NN_ATTN_JOINT) same_bits(p1, p2, np, "probabilities");
+    nn_linear_backward_attention(g1, da1, dw1, db1, dout, o1, wp, q1, p1, B, T, C, H, mode, scr);
+    nn_linear_backward(da2, dw2, db2, dout, o2, wp, (int)N, C, C);
+    nn_attention_backward(g2, da2, q2, p2, B, T, C, H, mode, scr);
+    same_bits(g1, g2, N * C3, "dqkv"); same_bits(da1, da2, N * C, "datt");
+    same_bits(dw1, dw2, (size_t)C * C, "dw"); same_bits(db1, db2, C, "db");
+    free(in); free(w); free(b); free(wp); free(dout); free(wt); free(scr); free(q1); free(q2);
+    free(o1); free(o2); free(p1); free(p2); free(g1); free(g2); free(da1); free(da2);
+    free(dw1); free(dw2); free(db1); free(db2);
+}
+
+static void test_fused_attention_odd_patch_matches_unfused(void **s) { (void)s; check_fused_attention(3, 5, 12, 3, NN_ATTN_JOINT, 51); }
+static void test_fused_attention_reference_patch_matches_unfused(void **s) { (void)s; check_fused_attention(2, 24, 64, 4, NN_ATTN_JOINT, 53); }
+static void test_fused_attention_self_mode_matches_unfused(void **s) { (void)s; check_fused_attention(3, 5, 12, 3, NN_ATTN_SELF, 57); }
+
 /* ---- residual ---------------------------------------------------------------------- */
 static void test_residual_forward_and_backward(void **s)
 {
@@ -241,6 +342,12 @@ int main(void)
         cmocka_unit_test(test_gelu_forward_and_gradient),
         cmocka_unit_test(test_residual_forward_and_backward),
         cmocka_unit_test(test_fused_bias_passes_match_unfused),
+        cmocka_unit_test(test_fused_linear_gelu_matches_unfused),
+        cmocka_unit_test(test_fused_linear_residual_layernorm_matches_unfused),
+        cmocka_unit_test(test_fused_linear_backward_gelu_matches_unfused),
+        cmocka_unit_test(test_fused_attention_odd_patch_matches_unfused),
+        cmocka_unit_test(test_fused_attention_reference_patch_matches_unfused),
+        cmocka_unit_test(test_fused_attention_self_mode_matches_unfused),
         cmocka_unit_test(test_attention_joint_odd_sizes),
         cmocka_unit_test(test_attention_joint_patch_of_24),
         cmocka_unit_test(test_attention_joint_reference_head_width),

@@ -22,6 +22,11 @@
 #define nn_attention_backward base_attention_backward
 #define nn_attention_scratch_len base_attention_scratch_len
 #define nn_sgemm_gflops base_sgemm_gflops
+#define nn_linear_bias_gelu_forward base_linear_bias_gelu_forward
+#define nn_linear_bias_residual_forward base_linear_bias_residual_forward
+#define nn_linear_backward_gelu base_linear_backward_gelu
+#define nn_linear_attention_forward base_linear_attention_forward
+#define nn_linear_backward_attention base_linear_backward_attention
 #include "nn.c"
 #undef nn_expf
 #undef nn_layernorm_forward

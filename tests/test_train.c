@@ -4,6 +4,7 @@
  * kill-and-resume, and rejection of truncated / tampered / foreign checkpoints. */
 #include "testutil.h"
 #include "train.h"
+#include "gemm.h"
 #include <gsl/gsl_randist.h>
 #include <unistd.h>
 
@@ -180,6 +181,33 @@ static void test_training_is_bit_identical_across_runs(void **s)
     patch_set_free(d);
 }
 
+/* The same training on every gemm path this CPU has gives the same bits, so a
+ * run reproduces exactly on a machine without AVX-512 (or without AVX2). */
+static void test_training_is_bit_identical_on_every_gemm_path(void **s)
+{
+    (void)s;
+    patch_set *d = toy_set(40, 1, 4);
+    model_cfg c = small_cfg(1);
+    train_opts o = small_opts(6);
+    train *ref;
+    gemm_isa before = gemm_set_isa(GEMM_SCALAR);
+    assert_int_equal(train_alloc(&ref, &c, d, &o), CS_OK);
+    assert_int_equal(train_run(ref, 6, NULL, 0, NULL), CS_OK);
+    for (int isa = GEMM_AVX2; isa <= GEMM_AVX512; isa++) {
+        if (!gemm_isa_available((gemm_isa)isa)) { print_message("gemm path %d not on this CPU: skipped\n", isa); continue; }
+        gemm_set_isa((gemm_isa)isa);
+        train *t;
+        assert_int_equal(train_alloc(&t, &c, d, &o), CS_OK);
+        assert_int_equal(train_run(t, 6, NULL, 0, NULL), CS_OK);
+        assert_memory_equal(t->m->params, ref->m->params, sizeof(float) * ref->m->nparams);
+        assert_memory_equal(t->av, ref->av, sizeof(float) * ref->m->nparams);
+        train_free(t);
+    }
+    gemm_set_isa(before);
+    train_free(ref);
+    patch_set_free(d);
+}
+
 static void check_resume(int joint)
 {
     patch_set *d = toy_set(40, 1, 5); /* 40 patches, batch 16: epochs of 2 steps, cursor mid-epoch */
@@ -307,6 +335,7 @@ int main(void)
         cmocka_unit_test(test_known_profile_is_learned_and_sampled),
         cmocka_unit_test(test_joint_arm_learns_neighbour_dependence_independent_cannot),
         cmocka_unit_test(test_training_is_bit_identical_across_runs),
+        cmocka_unit_test(test_training_is_bit_identical_on_every_gemm_path),
         cmocka_unit_test(test_kill_and_resume_is_bit_identical_joint),
         cmocka_unit_test(test_kill_and_resume_is_bit_identical_independent),
         cmocka_unit_test(test_truncated_checkpoint_is_rejected),

@@ -1,0 +1,186 @@
+/* gemm: fused multiply-add matrix product with ISA-independent results (see
+ * gemm.h; SPEC §8, §10). The vector paths are the tile template in
+ * gemm_tile.inc, instantiated for AVX-512F (16 lanes, tile 6 x 64) and
+ * AVX2+FMA (8 lanes, tile 6 x 16: 12 accumulators fit 16 registers). */
+#include "gemm.h"
+#include <math.h>
+#include <string.h>
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define GEMM_X86 1
+#include <immintrin.h>
+#endif
+
+/* The reference order: one fma chain per element, k ascending. */
+static void path_scalar(int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t aks,
+                        const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc, int acc,
+                        gemm_epilogue epi, void *ctx)
+{
+    for (int i0 = 0; i0 < M; i0 += GEMM_STRIP) {
+        int R = M - i0 < GEMM_STRIP ? M - i0 : GEMM_STRIP;
+        for (int i = i0; i < i0 + R; i++)
+            for (int j = 0; j < N; j++) {
+                float c = acc ? C[(ptrdiff_t)i * ldc + j] : 0.f;
+                for (int k = 0; k < K; k++)
+                    c = fmaf(A[(ptrdiff_t)i * ars + (ptrdiff_t)k * aks], B[(ptrdiff_t)k * ldb + j], c);
+                C[(ptrdiff_t)i * ldc + j] = c;
+            }
+        if (epi) epi(ctx, i0, R);
+    }
+}
+
+#ifdef GEMM_X86
+/* ---- AVX-512F ---- */
+#define GT_ATTR __attribute__((target("avx512f"), unused))
+#define GT_NAME(x) x##_avx512
+#define GT_VL 16
+#define GT_NVMAX 4
+#define GT_V __m512
+#define GT_MASK __mmask16
+#define GT_ZERO() _mm512_setzero_ps()
+#define GT_LOAD(p) _mm512_loadu_ps(p)
+#define GT_MLOAD(m, p) _mm512_maskz_loadu_ps((m), (p))
+#define GT_STORE(p, v) _mm512_storeu_ps((p), (v))
+#define GT_MSTORE(m, p, v) _mm512_mask_storeu_ps((p), (m), (v))
+#define GT_FMA(a, b, c) _mm512_fmadd_ps((a), (b), (c))
+#define GT_SET1(x) _mm512_set1_ps(x)
+#define GT_MKMASK(n) ((n) >= 16 ? (__mmask16)0xFFFF : (n) <= 0 ? (__mmask16)0 : (__mmask16)((1u << (n)) - 1u))
+#include "gemm_tile.inc"
+#undef GT_ATTR
+#undef GT_NAME
+#undef GT_VL
+#undef GT_NVMAX
+#undef GT_V
+#undef GT_MASK
+#undef GT_ZERO
+#undef GT_LOAD
+#undef GT_MLOAD
+#undef GT_STORE
+#undef GT_MSTORE
+#undef GT_FMA
+#undef GT_SET1
+#undef GT_MKMASK
+
+/* ---- AVX2 + FMA ---- */
+__attribute__((target("avx2"))) static inline __m256i mask8(int n)
+{
+    return _mm256_cmpgt_epi32(_mm256_set1_epi32(n), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+}
+#define GT_ATTR __attribute__((target("avx2,fma"), unused))
+#define GT_NAME(x) x##_avx2
+#define GT_VL 8
+#define GT_NVMAX 2
+#define GT_V __m256
+#define GT_MASK __m256i
+#define GT_ZERO() _mm256_setzero_ps()
+#define GT_LOAD(p) _mm256_loadu_ps(p)
+#define GT_MLOAD(m, p) _mm256_maskload_ps((p), (m))
+#define GT_STORE(p, v) _mm256_storeu_ps((p), (v))
+#define GT_MSTORE(m, p, v) _mm256_maskstore_ps((p), (m), (v))
+#define GT_FMA(a, b, c) _mm256_fmadd_ps((a), (b), (c))
+#define GT_SET1(x) _mm256_set1_ps(x)
+#define GT_MKMASK(n) mask8(n)
+#include "gemm_tile.inc"
+#endif
+
+int gemm_isa_available(gemm_isa isa)
+{
+    switch (isa) {
+    case GEMM_AUTO:
+    case GEMM_SCALAR: return 1;
+#ifdef GEMM_X86
+    case GEMM_AVX2:
+        __builtin_cpu_init();
+        return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    case GEMM_AVX512:
+        __builtin_cpu_init();
+        return __builtin_cpu_supports("avx512f");
+#endif
+    default: return 0;
+    }
+}
+
+static gemm_isa best(gemm_isa want)
+{
+    if (want == GEMM_AUTO) want = GEMM_AVX512;
+    while (want > GEMM_SCALAR && !gemm_isa_available(want)) want = (gemm_isa)(want - 1);
+    return want;
+}
+
+
+typedef void (*path_fn)(int, int, int, const float *, ptrdiff_t, ptrdiff_t, const float *,
+                        ptrdiff_t, float *, ptrdiff_t, int, gemm_epilogue, void *);
+
+static path_fn path_of(gemm_isa isa)
+{
+    switch (best(isa)) {
+#ifdef GEMM_X86
+    case GEMM_AVX512: return path_avx512;
+    case GEMM_AVX2: return path_avx2;
+#endif
+    default: return path_scalar;
+    }
+}
+
+static void run(path_fn f, int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t aks,
+                const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc, int acc,
+                gemm_epilogue epi, void *ctx)
+{
+    if (M <= 0 || N <= 0) return;
+    if (K <= 0) { /* no products: C is 0 or kept, the epilogue still runs */
+        for (int i0 = 0; i0 < M; i0 += GEMM_STRIP) {
+            int R = M - i0 < GEMM_STRIP ? M - i0 : GEMM_STRIP;
+            if (!acc)
+                for (int i = i0; i < i0 + R; i++) memset(C + (ptrdiff_t)i * ldc, 0, sizeof(float) * N);
+            if (epi) epi(ctx, i0, R);
+        }
+        return;
+    }
+    f(M, N, K, A, ars, aks, B, ldb, C, ldc, acc, epi, ctx);
+}
+
+void gemm_fma_isa(gemm_isa isa, int M, int N, int K, const float *A, ptrdiff_t ars,
+                  ptrdiff_t aks, const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc,
+                  int accumulate, gemm_epilogue epi, void *ctx)
+{
+    run(path_of(isa), M, N, K, A, ars, aks, B, ldb, C, ldc, accumulate, epi, ctx);
+}
+
+/* The path is resolved once per process (the CPU does not change under it),
+ * or set by gemm_set_isa. */
+static path_fn auto_path;
+static gemm_isa auto_isa = GEMM_AUTO;
+
+gemm_isa gemm_set_isa(gemm_isa isa)
+{
+    gemm_isa old = auto_isa == GEMM_AUTO ? best(GEMM_AUTO) : auto_isa;
+    auto_isa = best(isa);
+    auto_path = path_of(auto_isa);
+    return old;
+}
+
+const char *gemm_isa_name(void)
+{
+    static const char *names[] = {"auto", "scalar", "avx2", "avx512"};
+    return names[auto_isa == GEMM_AUTO ? best(GEMM_AUTO) : auto_isa];
+}
+
+void gemm_fma_epi(int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t aks,
+                  const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc, int accumulate,
+                  gemm_epilogue epi, void *ctx)
+{
+    if (!auto_path) auto_path = path_of(GEMM_AUTO);
+    run(auto_path, M, N, K, A, ars, aks, B, ldb, C, ldc, accumulate, epi, ctx);
+}
+
+void gemm_fma(int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t aks,
+              const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc, int accumulate)
+{
+    gemm_fma_epi(M, N, K, A, ars, aks, B, ldb, C, ldc, accumulate, NULL, NULL);
+}
+
+void gemm_transpose(float *dst, const float *src, int N, int K)
+{
+    for (int n = 0; n < N; n++)
+        for (int k = 0; k < K; k++) dst[(size_t)k * N + n] = src[(size_t)n * K + k];
+}

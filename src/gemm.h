@@ -1,0 +1,51 @@
+/* gemm: the one matrix product of the model (SPEC §8, §10; paper §4.2).
+ *
+ *   C[i][j] = (accumulate ? C[i][j] : 0) + sum_k A(i, k) * B[k][j],
+ *   A(i, k) = A[i * ars + k * aks]   (so A or A^T, any leading dimension),
+ *   B row-major with leading dimension ldb, C row-major with ldc.
+ *
+ * Why not cblas_sgemm: OpenBLAS picks its kernel per CPU at load time, so the
+ * same training run gives different bits on different machines, and at the
+ * model's shapes (K or N of 16..256) its packing costs a sizeable share of the
+ * step. Here every C element is ONE chain of fused multiply-adds over k in
+ * ascending order, whatever the ISA: the AVX-512, AVX2+FMA and scalar (fmaf)
+ * paths give bit-identical results (tested), so a training run is
+ * reproducible bit for bit on any x86-64 machine. The vector paths keep a
+ * 6-row x (up to) 64-column tile of C in registers and stream B rows.
+ * Limits: float only; no threads; A, B and C must not overlap. */
+#ifndef GEMM_H
+#define GEMM_H
+#include <stddef.h>
+
+/* Called once per finished strip of C rows [i0, i0 + rows), strips in
+ * ascending order, all of them GEMM_STRIP rows except the last; every path
+ * uses the same strips, so an epilogue's results do not depend on the ISA. */
+typedef void (*gemm_epilogue)(void *ctx, int i0, int rows);
+enum { GEMM_STRIP = 6 };
+
+typedef enum { GEMM_AUTO = 0, GEMM_SCALAR = 1, GEMM_AVX2 = 2, GEMM_AVX512 = 3 } gemm_isa;
+
+void gemm_fma(int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t aks,
+              const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc, int accumulate);
+/* gemm_fma, then epi(ctx, ...) on each strip of finished rows (fusing an
+ * element-wise pass into the product while its rows are in cache). */
+void gemm_fma_epi(int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t aks,
+                  const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc, int accumulate,
+                  gemm_epilogue epi, void *ctx);
+/* The same with a chosen path; an unavailable path falls back to the best
+ * available one below it (tests compare paths bit for bit). */
+void gemm_fma_isa(gemm_isa isa, int M, int N, int K, const float *A, ptrdiff_t ars,
+                  ptrdiff_t aks, const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc,
+                  int accumulate, gemm_epilogue epi, void *ctx);
+/* Make gemm_fma use `isa` (or the best available below it) from now on;
+ * returns the path used before. For tests that run a whole model on each
+ * path, and for benchmarks; results do not depend on it. */
+gemm_isa gemm_set_isa(gemm_isa isa);
+/* 1 when this CPU can run the path. */
+int gemm_isa_available(gemm_isa isa);
+/* The path gemm_fma takes: "avx512", "avx2" or "scalar". */
+const char *gemm_isa_name(void);
+/* dst[K x N] = src[N x K]^T (weights stored [out x in] to a B operand). */
+void gemm_transpose(float *dst, const float *src, int N, int K);
+
+#endif

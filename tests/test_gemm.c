@@ -1,0 +1,188 @@
+/* Tests for src/gemm.c: every vector path this CPU has is bit-identical to the
+ * scalar fma chain (the property that makes training reproducible across
+ * machines), the scalar chain agrees with a double-precision product, and
+ * masked column tails never write outside N. Shapes cover the 6-row and
+ * 16/64-column tile edges, transposed A, and padded leading dimensions. */
+#include "testutil.h"
+#include "gemm.h"
+#include <stdint.h>
+
+typedef struct { int M, N, K, transA, acc; } shape;
+
+static const shape shapes[] = {
+    {1, 1, 1, 0, 0},   {7, 5, 3, 0, 1},    {13, 70, 9, 0, 0},  {6, 64, 64, 0, 1},
+    {25, 130, 17, 1, 0}, {24, 24, 16, 0, 0}, {24, 16, 24, 1, 1}, {64, 36, 300, 1, 1},
+    {11, 200, 5, 0, 1}, {5, 7, 40, 1, 0},   {30, 33, 2, 0, 1},  {192, 64, 96, 1, 0},
+};
+
+/* Deterministic values that do not cancel: a fixed LCG mapped to [-1, 1). */
+static void fill(float *x, size_t n, uint32_t seed)
+{
+    for (size_t i = 0; i < n; i++) {
+        seed = seed * 1664525u + 1013904223u;
+        x[i] = (float)((seed >> 8) * (1.0 / 16777216.0) * 2.0 - 1.0);
+    }
+}
+
+typedef struct { float *A, *B, *C0; ptrdiff_t ars, aks, ldb, ldc; } operands;
+
+static operands make_ops(const shape *s, uint32_t seed)
+{
+    operands o;
+    o.ldb = s->N + 3;
+    o.ldc = s->N + 5;
+    if (s->transA) { o.ars = 1; o.aks = s->M + 2; } else { o.ars = s->K + 1; o.aks = 1; }
+    size_t na = s->transA ? (size_t)s->K * o.aks : (size_t)s->M * o.ars;
+    o.A = malloc(sizeof(float) * na);
+    o.B = malloc(sizeof(float) * (size_t)s->K * o.ldb);
+    o.C0 = malloc(sizeof(float) * (size_t)s->M * o.ldc);
+    assert_non_null(o.A); assert_non_null(o.B); assert_non_null(o.C0);
+    fill(o.A, na, seed);
+    fill(o.B, (size_t)s->K * o.ldb, seed + 1);
+    fill(o.C0, (size_t)s->M * o.ldc, seed + 2);
+    return o;
+}
+
+static void free_ops(operands *o) { free(o->A); free(o->B); free(o->C0); }
+
+static float *run(gemm_isa isa, const shape *s, const operands *o)
+{
+    float *C = malloc(sizeof(float) * (size_t)s->M * o->ldc);
+    assert_non_null(C);
+    memcpy(C, o->C0, sizeof(float) * (size_t)s->M * o->ldc);
+    gemm_fma_isa(isa, s->M, s->N, s->K, o->A, o->ars, o->aks, o->B, o->ldb, C, o->ldc, s->acc, NULL, NULL);
+    return C;
+}
+
+static void check_paths_identical(gemm_isa isa)
+{
+    if (!gemm_isa_available(isa)) { print_message("path %d not on this CPU: skipped\n", (int)isa); return; }
+    for (size_t t = 0; t < sizeof shapes / sizeof *shapes; t++) {
+        const shape *s = &shapes[t];
+        operands o = make_ops(s, 17u + (uint32_t)t);
+        float *ref = run(GEMM_SCALAR, s, &o), *got = run(isa, s, &o);
+        for (size_t i = 0; i < (size_t)s->M * o.ldc; i++)
+            if (memcmp(&ref[i], &got[i], sizeof(float)) != 0) {
+                print_error("shape %zu (M %d N %d K %d) element %zu: path %d %.17g, scalar %.17g\n",
+                            t, s->M, s->N, s->K, i, (int)isa, (double)got[i], (double)ref[i]);
+                fail();
+            }
+        free(ref); free(got); free_ops(&o);
+    }
+}
+
+static void test_avx512_bit_identical_to_scalar(void **st) { (void)st; check_paths_identical(GEMM_AVX512); }
+static void test_avx2_bit_identical_to_scalar(void **st) { (void)st; check_paths_identical(GEMM_AVX2); }
+static void test_auto_bit_identical_to_scalar(void **st) { (void)st; check_paths_identical(GEMM_AUTO); }
+
+static void test_scalar_matches_double_product(void **st)
+{
+    (void)st;
+    for (size_t t = 0; t < sizeof shapes / sizeof *shapes; t++) {
+        const shape *s = &shapes[t];
+        operands o = make_ops(s, 101u + (uint32_t)t);
+        float *got = run(GEMM_SCALAR, s, &o);
+        for (int i = 0; i < s->M; i++)
+            for (int j = 0; j < s->N; j++) {
+                double e = s->acc ? o.C0[i * o.ldc + j] : 0, mag = fabs(e);
+                for (int k = 0; k < s->K; k++) {
+                    double p = (double)o.A[i * o.ars + k * o.aks] * o.B[k * o.ldb + j];
+                    e += p;
+                    mag += fabs(p);
+                }
+                ASSERT_NEAR(got[i * o.ldc + j], e, 1e-6 * mag + 1e-30);
+            }
+        free(got); free_ops(&o);
+    }
+}
+
+/* The padding columns N..ldc-1 keep their values on every path. */
+static void test_padding_untouched(void **st)
+{
+    (void)st;
+    const shape s = {13, 70, 9, 0, 0};
+    operands o = make_ops(&s, 5u);
+    for (int isa = GEMM_SCALAR; isa <= GEMM_AVX512; isa++) {
+        float *got = run((gemm_isa)isa, &s, &o);
+        for (int i = 0; i < s.M; i++)
+            for (int j = s.N; j < o.ldc; j++) ASSERT_EXACT(got[i * o.ldc + j], o.C0[i * o.ldc + j]);
+        free(got);
+    }
+    free_ops(&o);
+}
+
+static void test_k_zero_clears_or_keeps(void **st)
+{
+    (void)st;
+    float C[6] = {1, 2, 3, 4, 5, 6};
+    gemm_fma(2, 3, 0, NULL, 0, 0, NULL, 3, C, 3, 1);
+    ASSERT_EXACT(C[5], 6);
+    gemm_fma(2, 3, 0, NULL, 0, 0, NULL, 3, C, 3, 0);
+    ASSERT_EXACT(C[0], 0);
+    ASSERT_EXACT(C[5], 0);
+}
+
+static void test_transpose(void **st)
+{
+    (void)st;
+    float w[6] = {1, 2, 3, 4, 5, 6}, t[6]; /* w is 2 x 3 */
+    gemm_transpose(t, w, 2, 3);
+    const float want[6] = {1, 4, 2, 5, 3, 6};
+    for (int i = 0; i < 6; i++) ASSERT_EXACT(t[i], want[i]);
+}
+
+/* The epilogue sees each strip once, in order, with its rows already final. */
+typedef struct { float *copy; const float *C; ptrdiff_t ldc; int N, next, calls, bad; } epi_rec;
+static void record(void *p, int i0, int rows)
+{
+    epi_rec *e = p;
+    if (i0 != e->next || rows < 1 || rows > GEMM_STRIP) e->bad++;
+    e->next = i0 + rows;
+    e->calls++;
+    for (int i = i0; i < i0 + rows; i++)
+        memcpy(e->copy + i * e->ldc, e->C + i * e->ldc, sizeof(float) * e->N);
+}
+
+static void test_epilogue_sees_final_strips_in_order(void **st)
+{
+    (void)st;
+    const shape s = {25, 130, 17, 1, 1}; /* 4 strips of 6 and one of 1 */
+    operands o = make_ops(&s, 9u);
+    for (int isa = GEMM_SCALAR; isa <= GEMM_AVX512; isa++) {
+        float *C = malloc(sizeof(float) * s.M * o.ldc), *copy = calloc((size_t)s.M * o.ldc, sizeof(float));
+        assert_non_null(C); assert_non_null(copy);
+        memcpy(C, o.C0, sizeof(float) * s.M * o.ldc);
+        epi_rec e = {copy, C, o.ldc, s.N, 0, 0, 0};
+        gemm_fma_isa((gemm_isa)isa, s.M, s.N, s.K, o.A, o.ars, o.aks, o.B, o.ldb, C, o.ldc, 1, record, &e);
+        ASSERT_EXACT(e.bad, 0);
+        ASSERT_EXACT(e.calls, 5);
+        ASSERT_EXACT(e.next, s.M);
+        for (int i = 0; i < s.M; i++)
+            for (int j = 0; j < s.N; j++) ASSERT_EXACT(copy[i * o.ldc + j], C[i * o.ldc + j]);
+        free(C); free(copy);
+    }
+    free_ops(&o);
+}
+
+static void test_isa_name_is_a_path(void **st)
+{
+    (void)st;
+    const char *n = gemm_isa_name();
+    assert_true(!strcmp(n, "avx512") || !strcmp(n, "avx2") || !strcmp(n, "scalar"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_avx512_bit_identical_to_scalar),
+        cmocka_unit_test(test_avx2_bit_identical_to_scalar),
+        cmocka_unit_test(test_auto_bit_identical_to_scalar),
+        cmocka_unit_test(test_scalar_matches_double_product),
+        cmocka_unit_test(test_padding_untouched),
+        cmocka_unit_test(test_k_zero_clears_or_keeps),
+        cmocka_unit_test(test_transpose),
+        cmocka_unit_test(test_epilogue_sees_final_strips_in_order),
+        cmocka_unit_test(test_isa_name_is_a_path),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
