@@ -424,15 +424,17 @@ HOT void nn_residual_backward(float *acc, const float *x, size_t n)
 
 /* ---- attention -------------------------------------------------------------------- */
 /* Per patch and head the work is six small products on T x hd blocks
- * (T = 24, hd = 16 at the reference configuration), all through gemm_fma,
- * which reads the head's columns of qkv in place through its strides. The
- * two products against K^T and V^T take a transposed copy of the head's keys
- * or values (hd x T) from the scratch; the score scale 1/sqrt(hd) is folded
- * into that copy of the keys. The softmax and its backward are vector loops. */
+ * (T = 24, hd = 16 at the reference configuration), read in place from qkv
+ * through gemm's strides. The scores (Q K^T) and dP (dO V^T) go head by head
+ * through gemm_fma on a transposed copy of the head's keys or values (hd x T,
+ * in the scratch; the score scale 1/sqrt(hd) is folded into the keys' copy).
+ * The four products with an hd-wide result (P V, P^T dO, dS K, dS^T Q) go
+ * through gemm_fma_heads, all heads of a patch per pass. Values are those of
+ * per-head gemm_fma calls. The softmax and its backward are vector loops. */
 
 size_t nn_attention_scratch_len(int T, int C, int H)
 {
-    return (size_t)T * T + (size_t)(C / H) * T;
+    return (size_t)H * T * T + (size_t)(C / H) * T;
 }
 
 /* dst[hd x T] = s * src^T for the T rows of one head (row stride ld). */
@@ -493,8 +495,10 @@ void nn_attention_forward(float *out, float *prob, const float *qkv,
             head_transpose(kt, base + C + h * hd, T, hd, C3, scale);
             gemm_fma(T, T, hd, base + h * hd, C3, 1, kt, T, P, T, 0);
             softmax_rows(P, T);
-            gemm_fma(T, hd, T, P, T, 1, base + 2 * C + h * hd, C3, out + (size_t)b * T * C + h * hd, C, 0);
         }
+        /* out_h = P_h V_h for all heads in one pass */
+        gemm_fma_heads(H, T, hd, T, prob + (size_t)b * H * T * T, (ptrdiff_t)T * T, T, 1,
+                       base + 2 * C, C3, out + (size_t)b * T * C, C);
     }
 }
 
@@ -512,22 +516,27 @@ void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
         return;
     }
     const float scale = 1.f / sqrtf((float)hd);
-    float *ds = scratch, *vt = scratch + (size_t)T * T; /* [T x T] dP then dS; [hd x T] V^T */
+    /* [H x T x T] dP then dS of every head; [hd x T] V^T of one head */
+    float *ds = scratch, *vt = scratch + (size_t)H * T * T;
     for (int b = 0; b < B; b++) {
         const float *base = qkv + (size_t)b * T * C3;
         const float *dO = dout + (size_t)b * T * C;
         float *g = dqkv + (size_t)b * T * C3;
         for (int h = 0; h < H; h++) {
             const float *P = prob + ((size_t)b * H + h) * T * T;
-            const float *q = base + h * hd, *k = base + C + h * hd, *v = base + 2 * C + h * hd;
-            /* dP = dO V^T; dS = softmax backward; dV = P^T dO; dQ = dS K; dK = dS^T Q */
+            const float *v = base + 2 * C + h * hd;
+            /* dP = dO V^T, then the softmax backward turns it into dS */
+            float *dsh = ds + (size_t)h * T * T;
             head_transpose(vt, v, T, hd, C3, 1.f);
-            gemm_fma(T, T, hd, dO + h * hd, C, 1, vt, T, ds, T, 0);
-            softmax_backward_rows(ds, P, T, scale);
-            gemm_fma(T, hd, T, P, 1, T, dO + h * hd, C, g + 2 * C + h * hd, C3, 0);
-            gemm_fma(T, hd, T, ds, T, 1, k, C3, g + h * hd, C3, 0);
-            gemm_fma(T, hd, T, ds, 1, T, q, C3, g + C + h * hd, C3, 0);
+            gemm_fma(T, T, hd, dO + h * hd, C, 1, vt, T, dsh, T, 0);
+            softmax_backward_rows(dsh, P, T, scale);
         }
+        /* dV = P^T dO, dQ = dS K, dK = dS^T Q, all heads per pass */
+        const float *Pb = prob + (size_t)b * H * T * T;
+        const ptrdiff_t hs = (ptrdiff_t)T * T;
+        gemm_fma_heads(H, T, hd, T, Pb, hs, 1, T, dO, C, g + 2 * C, C3);
+        gemm_fma_heads(H, T, hd, T, ds, hs, T, 1, base + C, C3, g, C3);
+        gemm_fma_heads(H, T, hd, T, ds, hs, 1, T, base, C3, g + C, C3);
     }
 }
 

@@ -81,7 +81,7 @@ void nn_attention_forward(float *out, float *prob, const float *qkv,
 void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
                            const float *prob, int B, int T, int C, int H,
                            nn_attn_mode mode, float *scratch);
-/* Floats of scratch the attention kernels need (T*T + T*C/H). */
+/* Floats of scratch the attention kernels need (H*T*T + T*C/H). */
 size_t nn_attention_scratch_len(int T, int C, int H);
 
 /* Attention fused with its neighbouring products (same values, better locality):

@@ -164,6 +164,44 @@ static void test_epilogue_sees_final_strips_in_order(void **st)
     free_ops(&o);
 }
 
+/* gemm_fma_heads equals H separate scalar products, bit for bit. */
+static void check_heads(int H, int M, int n, int K, int transA, uint32_t seed)
+{
+    const ptrdiff_t ahs = (ptrdiff_t)M * K + 3, ars = transA ? 1 : K, aks = transA ? M : 1;
+    const ptrdiff_t ldb = (ptrdiff_t)H * n + 2, ldc = (ptrdiff_t)H * n + 1;
+    float *A = malloc(sizeof(float) * (size_t)(H * ahs)), *B = malloc(sizeof(float) * (size_t)(K * ldb));
+    float *C1 = calloc((size_t)(M * ldc), sizeof(float)), *C2 = calloc((size_t)(M * ldc), sizeof(float));
+    assert_non_null(A); assert_non_null(B); assert_non_null(C1); assert_non_null(C2);
+    fill(A, (size_t)(H * ahs), seed);
+    fill(B, (size_t)(K * ldb), seed + 1);
+    gemm_fma_heads(H, M, n, K, A, ahs, ars, aks, B, ldb, C1, ldc);
+    for (int h = 0; h < H; h++)
+        gemm_fma_isa(GEMM_SCALAR, M, n, K, A + h * ahs, ars, aks, B + h * n, ldb, C2 + h * n, ldc, 0, NULL, NULL);
+    for (int i = 0; i < M * ldc; i++)
+        if (memcmp(&C1[i], &C2[i], sizeof(float)) != 0) {
+            print_error("heads H %d M %d n %d K %d element %d: %.17g, per-head scalar %.17g\n",
+                        H, M, n, K, i, (double)C1[i], (double)C2[i]);
+            fail();
+        }
+    free(A); free(B); free(C1); free(C2);
+}
+
+static void test_heads_reference_attention_shapes(void **st)
+{
+    (void)st;
+    check_heads(4, 24, 16, 24, 0, 61u); /* P V */
+    check_heads(4, 24, 16, 24, 1, 62u); /* P^T dO */
+}
+
+static void test_heads_odd_shapes_and_fallback(void **st)
+{
+    (void)st;
+    check_heads(3, 5, 16, 7, 0, 63u);
+    check_heads(1, 13, 16, 2, 1, 64u);
+    check_heads(2, 9, 8, 11, 0, 65u); /* n != 16: per-head path */
+    check_heads(5, 7, 16, 3, 0, 66u); /* H > 4: per-head path */
+}
+
 static void test_isa_name_is_a_path(void **st)
 {
     (void)st;
@@ -182,6 +220,8 @@ int main(void)
         cmocka_unit_test(test_k_zero_clears_or_keeps),
         cmocka_unit_test(test_transpose),
         cmocka_unit_test(test_epilogue_sees_final_strips_in_order),
+        cmocka_unit_test(test_heads_reference_attention_shapes),
+        cmocka_unit_test(test_heads_odd_shapes_and_fallback),
         cmocka_unit_test(test_isa_name_is_a_path),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
