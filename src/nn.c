@@ -110,28 +110,30 @@ INL float vdot(const float *a, const float *b, int n)
 
 /* ---- exp ------------------------------------------------------------------ */
 /* exp(x) = 2^n * p(r), x = n ln2 + r, |r| <= ln2/2, p = Taylor to degree 7. */
-INL vf vexp(vf x)
-{
-    const vf lo = splat(-87.0f), hi = splat(88.0f);
-    vi mlo = x < lo, mhi = x > hi;
-    x = (vf)(((vi)x & ~mlo) | ((vi)lo & mlo));
-    x = (vf)(((vi)x & ~mhi) | ((vi)hi & mhi));
-    const vf shifter = splat(12582912.0f); /* 1.5*2^23: add-subtract rounds to nearest */
-    vf kn = (x * splat(1.44269504088896341f) + shifter) - shifter;
-    vf r = x - kn * splat(0.693145751953125f);      /* ln2 high part (kn*hi exact) */
-    r = r - kn * splat(1.428606765330187e-06f);     /* ln2 low part */
-    vf p = splat(1.f / 5040.f);
-    p = p * r + splat(1.f / 720.f);
-    p = p * r + splat(1.f / 120.f);
-    p = p * r + splat(1.f / 24.f);
-    p = p * r + splat(1.f / 6.f);
-    p = p * r + splat(0.5f);
-    p = p * r + splat(1.f);
-    p = p * r + splat(1.f);
-    vi n = __builtin_convertvector(kn, vi);
-    vi bits = (n + 127) << 23;
-    return p * (vf)bits;
+#define DEF_VEXP(NAME, VF, VI, SPLAT) \
+INL VF NAME(VF x) \
+{ \
+    const VF lo = SPLAT(-87.0f), hi = SPLAT(88.0f); \
+    VI mlo = x < lo, mhi = x > hi; \
+    x = (VF)(((VI)x & ~mlo) | ((VI)lo & mlo)); \
+    x = (VF)(((VI)x & ~mhi) | ((VI)hi & mhi)); \
+    const VF shifter = SPLAT(12582912.0f); /* 1.5*2^23: add-subtract rounds to nearest */ \
+    VF kn = (x * SPLAT(1.44269504088896341f) + shifter) - shifter; \
+    VF r = x - kn * SPLAT(0.693145751953125f);      /* ln2 high part (kn*hi exact) */ \
+    r = r - kn * SPLAT(1.428606765330187e-06f);     /* ln2 low part */ \
+    VF p = SPLAT(1.f / 5040.f); \
+    p = p * r + SPLAT(1.f / 720.f); \
+    p = p * r + SPLAT(1.f / 120.f); \
+    p = p * r + SPLAT(1.f / 24.f); \
+    p = p * r + SPLAT(1.f / 6.f); \
+    p = p * r + SPLAT(0.5f); \
+    p = p * r + SPLAT(1.f); \
+    p = p * r + SPLAT(1.f); \
+    VI n = __builtin_convertvector(kn, VI); \
+    VI bits = (n + 127) << 23; \
+    return p * (VF)bits; \
 }
+DEF_VEXP(vexp, vf, vi, splat)
 
 /* Scalar tails go through the same lane arithmetic, so a value does not depend
  * on whether it sat in a full vector or in the tail. */
@@ -271,11 +273,13 @@ HOT void nn_layernorm_backward(float *dinp, float *dg, float *db, const float *d
 #define GELU_A 0.044715f
 
 /* sigmoid(2u) of the tanh-form GELU: gelu(x) = x * gsig(x). */
-INL vf vgsig(vf x)
-{
-    vf u = splat(GELU_K) * (x + splat(GELU_A) * x * x * x);
-    return splat(1.f) / (splat(1.f) + vexp(splat(-2.f) * u));
+#define DEF_VGSIG(NAME, VF, VEXP, SPLAT) \
+INL VF NAME(VF x) \
+{ \
+    VF u = SPLAT(GELU_K) * (x + SPLAT(GELU_A) * x * x * x); \
+    return SPLAT(1.f) / (SPLAT(1.f) + VEXP(SPLAT(-2.f) * u)); \
 }
+DEF_VGSIG(vgsig, vf, vexp, splat)
 
 INL vf vgelu_grad(vf x, vf s)
 {
@@ -316,8 +320,52 @@ HOT void nn_gelu_backward_saved(float *dinp, const float *dout, const float *in,
     for (; i < n; i++) dinp[i] = dout[i] * vgelu_grad(splat(in[i]), splat(sig[i]))[0];
 }
 
+/* The GELU forward is compute-bound (an exp and a division per value) and
+ * the largest element-wise cost of a training step; on AVX-512 it runs on
+ * 16-lane vectors. Every lane executes the same IEEE operations in the same
+ * order as in the 8-lane code (no reductions here), so the values are
+ * identical (test_nn_clones compares this path with the baseline build). */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(NN_NO_CLONES)
+#define NN_GELU16 1
+typedef float vf16 __attribute__((vector_size(64)));
+typedef int vi16 __attribute__((vector_size(64)));
+INL vf16 ld16(const float *p) { vf16 v; memcpy(&v, p, sizeof v); return v; }
+INL void st16(float *p, vf16 v) { memcpy(p, &v, sizeof v); }
+INL vf16 splat16(float a) { vf16 z = {0}; return z + a; }
+DEF_VEXP(vexp16, vf16, vi16, splat16)
+DEF_VGSIG(vgsig16, vf16, vexp16, splat16)
+
+__attribute__((target("avx512f"))) static void bias_gelu16(float *h, float *sig, float *out,
+                                                           const float *b, int M, int N)
+{
+    for (int r = 0; r < M; r++) {
+        float *hr = h + (size_t)r * N, *sr = sig + (size_t)r * N, *orow = out + (size_t)r * N;
+        int c = 0;
+        for (; c + 16 <= N; c += 16) {
+            vf16 x = ld16(hr + c) + ld16(b + c), sg = vgsig16(x);
+            st16(hr + c, x); st16(sr + c, sg); st16(orow + c, x * sg);
+        }
+        for (; c < N; c++) {
+            float x = hr[c] + b[c];
+            vf sg = vgsig(splat(x));
+            hr[c] = x; sr[c] = sg[0]; orow[c] = (x * sg)[0];
+        }
+    }
+}
+
+static int have_avx512(void)
+{
+    static int have = -1;
+    if (have < 0) { __builtin_cpu_init(); have = __builtin_cpu_supports("avx512f") ? 1 : 0; }
+    return have;
+}
+#endif
+
 HOT void nn_bias_gelu_forward_save(float *h, float *sig, float *out, const float *b, int M, int N)
 {
+#ifdef NN_GELU16
+    if (have_avx512()) { bias_gelu16(h, sig, out, b, M, N); return; }
+#endif
     for (int r = 0; r < M; r++) {
         float *hr = h + (size_t)r * N, *sr = sig + (size_t)r * N, *orow = out + (size_t)r * N;
         int c = 0;

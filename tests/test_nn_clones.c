@@ -36,6 +36,7 @@
 #undef nn_attention_forward
 #undef nn_attention_backward
 #undef nn_attention_scratch_len
+#undef nn_bias_gelu_forward_save
 /* the library's (dispatched) kernels; nn.h was consumed by the renamed copy */
 void nn_expf(float *y, const float *x, size_t n);
 void nn_layernorm_forward(float *out, float *mean, float *rstd, const float *in,
@@ -52,6 +53,7 @@ void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
                            const float *prob, int B, int T, int C, int H,
                            nn_attn_mode mode, float *scratch);
 size_t nn_attention_scratch_len(int T, int C, int H);
+void nn_bias_gelu_forward_save(float *h, float *sig, float *out, const float *b, int M, int N);
 
 static void tu_fill(float *x, size_t n, float a, unsigned *state)
 {
@@ -112,6 +114,19 @@ static void test_baseline_and_dispatched_kernels_agree_bitwise(void **s)
     same(o1, o2, (size_t)N * C, "layernorm backward");
     same(dg1, dg2, C, "layernorm dg");
 
+    /* bias + GELU: the library takes its 16-lane AVX-512 form where the CPU has
+     * it; the baseline copy is 8-lane SSE. 21 columns leave a scalar tail. */
+    for (int NC = 21; NC <= 64; NC += 43) {
+        enum { R = 40, NMAX = 64 };
+        float bias[NMAX], ha[R * NMAX], hb[R * NMAX], sa[R * NMAX], sb[R * NMAX], oa[R * NMAX], ob[R * NMAX];
+        tu_fill(bias, NC, 1, &st); tu_fill(ha, (size_t)R * NC, 5, &st);
+        memcpy(hb, ha, sizeof(float) * R * NC);
+        nn_bias_gelu_forward_save(ha, sa, oa, bias, R, NC);
+        base_bias_gelu_forward_save(hb, sb, ob, bias, R, NC);
+        same(ha, hb, (size_t)R * NC, "bias+gelu pre-activation");
+        same(sa, sb, (size_t)R * NC, "bias+gelu sigmoid");
+        same(oa, ob, (size_t)R * NC, "bias+gelu output");
+    }
     nn_expf(o1, h, (size_t)N * 3);
     base_expf(o2, h, (size_t)N * 3);
     same(o1, o2, (size_t)N * 3, "exp");
