@@ -1,5 +1,6 @@
 /* adamw: see adamw.h. Bias corrections are computed once per step in double;
- * the per-parameter loop is float and allocation-free. */
+ * the per-parameter loop is float and allocation-free, vectorised on AVX2 with
+ * results identical to the scalar loop (tested). */
 #include "adamw.h"
 #include <math.h>
 
@@ -9,9 +10,12 @@ adamw_hp adamw_defaults(void)
     return h;
 }
 
-static void update_range(float *restrict p, const float *restrict g, float *restrict m,
-                         float *restrict v, size_t lo, size_t hi, float b1, float b2,
-                         float a, float cv, float eps, float keep)
+/* The reference loop; the AVX2 form below computes the same expressions
+ * lane by lane (separate multiplies and adds, IEEE sqrt and division), so the
+ * results are identical. */
+static void update_scalar(float *restrict p, const float *restrict g, float *restrict m,
+                          float *restrict v, size_t lo, size_t hi, float b1, float b2,
+                          float a, float cv, float eps, float keep)
 {
     const float c1 = 1.f - b1, c2 = 1.f - b2;
     for (size_t i = lo; i < hi; i++) {
@@ -22,6 +26,47 @@ static void update_range(float *restrict p, const float *restrict g, float *rest
         v[i] = vi;
         p[i] = p[i] * keep - a * mi / (sqrtf(vi * cv) + eps);
     }
+}
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#define ADAMW_AVX2 1
+/* The scalar loop does not vectorise (sqrtf may set errno) and its sqrt and
+ * division chain made the update about 2% of a training step. */
+__attribute__((target("avx2"))) static size_t update_avx2(float *restrict p, const float *restrict g,
+                                                          float *restrict m, float *restrict v,
+                                                          size_t lo, size_t hi, float b1, float b2,
+                                                          float a, float cv, float eps, float keep)
+{
+    const __m256 vb1 = _mm256_set1_ps(b1), vb2 = _mm256_set1_ps(b2), vc1 = _mm256_set1_ps(1.f - b1);
+    const __m256 vc2 = _mm256_set1_ps(1.f - b2), va = _mm256_set1_ps(a), vcv = _mm256_set1_ps(cv);
+    const __m256 veps = _mm256_set1_ps(eps), vkeep = _mm256_set1_ps(keep);
+    size_t i = lo;
+    for (; i + 8 <= hi; i += 8) {
+        __m256 gi = _mm256_loadu_ps(g + i);
+        __m256 mi = _mm256_add_ps(_mm256_mul_ps(vb1, _mm256_loadu_ps(m + i)), _mm256_mul_ps(vc1, gi));
+        __m256 vi = _mm256_add_ps(_mm256_mul_ps(vb2, _mm256_loadu_ps(v + i)),
+                                  _mm256_mul_ps(vc2, _mm256_mul_ps(gi, gi)));
+        _mm256_storeu_ps(m + i, mi);
+        _mm256_storeu_ps(v + i, vi);
+        __m256 den = _mm256_add_ps(_mm256_sqrt_ps(_mm256_mul_ps(vi, vcv)), veps);
+        __m256 step = _mm256_div_ps(_mm256_mul_ps(va, mi), den);
+        _mm256_storeu_ps(p + i, _mm256_sub_ps(_mm256_mul_ps(_mm256_loadu_ps(p + i), vkeep), step));
+    }
+    return i;
+}
+#endif
+
+static void update_range(float *restrict p, const float *restrict g, float *restrict m,
+                         float *restrict v, size_t lo, size_t hi, float b1, float b2,
+                         float a, float cv, float eps, float keep)
+{
+#ifdef ADAMW_AVX2
+    static int avx2 = -1;
+    if (avx2 < 0) { __builtin_cpu_init(); avx2 = __builtin_cpu_supports("avx2") ? 1 : 0; }
+    if (avx2) lo = update_avx2(p, g, m, v, lo, hi, b1, b2, a, cv, eps, keep);
+#endif
+    update_scalar(p, g, m, v, lo, hi, b1, b2, a, cv, eps, keep);
 }
 
 void adamw_update(float *p, const float *g, float *m, float *v, size_t n, size_t ndecay,
