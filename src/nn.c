@@ -320,6 +320,17 @@ HOT void nn_gelu_backward_saved(float *dinp, const float *dout, const float *in,
     for (; i < n; i++) dinp[i] = dout[i] * vgelu_grad(splat(in[i]), splat(sig[i]))[0];
 }
 
+/* Columns c..N-1 of one row of the fused bias + GELU, one value at a time
+ * through the same lane arithmetic as the vector loops. */
+INL void bias_gelu_tail(float *hr, float *sr, float *orow, const float *b, int c, int N)
+{
+    for (; c < N; c++) {
+        float x = hr[c] + b[c];
+        vf sg = vgsig(splat(x));
+        hr[c] = x; sr[c] = sg[0]; orow[c] = (x * sg)[0];
+    }
+}
+
 /* The GELU forward is compute-bound (an exp and a division per value) and
  * the largest element-wise cost of a training step; on AVX-512 it runs on
  * 16-lane vectors. Every lane executes the same IEEE operations in the same
@@ -345,11 +356,7 @@ __attribute__((target("avx512f"))) static void bias_gelu16(float *h, float *sig,
             vf16 x = ld16(hr + c) + ld16(b + c), sg = vgsig16(x);
             st16(hr + c, x); st16(sr + c, sg); st16(orow + c, x * sg);
         }
-        for (; c < N; c++) {
-            float x = hr[c] + b[c];
-            vf sg = vgsig(splat(x));
-            hr[c] = x; sr[c] = sg[0]; orow[c] = (x * sg)[0];
-        }
+        bias_gelu_tail(hr, sr, orow, b, c, N);
     }
 }
 
@@ -373,11 +380,7 @@ HOT void nn_bias_gelu_forward_save(float *h, float *sig, float *out, const float
             vf x = ld(hr + c) + ld(b + c), sg = vgsig(x);
             st(hr + c, x); st(sr + c, sg); st(orow + c, x * sg);
         }
-        for (; c < N; c++) {
-            float x = hr[c] + b[c];
-            vf sg = vgsig(splat(x));
-            hr[c] = x; sr[c] = sg[0]; orow[c] = (x * sg)[0];
-        }
+        bias_gelu_tail(hr, sr, orow, b, c, N);
     }
 }
 
