@@ -4,6 +4,7 @@
  * from training. Clearances use the pinned estimator (est_clearance,
  * est_knn_clearance) on the patch trees. */
 #include "exp_comp.h"
+#include "args.h"
 #include "exp_main.h"
 #include "design.h"
 #include "estimator.h"
@@ -27,13 +28,6 @@
 
 #define COMP_HARDCORE_C 0.5  /* the figures' hard-core level (SPEC §7 E8/E9) */
 #define COMP_DART_STANDS 4
-
-static const char *opt(int argc, char **argv, const char *name, const char *def)
-{
-    for (int i = 1; i + 1 < argc; i++)
-        if (!strcmp(argv[i], name)) return argv[i + 1];
-    return def;
-}
 
 static cs_status grow(stand *sd, double beta, double *r)
 {
@@ -76,14 +70,14 @@ static cs_status gen_radii(model *m, const patch_set *ps, int Bmax, uint64_t see
 
 int exp_comp_cmd_run(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (!strcmp(argv[i], "--help")) {
-            puts("usage: crownshy comp-run --joint CKPT --indep CKPT --out DIR\n"
-                 "E7: one 24-tree patch at 5.0 m (teacher, joint, independent arm) and the dart probe\n"
-                 "(joint model on hard-core stems); writes DIR/comparison/{patch,patch_crowns,dart_probe}.tsv.");
-            return 0;
-        }
-    const char *cj = opt(argc, argv, "--joint", NULL), *ci = opt(argc, argv, "--indep", NULL), *dir = opt(argc, argv, "--out", NULL);
+    if (args_help(argc, argv,
+                  "usage: crownshy comp-run --joint CKPT --indep CKPT --out DIR\n"
+                  "E7: one 24-tree patch at 5.0 m (teacher, joint, independent arm) and the dart probe\n"
+                  "(joint model on hard-core stems); writes DIR/comparison/{patch,patch_crowns,dart_probe}.tsv."))
+        return 0;
+    static const char *known[] = {"--joint", "--indep", "--out", NULL};
+    if (args_check("comp-run", argc, argv, known)) return 2;
+    const char *cj = args_value(argc, argv, "--joint", NULL), *ci = args_value(argc, argv, "--indep", NULL), *dir = args_value(argc, argv, "--out", NULL);
     if (!cj || !ci || !dir) { fprintf(stderr, "usage: crownshy comp-run --joint CKPT --indep CKPT --out DIR\n"); return 2; }
     prov pv;
     prov_begin(&pv, "comparison", argc, argv);

@@ -20,6 +20,7 @@
  * Limits: d and L are fixed by the design; stand counts are options (the
  * defaults are the full-run choices recorded in each file's provenance). */
 #include "exp_field.h"
+#include "args.h"
 #include "design.h"
 #include "fieldsim.h"
 #include "gate.h"
@@ -38,13 +39,6 @@ typedef struct {
     const char *out, *calibration, *sweep, *jitter_calibration;
     unsigned stands;
 } fs_opts;
-
-static int fs_help(int argc, char **argv, const char *text)
-{
-    for (int i = 1; i < argc; i++)
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) { fputs(text, stdout); return 1; }
-    return 0;
-}
 
 static int fs_die(const char *cmd, cs_status st)
 {
@@ -150,7 +144,7 @@ static cs_status fs_canonical_jitter(double *a)
 
 int cmd_field_summary(int argc, char **argv)
 {
-    if (fs_help(argc, argv,
+    if (args_help(argc, argv,
                 "usage: crownshy field-summary [TABLE.tsv]\n"
                 "Summarise a raw field table (default: $FIELD_TABLE): trees, measurements, tree-mean\n"
                 "median clearance, spread (IQR of all cardinal gaps), anisotropy median (+ excluded),\n"
@@ -201,7 +195,7 @@ int cmd_field_calibrate(int argc, char **argv)
         "at every beta of dieback_grid, record the median tree-mean clearance per beta, and print\n"
         "beta_field (interpolated to calibration_target_m, rounded to the grid). Also writes\n"
         "DIR/calibration_trees.tsv.\n";
-    if (fs_help(argc, argv, help)) return 0;
+    if (args_help(argc, argv, help)) return 0;
     fs_opts o;
     int rc = fs_parse("field-calibrate", argc, argv, &o, 0);
     if (rc) return rc;
@@ -240,7 +234,7 @@ int cmd_field_calibrate(int argc, char **argv)
 
 int cmd_field_beta(int argc, char **argv)
 {
-    if (fs_help(argc, argv,
+    if (args_help(argc, argv,
                 "usage: crownshy field-beta DIR/calibration.tsv\n"
                 "Print beta_field (%.17g) recomputed from an E5 calibration table (used by the make units\n"
                 "that rerun E2 at the field operating point).\n"))
@@ -302,7 +296,7 @@ int cmd_field_heldout(int argc, char **argv)
         "E5 held-out (SPEC §7): N stands (default 28) on seeds disjoint from the calibration, grown at\n"
         "beta_field coupled and as the uncoupled twin: tree-mean median, spread, elongation, anisotropy.\n"
         "The spread ratios need the raw field table (FIELD_TABLE=path); without it they are pending.\n";
-    if (fs_help(argc, argv, help)) return 0;
+    if (args_help(argc, argv, help)) return 0;
     fs_opts o;
     int rc = fs_parse("field-heldout", argc, argv, &o, 28);
     if (rc) return rc;
@@ -341,7 +335,7 @@ int cmd_aniso_lattice(int argc, char **argv)
         "usage: crownshy aniso-lattice --calibration DIR/calibration.tsv --out DIR/lattice.tsv [--stands N]\n"
         "E6 (SPEC §7): anisotropy on the controlled lattice (d = 5 m, canonical jitter) at beta_field,\n"
         "N stands (default 28).\n";
-    if (fs_help(argc, argv, help)) return 0;
+    if (args_help(argc, argv, help)) return 0;
     fs_opts o;
     int rc = fs_parse("aniso-lattice", argc, argv, &o, 28);
     if (rc) return rc;
@@ -408,7 +402,7 @@ static int aniso_family(const char *cmd, int argc, char **argv, stand_kind kind,
 
 int cmd_aniso_hardcore(int argc, char **argv)
 {
-    if (fs_help(argc, argv,
+    if (args_help(argc, argv,
                 "usage: crownshy aniso-hardcore --calibration DIR/calibration.tsv --out DIR/hardcore.tsv [--stands N]\n"
                 "E6 hard-core family (SPEC §7): stems by random sequential addition with minimum distance c d,\n"
                 "c in anisotropy.gate hardcore_levels, N stands per level (default 12), teacher at beta_field.\n"
@@ -420,7 +414,7 @@ int cmd_aniso_hardcore(int argc, char **argv)
 
 int cmd_aniso_jitter(int argc, char **argv)
 {
-    if (fs_help(argc, argv,
+    if (args_help(argc, argv,
                 "usage: crownshy aniso-jitter --calibration DIR/calibration.tsv --out DIR/jitter.tsv [--stands N]\n"
                 "E6 jitter family (SPEC §7): controlled lattice with per-axis jitter sd a d, a in\n"
                 "anisotropy.gate jitter_levels, N stands per level (default 12), teacher at beta_field.\n"))
@@ -431,7 +425,7 @@ int cmd_aniso_jitter(int argc, char **argv)
 
 int cmd_aniso_jitter_calibrate(int argc, char **argv)
 {
-    if (fs_help(argc, argv,
+    if (args_help(argc, argv,
                 "usage: crownshy aniso-jitter-calibrate --sweep DIR/jitter.tsv --out DIR/jitter_calibration.tsv\n"
                 "E6: the jitter sweep's median anisotropy per level (checked against the per-tree table) and\n"
                 "a* = linear interpolation to anisotropy.gate field_median, rounded to 0.01.\n"))
@@ -483,7 +477,7 @@ int cmd_aniso_heldout(int argc, char **argv)
         "                              --out DIR/heldout.tsv [--stands N]\n"
         "E6 held-out (SPEC §7): N stands (default 28) at jitter a* on seeds disjoint from the sweep,\n"
         "teacher at beta_field: anisotropy, elongation, spread; every stand must build.\n";
-    if (fs_help(argc, argv, help)) return 0;
+    if (args_help(argc, argv, help)) return 0;
     fs_opts o;
     int rc = fs_parse("aniso-heldout", argc, argv, &o, 28);
     if (rc) return rc;
@@ -520,7 +514,7 @@ int cmd_aniso_heldout(int argc, char **argv)
  * open-grown crown targets (SPEC §3) and the two knobs' reach. */
 int cmd_field_diagnose(int argc, char **argv)
 {
-    if (fs_help(argc, argv,
+    if (args_help(argc, argv,
                 "usage: crownshy field-diagnose --calibration DIR/calibration.tsv [--stands N]\n"
                 "Print diagnostics for the E5/E6 verdicts: elongation of the open-grown crown targets\n"
                 "(by lobe count k), the reach of beta over the calibration grid (elongation, anisotropy),\n"

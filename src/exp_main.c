@@ -7,6 +7,7 @@
  * (patch_focal_clearances), checked against est_clearance to 1e-6 m before
  * every run (paper §4.3); a mismatch aborts the run. */
 #include "exp_main.h"
+#include "args.h"
 #include "afile.h"
 #include "estimator.h"
 #include "gate.h"
@@ -176,26 +177,6 @@ static int file_exists(const char *p)
     return stat(p, &sb) == 0;
 }
 
-static const char *opt(int argc, char **argv, const char *name, const char *def)
-{
-    for (int i = 1; i + 1 < argc; i++)
-        if (!strcmp(argv[i], name)) return argv[i + 1];
-    return def;
-}
-
-static int bad_opts(int argc, char **argv, const char *const *known)
-{
-    for (int i = 1; i < argc; i++) {
-        int ok = 0;
-        for (int k = 0; known[k]; k++)
-            if (!strcmp(argv[i], known[k])) ok = 1;
-        if (!ok) { fprintf(stderr, "crownshy: unknown option '%s'\n", argv[i]); return 1; }
-        i++;
-        if (i >= argc) { fprintf(stderr, "crownshy: option '%s' needs a value\n", argv[i - 1]); return 1; }
-    }
-    return 0;
-}
-
 static int fail_with(cs_status st)
 {
     fprintf(stderr, "crownshy: %s\n", cs_errmsg());
@@ -256,19 +237,17 @@ static cs_status generate(model *m, int Bmax, const exp_main_plan *pl, const eva
 
 int exp_main_cmd_run(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (!strcmp(argv[i], "--help")) {
-            puts("usage: crownshy main-run --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--ckpt FILE]\n"
-                 "One (seed, arm) unit of E3/E4: build teacher data, train the flow model (resuming from\n"
-                 "--ckpt if it exists), evaluate W1 of focal nearest-neighbour clearances at the unseen and\n"
-                 "extrapolation spacings (joint arm: also the shuffled-geometry probe), write FILE.tsv.");
-            return 0;
-        }
+    if (args_help(argc, argv,
+                  "usage: crownshy main-run --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--ckpt FILE]\n"
+                  "One (seed, arm) unit of E3/E4: build teacher data, train the flow model (resuming from\n"
+                  "--ckpt if it exists), evaluate W1 of focal nearest-neighbour clearances at the unseen and\n"
+                  "extrapolation spacings (joint arm: also the shuffled-geometry probe), write FILE.tsv."))
+        return 0;
     static const char *known[] = {"--seed", "--arm", "--out", "--scale", "--ckpt", "--epochs", "--train-stands", NULL};
-    if (bad_opts(argc, argv, known)) return 2;
-    const char *seed_s = opt(argc, argv, "--seed", NULL), *arm = opt(argc, argv, "--arm", NULL);
-    const char *out = opt(argc, argv, "--out", NULL), *scale = opt(argc, argv, "--scale", "full");
-    const char *ckpt = opt(argc, argv, "--ckpt", NULL);
+    if (args_check("main-run", argc, argv, known)) return 2;
+    const char *seed_s = args_value(argc, argv, "--seed", NULL), *arm = args_value(argc, argv, "--arm", NULL);
+    const char *out = args_value(argc, argv, "--out", NULL), *scale = args_value(argc, argv, "--scale", "full");
+    const char *ckpt = args_value(argc, argv, "--ckpt", NULL);
     char *end = NULL;
     long seedl = seed_s ? strtol(seed_s, &end, 10) : 0;
     if (!seed_s || *end || seedl < 1 || !arm || (strcmp(arm, "joint") && strcmp(arm, "indep")) || !out) {
@@ -285,8 +264,8 @@ int exp_main_cmd_run(int argc, char **argv)
     if (!st) st = exp_main_plan_get(scale, &pl);
     if (st) return fail_with(st);
     /* exploration overrides (recorded in the provenance command line) */
-    if (opt(argc, argv, "--epochs", NULL)) pl.epochs = atoi(opt(argc, argv, "--epochs", NULL));
-    if (opt(argc, argv, "--train-stands", NULL)) pl.train_stands = atoi(opt(argc, argv, "--train-stands", NULL));
+    if (args_value(argc, argv, "--epochs", NULL)) pl.epochs = atoi(args_value(argc, argv, "--epochs", NULL));
+    if (args_value(argc, argv, "--train-stands", NULL)) pl.train_stands = atoi(args_value(argc, argv, "--train-stands", NULL));
     if (pl.epochs < 1 || pl.train_stands < 1) { fprintf(stderr, "crownshy main-run: --epochs and --train-stands must be >= 1\n"); return 2; }
     double worst = 0.0, maxdiff = 0.0;
     patch_set *tr = NULL;
@@ -386,16 +365,14 @@ int exp_main_cmd_run(int argc, char **argv)
 
 int exp_main_cmd_baselines(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (!strcmp(argv[i], "--help")) {
-            puts("usage: crownshy main-baselines --out FILE.tsv [--scale full|smoke]\n"
-                 "Direction-blind baseline (every crown replaced by its circular mean) and split-half\n"
-                 "noise floor of the teacher, as W1 of focal nearest-neighbour clearances per eval spacing.");
-            return 0;
-        }
+    if (args_help(argc, argv,
+                  "usage: crownshy main-baselines --out FILE.tsv [--scale full|smoke]\n"
+                  "Direction-blind baseline (every crown replaced by its circular mean) and split-half\n"
+                  "noise floor of the teacher, as W1 of focal nearest-neighbour clearances per eval spacing."))
+        return 0;
     static const char *known[] = {"--out", "--scale", NULL};
-    if (bad_opts(argc, argv, known)) return 2;
-    const char *out = opt(argc, argv, "--out", NULL), *scale = opt(argc, argv, "--scale", "full");
+    if (args_check("main-baselines", argc, argv, known)) return 2;
+    const char *out = args_value(argc, argv, "--out", NULL), *scale = args_value(argc, argv, "--scale", "full");
     if (!out) { fprintf(stderr, "usage: crownshy main-baselines --out FILE.tsv [--scale full|smoke]\n"); return 2; }
     prov pv;
     prov_begin(&pv, "main", argc, argv);
@@ -462,16 +439,14 @@ int exp_main_cmd_baselines(int argc, char **argv)
  * the shuffled probe, per seed and arm) and extrapolation/runs.tsv. */
 int exp_main_cmd_summary(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (!strcmp(argv[i], "--help")) {
-            puts("usage: crownshy main-summary --dir RESULTS --seeds N\n"
-                 "Read RESULTS/main/run_s<seed>_<arm>.tsv for seeds 1..N and both arms; write\n"
-                 "RESULTS/main/runs.tsv (per-run errors) and RESULTS/extrapolation/runs.tsv.");
-            return 0;
-        }
+    if (args_help(argc, argv,
+                  "usage: crownshy main-summary --dir RESULTS --seeds N\n"
+                  "Read RESULTS/main/run_s<seed>_<arm>.tsv for seeds 1..N and both arms; write\n"
+                  "RESULTS/main/runs.tsv (per-run errors) and RESULTS/extrapolation/runs.tsv."))
+        return 0;
     static const char *known[] = {"--dir", "--seeds", NULL};
-    if (bad_opts(argc, argv, known)) return 2;
-    const char *dir = opt(argc, argv, "--dir", NULL), *ns = opt(argc, argv, "--seeds", NULL);
+    if (args_check("main-summary", argc, argv, known)) return 2;
+    const char *dir = args_value(argc, argv, "--dir", NULL), *ns = args_value(argc, argv, "--seeds", NULL);
     int nseeds = ns ? atoi(ns) : 0;
     if (!dir || nseeds < 1 || nseeds > 64) { fprintf(stderr, "usage: crownshy main-summary --dir RESULTS --seeds N\n"); return 2; }
     prov pv;
