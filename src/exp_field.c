@@ -145,12 +145,12 @@ static cs_status fs_canonical_jitter(double *a)
 int cmd_field_summary(int argc, char **argv)
 {
     if (args_help(argc, argv,
-                "usage: crownshy field-summary [TABLE.tsv]\n"
-                "Summarise a raw field table (default: $FIELD_TABLE): trees, measurements, tree-mean\n"
-                "median clearance, spread (IQR of all cardinal gaps), anisotropy median (+ excluded),\n"
-                "with the canonical estimator's functions, next to the published figures of\n"
-                "frozen/field/reference.tsv. Columns: tree, direction (E/N/W/S or east/north/west/south),\n"
-                "clearance_m; each tree needs each direction exactly once. Exit 3 on a bad table.\n"))
+                  "usage: crownshy field-summary [TABLE.tsv]\n"
+                  "Summarise a raw field table (default: $FIELD_TABLE): trees, measurements, tree-mean\n"
+                  "median clearance, spread (IQR of all cardinal gaps), anisotropy median (+ excluded),\n"
+                  "with the canonical estimator's functions, next to the published figures of\n"
+                  "frozen/field/reference.tsv. Columns: tree, direction (E/N/W/S or east/north/west/south),\n"
+                  "clearance_m; each tree needs each direction exactly once. Exit 3 on a bad table.\n"))
         return 0;
     if (argc > 2) { fprintf(stderr, "usage: crownshy field-summary [TABLE.tsv]\n"); return 2; }
     const char *path = argc == 2 ? argv[1] : field_table_env();
@@ -235,9 +235,9 @@ int cmd_field_calibrate(int argc, char **argv)
 int cmd_field_beta(int argc, char **argv)
 {
     if (args_help(argc, argv,
-                "usage: crownshy field-beta DIR/calibration.tsv\n"
-                "Print beta_field (%.17g) recomputed from an E5 calibration table (used by the make units\n"
-                "that rerun E2 at the field operating point).\n"))
+                  "usage: crownshy field-beta DIR/calibration.tsv\n"
+                  "Print beta_field (%.17g) recomputed from an E5 calibration table (used by the make units\n"
+                  "that rerun E2 at the field operating point).\n"))
         return 0;
     if (argc != 2) { fprintf(stderr, "usage: crownshy field-beta DIR/calibration.tsv\n"); return 2; }
     fs_calibration c;
@@ -403,10 +403,10 @@ static int aniso_family(const char *cmd, int argc, char **argv, stand_kind kind,
 int cmd_aniso_hardcore(int argc, char **argv)
 {
     if (args_help(argc, argv,
-                "usage: crownshy aniso-hardcore --calibration DIR/calibration.tsv --out DIR/hardcore.tsv [--stands N]\n"
-                "E6 hard-core family (SPEC §7): stems by random sequential addition with minimum distance c d,\n"
-                "c in anisotropy.gate hardcore_levels, N stands per level (default 12), teacher at beta_field.\n"
-                "A level whose stands cannot be built is recorded (stands_failed, trees 0), not a crash.\n"))
+                  "usage: crownshy aniso-hardcore --calibration DIR/calibration.tsv --out DIR/hardcore.tsv [--stands N]\n"
+                  "E6 hard-core family (SPEC §7): stems by random sequential addition with minimum distance c d,\n"
+                  "c in anisotropy.gate hardcore_levels, N stands per level (default 12), teacher at beta_field.\n"
+                  "A level whose stands cannot be built is recorded (stands_failed, trees 0), not a crash.\n"))
         return 0;
     return aniso_family("aniso-hardcore", argc, argv, STAND_HARDCORE, "hardcore_levels", "anisotropy/hardcore",
                         "E6 hard-core family: n = (L/d)^2 stems, minimum distance c d (level = c), d = 5 m, L = 60 m, teacher at beta_field");
@@ -415,9 +415,9 @@ int cmd_aniso_hardcore(int argc, char **argv)
 int cmd_aniso_jitter(int argc, char **argv)
 {
     if (args_help(argc, argv,
-                "usage: crownshy aniso-jitter --calibration DIR/calibration.tsv --out DIR/jitter.tsv [--stands N]\n"
-                "E6 jitter family (SPEC §7): controlled lattice with per-axis jitter sd a d, a in\n"
-                "anisotropy.gate jitter_levels, N stands per level (default 12), teacher at beta_field.\n"))
+                  "usage: crownshy aniso-jitter --calibration DIR/calibration.tsv --out DIR/jitter.tsv [--stands N]\n"
+                  "E6 jitter family (SPEC §7): controlled lattice with per-axis jitter sd a d, a in\n"
+                  "anisotropy.gate jitter_levels, N stands per level (default 12), teacher at beta_field.\n"))
         return 0;
     return aniso_family("aniso-jitter", argc, argv, STAND_LATTICE, "jitter_levels", "anisotropy/jitter",
                         "E6 jitter family: lattice d = 5 m, L = 60 m, jitter sd a d (level = a), teacher at beta_field");
@@ -426,9 +426,9 @@ int cmd_aniso_jitter(int argc, char **argv)
 int cmd_aniso_jitter_calibrate(int argc, char **argv)
 {
     if (args_help(argc, argv,
-                "usage: crownshy aniso-jitter-calibrate --sweep DIR/jitter.tsv --out DIR/jitter_calibration.tsv\n"
-                "E6: the jitter sweep's median anisotropy per level (checked against the per-tree table) and\n"
-                "a* = linear interpolation to anisotropy.gate field_median, rounded to 0.01.\n"))
+                  "usage: crownshy aniso-jitter-calibrate --sweep DIR/jitter.tsv --out DIR/jitter_calibration.tsv\n"
+                  "E6: the jitter sweep's median anisotropy per level (checked against the per-tree table) and\n"
+                  "a* = linear interpolation to anisotropy.gate field_median, rounded to 0.01.\n"))
         return 0;
     fs_opts o;
     int rc = fs_parse("aniso-jitter-calibrate", argc, argv, &o, 1);
@@ -515,11 +515,11 @@ int cmd_aniso_heldout(int argc, char **argv)
 int cmd_field_diagnose(int argc, char **argv)
 {
     if (args_help(argc, argv,
-                "usage: crownshy field-diagnose --calibration DIR/calibration.tsv [--stands N]\n"
-                "Print diagnostics for the E5/E6 verdicts: elongation of the open-grown crown targets\n"
-                "(by lobe count k), the reach of beta over the calibration grid (elongation, anisotropy),\n"
-                "and the anisotropy of a perfect lattice (a = 0) at beta_field (N stands, default 12,\n"
-                "seeds 'field/diagnose'). Nothing is written.\n"))
+                  "usage: crownshy field-diagnose --calibration DIR/calibration.tsv [--stands N]\n"
+                  "Print diagnostics for the E5/E6 verdicts: elongation of the open-grown crown targets\n"
+                  "(by lobe count k), the reach of beta over the calibration grid (elongation, anisotropy),\n"
+                  "and the anisotropy of a perfect lattice (a = 0) at beta_field (N stands, default 12,\n"
+                  "seeds 'field/diagnose'). Nothing is written.\n"))
         return 0;
     fs_opts o;
     char *av[16];

@@ -130,16 +130,22 @@ __attribute__((target("avx512f"))) static void heads_avx512(int H, int M, int K,
 
 int gemm_isa_available(gemm_isa isa)
 {
+#ifdef GEMM_X86
+    /* asked once per call of the fused GELU and of every gemm_fma_isa: read
+     * the CPU once per process */
+    static int avx2 = -1, avx512 = -1;
+    if (avx2 < 0) {
+        __builtin_cpu_init();
+        avx512 = __builtin_cpu_supports("avx512f") ? 1 : 0;
+        avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    }
+#endif
     switch (isa) {
     case GEMM_AUTO:
     case GEMM_SCALAR: return 1;
 #ifdef GEMM_X86
-    case GEMM_AVX2:
-        __builtin_cpu_init();
-        return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-    case GEMM_AVX512:
-        __builtin_cpu_init();
-        return __builtin_cpu_supports("avx512f");
+    case GEMM_AVX2: return avx2;
+    case GEMM_AVX512: return avx512;
 #endif
     default: return 0;
     }

@@ -151,13 +151,21 @@ HOT void nn_expf(float *y, const float *x, size_t n)
  * same bits on every ISA). The forward needs w as a row-major [K x N] B
  * operand, so it is transposed into the caller's scratch first: K*N floats,
  * cheap next to the M*K*N product at the model's M = B*T rows. */
-void nn_linear_forward(float *out, const float *in, const float *w, const float *b,
-                       int M, int K, int N, float *wt)
+/* out = in w^T (+ b), then epi on each finished strip (may be NULL). Every
+ * forward linear layer, fused or not, goes through here. */
+static void linear_forward_epi(float *out, const float *in, const float *w, const float *b,
+                               int M, int K, int N, float *wt, gemm_epilogue epi, void *ctx)
 {
     if (b)
         for (int r = 0; r < M; r++) memcpy(out + (size_t)r * N, b, sizeof(float) * N);
     gemm_transpose(wt, w, N, K);
-    gemm_fma(M, N, K, in, K, 1, wt, N, out, N, b != NULL);
+    gemm_fma_epi(M, N, K, in, K, 1, wt, N, out, N, b != NULL, epi, ctx);
+}
+
+void nn_linear_forward(float *out, const float *in, const float *w, const float *b,
+                       int M, int K, int N, float *wt)
+{
+    linear_forward_epi(out, in, w, b, M, K, N, wt, NULL, NULL);
 }
 
 HOT static void colsum_add(float *db, const float *dout, int M, int N)
@@ -165,12 +173,21 @@ HOT static void colsum_add(float *db, const float *dout, int M, int N)
     for (int r = 0; r < M; r++) axpy(db, 1.f, dout + (size_t)r * N, N);
 }
 
+/* dinp = dout w with epi on its strips (both skipped when dinp == NULL),
+ * dw += dout^T in, db += column sums; every backward linear layer. */
+static void linear_backward_epi(float *dinp, float *dw, float *db, const float *dout,
+                                const float *in, const float *w, int M, int K, int N,
+                                gemm_epilogue epi, void *ctx)
+{
+    if (dinp) gemm_fma_epi(M, K, N, dout, N, 1, w, K, dinp, K, 0, epi, ctx);
+    gemm_fma(N, K, M, dout, 1, N, in, K, dw, K, 1);
+    if (db) colsum_add(db, dout, M, N);
+}
+
 void nn_linear_backward(float *dinp, float *dw, float *db, const float *dout,
                         const float *in, const float *w, int M, int K, int N)
 {
-    if (dinp) gemm_fma(M, K, N, dout, N, 1, w, K, dinp, K, 0);
-    gemm_fma(N, K, M, dout, 1, N, in, K, dw, K, 1);
-    if (db) colsum_add(db, dout, M, N);
+    linear_backward_epi(dinp, dw, db, dout, in, w, M, K, N, NULL, NULL);
 }
 
 double nn_sgemm_gflops(int M, const int *sizes, int n, int reps, int blas)
@@ -360,18 +377,12 @@ __attribute__((target("avx512f"))) static void bias_gelu16(float *h, float *sig,
     }
 }
 
-static int have_avx512(void)
-{
-    static int have = -1;
-    if (have < 0) { __builtin_cpu_init(); have = __builtin_cpu_supports("avx512f") ? 1 : 0; }
-    return have;
-}
 #endif
 
 HOT void nn_bias_gelu_forward_save(float *h, float *sig, float *out, const float *b, int M, int N)
 {
 #ifdef NN_GELU16
-    if (have_avx512()) { bias_gelu16(h, sig, out, b, M, N); return; }
+    if (gemm_isa_available(GEMM_AVX512)) { bias_gelu16(h, sig, out, b, M, N); return; }
 #endif
     for (int r = 0; r < M; r++) {
         float *hr = h + (size_t)r * N, *sr = sig + (size_t)r * N, *orow = out + (size_t)r * N;
@@ -433,8 +444,7 @@ void nn_linear_bias_gelu_forward(float *h, float *sig, float *out, const float *
                                  const float *w, const float *b, int M, int K, int N, float *wt)
 {
     fuse_ctx f = {.h = h, .sig = sig, .out = out, .b = b, .N = N};
-    gemm_transpose(wt, w, N, K);
-    gemm_fma_epi(M, N, K, in, K, 1, wt, N, h, N, 0, epi_bias_gelu, &f);
+    linear_forward_epi(h, in, w, NULL, M, K, N, wt, epi_bias_gelu, &f);
 }
 
 void nn_linear_bias_residual_forward(float *out, const float *in, const float *w,
@@ -444,8 +454,7 @@ void nn_linear_bias_residual_forward(float *out, const float *in, const float *w
 {
     fuse_ctx f = {.out = out, .ln = ln, .mean = mean, .rstd = rstd, .b = b, .x = x,
                   .g = g, .beta = beta, .N = N};
-    gemm_transpose(wt, w, N, K);
-    gemm_fma_epi(M, N, K, in, K, 1, wt, N, out, N, 0, epi_bias_residual_ln, &f);
+    linear_forward_epi(out, in, w, NULL, M, K, N, wt, epi_bias_residual_ln, &f);
 }
 
 void nn_linear_backward_gelu(float *dinp, float *dw, float *db, const float *dout,
@@ -453,9 +462,7 @@ void nn_linear_backward_gelu(float *dinp, float *dw, float *db, const float *dou
                              const float *sig, int M, int K, int N)
 {
     fuse_ctx f = {.h = dinp, .hin = h, .hsig = sig, .N = K};
-    gemm_fma_epi(M, K, N, dout, N, 1, w, K, dinp, K, 0, epi_gelu_backward, &f);
-    gemm_fma(N, K, M, dout, 1, N, in, K, dw, K, 1);
-    if (db) colsum_add(db, dout, M, N);
+    linear_backward_epi(dinp, dw, db, dout, in, w, M, K, N, epi_gelu_backward, &f);
 }
 
 /* ---- residual ---------------------------------------------------------------------- */
@@ -634,10 +641,7 @@ void nn_linear_attention_forward(float *qkv, float *out, float *prob, const floa
     const int M = B * T, N = 3 * C;
     attn_ctx a = {.out = out, .prob = prob, .qkv = qkv, .T = T, .C = C, .H = H, .mode = mode,
                   .scratch = scratch};
-    if (b)
-        for (int r = 0; r < M; r++) memcpy(qkv + (size_t)r * N, b, sizeof(float) * N);
-    gemm_transpose(wt, w, N, C);
-    gemm_fma_epi(M, N, C, in, C, 1, wt, N, qkv, N, b != NULL, epi_attention_forward, &a);
+    linear_forward_epi(qkv, in, w, b, M, C, N, wt, epi_attention_forward, &a);
 }
 
 void nn_linear_backward_attention(float *dqkv, float *datt, float *dw, float *db,
@@ -648,7 +652,5 @@ void nn_linear_backward_attention(float *dqkv, float *datt, float *dw, float *db
     const int M = B * T;
     attn_ctx a = {.out = dqkv, .qkv = qkv, .dout = datt, .cprob = prob, .T = T, .C = C, .H = H,
                   .mode = mode, .scratch = scratch};
-    gemm_fma_epi(M, C, C, dout, C, 1, w, C, datt, C, 0, epi_attention_backward, &a);
-    gemm_fma(C, C, M, dout, 1, C, att, C, dw, C, 1);
-    if (db) colsum_add(db, dout, M, C);
+    linear_backward_epi(datt, dw, db, dout, att, w, M, C, C, epi_attention_backward, &a);
 }
