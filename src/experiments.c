@@ -373,6 +373,29 @@ static void irred_meta(tsv_writer *w, const exp_opts *o, double beta)
     tsv_writer_meta(w, "judged", "the focal tree's 4 nearest stems; responds when any sector moves by > 1e-6 m");
 }
 
+/* Stand k of the E2 design at spacing d: controlled lattice, a = 0.04, L = 12 d. */
+static cs_status irred_stand(stand **sd, double d, int k)
+{
+    return stand_alloc(sd, STAND_LATTICE, d, 12.0 * d, 0.04, "irreducibility", (unsigned)k);
+}
+
+/* Open irreducibility/<prefix>_<tag>.tsv and write the provenance block and
+ * the shared metadata; on failure nothing is left open. */
+static cs_status irred_open(const exp_opts *o, const char *prefix, double beta, prov *pv,
+                            double worst, tsv_writer **w, char *path, size_t pathsz)
+{
+    char file[64];
+    snprintf(file, sizeof file, "%s_%s.tsv", prefix, o->tag);
+    cs_status st = open_out(o, "irreducibility", file, w, path, pathsz);
+    if (st) return st;
+    pv->worst_overlap_m = worst;
+    snprintf(pv->seeds, sizeof pv->seeds, "seed_derive(irreducibility,d,k,stems|crowns) k=0..%d", o->stands - 1);
+    st = prov_write(*w, pv);
+    if (st) { tsv_writer_abort(*w); return st; }
+    irred_meta(*w, o, beta);
+    return CS_OK;
+}
+
 static cs_status unit_irred_perturb(const exp_opts *o, double beta)
 {
     prov pv;
@@ -386,7 +409,7 @@ static cs_status unit_irred_perturb(const exp_opts *o, double beta)
     for (size_t a = 0; a < c.nd && !st; a++) {
         for (int k = 0; k < o->stands && !st; k++) {
             stand *sd = NULL;
-            st = stand_alloc(&sd, STAND_LATTICE, c.ds[a], 12.0 * c.ds[a], 0.04, "irreducibility", (unsigned)k);
+            st = irred_stand(&sd, c.ds[a], k);
             if (!st) st = perturb_stand(sd, beta, 48, c.hfac, c.tol, c.njudge, &acc[a], &worst);
             stand_free(sd);
         }
@@ -394,15 +417,9 @@ static cs_status unit_irred_perturb(const exp_opts *o, double beta)
                          acc[a].responded, acc[a].judged);
     }
     tsv_writer *w = NULL;
-    char path[512], file[64];
-    snprintf(file, sizeof file, "perturb_%s.tsv", o->tag);
-    if (!st) st = open_out(o, "irreducibility", file, &w, path, sizeof path);
+    char path[512];
+    if (!st) st = irred_open(o, "perturb", beta, &pv, worst, &w, path, sizeof path);
     if (st) return st;
-    pv.worst_overlap_m = worst;
-    snprintf(pv.seeds, sizeof pv.seeds, "seed_derive(irreducibility,d,k,stems|crowns) k=0..%d", o->stands - 1);
-    st = prov_write(w, &pv);
-    if (st) { tsv_writer_abort(w); return st; }
-    irred_meta(w, o, beta);
     tsv_writer_columns(w, "spacing_m\tbeta\tnres\tstands\tjudged\tresponded\tresponse_fraction\tmagnitude_m\tstep_m");
     for (size_t a = 0; a < c.nd; a++) {
         tsv_writer_dbl(w, c.ds[a]);
@@ -434,7 +451,7 @@ static cs_status unit_irred_refine(const exp_opts *o, double beta)
         for (size_t a = 0; a < c.nd && !st; a++)
             for (int k = 0; k < o->stands && !st; k++) {
                 stand *sd = NULL;
-                st = stand_alloc(&sd, STAND_LATTICE, c.ds[a], 12.0 * c.ds[a], 0.04, "irreducibility", (unsigned)k);
+                st = irred_stand(&sd, c.ds[a], k);
                 if (!st) st = perturb_stand(sd, beta, (int)c.levels[l], c.hfac, c.tol, c.njudge, &acc[l][a], &worst);
                 stand_free(sd);
                 if (!st && k == o->stands - 1)
@@ -454,15 +471,9 @@ static cs_status unit_irred_refine(const exp_opts *o, double beta)
                          pool[l].abs_sum / (double)pool[l].sectors);
     }
     tsv_writer *w = NULL;
-    char path[512], file[64];
-    snprintf(file, sizeof file, "refine_%s.tsv", o->tag);
-    if (!st) st = open_out(o, "irreducibility", file, &w, path, sizeof path);
+    char path[512];
+    if (!st) st = irred_open(o, "refine", beta, &pv, worst, &w, path, sizeof path);
     if (st) return st;
-    pv.worst_overlap_m = worst;
-    snprintf(pv.seeds, sizeof pv.seeds, "seed_derive(irreducibility,d,k,stems|crowns) k=0..%d", o->stands - 1);
-    st = prov_write(w, &pv);
-    if (st) { tsv_writer_abort(w); return st; }
-    irred_meta(w, o, beta);
     tsv_writer_meta(w, "scope", "pooled rows (spacing_m = 0) pool every judged sector of every spacing; gate on pooled");
     tsv_writer_columns(w, "scope\tspacing_m\tnres\tstands\tjudged\tresponded\tmagnitude_m\tstep_m\tstep_ratio\tmagnitude_ratio");
     for (int pooled = 1; pooled >= 0; pooled--)
@@ -524,7 +535,7 @@ static cs_status unit_irred_reduction(const exp_opts *o, double beta)
     for (size_t a = 0; a < c.nd && !st; a++)
         for (int k = 0; k < o->stands && !st; k++) {
             stand *sd = NULL;
-            st = stand_alloc(&sd, STAND_LATTICE, c.ds[a], 12.0 * c.ds[a], 0.04, "irreducibility", (unsigned)k);
+            st = irred_stand(&sd, c.ds[a], k);
             if (st) break;
             double *r = malloc(sd->s->n * NS * sizeof *r);
             teacher_params p;
@@ -559,9 +570,8 @@ static cs_status unit_irred_reduction(const exp_opts *o, double beta)
         }
     }
     tsv_writer *w = NULL;
-    char path[512], file[64];
-    snprintf(file, sizeof file, "reduction_%s.tsv", o->tag);
-    if (!st) st = open_out(o, "irreducibility", file, &w, path, sizeof path);
+    char path[512];
+    if (!st) st = irred_open(o, "reduction", beta, &pv, worst, &w, path, sizeof path);
     if (!st) {
         int qbest = 0;
         double best = INFINITY;
@@ -572,39 +582,32 @@ static cs_status unit_irred_reduction(const exp_opts *o, double beta)
         }
         double sig = SIGMA(qbest);
         double step_mean = steptot / (double)(o->stands * (int)c.nd);
-        pv.worst_overlap_m = worst;
-        snprintf(pv.seeds, sizeof pv.seeds, "seed_derive(irreducibility,d,k,stems|crowns) k=0..%d", o->stands - 1);
-        st = prov_write(w, &pv);
-        if (st) tsv_writer_abort(w);
-        else {
-            irred_meta(w, o, beta);
-            tsv_writer_meta(w, "reduction", "r = min(r*, b - sigma) at sector centres (Eq. 4); sigma grid %.3f:%.3f:%.3f m",
-                            SIG_LO, SIG_STEP, SIG_LO + SIG_STEP * (SIG_N - 1));
-            tsv_writer_meta(w, "scope", "pooled row (spacing_m = 0): one sigma for all spacings; spacing rows use that sigma, own_* their own best");
-            tsv_writer_columns(w, "scope\tspacing_m\tsectors\tsigma_m\tmiss_m\tstep_m\tmiss_steps\town_sigma_m\town_miss_m");
-            for (int pooled = 1; pooled >= 0; pooled--)
-                for (size_t a = 0; a < (pooled ? 1 : c.nd); a++) {
-                    size_t nsec = pooled ? ntot : rt[a].n;
-                    double m = pooled ? best / (double)ntot : miss[a * SIG_N + qbest] / (double)rt[a].n;
-                    double stp = pooled ? step_mean : step_sum[a] / (double)o->stands;
-                    int qo = qbest;
-                    if (!pooled)
-                        for (int q = 0; q < SIG_N; q++) if (miss[a * SIG_N + q] < miss[a * SIG_N + qo]) qo = q;
-                    tsv_writer_str(w, pooled ? "pooled" : "spacing");
-                    tsv_writer_dbl(w, pooled ? 0.0 : c.ds[a]);
-                    tsv_writer_long(w, (long)nsec);
-                    tsv_writer_dbl(w, sig);
-                    tsv_writer_dbl(w, m);
-                    tsv_writer_dbl(w, stp);
-                    tsv_writer_dbl(w, m / stp);
-                    tsv_writer_dbl(w, SIGMA(qo));
-                    tsv_writer_dbl(w, pooled ? m : miss[a * SIG_N + qo] / (double)rt[a].n);
-                    tsv_writer_endrow(w);
-                }
-            fprintf(stderr, "irreducibility reduction (%s): sigma=%.3f miss=%.4f m = %.2f steps\n", o->tag, sig,
-                    best / (double)ntot, best / (double)ntot / step_mean);
-            st = finish(w, &pv, path);
-        }
+        tsv_writer_meta(w, "reduction", "r = min(r*, b - sigma) at sector centres (Eq. 4); sigma grid %.3f:%.3f:%.3f m",
+                        SIG_LO, SIG_STEP, SIG_LO + SIG_STEP * (SIG_N - 1));
+        tsv_writer_meta(w, "scope", "pooled row (spacing_m = 0): one sigma for all spacings; spacing rows use that sigma, own_* their own best");
+        tsv_writer_columns(w, "scope\tspacing_m\tsectors\tsigma_m\tmiss_m\tstep_m\tmiss_steps\town_sigma_m\town_miss_m");
+        for (int pooled = 1; pooled >= 0; pooled--)
+            for (size_t a = 0; a < (pooled ? 1 : c.nd); a++) {
+                size_t nsec = pooled ? ntot : rt[a].n;
+                double m = pooled ? best / (double)ntot : miss[a * SIG_N + qbest] / (double)rt[a].n;
+                double stp = pooled ? step_mean : step_sum[a] / (double)o->stands;
+                int qo = qbest;
+                if (!pooled)
+                    for (int q = 0; q < SIG_N; q++) if (miss[a * SIG_N + q] < miss[a * SIG_N + qo]) qo = q;
+                tsv_writer_str(w, pooled ? "pooled" : "spacing");
+                tsv_writer_dbl(w, pooled ? 0.0 : c.ds[a]);
+                tsv_writer_long(w, (long)nsec);
+                tsv_writer_dbl(w, sig);
+                tsv_writer_dbl(w, m);
+                tsv_writer_dbl(w, stp);
+                tsv_writer_dbl(w, m / stp);
+                tsv_writer_dbl(w, SIGMA(qo));
+                tsv_writer_dbl(w, pooled ? m : miss[a * SIG_N + qo] / (double)rt[a].n);
+                tsv_writer_endrow(w);
+            }
+        fprintf(stderr, "irreducibility reduction (%s): sigma=%.3f miss=%.4f m = %.2f steps\n", o->tag, sig,
+                best / (double)ntot, best / (double)ntot / step_mean);
+        st = finish(w, &pv, path);
     }
     free(miss);
     for (size_t a = 0; a < 8; a++) { free(rt[a].v); free(rs[a].v); free(bb[a].v); }
