@@ -3,17 +3,7 @@
 #include "testutil.h"
 #include <sys/wait.h>
 
-static int run(const char *args, char *out, size_t n)
-{
-    char cmd[1024];
-    snprintf(cmd, sizeof cmd, "build/crownshy %s 2>&1", args);
-    FILE *p = popen(cmd, "r");
-    assert_non_null(p);
-    size_t got = fread(out, 1, n - 1, p);
-    out[got] = '\0';
-    int st = pclose(p);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
+static int run(const char *args, char *out, size_t n) { return tu_run_cli("", args, out, n); }
 
 static char out[65536];
 

@@ -11,17 +11,7 @@
 
 static char out[65536];
 
-static int run(const char *args)
-{
-    char cmd[2048];
-    snprintf(cmd, sizeof cmd, "OPENBLAS_NUM_THREADS=1 build/crownshy %s 2>&1", args);
-    FILE *p = popen(cmd, "r");
-    assert_non_null(p);
-    size_t got = fread(out, 1, sizeof out - 1, p);
-    out[got] = '\0';
-    int st = pclose(p);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
+static int run(const char *args) { return tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out); }
 
 static void test_model_commands_answer_help(void **s)
 {

@@ -6,17 +6,7 @@
 
 static char out[65536];
 
-static int run(const char *args)
-{
-    char cmd[1024];
-    snprintf(cmd, sizeof cmd, "env -u FIELD_TABLE build/crownshy %s 2>&1", args);
-    FILE *p = popen(cmd, "r");
-    assert_non_null(p);
-    size_t got = fread(out, 1, sizeof out - 1, p);
-    out[got] = '\0';
-    int st = pclose(p);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
+static int run(const char *args) { return tu_run_cli("env -u FIELD_TABLE ", args, out, sizeof out); }
 
 static void test_help_exits_zero(void **s)
 {

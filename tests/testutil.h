@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 
 #define ASSERT_NEAR(obs, exp, tol) do { \
     double o_ = (obs), e_ = (exp), t_ = (tol); \
@@ -43,5 +44,20 @@ static inline const char *tu_tmpdir(const char *name)
     snprintf(cmd, sizeof cmd, "rm -rf '%s' && mkdir -p '%s'", dir, dir);
     if (system(cmd) != 0) fail_msg("cannot create %s", dir);
     return dir;
+}
+/* Run "<env>build/crownshy <args>" (env: a prefix such as
+ * "OPENBLAS_NUM_THREADS=1 ", or "") with stderr joined to stdout into out[n].
+ * Returns the exit code, or -1 if the command did not exit normally. */
+static inline int tu_run_cli(const char *env, const char *args, char *out, size_t n)
+{
+    char cmd[4352];
+    if (snprintf(cmd, sizeof cmd, "%sbuild/crownshy %s 2>&1", env, args) >= (int)sizeof cmd)
+        fail_msg("tu_run_cli: command line too long");
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    size_t got = fread(out, 1, n - 1, p);
+    out[got] = '\0';
+    int st = pclose(p);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 #endif
