@@ -533,6 +533,189 @@ HOT static void softmax_backward_rows(float *ds, const float *P, int T, float sc
     }
 }
 
+/* ---- attention on AVX-512 at the reference head shape (T = 24, hd = 16) ----------- */
+/* The generic kernels above spend most of their time around the products,
+ * not in them: a gemm_fma call per 24 x 24 x 16 block, and the hd-wide
+ * products of gemm_fma_heads, whose 24 broadcast operands per k leave their
+ * addresses spilled to the stack. Here one patch's attention runs in register
+ * blocks of 12 rows: a score row is one 16-lane plus one 8-lane vector, an
+ * hd-wide output row one 16-lane vector. Every element is still one fma chain
+ * over k in ascending order from +0, and the softmax and its backward keep the
+ * 8-lane reductions of softmax_row / softmax_backward_rows (the same chunk
+ * order and butterfly), so the values are those of the generic kernels
+ * (test_nn_clones compares the two builds bit for bit). */
+#ifdef NN_GELU16
+#include <immintrin.h>
+#define A512 __attribute__((target("avx512f,fma"), always_inline)) static inline
+
+A512 __m256 hi256(__m512 z) { return _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(z), 1)); }
+/* The butterfly of hsumv / hmaxv: lane i meets lane i^4, then i^2, then i^1. */
+A512 __m256 sw4(__m256 v) { return _mm256_permute2f128_ps(v, v, 0x01); }
+A512 __m256 sw2(__m256 v) { return _mm256_permute_ps(v, 0x4E); }
+A512 __m256 sw1(__m256 v) { return _mm256_permute_ps(v, 0xB1); }
+A512 float hsum8(__m256 v)
+{
+    v = _mm256_add_ps(v, sw4(v));
+    v = _mm256_add_ps(v, sw2(v));
+    return _mm256_cvtss_f32(_mm256_add_ps(v, sw1(v)));
+}
+
+/* dst[8 x 8] (row stride ldd) = s * src^T (row stride lds): the unpack /
+ * shuffle / lane-swap transpose; s * x is the same product as head_transpose's. */
+A512 void tr8(float *dst, ptrdiff_t ldd, const float *src, ptrdiff_t lds, __m256 s)
+{
+    __m256 r[8], t[8], u[8];
+    _Pragma("GCC unroll 8") for (int i = 0; i < 8; i++) r[i] = _mm256_mul_ps(s, _mm256_loadu_ps(src + i * lds));
+    _Pragma("GCC unroll 4") for (int i = 0; i < 8; i += 2) {
+        t[i] = _mm256_unpacklo_ps(r[i], r[i + 1]);
+        t[i + 1] = _mm256_unpackhi_ps(r[i], r[i + 1]);
+    }
+    _Pragma("GCC unroll 2") for (int i = 0; i < 8; i += 4) {
+        u[i] = _mm256_shuffle_ps(t[i], t[i + 2], 0x44);
+        u[i + 1] = _mm256_shuffle_ps(t[i], t[i + 2], 0xEE);
+        u[i + 2] = _mm256_shuffle_ps(t[i + 1], t[i + 3], 0x44);
+        u[i + 3] = _mm256_shuffle_ps(t[i + 1], t[i + 3], 0xEE);
+    }
+    _Pragma("GCC unroll 4") for (int i = 0; i < 4; i++) {
+        _mm256_storeu_ps(dst + i * ldd, _mm256_permute2f128_ps(u[i], u[i + 4], 0x20));
+        _mm256_storeu_ps(dst + (i + 4) * ldd, _mm256_permute2f128_ps(u[i], u[i + 4], 0x31));
+    }
+}
+
+/* dst[16 x 24] = s * src^T for one head's 24 rows of 16 (row stride ld). */
+A512 void head_transpose24(float *dst, const float *src, ptrdiff_t ld, float s)
+{
+    const __m256 vs = _mm256_set1_ps(s);
+    for (int jb = 0; jb < 24; jb += 8)
+        for (int db = 0; db < 16; db += 8) tr8(dst + db * 24 + jb, 24, src + jb * ld + db, ld, vs);
+}
+
+/* S[12 x 24] (row stride 24) = A[12 x 16] (row stride ars) Bt[16 x 24]. */
+A512 void tt_block(float *S, const float *A, ptrdiff_t ars, const float *Bt)
+{
+    __m512 z[12];
+    __m256 y[12];
+    _Pragma("GCC unroll 12") for (int r = 0; r < 12; r++) { z[r] = _mm512_setzero_ps(); y[r] = _mm256_setzero_ps(); }
+    for (int d = 0; d < 16; d++) {
+        __m512 b0 = _mm512_loadu_ps(Bt + d * 24);
+        __m256 b1 = _mm256_loadu_ps(Bt + d * 24 + 16);
+        _Pragma("GCC unroll 12") for (int r = 0; r < 12; r++) {
+            __m512 x = _mm512_set1_ps(A[r * ars + d]);
+            z[r] = _mm512_fmadd_ps(x, b0, z[r]);
+            y[r] = _mm256_fmadd_ps(_mm512_castps512_ps256(x), b1, y[r]);
+        }
+    }
+    _Pragma("GCC unroll 12") for (int r = 0; r < 12; r++) {
+        _mm512_storeu_ps(S + r * 24, z[r]);
+        _mm256_storeu_ps(S + r * 24 + 16, y[r]);
+    }
+}
+
+/* Cm[12 x 16] (row stride ldc) = sum over k < 24 of A(r, k) B[k][0..15],
+ * A(r, k) = A[r * ars + k * aks]; ars and aks are literals at every call. */
+A512 void hw_block(float *Cm, ptrdiff_t ldc, const float *A, const ptrdiff_t ars, const ptrdiff_t aks,
+                   const float *B, ptrdiff_t ldb)
+{
+    __m512 c[12];
+    _Pragma("GCC unroll 12") for (int r = 0; r < 12; r++) c[r] = _mm512_setzero_ps();
+    for (int k = 0; k < 24; k++) {
+        __m512 b = _mm512_loadu_ps(B + k * ldb);
+        _Pragma("GCC unroll 12") for (int r = 0; r < 12; r++)
+            c[r] = _mm512_fmadd_ps(_mm512_set1_ps(A[r * ars + k * aks]), b, c[r]);
+    }
+    _Pragma("GCC unroll 12") for (int r = 0; r < 12; r++) _mm512_storeu_ps(Cm + r * ldc, c[r]);
+}
+
+/* softmax_row on 12 rows of 24 (chunks j 0-7, 8-15, 16-23), in three passes
+ * over the rows (maxima; exponentials and sums; scaling) so that the rows'
+ * long dependency chains overlap instead of following one another. */
+A512 void softmax24x12(float *s)
+{
+    float mx[12], inv[12];
+    _Pragma("GCC unroll 12") for (int r = 0; r < 12; r++) {
+        __m512 z = _mm512_loadu_ps(s + r * 24);
+        __m256 m = _mm256_max_ps(_mm256_max_ps(_mm512_castps512_ps256(z), hi256(z)), _mm256_loadu_ps(s + r * 24 + 16));
+        m = _mm256_max_ps(m, sw4(m)); /* max_ps(a, b) is a > b ? a : b, as vmax */
+        m = _mm256_max_ps(m, sw2(m));
+        mx[r] = _mm256_cvtss_f32(_mm256_max_ps(m, sw1(m)));
+    }
+    for (int r = 0; r < 12; r++) {
+        float *row = s + r * 24;
+        vf16 e16 = vexp16(ld16(row) - splat16(mx[r]));
+        vf e8 = vexp(ld(row + 16) - splat(mx[r]));
+        st16(row, e16);
+        st(row + 16, e8);
+        __m512 ez = (__m512)e16;
+        __m256 acc = _mm256_add_ps(_mm256_setzero_ps(), _mm512_castps512_ps256(ez));
+        acc = _mm256_add_ps(_mm256_add_ps(acc, hi256(ez)), (__m256)e8);
+        inv[r] = hsum8(acc);
+    }
+    for (int r = 0; r < 12; r++) inv[r] = 1.f / inv[r];
+    for (int r = 0; r < 12; r++) {
+        float *row = s + r * 24;
+        st16(row, ld16(row) * inv[r]);
+        st(row + 16, ld(row + 16) * inv[r]);
+    }
+}
+
+/* softmax_backward_rows on one row: d = p (d - p.d) scale. */
+A512 void softmax_backward24(float *d, const float *p, float scale)
+{
+    vf16 pz = ld16(p), dz = ld16(d);
+    vf py = ld(p + 16), dy = ld(d + 16);
+    __m512 prz = (__m512)(pz * dz);
+    __m256 acc = _mm256_add_ps(_mm256_setzero_ps(), _mm512_castps512_ps256(prz));
+    acc = _mm256_add_ps(_mm256_add_ps(acc, hi256(prz)), (__m256)(py * dy));
+    const float dot = hsum8(acc);
+    st16(d, pz * (dz - dot) * scale);
+    st(d + 16, py * (dy - dot) * scale);
+}
+
+/* One patch (24 tokens), all heads: the values of nn_attention_forward. */
+__attribute__((target("avx512f,fma"))) static void attention_forward24(float *out, float *prob,
+                                                                       const float *qkv, int C, int H,
+                                                                       float *kt)
+{
+    const int C3 = 3 * C;
+    const float scale = 1.f / sqrtf(16.f);
+    for (int h = 0; h < H; h++) {
+        float *P = prob + (size_t)h * 576;
+        head_transpose24(kt, qkv + C + h * 16, C3, scale);
+        for (int i0 = 0; i0 < 24; i0 += 12) {
+            tt_block(P + i0 * 24, qkv + (size_t)i0 * C3 + h * 16, C3, kt);
+            softmax24x12(P + i0 * 24);
+            hw_block(out + (size_t)i0 * C + h * 16, C, P + i0 * 24, 24, 1, qkv + 2 * C + h * 16, C3);
+        }
+    }
+}
+
+/* One patch, all heads: the values of nn_attention_backward. */
+__attribute__((target("avx512f,fma"))) static void attention_backward24(float *g, const float *dO,
+                                                                        const float *qkv,
+                                                                        const float *prob, int C,
+                                                                        int H, float *ds, float *vt)
+{
+    const int C3 = 3 * C;
+    const float scale = 1.f / sqrtf(16.f);
+    for (int h = 0; h < H; h++) {
+        const float *P = prob + (size_t)h * 576, *q = qkv + h * 16, *k = qkv + C + h * 16;
+        float *dsh = ds + (size_t)h * 576;
+        head_transpose24(vt, qkv + 2 * C + h * 16, C3, 1.f);
+        for (int i0 = 0; i0 < 24; i0 += 12) {
+            tt_block(dsh + i0 * 24, dO + (size_t)i0 * C + h * 16, C, vt);
+            for (int r = i0; r < i0 + 12; r++) softmax_backward24(dsh + r * 24, P + r * 24, scale);
+        }
+        for (int i0 = 0; i0 < 24; i0 += 12) {
+            const size_t o = (size_t)i0 * C3 + h * 16;
+            hw_block(g + 2 * C + o, C3, P + i0, 1, 24, dO + h * 16, C);  /* dV = P^T dO */
+            hw_block(g + o, C3, dsh + i0 * 24, 24, 1, k, C3);             /* dQ = dS K */
+            hw_block(g + C + o, C3, dsh + i0, 1, 24, q, C3);              /* dK = dS^T Q */
+        }
+    }
+}
+#define NN_ATTN24 1
+#endif
+
 void nn_attention_forward(float *out, float *prob, const float *qkv,
                           int B, int T, int C, int H, nn_attn_mode mode, float *scratch)
 {
@@ -543,6 +726,14 @@ void nn_attention_forward(float *out, float *prob, const float *qkv,
             memcpy(out + (size_t)r * C, qkv + (size_t)r * C3 + 2 * C, sizeof(float) * C);
         return;
     }
+#ifdef NN_ATTN24
+    if (T == 24 && hd == 16 && gemm_isa_available(GEMM_AVX512)) {
+        for (int b = 0; b < B; b++)
+            attention_forward24(out + (size_t)b * T * C, prob + (size_t)b * H * T * T,
+                                qkv + (size_t)b * T * C3, C, H, scratch);
+        return;
+    }
+#endif
     const float scale = 1.f / sqrtf((float)hd);
     float *kt = scratch; /* [hd x T] scale K^T of one head */
     for (int b = 0; b < B; b++) {
@@ -573,9 +764,17 @@ void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
         }
         return;
     }
-    const float scale = 1.f / sqrtf((float)hd);
     /* [H x T x T] dP then dS of every head; [hd x T] V^T of one head */
     float *ds = scratch, *vt = scratch + (size_t)H * T * T;
+#ifdef NN_ATTN24
+    if (T == 24 && hd == 16 && gemm_isa_available(GEMM_AVX512)) {
+        for (int b = 0; b < B; b++)
+            attention_backward24(dqkv + (size_t)b * T * C3, dout + (size_t)b * T * C,
+                                 qkv + (size_t)b * T * C3, prob + (size_t)b * H * T * T, C, H, ds, vt);
+        return;
+    }
+#endif
+    const float scale = 1.f / sqrtf((float)hd);
     for (int b = 0; b < B; b++) {
         const float *base = qkv + (size_t)b * T * C3;
         const float *dO = dout + (size_t)b * T * C;
