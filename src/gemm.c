@@ -16,13 +16,13 @@ enum { GEMM_KC = 256 }; /* k-chunk of a long product without epilogue (see run) 
 /* The reference order: one fma chain per element, k ascending. */
 static void path_scalar(int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t aks,
                         const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc, int acc,
-                        gemm_epilogue epi, void *ctx)
+                        const float *bias, gemm_epilogue epi, void *ctx)
 {
     for (int i0 = 0; i0 < M; i0 += GEMM_STRIP) {
         int R = M - i0 < GEMM_STRIP ? M - i0 : GEMM_STRIP;
         for (int i = i0; i < i0 + R; i++)
             for (int j = 0; j < N; j++) {
-                float c = acc ? C[(ptrdiff_t)i * ldc + j] : 0.f;
+                float c = acc ? C[(ptrdiff_t)i * ldc + j] : bias ? bias[j] : 0.f;
                 for (int k = 0; k < K; k++)
                     c = fmaf(A[(ptrdiff_t)i * ars + (ptrdiff_t)k * aks], B[(ptrdiff_t)k * ldb + j], c);
                 C[(ptrdiff_t)i * ldc + j] = c;
@@ -160,7 +160,7 @@ static gemm_isa best(gemm_isa want)
 
 
 typedef void (*path_fn)(int, int, int, const float *, ptrdiff_t, ptrdiff_t, const float *,
-                        ptrdiff_t, float *, ptrdiff_t, int, gemm_epilogue, void *);
+                        ptrdiff_t, float *, ptrdiff_t, int, const float *, gemm_epilogue, void *);
 
 static path_fn path_of(gemm_isa isa)
 {
@@ -175,20 +175,23 @@ static path_fn path_of(gemm_isa isa)
 
 static void run(path_fn f, int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t aks,
                 const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc, int acc,
-                gemm_epilogue epi, void *ctx)
+                const float *bias, gemm_epilogue epi, void *ctx)
 {
     if (M <= 0 || N <= 0) return;
-    if (K <= 0) { /* no products: C is 0 or kept, the epilogue still runs */
+    if (acc) bias = NULL;
+    if (K <= 0) { /* no products: C is kept, the bias or 0; the epilogue still runs */
         for (int i0 = 0; i0 < M; i0 += GEMM_STRIP) {
             int R = M - i0 < GEMM_STRIP ? M - i0 : GEMM_STRIP;
-            if (!acc)
-                for (int i = i0; i < i0 + R; i++) memset(C + (ptrdiff_t)i * ldc, 0, sizeof(float) * N);
+            for (int i = i0; i < i0 + R && !acc; i++) {
+                if (bias) memcpy(C + (ptrdiff_t)i * ldc, bias, sizeof(float) * N);
+                else memset(C + (ptrdiff_t)i * ldc, 0, sizeof(float) * N);
+            }
             if (epi) epi(ctx, i0, R);
         }
         return;
     }
     if (epi || K <= GEMM_KC) {
-        f(M, N, K, A, ars, aks, B, ldb, C, ldc, acc, epi, ctx);
+        f(M, N, K, A, ars, aks, B, ldb, C, ldc, acc, bias, epi, ctx);
         return;
     }
     /* Long sums (the weight gradients: K = all tokens of the batch) go in
@@ -198,15 +201,15 @@ static void run(path_fn f, int M, int N, int K, const float *A, ptrdiff_t ars, p
     for (int k0 = 0; k0 < K; k0 += GEMM_KC) {
         int kc = K - k0 < GEMM_KC ? K - k0 : GEMM_KC;
         f(M, N, kc, A + (ptrdiff_t)k0 * aks, ars, aks, B + (ptrdiff_t)k0 * ldb, ldb, C, ldc,
-          acc || k0 > 0, NULL, NULL);
+          acc || k0 > 0, k0 > 0 ? NULL : bias, NULL, NULL);
     }
 }
 
 void gemm_fma_isa(gemm_isa isa, int M, int N, int K, const float *A, ptrdiff_t ars,
                   ptrdiff_t aks, const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc,
-                  int accumulate, gemm_epilogue epi, void *ctx)
+                  int accumulate, const float *bias, gemm_epilogue epi, void *ctx)
 {
-    run(path_of(isa), M, N, K, A, ars, aks, B, ldb, C, ldc, accumulate, epi, ctx);
+    run(path_of(isa), M, N, K, A, ars, aks, B, ldb, C, ldc, accumulate, bias, epi, ctx);
 }
 
 /* The path is resolved once per process (the CPU does not change under it),
@@ -233,7 +236,15 @@ void gemm_fma_epi(int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t 
                   gemm_epilogue epi, void *ctx)
 {
     if (!auto_path) auto_path = path_of(GEMM_AUTO);
-    run(auto_path, M, N, K, A, ars, aks, B, ldb, C, ldc, accumulate, epi, ctx);
+    run(auto_path, M, N, K, A, ars, aks, B, ldb, C, ldc, accumulate, NULL, epi, ctx);
+}
+
+void gemm_fma_bias_epi(int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t aks,
+                       const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc, const float *bias,
+                       gemm_epilogue epi, void *ctx)
+{
+    if (!auto_path) auto_path = path_of(GEMM_AUTO);
+    run(auto_path, M, N, K, A, ars, aks, B, ldb, C, ldc, 0, bias, epi, ctx);
 }
 
 void gemm_fma_heads(int H, int M, int n, int K, const float *A, ptrdiff_t ahs, ptrdiff_t ars,
@@ -248,7 +259,7 @@ void gemm_fma_heads(int H, int M, int n, int K, const float *A, ptrdiff_t ahs, p
 #endif
     for (int h = 0; h < H; h++)
         run(auto_path, M, n, K, A + (ptrdiff_t)h * ahs, ars, aks, B + (ptrdiff_t)h * n, ldb,
-            C + (ptrdiff_t)h * n, ldc, 0, NULL, NULL);
+            C + (ptrdiff_t)h * n, ldc, 0, NULL, NULL, NULL);
 }
 
 void gemm_fma(int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t aks,
@@ -257,8 +268,44 @@ void gemm_fma(int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t aks,
     gemm_fma_epi(M, N, K, A, ars, aks, B, ldb, C, ldc, accumulate, NULL, NULL);
 }
 
+#ifdef GEMM_X86
+/* dst[8 x 8] (row stride ldd) = src[8 x 8]^T (row stride lds): unpack,
+ * shuffle, then swap 128-bit lanes. */
+__attribute__((target("avx2"))) static void tr8x8(float *dst, ptrdiff_t ldd, const float *src, ptrdiff_t lds)
+{
+    __m256 r[8], t[8], u[8];
+    for (int i = 0; i < 8; i++) r[i] = _mm256_loadu_ps(src + i * lds);
+    for (int i = 0; i < 8; i += 2) {
+        t[i] = _mm256_unpacklo_ps(r[i], r[i + 1]);
+        t[i + 1] = _mm256_unpackhi_ps(r[i], r[i + 1]);
+    }
+    for (int i = 0; i < 8; i += 4) {
+        u[i] = _mm256_shuffle_ps(t[i], t[i + 2], 0x44);
+        u[i + 1] = _mm256_shuffle_ps(t[i], t[i + 2], 0xEE);
+        u[i + 2] = _mm256_shuffle_ps(t[i + 1], t[i + 3], 0x44);
+        u[i + 3] = _mm256_shuffle_ps(t[i + 1], t[i + 3], 0xEE);
+    }
+    for (int i = 0; i < 4; i++) {
+        _mm256_storeu_ps(dst + i * ldd, _mm256_permute2f128_ps(u[i], u[i + 4], 0x20));
+        _mm256_storeu_ps(dst + (i + 4) * ldd, _mm256_permute2f128_ps(u[i], u[i + 4], 0x31));
+    }
+}
+#endif
+
+/* Every forward layer transposes its weights once per call (a copy, so any
+ * order gives the same bits): 8 x 8 blocks where the CPU has AVX2. */
 void gemm_transpose(float *dst, const float *src, int N, int K)
 {
+    int n0 = 0, k0 = 0;
+#ifdef GEMM_X86
+    if (gemm_isa_available(GEMM_AVX2)) {
+        n0 = N - N % 8;
+        k0 = K - K % 8;
+        for (int n = 0; n < n0; n += 8)
+            for (int k = 0; k < k0; k += 8) tr8x8(dst + (size_t)k * N + n, N, src + (size_t)n * K + k, K);
+    }
+#endif
+    /* the rest: columns k >= k0 of every row, and rows n >= n0 */
     for (int n = 0; n < N; n++)
-        for (int k = 0; k < K; k++) dst[(size_t)k * N + n] = src[(size_t)n * K + k];
+        for (int k = n < n0 ? k0 : 0; k < K; k++) dst[(size_t)k * N + n] = src[(size_t)n * K + k];
 }

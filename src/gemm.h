@@ -32,6 +32,11 @@ void gemm_fma(int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t aks,
 void gemm_fma_epi(int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t aks,
                   const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc, int accumulate,
                   gemm_epilogue epi, void *ctx);
+/* C = bias + A B: each chain starts from bias[j] instead of +0 (the bits of
+ * copying bias into every row of C and accumulating, without the copy). */
+void gemm_fma_bias_epi(int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t aks,
+                       const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc, const float *bias,
+                       gemm_epilogue epi, void *ctx);
 /* H products side by side, sharing the rows of B and C (the heads of
  * multi-head attention): for h < H,
  *   C[i][h*n + j] = sum_k A[h*ahs + i*ars + k*aks] * B[k][h*n + j],
@@ -41,10 +46,11 @@ void gemm_fma_epi(int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t 
 void gemm_fma_heads(int H, int M, int n, int K, const float *A, ptrdiff_t ahs, ptrdiff_t ars,
                     ptrdiff_t aks, const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc);
 /* The same with a chosen path; an unavailable path falls back to the best
- * available one below it (tests compare paths bit for bit). */
+ * available one below it (tests compare paths bit for bit). bias (may be
+ * NULL) is used when accumulate is 0. */
 void gemm_fma_isa(gemm_isa isa, int M, int N, int K, const float *A, ptrdiff_t ars,
                   ptrdiff_t aks, const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc,
-                  int accumulate, gemm_epilogue epi, void *ctx);
+                  int accumulate, const float *bias, gemm_epilogue epi, void *ctx);
 /* Make gemm_fma use `isa` (or the best available below it) from now on;
  * returns the path used before. For tests that run a whole model on each
  * path, and for benchmarks; results do not depend on it. */

@@ -3,6 +3,7 @@
  * Time features: sin/cos of pi*2^k*t, k < ntime/2 (t in [0,1]). */
 #include "model.h"
 #include "patch.h"
+#include "gemm.h"
 #include <gsl/gsl_randist.h>
 #include <math.h>
 #include <stdlib.h>
@@ -66,7 +67,7 @@ size_t model_nparams(const model_cfg *cfg) { return layout(cfg, NULL, NULL); }
 void model_free(model *m)
 {
     if (!m) return;
-    free(m->params); free(m->grads); free(m->mem); free(m->blk);
+    free(m->params); free(m->grads); free(m->wtall); free(m->mem); free(m->blk);
     free(m->x); /* the per-block pointer arrays share one allocation */
     free(m);
 }
@@ -81,6 +82,7 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
     if (!m) return cs_err(CS_ENOMEM, "model: out of memory");
     m->cfg = *cfg;
     m->Bmax = Bmax;
+    m->micro = MODEL_MICRO;
     const int L = cfg->L;
     m->blk = calloc((size_t)L, sizeof *m->blk);
     float **ptrs = calloc((size_t)14 * (L + 1), sizeof *ptrs);
@@ -91,6 +93,7 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
     m->nparams = layout(cfg, m, &m->ndecay);
     m->params = calloc(m->nparams, sizeof(float));
     m->grads = calloc(m->nparams, sizeof(float));
+    m->wtall = calloc(m->ndecay, sizeof(float));
 
     const size_t N = (size_t)Bmax * cfg->T, C = cfg->C, F = cfg->F, B = Bmax;
     const size_t I = cfg->P + cfg->nfeat, E = cfg->ncond + cfg->ntime, TP = (size_t)cfg->T * cfg->P;
@@ -109,7 +112,7 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
                  + nn_attention_scratch_len(cfg->T, cfg->C, cfg->H)
                  + 4 * B * TP + B + wtn;
     m->mem = calloc(total, sizeof(float));
-    if (!m->params || !m->grads || !m->mem) { model_free(m); return cs_err(CS_ENOMEM, "model: out of memory"); }
+    if (!m->params || !m->grads || !m->wtall || !m->mem) { model_free(m); return cs_err(CS_ENOMEM, "model: out of memory"); }
     float *p = m->mem;
 #define TAKE(n) (p += (n), p - (n))
     m->tin = TAKE(N * I); m->cin = TAKE(B * E);
@@ -161,14 +164,38 @@ void model_init(model *m, gsl_rng *r)
     for (size_t i = 0; i < C; i++) p[m->lnf_g + i] = 1.f;
 }
 
-cs_status model_forward(model *m, int B, const float *xt, const float *feat,
-                        const float *cond, const float *t, float *v)
+/* w^T of every weight matrix (the forward's B operands) into m->wtall, each
+ * at its matrix's offset: once per training step or sampling call instead of
+ * once per forward pass. */
+static void transpose_all(model *m)
+{
+    const model_cfg *c = &m->cfg;
+    const int C = c->C, F = c->F, I = c->P + c->nfeat, E = c->ncond + c->ntime;
+    const float *w = m->params;
+    float *t = m->wtall;
+    gemm_transpose(t + m->tok_w, w + m->tok_w, C, I);
+    gemm_transpose(t + m->e1_w, w + m->e1_w, C, E);
+    gemm_transpose(t + m->e2_w, w + m->e2_w, C, C);
+    for (int l = 0; l < c->L; l++) {
+        const model_block_off *o = &m->blk[l];
+        gemm_transpose(t + o->qkv_w, w + o->qkv_w, 3 * C, C);
+        gemm_transpose(t + o->proj_w, w + o->proj_w, C, C);
+        gemm_transpose(t + o->fc1_w, w + o->fc1_w, F, C);
+        gemm_transpose(t + o->fc2_w, w + o->fc2_w, C, F);
+    }
+    gemm_transpose(t + m->head_w, w + m->head_w, c->P, C);
+}
+
+/* model_forward on weights already transposed by transpose_all. */
+static cs_status forward(model *m, int B, const float *xt, const float *feat,
+                         const float *cond, const float *t, float *v)
 {
     const model_cfg *c = &m->cfg;
     if (B < 1 || B > m->Bmax) return cs_err(CS_EINPUT, "model_forward: batch %d outside 1..%d", B, m->Bmax);
     const int T = c->T, P = c->P, C = c->C, F = c->F, N = B * T;
     const int I = P + c->nfeat, E = c->ncond + c->ntime, nh = c->ntime / 2;
     const float *w = m->params;
+    float *wt = m->wtall;
     const nn_attn_mode mode = c->joint ? NN_ATTN_JOINT : NN_ATTN_SELF;
     m->B = B;
     for (int r = 0; r < N; r++) {
@@ -184,10 +211,10 @@ cs_status model_forward(model *m, int B, const float *xt, const float *feat,
             ci[c->ncond + nh + k] = (float)cos(w0 * t[b]);
         }
     }
-    nn_linear_forward(m->e1, m->cin, w + m->e1_w, w + m->e1_b, B, E, C, m->wt);
+    nn_linear_forward(m->e1, m->cin, NULL, w + m->e1_b, B, E, C, wt + m->e1_w);
     nn_gelu_forward(m->e1g, m->e1, (size_t)B * C);
-    nn_linear_forward(m->e, m->e1g, w + m->e2_w, w + m->e2_b, B, C, C, m->wt);
-    nn_linear_forward(m->x[0], m->tin, w + m->tok_w, w + m->tok_b, N, I, C, m->wt);
+    nn_linear_forward(m->e, m->e1g, NULL, w + m->e2_b, B, C, C, wt + m->e2_w);
+    nn_linear_forward(m->x[0], m->tin, NULL, w + m->tok_b, N, I, C, wt + m->tok_w);
     for (int b = 0; b < B; b++)
         for (int i = 0; i < T; i++) {
             float *row = m->x[0] + ((size_t)b * T + i) * C;
@@ -200,25 +227,36 @@ cs_status model_forward(model *m, int B, const float *xt, const float *feat,
         /* Every layer runs fused with its product (nn.h): each strip of rows
          * gets its attention (per patch), bias, residual and the following
          * layer norm, or bias and GELU, while in cache; values as unfused. */
-        nn_linear_attention_forward(m->qkv[l], m->att[l], m->prob[l], m->ln1[l], w + o->qkv_w,
-                                    w + o->qkv_b, B, T, C, c->H, mode, m->wt, m->ascr);
-        nn_linear_bias_residual_forward(m->xm[l], m->att[l], w + o->proj_w, w + o->proj_b, m->x[l],
+        nn_linear_attention_forward(m->qkv[l], m->att[l], m->prob[l], m->ln1[l], NULL,
+                                    w + o->qkv_b, B, T, C, c->H, mode, wt + o->qkv_w, m->ascr);
+        nn_linear_bias_residual_forward(m->xm[l], m->att[l], NULL, w + o->proj_b, m->x[l],
                                         m->ln2[l], m->mu2[l], m->rs2[l], w + o->ln2_g, w + o->ln2_b,
-                                        N, C, C, m->wt);
-        nn_linear_bias_gelu_forward(m->h[l], m->hs[l], m->hg[l], m->ln2[l], w + o->fc1_w, w + o->fc1_b,
-                                    N, C, F, m->wt);
+                                        N, C, C, wt + o->proj_w);
+        nn_linear_bias_gelu_forward(m->h[l], m->hs[l], m->hg[l], m->ln2[l], NULL, w + o->fc1_b,
+                                    N, C, F, wt + o->fc1_w);
         const int last = l + 1 == c->L;
         const size_t g_next = last ? m->lnf_g : m->blk[l + 1].ln1_g, b_next = last ? m->lnf_b : m->blk[l + 1].ln1_b;
-        nn_linear_bias_residual_forward(m->x[l + 1], m->hg[l], w + o->fc2_w, w + o->fc2_b, m->xm[l],
+        nn_linear_bias_residual_forward(m->x[l + 1], m->hg[l], NULL, w + o->fc2_b, m->xm[l],
                                         last ? m->lnf : m->ln1[l + 1], last ? m->muf : m->mu1[l + 1],
                                         last ? m->rsf : m->rs1[l + 1], w + g_next, w + b_next,
-                                        N, F, C, m->wt);
+                                        N, F, C, wt + o->fc2_w);
     }
-    nn_linear_forward(v, m->lnf, w + m->head_w, w + m->head_b, N, C, P, m->wt);
+    nn_linear_forward(v, m->lnf, NULL, w + m->head_b, N, C, P, wt + m->head_w);
     return CS_OK;
 }
 
-void model_backward(model *m, const float *dv)
+cs_status model_forward(model *m, int B, const float *xt, const float *feat,
+                        const float *cond, const float *t, float *v)
+{
+    if (B < 1 || B > m->Bmax) return cs_err(CS_EINPUT, "model_forward: batch %d outside 1..%d", B, m->Bmax);
+    transpose_all(m);
+    return forward(m, B, xt, feat, cond, t, v);
+}
+
+/* zero = 0 adds this pass's gradients to m->grads (model_fm_grad's later
+ * passes): every gradient is accumulated row by row or by an fma chain over
+ * rows (nn.h), so a batch in passes gives the chains of the whole batch. */
+static void backward(model *m, const float *dv, int zero)
 {
     const model_cfg *c = &m->cfg;
     const int B = m->B, T = c->T, P = c->P, C = c->C, F = c->F, N = B * T;
@@ -226,7 +264,7 @@ void model_backward(model *m, const float *dv)
     const float *w = m->params;
     float *g = m->grads;
     const nn_attn_mode mode = c->joint ? NN_ATTN_JOINT : NN_ATTN_SELF;
-    memset(g, 0, m->nparams * sizeof(float));
+    if (zero) memset(g, 0, m->nparams * sizeof(float));
     nn_linear_backward(m->dln, g + m->head_w, g + m->head_b, dv, m->lnf, w + m->head_w, N, C, P);
     memset(m->dx, 0, sizeof(float) * (size_t)N * C);
     nn_layernorm_backward(m->dx, g + m->lnf_g, g + m->lnf_b, m->dln, m->x[c->L], m->muf, m->rsf, w + m->lnf_g, N, C);
@@ -252,6 +290,8 @@ void model_backward(model *m, const float *dv)
     nn_linear_backward(NULL, g + m->e1_w, g + m->e1_b, m->de1, m->cin, w + m->e1_w, B, E, C);
 }
 
+void model_backward(model *m, const float *dv) { backward(m, dv, 1); }
+
 void model_fm_draw(gsl_rng *noise, int B, int n, const float *x1, float *xt, float *u, float *t)
 {
     for (int b = 0; b < B; b++) {
@@ -266,30 +306,54 @@ void model_fm_draw(gsl_rng *noise, int B, int n, const float *x1, float *xt, flo
     }
 }
 
+/* *s += sum of (v - u)^2 in index order (double); dv = k (v - u). */
+static void fm_loss_add(const float *v, const float *u, size_t n, float k, float *dv, double *s)
+{
+    double acc = *s;
+    for (size_t i = 0; i < n; i++) {
+        float d = v[i] - u[i];
+        acc += (double)d * d;
+        if (dv) dv[i] = k * d;
+    }
+    *s = acc;
+}
+
 double model_fm_loss(const float *v, const float *u, size_t n, float *dv)
 {
     double s = 0;
-    const float k = 2.f / (float)n;
-    for (size_t i = 0; i < n; i++) {
-        float d = v[i] - u[i];
-        s += (double)d * d;
-        if (dv) dv[i] = k * d;
-    }
+    fm_loss_add(v, u, n, 2.f / (float)n, dv, &s);
     return s / (double)n;
 }
 
+/* The batch goes through forward, loss and backward in passes of m->micro
+ * patches: at the reference batch the activations of all 64 patches (about
+ * 28 MB) spill out of the caches, those of MODEL_MICRO = 4 patches do not. The noise is
+ * drawn for the whole batch first, the loss is one sum in order with the
+ * whole batch's scale 2/n, and the gradients accumulate pass after pass, so
+ * the results are those of one pass (tested bit for bit). */
 cs_status model_fm_grad(model *m, gsl_rng *noise, int B, const float *x1,
                         const float *feat, const float *cond, double *loss)
 {
-    const int n = m->cfg.T * m->cfg.P;
+    const model_cfg *c = &m->cfg;
+    const int n = c->T * c->P;
     if (B < 1 || B > m->Bmax) return cs_err(CS_EINPUT, "model_fm_grad: batch %d outside 1..%d", B, m->Bmax);
     model_fm_draw(noise, B, n, x1, m->fm_xt, m->fm_u, m->fm_t);
-    cs_status st = model_forward(m, B, m->fm_xt, feat, cond, m->fm_t, m->fm_v);
-    if (st) return st;
-    double l = model_fm_loss(m->fm_v, m->fm_u, (size_t)B * n, m->fm_dv);
-    if (!isfinite(l)) return cs_err(CS_ENUMERIC, "flow-matching loss is not finite (%g)", l);
-    model_backward(m, m->fm_dv);
-    *loss = l;
+    transpose_all(m);
+    const int mb = m->micro >= 1 ? m->micro : B;
+    const size_t ntot = (size_t)B * n;
+    const float k = 2.f / (float)ntot;
+    double s = 0;
+    for (int b0 = 0; b0 < B; b0 += mb) {
+        const int nb = B - b0 < mb ? B - b0 : mb;
+        const size_t o = (size_t)b0 * n;
+        cs_status st = forward(m, nb, m->fm_xt + o, feat + (size_t)b0 * c->T * c->nfeat,
+                                     cond + (size_t)b0 * c->ncond, m->fm_t + b0, m->fm_v + o);
+        if (st) return st;
+        fm_loss_add(m->fm_v + o, m->fm_u + o, (size_t)nb * n, k, m->fm_dv + o, &s);
+        if (!isfinite(s)) return cs_err(CS_ENUMERIC, "flow-matching loss is not finite (%g)", s / (double)ntot);
+        backward(m, m->fm_dv + o, b0 == 0);
+    }
+    *loss = s / (double)ntot;
     return CS_OK;
 }
 
@@ -301,11 +365,19 @@ cs_status model_sample(model *m, gsl_rng *noise, int B, const float *feat,
     if (nsteps < 1) return cs_err(CS_EINPUT, "model_sample: nsteps %d must be >= 1", nsteps);
     for (size_t i = 0; i < n; i++) x[i] = (float)gsl_ran_gaussian_ziggurat(noise, 1.0);
     const float dt = 1.f / (float)nsteps;
+    const int mb = m->micro >= 1 ? m->micro : B, T = m->cfg.T, TP = T * m->cfg.P;
+    transpose_all(m);
     for (int k = 0; k < nsteps; k++) {
         float tk = (float)k / (float)nsteps;
         for (int b = 0; b < B; b++) m->fm_t[b] = tk;
-        cs_status st = model_forward(m, B, x, feat, cond, m->fm_t, m->fm_v);
-        if (st) return st;
+        /* in passes of m->micro patches, as model_fm_grad: patches do not
+         * interact in the forward, so v is the same as in one pass */
+        for (int b0 = 0; b0 < B; b0 += mb) {
+            const int nb = B - b0 < mb ? B - b0 : mb;
+            cs_status st = forward(m, nb, x + (size_t)b0 * TP, feat + (size_t)b0 * T * m->cfg.nfeat,
+                                   cond + (size_t)b0 * m->cfg.ncond, m->fm_t + b0, m->fm_v + (size_t)b0 * TP);
+            if (st) return st;
+        }
         for (size_t i = 0; i < n; i++) x[i] += dt * m->fm_v[i];
     }
     for (size_t i = 0; i < n; i++)

@@ -38,14 +38,22 @@ typedef struct {
     size_t ln1_g, ln1_b, qkv_w, qkv_b, proj_w, proj_b, ln2_g, ln2_b, fc1_w, fc1_b, fc2_w, fc2_b;
 } model_block_off;
 
+/* Patches per forward/backward pass of model_fm_grad (see model.c). */
+enum { MODEL_MICRO = 4 };
+
 typedef struct model {
     model_cfg cfg;
     int Bmax;
     size_t nparams, ndecay;
     float *params, *grads;
+    /* private: the transposed weight matrices (params' offsets), see model.c */
+    float *wtall;
     /* offsets into params/grads */
     size_t tok_w, tok_b, e1_w, e1_b, e2_w, e2_b, lnf_g, lnf_b, head_w, head_b;
     model_block_off *blk;
+    /* patches per forward/backward pass of model_fm_grad (default
+     * MODEL_MICRO; the results do not depend on it, only the speed) */
+    int micro;
     /* private: activations and scratch of the last forward */
     int B;
     float *mem;

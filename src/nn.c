@@ -156,10 +156,8 @@ HOT void nn_expf(float *y, const float *x, size_t n)
 static void linear_forward_epi(float *out, const float *in, const float *w, const float *b,
                                int M, int K, int N, float *wt, gemm_epilogue epi, void *ctx)
 {
-    if (b)
-        for (int r = 0; r < M; r++) memcpy(out + (size_t)r * N, b, sizeof(float) * N);
-    gemm_transpose(wt, w, N, K);
-    gemm_fma_epi(M, N, K, in, K, 1, wt, N, out, N, b != NULL, epi, ctx);
+    if (w) gemm_transpose(wt, w, N, K);
+    gemm_fma_bias_epi(M, N, K, in, K, 1, wt, N, out, N, b, epi, ctx);
 }
 
 void nn_linear_forward(float *out, const float *in, const float *w, const float *b,
@@ -329,9 +327,16 @@ HOT void nn_gelu_backward(float *dinp, const float *dout, const float *in, size_
     for (; i < n; i++) { vf x = splat(in[i]); dinp[i] = dout[i] * vgelu_grad(x, vgsig(x))[0]; }
 }
 
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(NN_NO_CLONES)
+static void gelu_backward16(float *dinp, const float *dout, const float *in, const float *sig, size_t n);
+#endif
+
 HOT void nn_gelu_backward_saved(float *dinp, const float *dout, const float *in,
                                 const float *sig, size_t n)
 {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(NN_NO_CLONES)
+    if (gemm_isa_available(GEMM_AVX512)) { gelu_backward16(dinp, dout, in, sig, n); return; }
+#endif
     size_t i = 0;
     for (; i + VL <= n; i += VL) st(dinp + i, ld(dout + i) * vgelu_grad(ld(in + i), ld(sig + i)));
     for (; i < n; i++) dinp[i] = dout[i] * vgelu_grad(splat(in[i]), splat(sig[i]))[0];
@@ -375,6 +380,23 @@ __attribute__((target("avx512f"))) static void bias_gelu16(float *h, float *sig,
         }
         bias_gelu_tail(hr, sr, orow, b, c, N);
     }
+}
+
+/* The GELU backward (from the saved sigmoid) on 16 lanes, lane-wise as the
+ * 8-lane loop; the scalar tail is the 8-lane code's. */
+INL vf16 vgelu_grad16(vf16 x, vf16 s)
+{
+    vf16 du = splat16(GELU_K) * (splat16(1.f) + splat16(3.f * GELU_A) * (x * x));
+    return s + x * s * (splat16(1.f) - s) * splat16(2.f) * du;
+}
+
+__attribute__((target("avx512f"))) static void gelu_backward16(float *dinp, const float *dout,
+                                                               const float *in, const float *sig,
+                                                               size_t n)
+{
+    size_t i = 0;
+    for (; i + 16 <= n; i += 16) st16(dinp + i, ld16(dout + i) * vgelu_grad16(ld16(in + i), ld16(sig + i)));
+    for (; i < n; i++) dinp[i] = dout[i] * vgelu_grad(splat(in[i]), splat(sig[i]))[0];
 }
 
 #endif

@@ -18,7 +18,9 @@
 typedef enum { NN_ATTN_JOINT = 0, NN_ATTN_SELF = 1 } nn_attn_mode;
 
 /* out[M x N] = in[M x K] . w[N x K]^T + b[N]   (b may be NULL);
- * wt: scratch of K*N floats (receives w^T). */
+ * wt: K*N floats that receive w^T; with w == NULL they must already hold it
+ * (a caller that runs several forwards with the same weights transposes
+ * once). The same holds for every forward layer below that takes w and wt. */
 void nn_linear_forward(float *out, const float *in, const float *w, const float *b,
                        int M, int K, int N, float *wt);
 /* dinp[M x K] = dout . w (skipped when dinp == NULL);

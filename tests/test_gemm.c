@@ -50,7 +50,7 @@ static float *run(gemm_isa isa, const shape *s, const operands *o)
     float *C = malloc(sizeof(float) * (size_t)s->M * o->ldc);
     assert_non_null(C);
     memcpy(C, o->C0, sizeof(float) * (size_t)s->M * o->ldc);
-    gemm_fma_isa(isa, s->M, s->N, s->K, o->A, o->ars, o->aks, o->B, o->ldb, C, o->ldc, s->acc, NULL, NULL);
+    gemm_fma_isa(isa, s->M, s->N, s->K, o->A, o->ars, o->aks, o->B, o->ldb, C, o->ldc, s->acc, NULL, NULL, NULL);
     return C;
 }
 
@@ -96,6 +96,37 @@ static void test_scalar_matches_double_product(void **st)
     }
 }
 
+/* A bias row as the start of every chain (C = bias + A B) gives the bits of
+ * copying the bias into C's rows and accumulating, on every path; K = 0 and
+ * K = 300 (split into k-chunks) included. */
+static void test_bias_start_equals_preloaded_rows(void **st)
+{
+    (void)st;
+    const shape sh[] = {{13, 70, 9, 0, 0}, {24, 192, 64, 0, 0}, {64, 36, 300, 1, 0}, {7, 5, 0, 0, 0}};
+    for (size_t t = 0; t < sizeof sh / sizeof *sh; t++) {
+        const shape *s = &sh[t];
+        operands o = make_ops(s, 41u + (uint32_t)t);
+        float *bias = malloc(sizeof(float) * s->N), *want = malloc(sizeof(float) * (size_t)s->M * o.ldc);
+        float *got = malloc(sizeof(float) * (size_t)s->M * o.ldc);
+        assert_non_null(bias); assert_non_null(want); assert_non_null(got);
+        fill(bias, s->N, 7u + (uint32_t)t);
+        memcpy(want, o.C0, sizeof(float) * (size_t)s->M * o.ldc);
+        for (int i = 0; i < s->M; i++) memcpy(want + i * o.ldc, bias, sizeof(float) * s->N);
+        gemm_fma_isa(GEMM_SCALAR, s->M, s->N, s->K, o.A, o.ars, o.aks, o.B, o.ldb, want, o.ldc, 1, NULL, NULL, NULL);
+        for (int isa = GEMM_SCALAR; isa <= GEMM_AVX512; isa++) {
+            memcpy(got, o.C0, sizeof(float) * (size_t)s->M * o.ldc);
+            gemm_fma_isa((gemm_isa)isa, s->M, s->N, s->K, o.A, o.ars, o.aks, o.B, o.ldb, got, o.ldc, 0, bias, NULL, NULL);
+            for (size_t i = 0; i < (size_t)s->M * o.ldc; i++)
+                if (memcmp(&want[i], &got[i], sizeof(float)) != 0) {
+                    print_error("shape %zu path %d element %zu: %.17g, want %.17g\n", t, isa, i,
+                                (double)got[i], (double)want[i]);
+                    fail();
+                }
+        }
+        free(bias); free(want); free(got); free_ops(&o);
+    }
+}
+
 /* The padding columns N..ldc-1 keep their values on every path. */
 static void test_padding_untouched(void **st)
 {
@@ -131,6 +162,28 @@ static void test_transpose(void **st)
     for (int i = 0; i < 6; i++) ASSERT_EXACT(t[i], want[i]);
 }
 
+/* Sizes with full 8 x 8 blocks and ragged edges both ways. */
+static void test_transpose_blocks_and_edges(void **st)
+{
+    (void)st;
+    const int sz[][2] = {{20, 37}, {64, 256}, {8, 8}, {3, 17}, {192, 64}};
+    for (size_t t = 0; t < sizeof sz / sizeof *sz; t++) {
+        const int N = sz[t][0], K = sz[t][1];
+        float *w = malloc(sizeof(float) * N * K), *got = malloc(sizeof(float) * N * K);
+        assert_non_null(w); assert_non_null(got);
+        fill(w, (size_t)N * K, 3u + (uint32_t)t);
+        gemm_transpose(got, w, N, K);
+        for (int n = 0; n < N; n++)
+            for (int k = 0; k < K; k++)
+                if (memcmp(&got[k * N + n], &w[n * K + k], sizeof(float)) != 0) {
+                    print_error("%d x %d: dst[%d][%d] = %.17g, want %.17g\n", N, K, k, n,
+                                (double)got[k * N + n], (double)w[n * K + k]);
+                    fail();
+                }
+        free(w); free(got);
+    }
+}
+
 /* The epilogue sees each strip once, in order, with its rows already final. */
 typedef struct { float *copy; const float *C; ptrdiff_t ldc; int N, next, calls, bad; } epi_rec;
 static void record(void *p, int i0, int rows)
@@ -153,7 +206,7 @@ static void test_epilogue_sees_final_strips_in_order(void **st)
         assert_non_null(C); assert_non_null(copy);
         memcpy(C, o.C0, sizeof(float) * s.M * o.ldc);
         epi_rec e = {copy, C, o.ldc, s.N, 0, 0, 0};
-        gemm_fma_isa((gemm_isa)isa, s.M, s.N, s.K, o.A, o.ars, o.aks, o.B, o.ldb, C, o.ldc, 1, record, &e);
+        gemm_fma_isa((gemm_isa)isa, s.M, s.N, s.K, o.A, o.ars, o.aks, o.B, o.ldb, C, o.ldc, 1, NULL, record, &e);
         ASSERT_EXACT(e.bad, 0);
         ASSERT_EXACT(e.calls, 5);
         ASSERT_EXACT(e.next, s.M);
@@ -176,7 +229,7 @@ static void check_heads(int H, int M, int n, int K, int transA, uint32_t seed)
     fill(B, (size_t)(K * ldb), seed + 1);
     gemm_fma_heads(H, M, n, K, A, ahs, ars, aks, B, ldb, C1, ldc);
     for (int h = 0; h < H; h++)
-        gemm_fma_isa(GEMM_SCALAR, M, n, K, A + h * ahs, ars, aks, B + h * n, ldb, C2 + h * n, ldc, 0, NULL, NULL);
+        gemm_fma_isa(GEMM_SCALAR, M, n, K, A + h * ahs, ars, aks, B + h * n, ldb, C2 + h * n, ldc, 0, NULL, NULL, NULL);
     for (int i = 0; i < M * ldc; i++)
         if (memcmp(&C1[i], &C2[i], sizeof(float)) != 0) {
             print_error("heads H %d M %d n %d K %d element %d: %.17g, per-head scalar %.17g\n",
@@ -217,8 +270,10 @@ int main(void)
         cmocka_unit_test(test_auto_bit_identical_to_scalar),
         cmocka_unit_test(test_scalar_matches_double_product),
         cmocka_unit_test(test_padding_untouched),
+        cmocka_unit_test(test_bias_start_equals_preloaded_rows),
         cmocka_unit_test(test_k_zero_clears_or_keeps),
         cmocka_unit_test(test_transpose),
+        cmocka_unit_test(test_transpose_blocks_and_edges),
         cmocka_unit_test(test_epilogue_sees_final_strips_in_order),
         cmocka_unit_test(test_heads_reference_attention_shapes),
         cmocka_unit_test(test_heads_odd_shapes_and_fallback),

@@ -173,6 +173,83 @@ static void test_fm_loss_is_mse_with_its_gradient(void **s)
     ASSERT_EXACT(dv[1], 0.0);
 }
 
+/* model_fm_grad runs the batch in passes of m->micro patches (so that a
+ * pass's activations stay in cache). Every gradient element is still one
+ * chain over the batch's rows in order, and the loss one sum in order, so
+ * gradients and loss are bit-identical for any pass size: whole batch, 3
+ * (passes of 3, 3, 1) and 1. Reference shapes, so the attention kernels of
+ * the training runs are the ones exercised. */
+static void test_fm_grad_same_bits_for_any_pass_size(void **s)
+{
+    (void)s;
+    enum { B = 7 };
+    model_cfg c = model_cfg_reference(3);
+    const size_t n = (size_t)c.T * c.P;
+    float *x1 = malloc(sizeof(float) * B * n), *feat = malloc(sizeof(float) * B * c.T * c.nfeat);
+    float cond[B * 3];
+    unsigned st = 77;
+    tu_fill(x1, B * n, 1, &st); tu_fill(feat, (size_t)B * c.T * c.nfeat, 1, &st); tu_fill(cond, B * 3, 1, &st);
+    const int passes[] = {B, 3, 1};
+    float *g0 = NULL, *v0 = NULL;
+    double l0 = 0;
+    for (int k = 0; k < 3; k++) {
+        model *m = NULL;
+        assert_int_equal(model_alloc(&m, &c, B), CS_OK);
+        gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+        gsl_rng_set(r, 5);
+        model_init(m, r);
+        m->micro = passes[k];
+        double l = 0;
+        assert_int_equal(model_fm_grad(m, r, B, x1, feat, cond, &l), CS_OK);
+        if (k == 0) {
+            g0 = malloc(sizeof(float) * m->nparams); v0 = malloc(sizeof(float) * B * n);
+            memcpy(g0, m->grads, sizeof(float) * m->nparams); memcpy(v0, m->fm_v, sizeof(float) * B * n);
+            l0 = l;
+        } else {
+            if (l != l0) { print_error("pass %d: loss %.17g, whole batch %.17g\n", passes[k], l, l0); fail(); }
+            for (size_t i = 0; i < m->nparams; i++)
+                if (memcmp(&m->grads[i], &g0[i], sizeof(float)) != 0) {
+                    print_error("pass %d: grad %zu = %.17g, whole batch %.17g\n", passes[k], i,
+                                (double)m->grads[i], (double)g0[i]);
+                    fail();
+                }
+            assert_memory_equal(m->fm_v, v0, sizeof(float) * B * n);
+        }
+        gsl_rng_free(r);
+        model_free(m);
+    }
+    free(g0); free(v0); free(x1); free(feat);
+}
+
+/* model_sample runs each Euler step's forward in passes of m->micro patches
+ * (patches do not interact in the forward): the same samples for any pass
+ * size. */
+static void test_sample_same_bits_for_any_pass_size(void **s)
+{
+    (void)s;
+    enum { B = 5, STEPS = 3 };
+    model_cfg c = model_cfg_reference(3);
+    const size_t n = (size_t)B * c.T * c.P;
+    float *feat = malloc(sizeof(float) * B * c.T * c.nfeat), cond[B * 3];
+    float *x0 = malloc(sizeof(float) * n), *x1 = malloc(sizeof(float) * n);
+    unsigned st = 91;
+    tu_fill(feat, (size_t)B * c.T * c.nfeat, 1, &st); tu_fill(cond, B * 3, 1, &st);
+    const int passes[] = {B, 2};
+    for (int k = 0; k < 2; k++) {
+        model *m = NULL;
+        assert_int_equal(model_alloc(&m, &c, B), CS_OK);
+        gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+        gsl_rng_set(r, 8);
+        model_init(m, r);
+        m->micro = passes[k];
+        assert_int_equal(model_sample(m, r, B, feat, cond, STEPS, k ? x1 : x0), CS_OK);
+        gsl_rng_free(r);
+        model_free(m);
+    }
+    assert_memory_equal(x0, x1, sizeof(float) * n);
+    free(feat); free(x0); free(x1);
+}
+
 static void test_forward_rejects_oversized_batch(void **s)
 {
     (void)s;
@@ -196,6 +273,8 @@ int main(void)
         cmocka_unit_test(test_fm_draw_is_linear_path),
         cmocka_unit_test(test_fm_loss_is_mse_with_its_gradient),
         cmocka_unit_test(test_forward_rejects_oversized_batch),
+        cmocka_unit_test(test_fm_grad_same_bits_for_any_pass_size),
+        cmocka_unit_test(test_sample_same_bits_for_any_pass_size),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

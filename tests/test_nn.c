@@ -58,6 +58,25 @@ static void test_linear_forward_and_gradients(void **s)
     ASSERT_GRAD(db, g, N, GRAD_TOL, "linear d/db");
 }
 
+/* w == NULL: wt already holds w^T and is used as it is (what the model does
+ * when it transposes once for several forwards); the same bits as passing w.
+ * wt is filled with the transpose of a different matrix to show it is read. */
+static void test_linear_forward_pretransposed_weights(void **s)
+{
+    (void)s;
+    enum { M = 9, K = 16, N = 24 };
+    unsigned st = 3;
+    float in[M * K], w[N * K], w2[N * K], b[N], out1[M * N], out2[M * N], wt[K * N];
+    tu_fill(in, M * K, 1, &st); tu_fill(w, N * K, 1, &st); tu_fill(w2, N * K, 1, &st); tu_fill(b, N, 1, &st);
+    nn_linear_forward(out1, in, w2, b, M, K, N, wt);
+    nn_linear_forward(out2, in, NULL, b, M, K, N, wt); /* wt = w2^T from the call before */
+    assert_memory_equal(out1, out2, sizeof out1);
+    nn_linear_forward(out1, in, w, b, M, K, N, wt);
+    assert_memory_not_equal(out1, out2, sizeof out1);
+    nn_linear_forward(out2, in, NULL, b, M, K, N, wt);
+    assert_memory_equal(out1, out2, sizeof out1);
+}
+
 static void test_linear_backward_accumulates_weight_grads(void **s)
 {
     (void)s;
@@ -337,6 +356,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_expf_matches_libm),
         cmocka_unit_test(test_linear_forward_and_gradients),
+        cmocka_unit_test(test_linear_forward_pretransposed_weights),
         cmocka_unit_test(test_linear_backward_accumulates_weight_grads),
         cmocka_unit_test(test_layernorm_forward_and_gradients),
         cmocka_unit_test(test_gelu_forward_and_gradient),
