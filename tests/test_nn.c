@@ -77,6 +77,29 @@ static void test_linear_forward_pretransposed_weights(void **s)
     assert_memory_equal(out1, out2, sizeof out1);
 }
 
+/* The bias gradient is one sum per column over the rows in order, added to
+ * what db held (what lets a batch run in passes): bit for bit the scalar loop.
+ * 150 columns: full 64-column blocks, an 8-column block and a scalar tail. */
+static void test_linear_backward_bias_grad_is_row_ordered_sum(void **s)
+{
+    (void)s;
+    enum { M = 11, K = 3, N = 150 };
+    unsigned st = 4;
+    float in[M * K], w[N * K], dout[M * N], dw[N * K] = {0}, db[N], want[N];
+    tu_fill(in, M * K, 1, &st); tu_fill(w, N * K, 1, &st); tu_fill(dout, M * N, 3, &st); tu_fill(db, N, 1, &st);
+    for (int c = 0; c < N; c++) {
+        float e = db[c];
+        for (int r = 0; r < M; r++) e += dout[r * N + c];
+        want[c] = e;
+    }
+    nn_linear_backward(NULL, dw, db, dout, in, w, M, K, N);
+    for (int c = 0; c < N; c++)
+        if (memcmp(&db[c], &want[c], sizeof(float)) != 0) {
+            print_error("db[%d] = %.17g, row-ordered sum %.17g\n", c, (double)db[c], (double)want[c]);
+            fail();
+        }
+}
+
 static void test_linear_backward_accumulates_weight_grads(void **s)
 {
     (void)s;
@@ -357,6 +380,7 @@ int main(void)
         cmocka_unit_test(test_expf_matches_libm),
         cmocka_unit_test(test_linear_forward_and_gradients),
         cmocka_unit_test(test_linear_forward_pretransposed_weights),
+        cmocka_unit_test(test_linear_backward_bias_grad_is_row_ordered_sum),
         cmocka_unit_test(test_linear_backward_accumulates_weight_grads),
         cmocka_unit_test(test_layernorm_forward_and_gradients),
         cmocka_unit_test(test_gelu_forward_and_gradient),
