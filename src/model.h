@@ -94,7 +94,8 @@ void model_fm_draw(gsl_rng *noise, int B, int n_per_patch, const float *x1,
  * This is paper Eq. 2 (squared norm over all T tokens x P values) divided by
  * the constant T*P, so that loss values do not depend on the patch size. */
 double model_fm_loss(const float *v, const float *u, size_t n, float *dv);
-/* One draw + forward + loss + backward on a batch; gradients in m->grads. */
+/* One draw + forward + loss + backward on a batch; gradients in m->grads.
+ * Runs in passes of m->micro patches with the results of one pass (model.c). */
 cs_status model_fm_grad(model *m, gsl_rng *noise, int B, const float *x1,
                         const float *feat, const float *cond, double *loss);
 

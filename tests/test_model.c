@@ -173,6 +173,20 @@ static void test_fm_loss_is_mse_with_its_gradient(void **s)
     ASSERT_EXACT(dv[1], 0.0);
 }
 
+/* A reference-shape model for batch B run in passes of `micro` patches,
+ * initialised from *r = mt19937(seed), which the caller goes on drawing from. */
+static model *pass_model(const model_cfg *c, int B, int micro, unsigned long seed, gsl_rng **r)
+{
+    model *m = NULL;
+    assert_int_equal(model_alloc(&m, c, B), CS_OK);
+    *r = gsl_rng_alloc(gsl_rng_mt19937);
+    assert_non_null(*r);
+    gsl_rng_set(*r, seed);
+    model_init(m, *r);
+    m->micro = micro;
+    return m;
+}
+
 /* model_fm_grad runs the batch in passes of m->micro patches (so that a
  * pass's activations stay in cache). Every gradient element is still one
  * chain over the batch's rows in order, and the loss one sum in order, so
@@ -193,12 +207,8 @@ static void test_fm_grad_same_bits_for_any_pass_size(void **s)
     float *g0 = NULL, *v0 = NULL;
     double l0 = 0;
     for (int k = 0; k < 3; k++) {
-        model *m = NULL;
-        assert_int_equal(model_alloc(&m, &c, B), CS_OK);
-        gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
-        gsl_rng_set(r, 5);
-        model_init(m, r);
-        m->micro = passes[k];
+        gsl_rng *r = NULL;
+        model *m = pass_model(&c, B, passes[k], 5, &r);
         double l = 0;
         assert_int_equal(model_fm_grad(m, r, B, x1, feat, cond, &l), CS_OK);
         if (k == 0) {
@@ -236,12 +246,8 @@ static void test_sample_same_bits_for_any_pass_size(void **s)
     tu_fill(feat, (size_t)B * c.T * c.nfeat, 1, &st); tu_fill(cond, B * 3, 1, &st);
     const int passes[] = {B, 2};
     for (int k = 0; k < 2; k++) {
-        model *m = NULL;
-        assert_int_equal(model_alloc(&m, &c, B), CS_OK);
-        gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
-        gsl_rng_set(r, 8);
-        model_init(m, r);
-        m->micro = passes[k];
+        gsl_rng *r = NULL;
+        model *m = pass_model(&c, B, passes[k], 8, &r);
         assert_int_equal(model_sample(m, r, B, feat, cond, STEPS, k ? x1 : x0), CS_OK);
         gsl_rng_free(r);
         model_free(m);
