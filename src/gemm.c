@@ -7,6 +7,9 @@
 #include <string.h>
 
 enum { GEMM_KC = 256 }; /* k-chunk of a long product without epilogue (see run) */
+/* Rows of a super-strip (gemm_tile.inc): 2 strips measured fastest in a
+ * training step (1, 2, 4 and 8 strips tried). */
+enum { GEMM_SUPER = 2 * GEMM_STRIP };
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define GEMM_X86 1
