@@ -239,17 +239,32 @@ static cs_status unit_mechanism_sweep(const exp_opts *o)
     return finish(w, &pv, path);
 }
 
+/* The E1 ablation's three arms (coupling off, abrasion off, both on) at the
+ * gate's ablation spacing; the table unit and the figure unit share them. */
+static const char *const ablation_arms[3] = {"coupling_off", "abrasion_off", "both_on"};
+static const int ablation_coupled[3] = {0, 1, 1};
+
+static cs_status ablation_gate(double *d, double beta[3])
+{
+    double btrain;
+    cs_status st = gate_get1("mechanism.gate", "ablation_spacing_m", d);
+    if (!st) st = gate_get1("mechanism.gate", "dieback_train", &btrain);
+    if (st) return st;
+    beta[0] = btrain;
+    beta[1] = 0.0;
+    beta[2] = btrain;
+    return CS_OK;
+}
+
 static cs_status unit_mechanism_ablation(const exp_opts *o)
 {
     prov pv;
     prov_begin(&pv, "mechanism", o->argc, o->argv);
-    double d, btrain;
-    cs_status st = gate_get1("mechanism.gate", "ablation_spacing_m", &d);
-    if (!st) st = gate_get1("mechanism.gate", "dieback_train", &btrain);
+    double d, beta[3];
+    cs_status st = ablation_gate(&d, beta);
     if (st) return st;
-    const char *arms[3] = {"coupling_off", "abrasion_off", "both_on"};
-    const int coupled[3] = {0, 1, 1};
-    const double beta[3] = {btrain, 0.0, btrain};
+    const char *const *arms = ablation_arms;
+    const int *coupled = ablation_coupled;
     cell_result res[3];
     double worst = 0.0;
     for (int a = 0; a < 3 && !st; a++) {
@@ -675,9 +690,8 @@ static cs_status unit_fig_mechanism(const exp_opts *o)
 {
     prov pv;
     prov_begin(&pv, "mechanism", o->argc, o->argv);
-    double d, btrain;
-    cs_status st = gate_get1("mechanism.gate", "ablation_spacing_m", &d);
-    if (!st) st = gate_get1("mechanism.gate", "dieback_train", &btrain);
+    double d, beta[3];
+    cs_status st = ablation_gate(&d, beta);
     if (st) return st;
     stand *sd = NULL;
     st = stand_alloc(&sd, STAND_HARDCORE, d, FIG_L, FIG_C, "fig/mechanism", 0);
@@ -685,9 +699,8 @@ static cs_status unit_fig_mechanism(const exp_opts *o)
     size_t n = sd->s->n;
     double *r = malloc(3 * n * NS * sizeof *r);
     if (!r) { stand_free(sd); return cs_err(CS_ENOMEM, "experiments: out of memory"); }
-    const char *arms[3] = {"coupling_off", "abrasion_off", "both_on"};
-    const int coupled[3] = {0, 1, 1};
-    const double beta[3] = {btrain, 0.0, btrain};
+    const char *const *arms = ablation_arms;
+    const int *coupled = ablation_coupled;
     double worst = 0.0;
     for (int a = 0; a < 3 && !st; a++) {
         teacher_params p;
