@@ -1,6 +1,6 @@
 /* nn: layer kernels (see nn.h). The matrix products go to gemm_fma (src/gemm.h:
  * bit-identical on every ISA); cblas_sgemm remains only as the benchmark's
- * yardstick (nn_sgemm_gflops). Every other loop is written on 8-wide GCC/Clang vector types, because -O2 without fast-math
+ * yardstick (nn_product_gflops). Every other loop is written on 8-wide GCC/Clang vector types, because -O2 without fast-math
  * will not vectorise float reductions by itself (reassociation is forbidden).
  * The hot kernels are compiled twice (target_clones: AVX2 and baseline x86-64,
  * picked at load time); both clones execute the same lane-wise IEEE operations
@@ -188,7 +188,7 @@ void nn_linear_backward(float *dinp, float *dw, float *db, const float *dout,
     linear_backward_epi(dinp, dw, db, dout, in, w, M, K, N, NULL, NULL);
 }
 
-double nn_sgemm_gflops(int M, const int *sizes, int n, int reps, int blas)
+double nn_product_gflops(int M, const int *sizes, int n, int reps, int blas)
 {
     int mx = 1;
     for (int i = 0; i < n; i++) mx = sizes[i] > mx ? sizes[i] : mx;

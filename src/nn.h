@@ -108,6 +108,6 @@ void nn_expf(float *y, const float *x, size_t n);
  * the product nn_linear_forward runs) over all shapes M x N x K with N, K in
  * sizes[0..n), each run `reps` times, timed together; 0 on allocation
  * failure. For the benchmark of SPEC §10. */
-double nn_sgemm_gflops(int M, const int *sizes, int n, int reps, int blas);
+double nn_product_gflops(int M, const int *sizes, int n, int reps, int blas);
 
 #endif

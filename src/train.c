@@ -413,8 +413,8 @@ cs_status train_bench(const model_cfg *cfg, int B, int steps, int repeats, train
     const int sz[3] = {cfg->C, 3 * cfg->C, cfg->F};
     double rate[15], own[15];
     for (int rep = 0; rep < repeats; rep++) {
-        rate[rep] = nn_sgemm_gflops(B * cfg->T, sz, 3, 4, 1);
-        own[rep] = nn_sgemm_gflops(B * cfg->T, sz, 3, 4, 0);
+        rate[rep] = nn_product_gflops(B * cfg->T, sz, 3, 4, 1);
+        own[rep] = nn_product_gflops(B * cfg->T, sz, 3, 4, 0);
         if (!(rate[rep] > 0) || !(own[rep] > 0)) return cs_err(CS_ENOMEM, "bench: out of memory");
     }
     qsort(rate, repeats, sizeof *rate, cmp_dbl);

@@ -21,7 +21,7 @@
 #define nn_attention_forward base_attention_forward
 #define nn_attention_backward base_attention_backward
 #define nn_attention_scratch_len base_attention_scratch_len
-#define nn_sgemm_gflops base_sgemm_gflops
+#define nn_product_gflops base_product_gflops
 #define nn_linear_bias_gelu_forward base_linear_bias_gelu_forward
 #define nn_linear_bias_residual_forward base_linear_bias_residual_forward
 #define nn_linear_backward_gelu base_linear_backward_gelu
