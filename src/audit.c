@@ -377,7 +377,7 @@ static void check_paper(const claims *c, const claim_result *res, checklist *cl)
     sl_free(&tex);
 }
 
-static void check_numbers(const claims *c, const claim_result *res, checklist *cl)
+void audit_numbers(const claims *c, const claim_result *res, checklist *cl)
 {
     const char *fresh = "build/numbers.fresh.tex";
     if (claims_write_numbers(fresh, c, res)) { checklist_add(cl, VERDICT_FAIL, "numbers.tex", "%s", cs_errmsg()); return; }
@@ -411,7 +411,7 @@ cs_status audit_run(const claims *c, const claim_result *res, checklist *out)
     check_provenance(out, &frozen_files);
     sl_free(&frozen_files);
     check_registry(c, out);
-    check_numbers(c, res, out);
+    audit_numbers(c, res, out);
     check_paper(c, res, out);
     return CS_OK;
 }

@@ -287,13 +287,12 @@ static int cmd_numbers(int argc, char **argv)
     if ((st = verify_eval_all(&c, &res))) { claims_free(&c); return die(st); }
     if (check) {
         checklist cl = {0};
-        audit_run(&c, res, &cl);
+        audit_numbers(&c, res, &cl);
         int bad = 0;
-        for (size_t i = 0; i < cl.n; i++)
-            if (!strcmp(cl.items[i].name, "numbers.tex")) {
-                printf("%s %s\n", verdict_name(cl.items[i].v), cl.items[i].msg);
-                bad |= cl.items[i].v == VERDICT_FAIL;
-            }
+        for (size_t i = 0; i < cl.n; i++) {
+            printf("%s %s\n", verdict_name(cl.items[i].v), cl.items[i].msg);
+            bad |= cl.items[i].v == VERDICT_FAIL;
+        }
         checklist_free(&cl);
         free(res);
         claims_free(&c);

@@ -43,6 +43,11 @@ other_fails=$(grep -E '^  FAIL ' <<<"$out" | grep -v 'fails its preregistered ga
 if [ $rc -eq 0 ] || { [ $rc -eq 1 ] && [ -n "$baseline_fails" ] && [ -z "$other_fails" ]; }; then ok "untampered copy verifies (only preregistered gate verdicts may fail)"
 else bad "untampered copy verifies" "exit $rc: $(grep FAIL <<<"$out" | grep -v 'fails its preregistered gate' | head -3)"; fi
 
+# numbers --check compares paper/numbers.tex with a fresh generation only
+out=$(cd "$scratch" && "$cli" numbers --check 2>&1); rc=$?
+if [ $rc -eq 0 ] && grep -q '^PASS ' <<<"$out"; then ok "numbers --check passes on the untampered copy"
+else bad "numbers --check passes on the untampered copy" "exit $rc: $out"; fi
+
 # 1. one gate threshold
 fresh
 sed -i 's/^seeds                           12/seeds                           11/' "$scratch/gates/main.gate"
@@ -59,6 +64,9 @@ else bad "estimator source" "src/estimator.c missing"; fi
 fresh
 sed -i 's/^\\newcommand{\\MechRows}{16}/\\newcommand{\\MechRows}{17}/' "$scratch/paper/numbers.tex"
 expect "numbers.tex macro" "paper/numbers.tex" "MechRows"
+out=$(cd "$scratch" && "$cli" numbers --check 2>&1); rc=$?
+if [ $rc -eq 1 ] && grep -q '^FAIL .*paper/numbers.tex:[0-9]* differs' <<<"$out"; then ok "numbers --check names the edited line"
+else bad "numbers --check names the edited line" "exit $rc: $out"; fi
 
 # 4. one frozen number (the first numeric data cell of the first hashed file)
 fresh
