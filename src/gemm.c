@@ -272,12 +272,14 @@ void gemm_fma(int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t aks,
 }
 
 #ifdef GEMM_X86
-/* dst[8 x 8] (row stride ldd) = src[8 x 8]^T (row stride lds): unpack,
- * shuffle, then swap 128-bit lanes. */
-__attribute__((target("avx2"))) static void tr8x8(float *dst, ptrdiff_t ldd, const float *src, ptrdiff_t lds)
+/* dst[8 x 8] (row stride ldd) = s * src[8 x 8]^T (row stride lds): unpack,
+ * shuffle, then swap 128-bit lanes; s * x is the scalar loop's product. */
+__attribute__((target("avx2"))) static void tr8x8(float *dst, ptrdiff_t ldd, const float *src, ptrdiff_t lds,
+                                                  float s)
 {
+    const __m256 vs = _mm256_set1_ps(s);
     __m256 r[8], t[8], u[8];
-    for (int i = 0; i < 8; i++) r[i] = _mm256_loadu_ps(src + i * lds);
+    for (int i = 0; i < 8; i++) r[i] = _mm256_mul_ps(vs, _mm256_loadu_ps(src + i * lds));
     for (int i = 0; i < 8; i += 2) {
         t[i] = _mm256_unpacklo_ps(r[i], r[i + 1]);
         t[i + 1] = _mm256_unpackhi_ps(r[i], r[i + 1]);
@@ -295,9 +297,10 @@ __attribute__((target("avx2"))) static void tr8x8(float *dst, ptrdiff_t ldd, con
 }
 #endif
 
-/* Every forward layer transposes its weights once per call (a copy, so any
- * order gives the same bits): 8 x 8 blocks where the CPU has AVX2. */
-void gemm_transpose(float *dst, const float *src, int N, int K)
+/* 8 x 8 blocks where the CPU has AVX2, the ragged edges one value at a time;
+ * the same products either way. */
+void gemm_transpose_scaled(float *dst, ptrdiff_t ldd, const float *src, ptrdiff_t lds, int N, int K,
+                           float s)
 {
     int n0 = 0, k0 = 0;
 #ifdef GEMM_X86
@@ -305,10 +308,16 @@ void gemm_transpose(float *dst, const float *src, int N, int K)
         n0 = N - N % 8;
         k0 = K - K % 8;
         for (int n = 0; n < n0; n += 8)
-            for (int k = 0; k < k0; k += 8) tr8x8(dst + (size_t)k * N + n, N, src + (size_t)n * K + k, K);
+            for (int k = 0; k < k0; k += 8) tr8x8(dst + k * ldd + n, ldd, src + n * lds + k, lds, s);
     }
 #endif
     /* the rest: columns k >= k0 of every row, and rows n >= n0 */
     for (int n = 0; n < N; n++)
-        for (int k = n < n0 ? k0 : 0; k < K; k++) dst[(size_t)k * N + n] = src[(size_t)n * K + k];
+        for (int k = n < n0 ? k0 : 0; k < K; k++) dst[k * ldd + n] = s * src[n * lds + k];
+}
+
+/* Every forward layer's weights (a copy: 1 * x is x). */
+void gemm_transpose(float *dst, const float *src, int N, int K)
+{
+    gemm_transpose_scaled(dst, N, src, K, N, K, 1.f);
 }

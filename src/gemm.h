@@ -61,5 +61,9 @@ int gemm_isa_available(gemm_isa isa);
 const char *gemm_isa_name(void);
 /* dst[K x N] = src[N x K]^T (weights stored [out x in] to a B operand). */
 void gemm_transpose(float *dst, const float *src, int N, int K);
+/* dst[k * ldd + n] = s * src[n * lds + k] for n < N, k < K (strided rows,
+ * e.g. one attention head's keys inside qkv). */
+void gemm_transpose_scaled(float *dst, ptrdiff_t ldd, const float *src, ptrdiff_t lds, int N, int K,
+                           float s);
 
 #endif

@@ -24,6 +24,12 @@
 #define HOT
 #endif
 #define INL static inline __attribute__((always_inline))
+/* AVX-512 forms of the GELU and of attention at the reference head shape,
+ * taken at run time where the CPU has AVX-512F (absent from the baseline copy
+ * that test_nn_clones compares them with). */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(NN_NO_CLONES)
+#define NN_AVX512 1
+#endif
 
 typedef float vf __attribute__((vector_size(32)));
 typedef int vi __attribute__((vector_size(32)));
@@ -327,14 +333,14 @@ HOT void nn_gelu_backward(float *dinp, const float *dout, const float *in, size_
     for (; i < n; i++) { vf x = splat(in[i]); dinp[i] = dout[i] * vgelu_grad(x, vgsig(x))[0]; }
 }
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(NN_NO_CLONES)
+#ifdef NN_AVX512
 static void gelu_backward16(float *dinp, const float *dout, const float *in, const float *sig, size_t n);
 #endif
 
 HOT void nn_gelu_backward_saved(float *dinp, const float *dout, const float *in,
                                 const float *sig, size_t n)
 {
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(NN_NO_CLONES)
+#ifdef NN_AVX512
     if (gemm_isa_available(GEMM_AVX512)) { gelu_backward16(dinp, dout, in, sig, n); return; }
 #endif
     size_t i = 0;
@@ -358,8 +364,7 @@ INL void bias_gelu_tail(float *hr, float *sr, float *orow, const float *b, int c
  * 16-lane vectors. Every lane executes the same IEEE operations in the same
  * order as in the 8-lane code (no reductions here), so the values are
  * identical (test_nn_clones compares this path with the baseline build). */
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(NN_NO_CLONES)
-#define NN_GELU16 1
+#ifdef NN_AVX512
 typedef float vf16 __attribute__((vector_size(64)));
 typedef int vi16 __attribute__((vector_size(64)));
 INL vf16 ld16(const float *p) { vf16 v; memcpy(&v, p, sizeof v); return v; }
@@ -403,7 +408,7 @@ __attribute__((target("avx512f"))) static void gelu_backward16(float *dinp, cons
 
 HOT void nn_bias_gelu_forward_save(float *h, float *sig, float *out, const float *b, int M, int N)
 {
-#ifdef NN_GELU16
+#ifdef NN_AVX512
     if (gemm_isa_available(GEMM_AVX512)) { bias_gelu16(h, sig, out, b, M, N); return; }
 #endif
     for (int r = 0; r < M; r++) {
@@ -517,13 +522,6 @@ size_t nn_attention_scratch_len(int T, int C, int H)
     return (size_t)H * T * T + (size_t)(C / H) * T;
 }
 
-/* dst[hd x T] = s * src^T for the T rows of one head (row stride ld). */
-static void head_transpose(float *dst, const float *src, int T, int hd, int ld, float s)
-{
-    for (int j = 0; j < T; j++)
-        for (int d = 0; d < hd; d++) dst[(size_t)d * T + j] = s * src[(size_t)j * ld + d];
-}
-
 /* In place softmax of s[0..n). */
 INL void softmax_row(float *s, int n)
 {
@@ -566,51 +564,9 @@ HOT static void softmax_backward_rows(float *ds, const float *P, int T, float sc
  * 8-lane reductions of softmax_row / softmax_backward_rows (the same chunk
  * order and butterfly), so the values are those of the generic kernels
  * (test_nn_clones compares the two builds bit for bit). */
-#ifdef NN_GELU16
+#ifdef NN_AVX512
 #include <immintrin.h>
 #define A512 __attribute__((target("avx512f,fma"), always_inline)) static inline
-
-A512 __m256 hi256(__m512 z) { return _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(z), 1)); }
-/* The butterfly of hsumv / hmaxv: lane i meets lane i^4, then i^2, then i^1. */
-A512 __m256 sw4(__m256 v) { return _mm256_permute2f128_ps(v, v, 0x01); }
-A512 __m256 sw2(__m256 v) { return _mm256_permute_ps(v, 0x4E); }
-A512 __m256 sw1(__m256 v) { return _mm256_permute_ps(v, 0xB1); }
-A512 float hsum8(__m256 v)
-{
-    v = _mm256_add_ps(v, sw4(v));
-    v = _mm256_add_ps(v, sw2(v));
-    return _mm256_cvtss_f32(_mm256_add_ps(v, sw1(v)));
-}
-
-/* dst[8 x 8] (row stride ldd) = s * src^T (row stride lds): the unpack /
- * shuffle / lane-swap transpose; s * x is the same product as head_transpose's. */
-A512 void tr8(float *dst, ptrdiff_t ldd, const float *src, ptrdiff_t lds, __m256 s)
-{
-    __m256 r[8], t[8], u[8];
-    _Pragma("GCC unroll 8") for (int i = 0; i < 8; i++) r[i] = _mm256_mul_ps(s, _mm256_loadu_ps(src + i * lds));
-    _Pragma("GCC unroll 4") for (int i = 0; i < 8; i += 2) {
-        t[i] = _mm256_unpacklo_ps(r[i], r[i + 1]);
-        t[i + 1] = _mm256_unpackhi_ps(r[i], r[i + 1]);
-    }
-    _Pragma("GCC unroll 2") for (int i = 0; i < 8; i += 4) {
-        u[i] = _mm256_shuffle_ps(t[i], t[i + 2], 0x44);
-        u[i + 1] = _mm256_shuffle_ps(t[i], t[i + 2], 0xEE);
-        u[i + 2] = _mm256_shuffle_ps(t[i + 1], t[i + 3], 0x44);
-        u[i + 3] = _mm256_shuffle_ps(t[i + 1], t[i + 3], 0xEE);
-    }
-    _Pragma("GCC unroll 4") for (int i = 0; i < 4; i++) {
-        _mm256_storeu_ps(dst + i * ldd, _mm256_permute2f128_ps(u[i], u[i + 4], 0x20));
-        _mm256_storeu_ps(dst + (i + 4) * ldd, _mm256_permute2f128_ps(u[i], u[i + 4], 0x31));
-    }
-}
-
-/* dst[16 x 24] = s * src^T for one head's 24 rows of 16 (row stride ld). */
-A512 void head_transpose24(float *dst, const float *src, ptrdiff_t ld, float s)
-{
-    const __m256 vs = _mm256_set1_ps(s);
-    for (int jb = 0; jb < 24; jb += 8)
-        for (int db = 0; db < 16; db += 8) tr8(dst + db * 24 + jb, 24, src + jb * ld + db, ld, vs);
-}
 
 /* S[12 x 24] (row stride 24) = A[12 x 16] (row stride ars) Bt[16 x 24]. */
 A512 void tt_block(float *S, const float *A, ptrdiff_t ars, const float *Bt)
@@ -654,23 +610,12 @@ A512 void hw_block(float *Cm, ptrdiff_t ldc, const float *A, const ptrdiff_t ars
 A512 void softmax24x12(float *s)
 {
     float mx[12], inv[12];
-    _Pragma("GCC unroll 12") for (int r = 0; r < 12; r++) {
-        __m512 z = _mm512_loadu_ps(s + r * 24);
-        __m256 m = _mm256_max_ps(_mm256_max_ps(_mm512_castps512_ps256(z), hi256(z)), _mm256_loadu_ps(s + r * 24 + 16));
-        m = _mm256_max_ps(m, sw4(m)); /* max_ps(a, b) is a > b ? a : b, as vmax */
-        m = _mm256_max_ps(m, sw2(m));
-        mx[r] = _mm256_cvtss_f32(_mm256_max_ps(m, sw1(m)));
-    }
+    for (int r = 0; r < 12; r++) mx[r] = vmaxv(s + r * 24, 24);
     for (int r = 0; r < 12; r++) {
         float *row = s + r * 24;
-        vf16 e16 = vexp16(ld16(row) - splat16(mx[r]));
-        vf e8 = vexp(ld(row + 16) - splat(mx[r]));
-        st16(row, e16);
-        st(row + 16, e8);
-        __m512 ez = (__m512)e16;
-        __m256 acc = _mm256_add_ps(_mm256_setzero_ps(), _mm512_castps512_ps256(ez));
-        acc = _mm256_add_ps(_mm256_add_ps(acc, hi256(ez)), (__m256)e8);
-        inv[r] = hsum8(acc);
+        st16(row, vexp16(ld16(row) - splat16(mx[r])));
+        st(row + 16, vexp(ld(row + 16) - splat(mx[r])));
+        inv[r] = vsum(row, 24);
     }
     for (int r = 0; r < 12; r++) inv[r] = 1.f / inv[r];
     for (int r = 0; r < 12; r++) {
@@ -683,14 +628,9 @@ A512 void softmax24x12(float *s)
 /* softmax_backward_rows on one row: d = p (d - p.d) scale. */
 A512 void softmax_backward24(float *d, const float *p, float scale)
 {
-    vf16 pz = ld16(p), dz = ld16(d);
-    vf py = ld(p + 16), dy = ld(d + 16);
-    __m512 prz = (__m512)(pz * dz);
-    __m256 acc = _mm256_add_ps(_mm256_setzero_ps(), _mm512_castps512_ps256(prz));
-    acc = _mm256_add_ps(_mm256_add_ps(acc, hi256(prz)), (__m256)(py * dy));
-    const float dot = hsum8(acc);
-    st16(d, pz * (dz - dot) * scale);
-    st(d + 16, py * (dy - dot) * scale);
+    const float dot = vdot(p, d, 24);
+    st16(d, ld16(p) * (ld16(d) - dot) * scale);
+    st(d + 16, ld(p + 16) * (ld(d + 16) - dot) * scale);
 }
 
 /* One patch (24 tokens), all heads: the values of nn_attention_forward. */
@@ -702,7 +642,7 @@ __attribute__((target("avx512f,fma"))) static void attention_forward24(float *ou
     const float scale = 1.f / sqrtf(16.f);
     for (int h = 0; h < H; h++) {
         float *P = prob + (size_t)h * 576;
-        head_transpose24(kt, qkv + C + h * 16, C3, scale);
+        gemm_transpose_scaled(kt, 24, qkv + C + h * 16, C3, 24, 16, scale);
         for (int i0 = 0; i0 < 24; i0 += 12) {
             tt_block(P + i0 * 24, qkv + (size_t)i0 * C3 + h * 16, C3, kt);
             softmax24x12(P + i0 * 24);
@@ -722,7 +662,7 @@ __attribute__((target("avx512f,fma"))) static void attention_backward24(float *g
     for (int h = 0; h < H; h++) {
         const float *P = prob + (size_t)h * 576, *q = qkv + h * 16, *k = qkv + C + h * 16;
         float *dsh = ds + (size_t)h * 576;
-        head_transpose24(vt, qkv + 2 * C + h * 16, C3, 1.f);
+        gemm_transpose_scaled(vt, 24, qkv + 2 * C + h * 16, C3, 24, 16, 1.f);
         for (int i0 = 0; i0 < 24; i0 += 12) {
             tt_block(dsh + i0 * 24, dO + (size_t)i0 * C + h * 16, C, vt);
             for (int r = i0; r < i0 + 12; r++) softmax_backward24(dsh + r * 24, P + r * 24, scale);
@@ -735,7 +675,6 @@ __attribute__((target("avx512f,fma"))) static void attention_backward24(float *g
         }
     }
 }
-#define NN_ATTN24 1
 #endif
 
 void nn_attention_forward(float *out, float *prob, const float *qkv,
@@ -748,7 +687,7 @@ void nn_attention_forward(float *out, float *prob, const float *qkv,
             memcpy(out + (size_t)r * C, qkv + (size_t)r * C3 + 2 * C, sizeof(float) * C);
         return;
     }
-#ifdef NN_ATTN24
+#ifdef NN_AVX512
     if (T == 24 && hd == 16 && gemm_isa_available(GEMM_AVX512)) {
         for (int b = 0; b < B; b++)
             attention_forward24(out + (size_t)b * T * C, prob + (size_t)b * H * T * T,
@@ -763,7 +702,7 @@ void nn_attention_forward(float *out, float *prob, const float *qkv,
         for (int h = 0; h < H; h++) {
             float *P = prob + ((size_t)b * H + h) * T * T;
             /* P = Q (scale K^T), softmax by rows, out = P V */
-            head_transpose(kt, base + C + h * hd, T, hd, C3, scale);
+            gemm_transpose_scaled(kt, T, base + C + h * hd, C3, T, hd, scale);
             gemm_fma(T, T, hd, base + h * hd, C3, 1, kt, T, P, T, 0);
             softmax_rows(P, T);
         }
@@ -788,7 +727,7 @@ void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
     }
     /* [H x T x T] dP then dS of every head; [hd x T] V^T of one head */
     float *ds = scratch, *vt = scratch + (size_t)H * T * T;
-#ifdef NN_ATTN24
+#ifdef NN_AVX512
     if (T == 24 && hd == 16 && gemm_isa_available(GEMM_AVX512)) {
         for (int b = 0; b < B; b++)
             attention_backward24(dqkv + (size_t)b * T * C3, dout + (size_t)b * T * C,
@@ -806,7 +745,7 @@ void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
             const float *v = base + 2 * C + h * hd;
             /* dP = dO V^T, then the softmax backward turns it into dS */
             float *dsh = ds + (size_t)h * T * T;
-            head_transpose(vt, v, T, hd, C3, 1.f);
+            gemm_transpose_scaled(vt, T, v, C3, T, hd, 1.f);
             gemm_fma(T, T, hd, dO + h * hd, C, 1, vt, T, dsh, T, 0);
             softmax_backward_rows(dsh, P, T, scale);
         }

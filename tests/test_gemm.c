@@ -184,6 +184,32 @@ static void test_transpose_blocks_and_edges(void **st)
     }
 }
 
+/* The strided, scaled form (an attention head's keys inside qkv): the same
+ * product s * x as one value at a time, blocks and ragged edges. */
+static void test_transpose_scaled_strided(void **st)
+{
+    (void)st;
+    const int sz[][4] = {{24, 16, 192, 24}, {13, 11, 20, 17}}; /* N, K, lds, ldd */
+    for (size_t t = 0; t < sizeof sz / sizeof *sz; t++) {
+        const int N = sz[t][0], K = sz[t][1], lds = sz[t][2], ldd = sz[t][3];
+        const float s = 0.3f;
+        float *src = malloc(sizeof(float) * N * lds), *got = calloc((size_t)K * ldd, sizeof(float));
+        assert_non_null(src); assert_non_null(got);
+        fill(src, (size_t)N * lds, 11u + (uint32_t)t);
+        gemm_transpose_scaled(got, ldd, src, lds, N, K, s);
+        for (int n = 0; n < N; n++)
+            for (int k = 0; k < K; k++) {
+                const float want = s * src[n * lds + k];
+                if (memcmp(&got[k * ldd + n], &want, sizeof want) != 0) {
+                    print_error("%d x %d: dst[%d][%d] = %.17g, want %.17g\n", N, K, k, n,
+                                (double)got[k * ldd + n], (double)want);
+                    fail();
+                }
+            }
+        free(src); free(got);
+    }
+}
+
 /* The epilogue sees each strip once, in order, with its rows already final. */
 typedef struct { float *copy; const float *C; ptrdiff_t ldc; int N, next, calls, bad; } epi_rec;
 static void record(void *p, int i0, int rows)
@@ -274,6 +300,7 @@ int main(void)
         cmocka_unit_test(test_k_zero_clears_or_keeps),
         cmocka_unit_test(test_transpose),
         cmocka_unit_test(test_transpose_blocks_and_edges),
+        cmocka_unit_test(test_transpose_scaled_strided),
         cmocka_unit_test(test_epilogue_sees_final_strips_in_order),
         cmocka_unit_test(test_heads_reference_attention_shapes),
         cmocka_unit_test(test_heads_odd_shapes_and_fallback),
