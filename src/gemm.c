@@ -88,48 +88,6 @@ __attribute__((target("avx2"))) static inline __m256i mask8(int n)
 #include "gemm_tile.inc"
 #endif
 
-#ifdef GEMM_X86
-/* gemm_fma_heads on AVX-512 with n = 16: one strip of R rows keeps all H
- * heads' 16-wide outputs in registers (R x H accumulators) and reads B's row
- * k once for all heads; per element still one fma chain over k ascending. */
-__attribute__((target("avx512f"), always_inline)) static inline void
-heads_tile(const int R, const int H, int K, const float *A, ptrdiff_t ahs, ptrdiff_t ars,
-           ptrdiff_t aks, const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc)
-{
-    __m512 c[6][4], b[4];
-    _Pragma("GCC unroll 8") for (int r = 0; r < R; r++)
-        _Pragma("GCC unroll 8") for (int h = 0; h < H; h++) c[r][h] = _mm512_setzero_ps();
-    for (int k = 0; k < K; k++) {
-        const float *ak = A + (ptrdiff_t)k * aks, *bk = B + (ptrdiff_t)k * ldb;
-        _Pragma("GCC unroll 8") for (int h = 0; h < H; h++) b[h] = _mm512_loadu_ps(bk + 16 * h);
-        _Pragma("GCC unroll 8") for (int r = 0; r < R; r++)
-            _Pragma("GCC unroll 8") for (int h = 0; h < H; h++)
-                c[r][h] = _mm512_fmadd_ps(_mm512_set1_ps(ak[h * ahs + r * ars]), b[h], c[r][h]);
-    }
-    _Pragma("GCC unroll 8") for (int r = 0; r < R; r++)
-        _Pragma("GCC unroll 8") for (int h = 0; h < H; h++) _mm512_storeu_ps(C + r * ldc + 16 * h, c[r][h]);
-}
-
-#define HT_CASE(R, H) case (R) * 10 + (H): heads_tile(R, H, K, a, ahs, ars, aks, B, ldb, c, ldc); break;
-#define HT_CASES(R) HT_CASE(R, 1) HT_CASE(R, 2) HT_CASE(R, 3) HT_CASE(R, 4)
-__attribute__((target("avx512f"))) static void heads_avx512(int H, int M, int K, const float *A,
-                                                           ptrdiff_t ahs, ptrdiff_t ars, ptrdiff_t aks,
-                                                           const float *B, ptrdiff_t ldb, float *C,
-                                                           ptrdiff_t ldc)
-{
-    for (int i = 0; i < M; i += GEMM_STRIP) {
-        int R = M - i < GEMM_STRIP ? M - i : GEMM_STRIP;
-        const float *a = A + (ptrdiff_t)i * ars;
-        float *c = C + (ptrdiff_t)i * ldc;
-        switch (R * 10 + H) {
-            HT_CASES(1) HT_CASES(2) HT_CASES(3) HT_CASES(4) HT_CASES(5) HT_CASES(6)
-        default: break;
-        }
-    }
-}
-#undef HT_CASE
-#undef HT_CASES
-#endif
 
 int gemm_isa_available(gemm_isa isa)
 {
@@ -254,12 +212,6 @@ void gemm_fma_heads(int H, int M, int n, int K, const float *A, ptrdiff_t ahs, p
                     ptrdiff_t aks, const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc)
 {
     if (!auto_path) auto_path = path_of(GEMM_AUTO);
-#ifdef GEMM_X86
-    if (auto_path == path_avx512 && n == 16 && H >= 1 && H <= 4 && M > 0 && K > 0) {
-        heads_avx512(H, M, K, A, ahs, ars, aks, B, ldb, C, ldc);
-        return;
-    }
-#endif
     for (int h = 0; h < H; h++)
         run(auto_path, M, n, K, A + (ptrdiff_t)h * ahs, ars, aks, B + (ptrdiff_t)h * n, ldb,
             C + (ptrdiff_t)h * n, ldc, 0, NULL, NULL, NULL);

@@ -41,8 +41,8 @@ void gemm_fma_bias_epi(int M, int N, int K, const float *A, ptrdiff_t ars, ptrdi
  * multi-head attention): for h < H,
  *   C[i][h*n + j] = sum_k A[h*ahs + i*ars + k*aks] * B[k][h*n + j],
  * overwriting C; each element one fma chain over k ascending, so the values
- * equal H separate gemm_fma calls on any path. AVX-512 with n = 16 and
- * H <= 4 does all heads in one pass over B. */
+ * equal H separate gemm_fma calls on any path. (The training runs' shape,
+ * T = 24 and hd = 16 on AVX-512, has its own kernel in nn.c.) */
 void gemm_fma_heads(int H, int M, int n, int K, const float *A, ptrdiff_t ahs, ptrdiff_t ars,
                     ptrdiff_t aks, const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc);
 /* The same with a chosen path; an unavailable path falls back to the best

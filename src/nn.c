@@ -514,7 +514,7 @@ HOT void nn_residual_backward(float *acc, const float *x, size_t n)
  * through gemm_fma on a transposed copy of the head's keys or values (hd x T,
  * in the scratch; the score scale 1/sqrt(hd) is folded into the keys' copy).
  * The four products with an hd-wide result (P V, P^T dO, dS K, dS^T Q) go
- * through gemm_fma_heads, all heads of a patch per pass. Values are those of
+ * through gemm_fma_heads, all heads of a patch per call. Values are those of
  * per-head gemm_fma calls. The softmax and its backward are vector loops. */
 
 size_t nn_attention_scratch_len(int T, int C, int H)
@@ -555,9 +555,8 @@ HOT static void softmax_backward_rows(float *ds, const float *P, int T, float sc
 
 /* ---- attention on AVX-512 at the reference head shape (T = 24, hd = 16) ----------- */
 /* The generic kernels above spend most of their time around the products,
- * not in them: a gemm_fma call per 24 x 24 x 16 block, and the hd-wide
- * products of gemm_fma_heads, whose 24 broadcast operands per k leave their
- * addresses spilled to the stack. Here one patch's attention runs in register
+ * not in them: a gemm_fma call per head and per 24 x 24 x 16 or 24 x 16 x 24
+ * block, each set up for general strides. Here one patch's attention runs in register
  * blocks of 12 rows: a score row is one 16-lane plus one 8-lane vector, an
  * hd-wide output row one 16-lane vector. Every element is still one fma chain
  * over k in ascending order from +0, and the softmax and its backward keep the
