@@ -98,19 +98,12 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
     const size_t N = (size_t)Bmax * cfg->T, C = cfg->C, F = cfg->F, B = Bmax;
     const size_t I = cfg->P + cfg->nfeat, E = cfg->ncond + cfg->ntime, TP = (size_t)cfg->T * cfg->P;
     const size_t probn = cfg->joint ? B * cfg->H * cfg->T * cfg->T : 0;
-    /* scratch for one transposed weight matrix: C x max(I, E, 3C, F, P) */
-    size_t wtn = 3 * C;
-    if (I > wtn) wtn = I;
-    if (E > wtn) wtn = E;
-    if (F > wtn) wtn = F;
-    if ((size_t)cfg->P > wtn) wtn = cfg->P;
-    wtn *= C;
     size_t per_block = N * C * 4 + N * 4 + N * 3 * C + probn + N * F * 3;
     size_t total = N * I + B * E + 3 * B * C + N * C + 2 * N + N * cfg->P
                  + (size_t)(L + 1) * N * C + (size_t)L * per_block
                  + 3 * N * C + N * 3 * C + N * F + 2 * B * C
                  + nn_attention_scratch_len(cfg->T, cfg->C, cfg->H)
-                 + 4 * B * TP + B + wtn;
+                 + 4 * B * TP + B;
     m->mem = calloc(total, sizeof(float));
     if (!m->params || !m->grads || !m->wtall || !m->mem) { model_free(m); return cs_err(CS_ENOMEM, "model: out of memory"); }
     float *p = m->mem;
@@ -130,7 +123,6 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
     m->ascr = TAKE(nn_attention_scratch_len(cfg->T, cfg->C, cfg->H));
     m->fm_xt = TAKE(B * TP); m->fm_u = TAKE(B * TP); m->fm_v = TAKE(B * TP); m->fm_dv = TAKE(B * TP);
     m->fm_t = TAKE(B);
-    m->wt = TAKE(wtn);
 #undef TAKE
     if ((size_t)(p - m->mem) != total) { model_free(m); return cs_err(CS_EINVARIANT, "model: activation layout mismatch"); }
     *out = m;
@@ -186,12 +178,12 @@ static void transpose_all(model *m)
     gemm_transpose(t + m->head_w, w + m->head_w, c->P, C);
 }
 
-/* model_forward on weights already transposed by transpose_all. */
-static cs_status forward(model *m, int B, const float *xt, const float *feat,
-                         const float *cond, const float *t, float *v)
+/* model_forward on weights already transposed by transpose_all; 1 <= B <=
+ * Bmax checked by the callers. */
+static void forward(model *m, int B, const float *xt, const float *feat,
+                    const float *cond, const float *t, float *v)
 {
     const model_cfg *c = &m->cfg;
-    if (B < 1 || B > m->Bmax) return cs_err(CS_EINPUT, "model_forward: batch %d outside 1..%d", B, m->Bmax);
     const int T = c->T, P = c->P, C = c->C, F = c->F, N = B * T;
     const int I = P + c->nfeat, E = c->ncond + c->ntime, nh = c->ntime / 2;
     const float *w = m->params;
@@ -242,15 +234,29 @@ static cs_status forward(model *m, int B, const float *xt, const float *feat,
                                         N, F, C, wt + o->fc2_w);
     }
     nn_linear_forward(v, m->lnf, NULL, w + m->head_b, N, C, P, wt + m->head_w);
-    return CS_OK;
 }
+
+/* forward() on patches [b0, b0 + nb) of batch-wide arrays (xt and v hold T*P
+ * values per patch): one pass of model_fm_grad or model_sample. */
+static void forward_pass(model *m, int b0, int nb, const float *xt, const float *feat,
+                         const float *cond, const float *t, float *v)
+{
+    const model_cfg *c = &m->cfg;
+    const size_t TP = (size_t)c->T * c->P;
+    forward(m, nb, xt + b0 * TP, feat + (size_t)b0 * c->T * c->nfeat, cond + (size_t)b0 * c->ncond,
+            t + b0, v + b0 * TP);
+}
+
+/* Patches per pass (m->micro, or the whole batch when unset). */
+static int pass_size(const model *m, int B) { return m->micro >= 1 ? m->micro : B; }
 
 cs_status model_forward(model *m, int B, const float *xt, const float *feat,
                         const float *cond, const float *t, float *v)
 {
     if (B < 1 || B > m->Bmax) return cs_err(CS_EINPUT, "model_forward: batch %d outside 1..%d", B, m->Bmax);
     transpose_all(m);
-    return forward(m, B, xt, feat, cond, t, v);
+    forward(m, B, xt, feat, cond, t, v);
+    return CS_OK;
 }
 
 /* zero = 0 adds this pass's gradients to m->grads (model_fm_grad's later
@@ -339,16 +345,14 @@ cs_status model_fm_grad(model *m, gsl_rng *noise, int B, const float *x1,
     if (B < 1 || B > m->Bmax) return cs_err(CS_EINPUT, "model_fm_grad: batch %d outside 1..%d", B, m->Bmax);
     model_fm_draw(noise, B, n, x1, m->fm_xt, m->fm_u, m->fm_t);
     transpose_all(m);
-    const int mb = m->micro >= 1 ? m->micro : B;
+    const int mb = pass_size(m, B);
     const size_t ntot = (size_t)B * n;
     const float k = 2.f / (float)ntot;
     double s = 0;
     for (int b0 = 0; b0 < B; b0 += mb) {
         const int nb = B - b0 < mb ? B - b0 : mb;
         const size_t o = (size_t)b0 * n;
-        cs_status st = forward(m, nb, m->fm_xt + o, feat + (size_t)b0 * c->T * c->nfeat,
-                                     cond + (size_t)b0 * c->ncond, m->fm_t + b0, m->fm_v + o);
-        if (st) return st;
+        forward_pass(m, b0, nb, m->fm_xt, feat, cond, m->fm_t, m->fm_v);
         fm_loss_add(m->fm_v + o, m->fm_u + o, (size_t)nb * n, k, m->fm_dv + o, &s);
         if (!isfinite(s)) return cs_err(CS_ENUMERIC, "flow-matching loss is not finite (%g)", s / (double)ntot);
         backward(m, m->fm_dv + o, b0 == 0);
@@ -365,19 +369,15 @@ cs_status model_sample(model *m, gsl_rng *noise, int B, const float *feat,
     if (nsteps < 1) return cs_err(CS_EINPUT, "model_sample: nsteps %d must be >= 1", nsteps);
     for (size_t i = 0; i < n; i++) x[i] = (float)gsl_ran_gaussian_ziggurat(noise, 1.0);
     const float dt = 1.f / (float)nsteps;
-    const int mb = m->micro >= 1 ? m->micro : B, T = m->cfg.T, TP = T * m->cfg.P;
+    const int mb = pass_size(m, B);
     transpose_all(m);
     for (int k = 0; k < nsteps; k++) {
         float tk = (float)k / (float)nsteps;
         for (int b = 0; b < B; b++) m->fm_t[b] = tk;
         /* in passes of m->micro patches, as model_fm_grad: patches do not
          * interact in the forward, so v is the same as in one pass */
-        for (int b0 = 0; b0 < B; b0 += mb) {
-            const int nb = B - b0 < mb ? B - b0 : mb;
-            cs_status st = forward(m, nb, x + (size_t)b0 * TP, feat + (size_t)b0 * T * m->cfg.nfeat,
-                                   cond + (size_t)b0 * m->cfg.ncond, m->fm_t + b0, m->fm_v + (size_t)b0 * TP);
-            if (st) return st;
-        }
+        for (int b0 = 0; b0 < B; b0 += mb)
+            forward_pass(m, b0, B - b0 < mb ? B - b0 : mb, x, feat, cond, m->fm_t, m->fm_v);
         for (size_t i = 0; i < n; i++) x[i] += dt * m->fm_v[i];
     }
     for (size_t i = 0; i < n; i++)

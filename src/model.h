@@ -59,7 +59,7 @@ typedef struct model {
     float *mem;
     float *tin, *cin, *e1, *e1g, *e, *lnf, *muf, *rsf, *out;
     float **x, **ln1, **mu1, **rs1, **qkv, **prob, **att, **xm, **ln2, **mu2, **rs2, **h, **hs, **hg;
-    float *dx, *dtmp, *dln, *dqkv, *dh, *de, *de1, *ascr, *wt;
+    float *dx, *dtmp, *dln, *dqkv, *dh, *de, *de1, *ascr;
     float *fm_xt, *fm_u, *fm_t, *fm_v, *fm_dv;
 } model;
 
