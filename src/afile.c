@@ -48,7 +48,7 @@ cs_status afile_open(afile *a, const char *path)
 cs_status afile_commit(afile *a)
 {
     cs_status st = CS_OK;
-    if (fflush(a->f) != 0 || fsync(fileno(a->f)) != 0) a->err = 1;
+    if (ferror(a->f) || fflush(a->f) != 0 || fsync(fileno(a->f)) != 0) a->err = 1;
     if (fclose(a->f) != 0) a->err = 1;
     if (a->err) {
         st = cs_err(CS_EIO, "%s: write failed", a->tmp);

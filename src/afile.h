@@ -17,8 +17,9 @@ typedef struct {
 cs_status afile_mkdir_parents(const char *path);
 /* Parent directories, then "<path>.tmp" opened for writing. */
 cs_status afile_open(afile *a, const char *path);
-/* Flush, fsync, close and rename into place; on any failure the temp file is
- * removed and the error names it. Releases a either way. */
+/* Flush, fsync, close and rename into place; on any failure (a->err, a write
+ * error on a->f, flush, sync, close or rename) the temp file is removed and
+ * the error names it. Releases a either way. */
 cs_status afile_commit(afile *a);
 /* Close and remove the temp file; releases a. */
 void afile_abort(afile *a);

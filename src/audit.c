@@ -195,9 +195,7 @@ cs_status audit_hash_frozen(void)
     }
     sl_free(&l);
     if (st) { afile_abort(&a); return st; }
-    if (ferror(a.f)) a.err = 1;
-    st = afile_commit(&a);
-    return st;
+    return afile_commit(&a);
 }
 
 static void check_frozen(const claims *c, checklist *cl, strlist *frozen_files)

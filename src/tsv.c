@@ -216,7 +216,6 @@ long tsv_find(const tsv *t, const char *col, const char *value)
 /* ---- writer ---- */
 struct tsv_writer {
     afile a;   /* the temp file, published by rename on commit */
-    FILE *f;   /* == a.f */
     int ncell; /* cells written in the current row */
 };
 
@@ -227,7 +226,6 @@ cs_status tsv_writer_open(tsv_writer **out, const char *path)
     if (!w) return cs_err(CS_ENOMEM, "%s: out of memory", path);
     cs_status st = afile_open(&w->a, path);
     if (st) { free(w); return st; }
-    w->f = w->a.f;
     *out = w;
     return CS_OK;
 }
@@ -241,41 +239,41 @@ void tsv_writer_meta(tsv_writer *w, const char *key, const char *fmt, ...)
     va_end(ap);
     /* A newline or tab inside a value would corrupt the file: flatten it. */
     for (char *c = val; *c; c++) if (*c == '\n' || *c == '\r' || *c == '\t') *c = ' ';
-    if (fprintf(w->f, "# %s: %s\n", key, val[0] ? val : "-") < 0) w->a.err = 1;
+    if (fprintf(w->a.f, "# %s: %s\n", key, val[0] ? val : "-") < 0) w->a.err = 1;
 }
 
 void tsv_writer_columns(tsv_writer *w, const char *cols)
 {
-    if (fprintf(w->f, "%s\n", cols) < 0) w->a.err = 1;
+    if (fprintf(w->a.f, "%s\n", cols) < 0) w->a.err = 1;
 }
 
 static void sep(tsv_writer *w)
 {
-    if (w->ncell++ > 0 && fputc('\t', w->f) == EOF) w->a.err = 1;
+    if (w->ncell++ > 0 && fputc('\t', w->a.f) == EOF) w->a.err = 1;
 }
 
 void tsv_writer_str(tsv_writer *w, const char *s)
 {
     sep(w);
     for (; *s; s++)
-        if (fputc(*s == '\t' || *s == '\n' ? ' ' : *s, w->f) == EOF) w->a.err = 1;
+        if (fputc(*s == '\t' || *s == '\n' ? ' ' : *s, w->a.f) == EOF) w->a.err = 1;
 }
 
 void tsv_writer_dbl(tsv_writer *w, double x)
 {
     sep(w);
-    if (fprintf(w->f, "%.17g", x) < 0) w->a.err = 1;
+    if (fprintf(w->a.f, "%.17g", x) < 0) w->a.err = 1;
 }
 
 void tsv_writer_long(tsv_writer *w, long x)
 {
     sep(w);
-    if (fprintf(w->f, "%ld", x) < 0) w->a.err = 1;
+    if (fprintf(w->a.f, "%ld", x) < 0) w->a.err = 1;
 }
 
 void tsv_writer_endrow(tsv_writer *w)
 {
-    if (fputc('\n', w->f) == EOF) w->a.err = 1;
+    if (fputc('\n', w->a.f) == EOF) w->a.err = 1;
     w->ncell = 0;
 }
 
