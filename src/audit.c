@@ -37,6 +37,14 @@ void checklist_free(checklist *cl)
     memset(cl, 0, sizeof *cl);
 }
 
+void checklist_print(const checklist *cl, size_t count[3])
+{
+    for (size_t i = 0; i < cl->n; i++) {
+        printf("  %-7s %-28s %s\n", verdict_name(cl->items[i].v), cl->items[i].name, cl->items[i].msg);
+        count[cl->items[i].v]++;
+    }
+}
+
 /* ---- list of files under a directory (recursive, sorted) ---- */
 typedef struct { char **p; size_t n, cap; } strlist;
 static void sl_add(strlist *l, const char *s)

@@ -16,6 +16,10 @@ typedef struct { check_item *items; size_t n, cap; } checklist;
 void checklist_add(checklist *cl, verdict v, const char *name, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 void checklist_free(checklist *cl);
+/* Print every item as "  VERDICT  name  message" (the layout of crownshy
+ * verify, audit and figures) and add its verdict to count[v] (indexed by
+ * verdict: PASS, FAIL, PENDING). */
+void checklist_print(const checklist *cl, size_t count[3]);
 
 #define AUDIT_PINS "audit/pins.tsv"
 #define AUDIT_FROZEN_HASHES "audit/frozen.sha256"

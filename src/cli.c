@@ -322,16 +322,13 @@ static int cmd_audit(int argc, char **argv)
     if ((st = verify_eval_all(&c, &res))) { claims_free(&c); return die(st); }
     checklist cl = {0};
     audit_run(&c, res, &cl);
-    size_t pass = 0, fail = 0;
-    for (size_t i = 0; i < cl.n; i++) {
-        printf("  %-7s %-28s %s\n", verdict_name(cl.items[i].v), cl.items[i].name, cl.items[i].msg);
-        if (cl.items[i].v == VERDICT_FAIL) fail++; else pass++;
-    }
-    printf("%zu passed, %zu failed\n", pass, fail);
+    size_t count[3] = {0};
+    checklist_print(&cl, count);
+    printf("%zu passed, %zu failed\n", count[VERDICT_PASS] + count[VERDICT_PENDING], count[VERDICT_FAIL]);
     checklist_free(&cl);
     free(res);
     claims_free(&c);
-    return fail ? 1 : 0;
+    return count[VERDICT_FAIL] ? 1 : 0;
 }
 
 static int cmd_trace(int argc, char **argv)
@@ -437,13 +434,10 @@ static int cmd_figures(int argc, char **argv)
     if (argc > 1) { fprintf(stderr, "crownshy figures: unknown option '%s'\n", argv[1]); return 2; }
     checklist cl = {0};
     verify_figures(&cl);
-    int bad = 0;
-    for (size_t i = 0; i < cl.n; i++) {
-        printf("  %-7s %-28s %s\n", verdict_name(cl.items[i].v), cl.items[i].name, cl.items[i].msg);
-        bad |= cl.items[i].v == VERDICT_FAIL;
-    }
+    size_t count[3] = {0};
+    checklist_print(&cl, count);
     checklist_free(&cl);
-    return bad ? 1 : 0;
+    return count[VERDICT_FAIL] ? 1 : 0;
 }
 
 static const cli_cmd cli_cmds[] = {

@@ -108,12 +108,6 @@ void verify_figures(checklist *cl)
     }
 }
 
-static void print_item(const char *tag, verdict v, const char *name, const char *msg)
-{
-    printf("  %-7s %-28s %s\n", verdict_name(v), name, msg);
-    (void)tag;
-}
-
 cs_status verify_run(const verify_opts *o)
 {
     claims c;
@@ -126,26 +120,23 @@ cs_status verify_run(const verify_opts *o)
     char nterr[512];
     snprintf(nterr, sizeof nterr, "%s", have_nt ? "" : cs_errmsg());
 
-    size_t pass = 0, fail = 0, pend = 0;
+    size_t count[3] = {0}; /* by verdict: PASS, FAIL, PENDING */
     checklist cl = {0};
     audit_run(&c, res, &cl);
     printf("== audit (pins, frozen hashes, provenance, registry, paper)\n");
-    for (size_t i = 0; i < cl.n; i++) {
-        print_item("audit", cl.items[i].v, cl.items[i].name, cl.items[i].msg);
-        if (cl.items[i].v == VERDICT_PASS) pass++; else if (cl.items[i].v == VERDICT_FAIL) fail++; else pend++;
-    }
+    checklist_print(&cl, count);
     checklist_free(&cl);
 
     printf("\n== claims (recomputed from frozen/ and compared with paper/numbers.tex)\n");
     printf("  %-7s %-19s %-12s %-10s %-8s %s\n", "status", "macro", "value", "kind", "gate", "source / reason");
-    if (!have_nt) { printf("  FAIL    paper/numbers.tex unreadable: %s\n", nterr); fail++; }
+    if (!have_nt) { printf("  FAIL    paper/numbers.tex unreadable: %s\n", nterr); count[VERDICT_FAIL]++; }
     for (size_t i = 0; i < c.n; i++) {
         char msg[1200];
         verdict v = verify_claim(&c.rows[i], &res[i], have_nt ? &nt : NULL, msg, sizeof msg);
         const char *val = res[i].status == VERDICT_PASS ? res[i].text : "-";
         const char *g = strcmp(c.rows[i].gate, "-") ? verdict_name(res[i].gate) : "-";
         printf("  %-7s %-19s %-12s %-10s %-8s %s\n", verdict_name(v), c.rows[i].macro, val, c.rows[i].kind, g, msg);
-        if (v == VERDICT_PASS) pass++; else if (v == VERDICT_FAIL) fail++; else pend++;
+        count[v]++;
     }
 
     if (!o->no_figures) {
@@ -153,18 +144,15 @@ cs_status verify_run(const verify_opts *o)
         verify_figures(&fl);
         printf("\n== figures (gnuplot)\n");
         if (!fl.n) printf("  (no figure scripts yet)\n");
-        for (size_t i = 0; i < fl.n; i++) {
-            print_item("figure", fl.items[i].v, fl.items[i].name, fl.items[i].msg);
-            if (fl.items[i].v == VERDICT_PASS) pass++; else if (fl.items[i].v == VERDICT_FAIL) fail++; else pend++;
-        }
+        checklist_print(&fl, count);
         checklist_free(&fl);
     }
-    printf("\n%zu pending (experiment not yet run and frozen, or input data missing: reason above; never counted as passed)\n", pend);
-    printf("%zu passed, %zu failed\n", pass, fail);
+    printf("\n%zu pending (experiment not yet run and frozen, or input data missing: reason above; never counted as passed)\n", count[VERDICT_PENDING]);
+    printf("%zu passed, %zu failed\n", count[VERDICT_PASS], count[VERDICT_FAIL]);
     if (have_nt) numbers_free(&nt);
     free(res);
     claims_free(&c);
-    return fail ? CS_EFAIL : CS_OK;
+    return count[VERDICT_FAIL] ? CS_EFAIL : CS_OK;
 }
 
 cs_status verify_trace(const char *macro)
