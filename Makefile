@@ -1,8 +1,11 @@
 # crownshy — build, tests, verification and the full reproduction.
 # `make verify` (main job) and `make check` (tests) install missing Debian
 # packages themselves when run as root; otherwise they print the apt-get line.
-# Sources are discovered: every src/*.c except src/cli.c is library code, every
-# tests/test_*.c is one cmocka binary.
+# Sources are discovered: src/ has one folder per stage of the pipeline
+# (base -> forest -> model -> exp, claims -> cli); every .c under them except
+# src/cli/ is library code, every tests/test_*.c is one cmocka binary.
+# Headers are included by name ("teacher.h"), with one -I per stage, so a
+# pinned source's bytes do not depend on where its stage folder is.
 
 SHELL := /bin/bash
 CC ?= cc
@@ -12,7 +15,8 @@ CC ?= cc
 # note ignores nn.c's pragma and would print on every build.
 CFLAGS ?= -std=c11 -O2 -ffp-contract=off -g -Wall -Wextra -Wno-unused-parameter -Wno-psabi \
           -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
-CPPFLAGS += -Isrc
+STAGES := base forest model exp claims
+CPPFLAGS += $(addprefix -Isrc/,$(STAGES))
 LDLIBS := -lgsl -lopenblas -lm
 SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 
@@ -21,7 +25,8 @@ SCALE ?= full
 export OPENBLAS_NUM_THREADS := 1
 
 B := build
-LIB_SRC := $(filter-out src/cli.c,$(wildcard src/*.c))
+LIB_SRC := $(foreach s,$(STAGES),$(wildcard src/$(s)/*.c))
+LIB_HDR := $(foreach s,$(STAGES),$(wildcard src/$(s)/*.h src/$(s)/*.inc))
 LIB_OBJ := $(patsubst src/%.c,$(B)/obj/%.o,$(LIB_SRC))
 ASAN_OBJ := $(patsubst src/%.c,$(B)/asan/obj/%.o,$(LIB_SRC))
 TEST_SRC := $(wildcard tests/test_*.c)
@@ -51,21 +56,24 @@ deps:
 	fi
 
 # ---- build ------------------------------------------------------------------
-$(B)/obj/%.o: src/%.c $(wildcard src/*.h src/*.inc) | $(B)/obj
+$(B)/obj/%.o: src/%.c $(LIB_HDR)
+	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -c $< -o $@
-$(B)/asan/obj/%.o: src/%.c $(wildcard src/*.h src/*.inc) | $(B)/asan/obj
+$(B)/asan/obj/%.o: src/%.c $(LIB_HDR)
+	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) $(SANFLAGS) -c $< -o $@
 $(B)/libcrownshy.a: $(LIB_OBJ)
 	ar rcs $@ $^
 $(B)/asan/libcrownshy.a: $(ASAN_OBJ)
 	ar rcs $@ $^
-$(CLI): src/cli.c $(B)/libcrownshy.a
-	$(CC) $(CPPFLAGS) $(CFLAGS) $< $(B)/libcrownshy.a $(LDLIBS) -o $@
+CLI_SRC := $(wildcard src/cli/*.c)
+$(CLI): $(CLI_SRC) $(wildcard src/cli/*.h) $(B)/libcrownshy.a
+	$(CC) $(CPPFLAGS) -Isrc/cli $(CFLAGS) $(CLI_SRC) $(B)/libcrownshy.a $(LDLIBS) -o $@
 $(B)/tests/%: tests/%.c $(B)/libcrownshy.a $(wildcard tests/*.h) | $(B)/tests
 	$(CC) $(CPPFLAGS) -Itests $(CFLAGS) $< $(B)/libcrownshy.a -lcmocka $(LDLIBS) -o $@
 $(B)/asan/tests/%: tests/%.c $(B)/asan/libcrownshy.a $(wildcard tests/*.h) | $(B)/asan/tests
 	$(CC) $(CPPFLAGS) -Itests $(CFLAGS) $(SANFLAGS) $< $(B)/asan/libcrownshy.a -lcmocka $(LDLIBS) -o $@
-$(B)/obj $(B)/asan/obj $(B)/tests $(B)/asan/tests:
+$(B)/tests $(B)/asan/tests:
 	mkdir -p $@
 
 # ---- tests ------------------------------------------------------------------
@@ -114,7 +122,7 @@ else
 RESULTS := $(B)/results
 endif
 REPRODUCE_UNITS :=
--include src/experiments.mk
+-include src/exp/experiments.mk
 
 reproduce: deps
 	@$(MAKE) --no-print-directory $(CLI)
@@ -156,8 +164,8 @@ paper: $(CLI)
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := tsv gate ckpt numbers
 FUZZ_CC := clang
-FUZZ_FLAGS := -g -O1 -fsanitize=fuzzer,address,undefined -Isrc -Itests/fuzz -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
-$(B)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(LIB_SRC) $(wildcard src/*.h) tests/fuzz/fuzz_common.h
+FUZZ_FLAGS := -g -O1 -fsanitize=fuzzer,address,undefined $(addprefix -Isrc/,$(STAGES)) -Itests/fuzz -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
+$(B)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(LIB_SRC) $(LIB_HDR) tests/fuzz/fuzz_common.h
 	@mkdir -p $(dir $@)
 	$(FUZZ_CC) $(FUZZ_FLAGS) $< $(LIB_SRC) $(LDLIBS) -o $@
 fuzz: $(addprefix $(B)/fuzz/fuzz_,$(FUZZ_TARGETS))

@@ -55,10 +55,10 @@ expect "gate threshold" "gates/main.gate" "MainSeeds"
 
 # 2. one line of the estimator source
 fresh
-if [ -f "$scratch/src/estimator.c" ]; then
-  printf '/* tampered */\n' >> "$scratch/src/estimator.c"
-  expect "estimator source" "src/estimator.c" "claims affected"
-else bad "estimator source" "src/estimator.c missing"; fi
+if [ -f "$scratch/src/forest/estimator.c" ]; then
+  printf '/* tampered */\n' >> "$scratch/src/forest/estimator.c"
+  expect "estimator source" "src/forest/estimator.c" "claims affected"
+else bad "estimator source" "src/forest/estimator.c missing"; fi
 
 # 3. one macro value of numbers.tex
 fresh

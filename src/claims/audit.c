@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include "teacher.h"
+#include "paths.h"
 
 void checklist_add(checklist *cl, verdict v, const char *name, const char *fmt, ...)
 {
@@ -45,38 +45,6 @@ void checklist_print(const checklist *cl, size_t count[3])
     }
 }
 
-/* ---- list of files under a directory (recursive, sorted) ---- */
-typedef struct { char **p; size_t n, cap; } strlist;
-static void sl_add(strlist *l, const char *s)
-{
-    if (l->n == l->cap) {
-        size_t nc = l->cap ? 2 * l->cap : 64;
-        char **np = realloc(l->p, nc * sizeof *np);
-        if (!np) return;
-        l->p = np;
-        l->cap = nc;
-    }
-    l->p[l->n++] = strdup(s);
-}
-static void sl_free(strlist *l) { for (size_t i = 0; i < l->n; i++) free(l->p[i]); free(l->p); memset(l, 0, sizeof *l); }
-static int cmps(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
-static void walk(const char *dir, strlist *out)
-{
-    DIR *d = opendir(dir);
-    if (!d) return;
-    struct dirent *e;
-    while ((e = readdir(d))) {
-        if (e->d_name[0] == '.') continue;
-        char p[1024];
-        snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
-        struct stat sb;
-        if (stat(p, &sb) != 0) continue;
-        if (S_ISDIR(sb.st_mode)) walk(p, out);
-        else if (S_ISREG(sb.st_mode) && !strstr(e->d_name, ".tmp")) sl_add(out, p);
-    }
-    closedir(d);
-}
-
 static int file_exists(const char *p) { struct stat sb; return stat(p, &sb) == 0; }
 
 /* Claims whose source is `path` or whose gate names `gatefile`, comma-joined. */
@@ -100,10 +68,10 @@ static void current_pins(pin *p, size_t *n)
 {
     size_t k = 0;
     snprintf(p[k].key, sizeof p[k].key, "teacher_version");
-    snprintf(p[k].value, sizeof p[k].value, "%s", TEACHER_VERSION);
-    snprintf(p[k].path, sizeof p[k].path, "src/teacher.h");
+    if (prov_teacher_version(p[k].value, sizeof p[k].value)) snprintf(p[k].value, sizeof p[k].value, "absent");
+    snprintf(p[k].path, sizeof p[k].path, "%s", PATHS_TEACHER_HDR);
     k++;
-    const char *srcs[][2] = {{"teacher_sha256", "src/teacher.c"}, {"estimator_sha256", "src/estimator.c"}};
+    const char *srcs[][2] = {{"teacher_sha256", PATHS_TEACHER_SRC}, {"estimator_sha256", PATHS_ESTIMATOR_SRC}};
     for (int i = 0; i < 2; i++, k++) {
         snprintf(p[k].key, sizeof p[k].key, "%s", srcs[i][0]);
         snprintf(p[k].path, sizeof p[k].path, "%s", srcs[i][1]);
@@ -111,18 +79,17 @@ static void current_pins(pin *p, size_t *n)
             snprintf(p[k].value, sizeof p[k].value, "absent");
     }
     snprintf(p[k].key, sizeof p[k].key, "gates_sha256");
-    snprintf(p[k].path, sizeof p[k].path, "gates");
-    if (prov_gates_sha256("gates", p[k].value)) snprintf(p[k].value, sizeof p[k].value, "absent");
+    snprintf(p[k].path, sizeof p[k].path, PATHS_GATES_DIR);
+    if (prov_gates_sha256(PATHS_GATES_DIR, p[k].value)) snprintf(p[k].value, sizeof p[k].value, "absent");
     k++;
-    strlist g = {0};
-    walk("gates", &g);
-    qsort(g.p, g.n, sizeof *g.p, cmps);
+    paths_list g = {0};
+    paths_list_files(PATHS_GATES_DIR, "", 1, &g);
     for (size_t i = 0; i < g.n && k < 62; i++, k++) {
         snprintf(p[k].key, sizeof p[k].key, "gate_sha256");
         snprintf(p[k].path, sizeof p[k].path, "%s", g.p[i]);
         if (prov_sha256_file(g.p[i], p[k].value)) snprintf(p[k].value, sizeof p[k].value, "absent");
     }
-    sl_free(&g);
+    paths_list_free(&g);
     *n = k;
 }
 
@@ -132,7 +99,7 @@ cs_status audit_pin(void)
     size_t n;
     current_pins(p, &n);
     tsv_writer *w;
-    cs_status st = tsv_writer_open(&w, AUDIT_PINS);
+    cs_status st = tsv_writer_open(&w, PATHS_PINS);
     if (st) return st;
     tsv_writer_meta(w, "what", "pins of the instrument: teacher version and source hash, estimator source hash, gate hashes");
     tsv_writer_meta(w, "regenerate", "crownshy pin (deliberate: afterwards frozen/ must be regenerated with make reproduce freeze)");
@@ -147,7 +114,7 @@ cs_status audit_pin(void)
 static void check_pins(const claims *c, checklist *cl)
 {
     tsv *t;
-    if (tsv_read(AUDIT_PINS, &t)) {
+    if (tsv_read(PATHS_PINS, &t)) {
         checklist_add(cl, VERDICT_FAIL, "pins", "%s", cs_errmsg());
         return;
     }
@@ -156,12 +123,12 @@ static void check_pins(const claims *c, checklist *cl)
     current_pins(cur, &n);
     for (size_t r = 0; r < tsv_nrows(t); r++) {
         const char *key = tsv_str(t, r, "key"), *val = tsv_str(t, r, "value"), *path = tsv_str(t, r, "path");
-        if (!key || !val || !path) { checklist_add(cl, VERDICT_FAIL, "pins", "%s:%d: missing key/value/path", AUDIT_PINS, tsv_line(t, r)); continue; }
+        if (!key || !val || !path) { checklist_add(cl, VERDICT_FAIL, "pins", "%s:%d: missing key/value/path", PATHS_PINS, tsv_line(t, r)); continue; }
         const pin *m = NULL;
         for (size_t i = 0; i < n; i++) if (!strcmp(cur[i].key, key) && !strcmp(cur[i].path, path)) m = &cur[i];
         char name[96];
         snprintf(name, sizeof name, "pin %s", path);
-        if (!m) { checklist_add(cl, VERDICT_FAIL, name, "%s:%d: pinned %s for %s, which no longer exists", AUDIT_PINS, tsv_line(t, r), key, path); continue; }
+        if (!m) { checklist_add(cl, VERDICT_FAIL, name, "%s:%d: pinned %s for %s, which no longer exists", PATHS_PINS, tsv_line(t, r), key, path); continue; }
         if (strcmp(m->value, val)) {
             char affected[600];
             if (!strcmp(key, "gate_sha256")) {
@@ -175,14 +142,14 @@ static void check_pins(const claims *c, checklist *cl)
                 if (!cnt) snprintf(affected, sizeof affected, "every measured claim");
             } else snprintf(affected, sizeof affected, "(gates as a whole)");
             checklist_add(cl, VERDICT_FAIL, name, "%s changed: %s is %.16s…, pinned %.16s… (%s:%d); claims affected: %s",
-                          path, key, m->value, val, AUDIT_PINS, tsv_line(t, r), affected);
+                          path, key, m->value, val, PATHS_PINS, tsv_line(t, r), affected);
         } else checklist_add(cl, VERDICT_PASS, name, "%s %s matches the pin", key, strcmp(key, "teacher_version") ? "sha256" : val);
     }
     for (size_t i = 0; i < n; i++) {
         if (tsv_find(t, "path", cur[i].path) < 0 && strcmp(cur[i].value, "absent")) {
             char name[96];
             snprintf(name, sizeof name, "pin %s", cur[i].path);
-            checklist_add(cl, VERDICT_FAIL, name, "%s is not pinned in %s (run crownshy pin deliberately)", cur[i].path, AUDIT_PINS);
+            checklist_add(cl, VERDICT_FAIL, name, "%s is not pinned in %s (run crownshy pin deliberately)", cur[i].path, PATHS_PINS);
         }
     }
     tsv_free(t);
@@ -190,51 +157,50 @@ static void check_pins(const claims *c, checklist *cl)
 
 cs_status audit_hash_frozen(void)
 {
-    strlist l = {0};
-    walk("frozen", &l);
-    qsort(l.p, l.n, sizeof *l.p, cmps);
+    paths_list l;
+    cs_status st = paths_list_files(PATHS_FROZEN_DIR, "", 1, &l);
+    if (st) return st;
     afile a;
-    cs_status st = afile_open(&a, AUDIT_FROZEN_HASHES);
-    if (st) { sl_free(&l); return st; }
+    st = afile_open(&a, PATHS_FROZEN_HASHES);
+    if (st) { paths_list_free(&l); return st; }
     for (size_t i = 0; i < l.n && !st; i++) {
         char hex[65];
         st = prov_sha256_file(l.p[i], hex);
         if (!st) fprintf(a.f, "%s  %s\n", hex, l.p[i]);
     }
-    sl_free(&l);
+    paths_list_free(&l);
     if (st) { afile_abort(&a); return st; }
     return afile_commit(&a);
 }
 
-static void check_frozen(const claims *c, checklist *cl, strlist *frozen_files)
+static void check_frozen(const claims *c, checklist *cl, paths_list *frozen_files)
 {
-    FILE *f = fopen(AUDIT_FROZEN_HASHES, "r");
-    walk("frozen", frozen_files);
-    qsort(frozen_files->p, frozen_files->n, sizeof *frozen_files->p, cmps);
+    FILE *f = fopen(PATHS_FROZEN_HASHES, "r");
+    paths_list_files(PATHS_FROZEN_DIR, "", 1, frozen_files);
     if (!f) {
-        if (frozen_files->n) checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s missing but frozen/ has %zu files (run make freeze)", AUDIT_FROZEN_HASHES, frozen_files->n);
+        if (frozen_files->n) checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s missing but frozen/ has %zu files (run make freeze)", PATHS_FROZEN_HASHES, frozen_files->n);
         else checklist_add(cl, VERDICT_PASS, "frozen hashes", "frozen/ is empty (no experiment frozen yet)");
         return;
     }
     char line[2048];
     int lineno = 0;
-    strlist listed = {0};
+    paths_list listed = {0};
     size_t ok = 0, bad = 0;
     while (fgets(line, sizeof line, f)) {
         lineno++;
         char hex[65], path[1024];
         if (sscanf(line, "%64s  %1023[^\n]", hex, path) != 2 || strlen(hex) != 64) {
-            checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s:%d: malformed line", AUDIT_FROZEN_HASHES, lineno);
+            checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s:%d: malformed line", PATHS_FROZEN_HASHES, lineno);
             bad++;
             continue;
         }
-        sl_add(&listed, path);
+        paths_list_add(&listed, path);
         char cur[65], affected[600], name[96];
         snprintf(name, sizeof name, "frozen %.80s", path);
         claims_of(c, path, NULL, affected, sizeof affected);
-        if (!file_exists(path)) { checklist_add(cl, VERDICT_FAIL, name, "%s is listed in %s:%d but missing; claims affected: %s", path, AUDIT_FROZEN_HASHES, lineno, affected); bad++; continue; }
+        if (!file_exists(path)) { checklist_add(cl, VERDICT_FAIL, name, "%s is listed in %s:%d but missing; claims affected: %s", path, PATHS_FROZEN_HASHES, lineno, affected); bad++; continue; }
         if (prov_sha256_file(path, cur) || strcmp(cur, hex)) {
-            checklist_add(cl, VERDICT_FAIL, name, "%s was modified after freezing (sha256 differs from %s:%d); claims affected: %s", path, AUDIT_FROZEN_HASHES, lineno, affected);
+            checklist_add(cl, VERDICT_FAIL, name, "%s was modified after freezing (sha256 differs from %s:%d); claims affected: %s", path, PATHS_FROZEN_HASHES, lineno, affected);
             bad++;
             continue;
         }
@@ -244,13 +210,13 @@ static void check_frozen(const claims *c, checklist *cl, strlist *frozen_files)
     for (size_t i = 0; i < frozen_files->n; i++) {
         int found = 0;
         for (size_t j = 0; j < listed.n && !found; j++) found = !strcmp(listed.p[j], frozen_files->p[i]);
-        if (!found) { checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s is not listed in %s (frozen by hand? run make freeze)", frozen_files->p[i], AUDIT_FROZEN_HASHES); bad++; }
+        if (!found) { checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s is not listed in %s (frozen by hand? run make freeze)", frozen_files->p[i], PATHS_FROZEN_HASHES); bad++; }
     }
-    sl_free(&listed);
-    if (!bad) checklist_add(cl, VERDICT_PASS, "frozen hashes", "%zu frozen files match %s", ok, AUDIT_FROZEN_HASHES);
+    paths_list_free(&listed);
+    if (!bad) checklist_add(cl, VERDICT_PASS, "frozen hashes", "%zu frozen files match %s", ok, PATHS_FROZEN_HASHES);
 }
 
-static void check_provenance(checklist *cl, const strlist *frozen_files)
+static void check_provenance(checklist *cl, const paths_list *frozen_files)
 {
     pin cur[64];
     size_t n;
@@ -288,13 +254,13 @@ static void check_registry(const claims *c, checklist *cl)
     for (size_t i = 0; fns[i]; i++) {
         int used = 0;
         for (size_t r = 0; r < c->n && !used; r++) used = !strcmp(c->rows[r].function, fns[i]);
-        if (!used) { checklist_add(cl, VERDICT_FAIL, "registry", "orphan computing function %s: no row of %s names it", fns[i], AUDIT_CLAIMS); bad++; }
+        if (!used) { checklist_add(cl, VERDICT_FAIL, "registry", "orphan computing function %s: no row of %s names it", fns[i], PATHS_CLAIMS); bad++; }
     }
     for (size_t r = 0; r < c->n; r++) {
         char want[128];
         snprintf(want, sizeof want, "tests/test_claims.c:claim_%s", c->rows[r].macro);
         if (strcmp(c->rows[r].test, want)) {
-            checklist_add(cl, VERDICT_FAIL, "registry", "%s:%d: claim %s names test '%s'; its test is %s", AUDIT_CLAIMS, c->rows[r].line, c->rows[r].macro, c->rows[r].test, want);
+            checklist_add(cl, VERDICT_FAIL, "registry", "%s:%d: claim %s names test '%s'; its test is %s", PATHS_CLAIMS, c->rows[r].line, c->rows[r].macro, c->rows[r].test, want);
             bad++;
         }
     }
@@ -313,20 +279,12 @@ static int is_latex_upper(const char *name)
 
 static void check_paper(const claims *c, const claim_result *res, checklist *cl)
 {
-    strlist tex = {0};
-    DIR *d = opendir("paper");
-    if (d) {
-        struct dirent *e;
-        while ((e = readdir(d))) {
-            size_t l = strlen(e->d_name);
-            if (l > 4 && !strcmp(e->d_name + l - 4, ".tex") && strcmp(e->d_name, "numbers.tex")) {
-                char p[600];
-                snprintf(p, sizeof p, "paper/%s", e->d_name);
-                sl_add(&tex, p);
-            }
-        }
-        closedir(d);
-    }
+    paths_list tex, all;
+    paths_list_files(PATHS_PAPER_DIR, ".tex", 0, &all);
+    memset(&tex, 0, sizeof tex);
+    for (size_t i = 0; i < all.n; i++)
+        if (strcmp(all.p[i], PATHS_NUMBERS)) paths_list_add(&tex, all.p[i]);
+    paths_list_free(&all);
     size_t bad = 0, used = 0;
     for (size_t i = 0; i < tex.n; i++) {
         FILE *f = fopen(tex.p[i], "r");
@@ -357,7 +315,7 @@ static void check_paper(const claims *c, const claim_result *res, checklist *cl)
                 size_t bl = strlen(base);
                 if (bl > 4 && !strcmp(base + bl - 4, "Gate")) base[bl - 4] = '\0';
                 if (!claims_find(c, base)) {
-                    checklist_add(cl, VERDICT_FAIL, "paper macros", "%s:%d: \\%s has no row in %s", tex.p[i], lineno, name, AUDIT_CLAIMS);
+                    checklist_add(cl, VERDICT_FAIL, "paper macros", "%s:%d: \\%s has no row in %s", tex.p[i], lineno, name, PATHS_CLAIMS);
                     bad++;
                 } else used++;
             }
@@ -380,16 +338,16 @@ static void check_paper(const claims *c, const claim_result *res, checklist *cl)
         fclose(f);
     }
     if (!bad) checklist_add(cl, VERDICT_PASS, "paper macros", "%zu paper files: %zu claim-macro uses, all registered; no measured number typed by hand", tex.n, used);
-    sl_free(&tex);
+    paths_list_free(&tex);
 }
 
 void audit_numbers(const claims *c, const claim_result *res, checklist *cl)
 {
     const char *fresh = "build/numbers.fresh.tex";
     if (claims_write_numbers(fresh, c, res)) { checklist_add(cl, VERDICT_FAIL, "numbers.tex", "%s", cs_errmsg()); return; }
-    FILE *a = fopen(fresh, "r"), *b = fopen(AUDIT_NUMBERS, "r");
+    FILE *a = fopen(fresh, "r"), *b = fopen(PATHS_NUMBERS, "r");
     if (!b) {
-        checklist_add(cl, VERDICT_FAIL, "numbers.tex", "%s missing (generate it with crownshy numbers)", AUDIT_NUMBERS);
+        checklist_add(cl, VERDICT_FAIL, "numbers.tex", "%s missing (generate it with crownshy numbers)", PATHS_NUMBERS);
         if (a) fclose(a);
         return;
     }
@@ -405,17 +363,17 @@ void audit_numbers(const claims *c, const claim_result *res, checklist *cl)
     fclose(b);
     if (diff) {
         lb[strcspn(lb, "\n")] = '\0';
-        checklist_add(cl, VERDICT_FAIL, "numbers.tex", "%s:%d differs from a fresh generation ('%s'): edited by hand or stale", AUDIT_NUMBERS, diff, lb);
-    } else checklist_add(cl, VERDICT_PASS, "numbers.tex", "%s equals a fresh generation from frozen/", AUDIT_NUMBERS);
+        checklist_add(cl, VERDICT_FAIL, "numbers.tex", "%s:%d differs from a fresh generation ('%s'): edited by hand or stale", PATHS_NUMBERS, diff, lb);
+    } else checklist_add(cl, VERDICT_PASS, "numbers.tex", "%s equals a fresh generation from frozen/", PATHS_NUMBERS);
 }
 
 cs_status audit_run(const claims *c, const claim_result *res, checklist *out)
 {
-    strlist frozen_files = {0};
+    paths_list frozen_files = {0};
     check_pins(c, out);
     check_frozen(c, out, &frozen_files);
     check_provenance(out, &frozen_files);
-    sl_free(&frozen_files);
+    paths_list_free(&frozen_files);
     check_registry(c, out);
     audit_numbers(c, res, out);
     check_paper(c, res, out);

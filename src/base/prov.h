@@ -1,8 +1,10 @@
 /* prov: the provenance block every frozen TSV starts with (SPEC §9):
  * experiment, command, teacher version, teacher/estimator/gates SHA-256,
  * git commit, seeds, date, wall time, worst overlap. Hashes are computed from
- * the source files at run time (src/teacher.c, src/estimator.c, gates/ *.gate
- * in name order), so the audit can compare them with audit/pins. */
+ * the source files at run time (the pinned sources named in paths.h, gates/
+ * *.gate in name order), so the audit can compare them with audit/pins. The
+ * teacher version is the one the pinned teacher header declares; a run of
+ * another reading of the teacher overwrites p->teacher_version. */
 #ifndef PROV_H
 #define PROV_H
 #include "cs.h"
@@ -11,6 +13,7 @@
 typedef struct {
     char experiment[64];
     char command[512];   /* the command line that produced the file */
+    char teacher_version[32]; /* from PATHS_TEACHER_HDR at prov_begin */
     char seeds[256];     /* how seeds were derived, e.g. "seed_derive(mechanism,d,stand,stream) stands 0..7" */
     double wall_s;       /* wall time of the producing run, seconds */
     double worst_overlap_m; /* max teacher self-check overlap over the run; <0 if not applicable */
@@ -22,6 +25,9 @@ typedef struct {
 void prov_begin(prov *p, const char *experiment, int argc, char **argv);
 /* Write all provenance lines (computes wall time now, hashes, git commit, date). */
 cs_status prov_write(tsv_writer *w, prov *p);
+/* The version string the pinned teacher header declares
+ * (#define TEACHER_VERSION "..."); CS_EINPUT naming file and line if absent. */
+cs_status prov_teacher_version(char *out, size_t n);
 /* SHA-256 of a file as 64 lowercase hex chars (+NUL). */
 cs_status prov_sha256_file(const char *path, char hex[65]);
 /* SHA-256 of gates/ *.gate concatenated in name order. */

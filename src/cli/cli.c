@@ -281,7 +281,7 @@ static int cmd_numbers(int argc, char **argv)
     int check = argc > 1 && !strcmp(argv[1], "--check");
     if (argc > 1 && !check) { fprintf(stderr, "crownshy numbers: unknown option '%s'\n", argv[1]); return 2; }
     claims c;
-    cs_status st = claims_load(AUDIT_CLAIMS, &c);
+    cs_status st = claims_load(PATHS_CLAIMS, &c);
     if (st) return die(st);
     claim_result *res;
     if ((st = verify_eval_all(&c, &res))) { claims_free(&c); return die(st); }
@@ -298,11 +298,11 @@ static int cmd_numbers(int argc, char **argv)
         claims_free(&c);
         return bad ? 1 : 0;
     }
-    st = claims_write_numbers(AUDIT_NUMBERS, &c, res);
-    if (!st) st = claims_write_comparison("paper/comparison.tex", &c, res);
+    st = claims_write_numbers(PATHS_NUMBERS, &c, res);
+    if (!st) st = claims_write_comparison(PATHS_COMPARISON, &c, res);
     size_t pend = 0;
     for (size_t i = 0; i < c.n; i++) pend += res[i].status != VERDICT_PASS;
-    if (!st) printf("wrote %s: %zu claims (%zu pending)\n", AUDIT_NUMBERS, c.n, pend);
+    if (!st) printf("wrote %s: %zu claims (%zu pending)\n", PATHS_NUMBERS, c.n, pend);
     free(res);
     claims_free(&c);
     return st ? die(st) : 0;
@@ -316,7 +316,7 @@ static int cmd_audit(int argc, char **argv)
                   "frozen provenance vs pins, the claim registry, numbers.tex and the paper text.\n"))
         return 0;
     claims c;
-    cs_status st = claims_load(AUDIT_CLAIMS, &c);
+    cs_status st = claims_load(PATHS_CLAIMS, &c);
     if (st) return die(st);
     claim_result *res;
     if ((st = verify_eval_all(&c, &res))) { claims_free(&c); return die(st); }
@@ -348,7 +348,7 @@ static int cmd_pin(int argc, char **argv)
         return 0;
     cs_status st = audit_pin();
     if (st) return die(st);
-    printf("wrote %s\n", AUDIT_PINS);
+    printf("wrote %s\n", PATHS_PINS);
     return 0;
 }
 
@@ -357,7 +357,7 @@ static int cmd_hash_frozen(int argc, char **argv)
     if (want_help(argc, argv, "usage: crownshy hash-frozen\nRewrite audit/frozen.sha256 from frozen/ (part of make freeze).\n")) return 0;
     cs_status st = audit_hash_frozen();
     if (st) return die(st);
-    printf("wrote %s\n", AUDIT_FROZEN_HASHES);
+    printf("wrote %s\n", PATHS_FROZEN_HASHES);
     return 0;
 }
 

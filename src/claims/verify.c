@@ -1,6 +1,5 @@
 /* verify: the `make verify` driver and `crownshy trace` (SPEC §9). */
 #include "verify.h"
-#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -69,24 +68,14 @@ static int has_gnuplot(void)
 
 void verify_figures(checklist *cl)
 {
-    DIR *d = opendir("figures");
-    if (!d) return;
-    char *names[128];
-    size_t n = 0;
-    struct dirent *e;
-    while ((e = readdir(d)) && n < 128) {
-        size_t l = strlen(e->d_name);
-        if (l > 3 && !strcmp(e->d_name + l - 3, ".gp")) names[n++] = strdup(e->d_name);
-    }
-    closedir(d);
-    for (size_t i = 0; i < n; i++)
-        for (size_t j = i + 1; j < n; j++)
-            if (strcmp(names[i], names[j]) > 0) { char *t = names[i]; names[i] = names[j]; names[j] = t; }
+    paths_list gps;
+    if (paths_list_files(PATHS_FIGURES_DIR, ".gp", 0, &gps)) { checklist_add(cl, VERDICT_FAIL, "figures", "%s", cs_errmsg()); return; }
+    size_t n = gps.n;
     int gp = has_gnuplot();
     for (size_t i = 0; i < n; i++) {
-        char script[600], item[96];
-        snprintf(script, sizeof script, "figures/%s", names[i]);
-        snprintf(item, sizeof item, "figure %.*s", (int)(strlen(names[i]) - 3), names[i]);
+        const char *script = gps.p[i], *base = script + strlen(PATHS_FIGURES_DIR) + 1;
+        char item[96];
+        snprintf(item, sizeof item, "figure %.*s", (int)(strlen(base) - 3), base);
         /* "# data: path" lines declare the inputs; a figure whose data are not frozen yet is pending */
         FILE *f = fopen(script, "r");
         char line[1024], missing[1100] = "";
@@ -97,26 +86,26 @@ void verify_figures(checklist *cl)
             if (stat(line + 8, &sb) != 0 && !missing[0]) snprintf(missing, sizeof missing, "%s", line + 8);
         }
         if (f) fclose(f);
-        if (missing[0]) { checklist_add(cl, VERDICT_PENDING, item, "needs %s (not frozen yet)", missing); free(names[i]); continue; }
-        if (!gp) { checklist_add(cl, VERDICT_FAIL, item, "gnuplot not installed (make deps)"); free(names[i]); continue; }
+        if (missing[0]) { checklist_add(cl, VERDICT_PENDING, item, "needs %s (not frozen yet)", missing); continue; }
+        if (!gp) { checklist_add(cl, VERDICT_FAIL, item, "gnuplot not installed (make deps)"); continue; }
         char cmd[1400];
-        snprintf(cmd, sizeof cmd, "gnuplot '%s' > build/gnuplot-%s.log 2>&1", script, names[i]);
+        snprintf(cmd, sizeof cmd, "gnuplot '%s' > build/gnuplot-%s.log 2>&1", script, base);
         int rc = system(cmd);
-        if (rc != 0) checklist_add(cl, VERDICT_FAIL, item, "gnuplot %s failed (see build/gnuplot-%s.log)", script, names[i]);
+        if (rc != 0) checklist_add(cl, VERDICT_FAIL, item, "gnuplot %s failed (see build/gnuplot-%s.log)", script, base);
         else checklist_add(cl, VERDICT_PASS, item, "redrawn by gnuplot %s", script);
-        free(names[i]);
     }
+    paths_list_free(&gps);
 }
 
 cs_status verify_run(const verify_opts *o)
 {
     claims c;
-    cs_status st = claims_load(AUDIT_CLAIMS, &c);
+    cs_status st = claims_load(PATHS_CLAIMS, &c);
     if (st) return st;
     claim_result *res;
     if ((st = verify_eval_all(&c, &res))) { claims_free(&c); return st; }
     numbers_tex nt;
-    int have_nt = numbers_read(AUDIT_NUMBERS, &nt) == CS_OK;
+    int have_nt = numbers_read(PATHS_NUMBERS, &nt) == CS_OK;
     char nterr[512];
     snprintf(nterr, sizeof nterr, "%s", have_nt ? "" : cs_errmsg());
 
@@ -158,16 +147,16 @@ cs_status verify_run(const verify_opts *o)
 cs_status verify_trace(const char *macro)
 {
     claims c;
-    cs_status st = claims_load(AUDIT_CLAIMS, &c);
+    cs_status st = claims_load(PATHS_CLAIMS, &c);
     if (st) return st;
     const claim_row *row = claims_find(&c, macro[0] == '\\' ? macro + 1 : macro);
-    if (!row) { claims_free(&c); return cs_err(CS_EINPUT, "%s: no claim named '%s'", AUDIT_CLAIMS, macro); }
+    if (!row) { claims_free(&c); return cs_err(CS_EINPUT, "%s: no claim named '%s'", PATHS_CLAIMS, macro); }
     claim_result r;
     claims_eval(row, &r);
     numbers_tex nt;
     int line = 0;
     const char *have = NULL;
-    if (numbers_read(AUDIT_NUMBERS, &nt) == CS_OK) have = numbers_get(&nt, row->macro, &line);
+    if (numbers_read(PATHS_NUMBERS, &nt) == CS_OK) have = numbers_get(&nt, row->macro, &line);
     printf("macro        \\%s\n", row->macro);
     printf("kind         %s\n", row->kind);
     printf("value        %s%s%s\n", r.status == VERDICT_PASS ? r.text : verdict_name(r.status), r.status == VERDICT_PASS ? "" : ": ", r.status == VERDICT_PASS ? "" : r.why);
@@ -179,7 +168,7 @@ cs_status verify_trace(const char *macro)
     if (r.gate_detail[0]) printf("gate detail  %s\n", r.gate_detail);
     printf("test         %s\n", row->test);
     printf("section      %s of the reference paper (reference value %s)\n", row->section, row->reference);
-    printf("registry     %s:%d\n", AUDIT_CLAIMS, row->line);
+    printf("registry     %s:%d\n", PATHS_CLAIMS, row->line);
     if (have) numbers_free(&nt);
     claims_free(&c);
     return CS_OK;

@@ -9,6 +9,7 @@
 #include "cs.h"
 #include "gate.h"
 #include "claims.h"
+#include "paths.h"
 
 typedef struct { verdict v; char name[96]; char msg[1024]; } check_item;
 typedef struct { check_item *items; size_t n, cap; } checklist;
@@ -21,10 +22,6 @@ void checklist_free(checklist *cl);
  * verdict: PASS, FAIL, PENDING). */
 void checklist_print(const checklist *cl, size_t count[3]);
 
-#define AUDIT_PINS "audit/pins.tsv"
-#define AUDIT_FROZEN_HASHES "audit/frozen.sha256"
-#define AUDIT_CLAIMS "audit/claims.tsv"
-#define AUDIT_NUMBERS "paper/numbers.tex"
 
 /* Run every audit check; `res` are the evaluated claims (same order as c). */
 cs_status audit_run(const claims *c, const claim_result *res, checklist *out);

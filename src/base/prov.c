@@ -3,13 +3,13 @@
  * the working directory of every make target). */
 #include "prov.h"
 #include "sha256.h"
-#include <dirent.h>
+#include "paths.h"
+#include <ctype.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include "teacher.h"
 
 double prov_now(void)
 {
@@ -28,7 +28,35 @@ void prov_begin(prov *p, const char *experiment, int argc, char **argv)
     for (int i = 0; i < argc && off < sizeof p->command; i++)
         off += (size_t)snprintf(p->command + off, sizeof p->command - off, " %s", argv[i]);
     p->worst_overlap_m = -1.0;
+    if (prov_teacher_version(p->teacher_version, sizeof p->teacher_version))
+        snprintf(p->teacher_version, sizeof p->teacher_version, "absent");
     p->t0 = prov_now();
+}
+
+cs_status prov_teacher_version(char *out, size_t n)
+{
+    FILE *f = fopen(PATHS_TEACHER_HDR, "r");
+    if (!f) return cs_err(CS_EINPUT, "%s: cannot open: %s", PATHS_TEACHER_HDR, strerror(errno));
+    char line[512];
+    int lineno = 0;
+    cs_status st = cs_err(CS_EINPUT, "%s: no '#define TEACHER_VERSION \"...\"' line", PATHS_TEACHER_HDR);
+    while (fgets(line, sizeof line, f)) {
+        lineno++;
+        const char *q = line;
+        if (strncmp(q, "#define TEACHER_VERSION", 23) || !isspace((unsigned char)q[23])) continue;
+        q += 23;
+        while (isspace((unsigned char)*q)) q++;
+        const char *e = *q == '"' ? strchr(q + 1, '"') : NULL;
+        if (!e || e - q - 1 <= 0 || (size_t)(e - q - 1) >= n) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'TEACHER_VERSION': not a quoted version string", PATHS_TEACHER_HDR, lineno);
+            break;
+        }
+        snprintf(out, n, "%.*s", (int)(e - q - 1), q + 1);
+        st = CS_OK;
+        break;
+    }
+    fclose(f);
+    return st;
 }
 
 static cs_status hash_into(sha256_ctx *c, const char *path)
@@ -55,32 +83,21 @@ cs_status prov_sha256_file(const char *path, char hex[65])
     return CS_OK;
 }
 
-static int cmpstr(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
-
 cs_status prov_gates_sha256(const char *dir, char hex[65])
 {
-    DIR *d = opendir(dir);
-    if (!d) return cs_err(CS_EINPUT, "%s: cannot open gates directory", dir);
-    char *names[256];
-    size_t n = 0;
-    struct dirent *e;
-    while ((e = readdir(d)) && n < 256) {
-        size_t len = strlen(e->d_name);
-        if (len > 5 && !strcmp(e->d_name + len - 5, ".gate")) names[n++] = strdup(e->d_name);
-    }
-    closedir(d);
-    qsort(names, n, sizeof *names, cmpstr);
+    paths_list l;
+    cs_status st = paths_list_files(dir, ".gate", 0, &l);
+    if (st) return st;
+    size_t n = l.n;
     sha256_ctx c;
     sha256_init(&c);
-    cs_status st = CS_OK;
-    for (size_t i = 0; i < n; i++) {
-        char path[1024];
-        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+    for (size_t i = 0; i < n && !st; i++) {
         /* the name is part of the hash: renaming a gate is a change */
-        sha256_update(&c, names[i], strlen(names[i]) + 1);
-        if (!st) st = hash_into(&c, path);
-        free(names[i]);
+        const char *name = l.p[i] + strlen(dir) + 1;
+        sha256_update(&c, name, strlen(name) + 1);
+        st = hash_into(&c, l.p[i]);
     }
+    paths_list_free(&l);
     if (st) return st;
     if (n == 0) return cs_err(CS_EINPUT, "%s: no .gate files", dir);
     uint8_t dg[32];
@@ -115,9 +132,9 @@ cs_status prov_write(tsv_writer *w, prov *p)
     char th[65] = "absent", eh[65] = "absent", gh[65];
     cs_status st;
     FILE *f;
-    if ((f = fopen("src/teacher.c", "rb"))) { fclose(f); if ((st = prov_sha256_file("src/teacher.c", th))) return st; }
-    if ((f = fopen("src/estimator.c", "rb"))) { fclose(f); if ((st = prov_sha256_file("src/estimator.c", eh))) return st; }
-    if ((st = prov_gates_sha256("gates", gh))) return st;
+    if ((f = fopen(PATHS_TEACHER_SRC, "rb"))) { fclose(f); if ((st = prov_sha256_file(PATHS_TEACHER_SRC, th))) return st; }
+    if ((f = fopen(PATHS_ESTIMATOR_SRC, "rb"))) { fclose(f); if ((st = prov_sha256_file(PATHS_ESTIMATOR_SRC, eh))) return st; }
+    if ((st = prov_gates_sha256(PATHS_GATES_DIR, gh))) return st;
     char commit[160];
     git_commit(commit, sizeof commit);
     time_t now = time(NULL);
@@ -128,7 +145,7 @@ cs_status prov_write(tsv_writer *w, prov *p)
     p->wall_s = prov_now() - p->t0;
     tsv_writer_meta(w, "experiment", "%s", p->experiment);
     tsv_writer_meta(w, "command", "%s", p->command);
-    tsv_writer_meta(w, "teacher_version", "%s", TEACHER_VERSION);
+    tsv_writer_meta(w, "teacher_version", "%s", p->teacher_version);
     tsv_writer_meta(w, "teacher_sha256", "%s", th);
     tsv_writer_meta(w, "estimator_sha256", "%s", eh);
     tsv_writer_meta(w, "gates_sha256", "%s", gh);

@@ -1,0 +1,64 @@
+/* paths: see paths.h. */
+#include "paths.h"
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+void paths_list_free(paths_list *l)
+{
+    for (size_t i = 0; i < l->n; i++) free(l->p[i]);
+    free(l->p);
+    memset(l, 0, sizeof *l);
+}
+
+cs_status paths_list_add(paths_list *l, const char *s)
+{
+    if (l->n == l->cap) {
+        size_t nc = l->cap ? 2 * l->cap : 64;
+        char **np = realloc(l->p, nc * sizeof *np);
+        if (!np) return cs_err(CS_ENOMEM, "paths: out of memory");
+        l->p = np;
+        l->cap = nc;
+    }
+    if (!(l->p[l->n] = strdup(s))) return cs_err(CS_ENOMEM, "paths: out of memory");
+    l->n++;
+    return CS_OK;
+}
+
+static int ends_with(const char *s, const char *suffix)
+{
+    size_t a = strlen(s), b = strlen(suffix);
+    return a >= b && !strcmp(s + a - b, suffix);
+}
+
+static cs_status walk(const char *dir, const char *suffix, int recursive, paths_list *out)
+{
+    DIR *d = opendir(dir);
+    if (!d) return CS_OK;
+    cs_status st = CS_OK;
+    struct dirent *e;
+    while (!st && (e = readdir(d))) {
+        if (e->d_name[0] == '.' || strstr(e->d_name, ".tmp")) continue;
+        char p[1024];
+        snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
+        struct stat sb;
+        if (stat(p, &sb) != 0) continue;
+        if (S_ISDIR(sb.st_mode)) { if (recursive) st = walk(p, suffix, recursive, out); }
+        else if (S_ISREG(sb.st_mode) && ends_with(e->d_name, suffix)) st = paths_list_add(out, p);
+    }
+    closedir(d);
+    return st;
+}
+
+static int cmp(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+cs_status paths_list_files(const char *dir, const char *suffix, int recursive, paths_list *out)
+{
+    memset(out, 0, sizeof *out);
+    cs_status st = walk(dir, suffix ? suffix : "", recursive, out);
+    if (st) { paths_list_free(out); return st; }
+    if (out->n) qsort(out->p, out->n, sizeof *out->p, cmp);
+    return CS_OK;
+}

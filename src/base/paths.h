@@ -1,0 +1,43 @@
+/* paths: the one place that knows where the package's files live (SPEC §0,
+ * §9): the preregistered gates, the audit's pins and registry, the generated
+ * paper files, and the pinned instrument sources. Every path is relative to
+ * the repository root, the directory every command runs from. Also the one
+ * sorted directory listing the audit, verify and the CLI share. */
+#ifndef PATHS_H
+#define PATHS_H
+#include "cs.h"
+#include <stddef.h>
+
+#define PATHS_GATES_DIR "gates"
+/* PATHS_GATE("mechanism") is "gates/mechanism.gate" (string literals only). */
+#define PATHS_GATE(name) PATHS_GATES_DIR "/" name ".gate"
+
+#define PATHS_PINS "audit/pins.tsv"
+#define PATHS_FROZEN_HASHES "audit/frozen.sha256"
+#define PATHS_CLAIMS "audit/claims.tsv"
+#define PATHS_NUMBERS "paper/numbers.tex"
+#define PATHS_COMPARISON "paper/comparison.tex"
+#define PATHS_PAPER_DIR "paper"
+#define PATHS_FIGURES_DIR "figures"
+#define PATHS_FROZEN_DIR "frozen"
+
+/* The pinned instrument (SPEC §4, §5): its sources are hashed into every
+ * frozen file's provenance and into audit/pins.tsv; the teacher header holds
+ * the version string (#define TEACHER_VERSION). */
+#define PATHS_TEACHER_SRC "src/forest/teacher.c"
+#define PATHS_TEACHER_HDR "src/forest/teacher.h"
+#define PATHS_ESTIMATOR_SRC "src/forest/estimator.c"
+
+/* A sorted list of file paths ("dir/name"). */
+typedef struct { char **p; size_t n, cap; } paths_list;
+
+/* Regular files under dir whose names end in suffix ("" for any), in strcmp
+ * order of their paths; recursive descends into subdirectories. Names that
+ * start with '.' or contain ".tmp" (atomic-write temporaries) are skipped.
+ * A missing dir gives an empty list. CS_ENOMEM on allocation failure. */
+cs_status paths_list_files(const char *dir, const char *suffix, int recursive, paths_list *out);
+void paths_list_free(paths_list *l);
+/* Append a copy of s (unsorted). */
+cs_status paths_list_add(paths_list *l, const char *s);
+
+#endif
