@@ -16,7 +16,7 @@ CC ?= cc
 CFLAGS ?= -std=c11 -O2 -ffp-contract=off -g -Wall -Wextra -Wno-unused-parameter -Wno-psabi \
           -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
 STAGES := base forest model exp claims
-CPPFLAGS += $(addprefix -Isrc/,$(STAGES))
+CPPFLAGS += $(addprefix -Isrc/,$(STAGES) cli)
 LDLIBS := -lgsl -lopenblas -lm
 SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 
@@ -26,7 +26,7 @@ export OPENBLAS_NUM_THREADS := 1
 
 B := build
 LIB_SRC := $(foreach s,$(STAGES),$(wildcard src/$(s)/*.c))
-LIB_HDR := $(foreach s,$(STAGES),$(wildcard src/$(s)/*.h src/$(s)/*.inc))
+LIB_HDR := $(foreach s,$(STAGES) cli,$(wildcard src/$(s)/*.h src/$(s)/*.inc))
 LIB_OBJ := $(patsubst src/%.c,$(B)/obj/%.o,$(LIB_SRC))
 ASAN_OBJ := $(patsubst src/%.c,$(B)/asan/obj/%.o,$(LIB_SRC))
 TEST_SRC := $(wildcard tests/test_*.c)
@@ -66,13 +66,23 @@ $(B)/libcrownshy.a: $(LIB_OBJ)
 	ar rcs $@ $^
 $(B)/asan/libcrownshy.a: $(ASAN_OBJ)
 	ar rcs $@ $^
-CLI_SRC := $(wildcard src/cli/*.c)
-$(CLI): $(CLI_SRC) $(wildcard src/cli/*.h) $(B)/libcrownshy.a
-	$(CC) $(CPPFLAGS) -Isrc/cli $(CFLAGS) $(CLI_SRC) $(B)/libcrownshy.a $(LDLIBS) -o $@
-$(B)/tests/%: tests/%.c $(B)/libcrownshy.a $(wildcard tests/*.h) | $(B)/tests
-	$(CC) $(CPPFLAGS) -Itests $(CFLAGS) $< $(B)/libcrownshy.a -lcmocka $(LDLIBS) -o $@
-$(B)/asan/tests/%: tests/%.c $(B)/asan/libcrownshy.a $(wildcard tests/*.h) | $(B)/asan/tests
-	$(CC) $(CPPFLAGS) -Itests $(CFLAGS) $(SANFLAGS) $< $(B)/asan/libcrownshy.a -lcmocka $(LDLIBS) -o $@
+# The CLI's command handlers are a library of their own (tests call them);
+# src/cli/main.c is the executable's one-line main.
+CLI_LIB_SRC := $(filter-out src/cli/main.c,$(wildcard src/cli/*.c))
+CLI_OBJ := $(patsubst src/%.c,$(B)/obj/%.o,$(CLI_LIB_SRC))
+ASAN_CLI_OBJ := $(patsubst src/%.c,$(B)/asan/obj/%.o,$(CLI_LIB_SRC))
+LIBS := $(B)/libcli.a $(B)/libcrownshy.a
+ASAN_LIBS := $(B)/asan/libcli.a $(B)/asan/libcrownshy.a
+$(B)/libcli.a: $(CLI_OBJ)
+	ar rcs $@ $^
+$(B)/asan/libcli.a: $(ASAN_CLI_OBJ)
+	ar rcs $@ $^
+$(CLI): src/cli/main.c $(LIBS)
+	$(CC) $(CPPFLAGS) $(CFLAGS) $< $(LIBS) $(LDLIBS) -o $@
+$(B)/tests/%: tests/%.c $(LIBS) $(wildcard tests/*.h) | $(B)/tests
+	$(CC) $(CPPFLAGS) -Itests $(CFLAGS) $< $(LIBS) -lcmocka $(LDLIBS) -o $@
+$(B)/asan/tests/%: tests/%.c $(ASAN_LIBS) $(wildcard tests/*.h) | $(B)/asan/tests
+	$(CC) $(CPPFLAGS) -Itests $(CFLAGS) $(SANFLAGS) $< $(ASAN_LIBS) -lcmocka $(LDLIBS) -o $@
 $(B)/tests $(B)/asan/tests:
 	mkdir -p $@
 

@@ -2,13 +2,13 @@
  * scratch directory, write provenance and the documented columns, and keep the
  * ablation's ordering (coupling off interpenetrates, both on opens gaps). */
 #include "testutil.h"
-#include "experiments.h"
+#include "cli.h"
 #include "tsv.h"
 
 static int run(const char *unit, const char *out)
 {
     char *argv[] = {"run", (char *)unit, "--stands", "1", "--out", (char *)out, NULL};
-    return exp_cmd_run(6, argv);
+    return cli_cmd_run(6, argv);
 }
 
 static double cell(const tsv *t, size_t row, const char *col)
@@ -79,11 +79,11 @@ static void test_bad_usage_exits_2(void **st)
 {
     (void)st;
     char *a1[] = {"run", "no-such-unit", NULL};
-    assert_int_equal(exp_cmd_run(2, a1), 2);
+    assert_int_equal(cli_cmd_run(2, a1), 2);
     char *a2[] = {"run", "mechanism-sweep", "--stands", "0", NULL};
-    assert_int_equal(exp_cmd_run(4, a2), 2);
+    assert_int_equal(cli_cmd_run(4, a2), 2);
     char *a3[] = {"run", "irreducibility-perturb", "--tag", "field", NULL};
-    assert_int_equal(exp_cmd_run(4, a3), 2);
+    assert_int_equal(cli_cmd_run(4, a3), 2);
 }
 
 int main(void)

@@ -5,6 +5,7 @@
 #include "testutil.h"
 #include "claims.h"
 #include "fieldsim.h"
+#include "exp_common.h"
 
 #define FIXTURE "tests/data/field_synthetic.tsv"
 #define FIXTURE_SPREAD 0.625
@@ -21,7 +22,7 @@ static int setup_heldout(void **s)
     fs_trees_init(&t);
     stand *sd;
     if (stand_alloc(&sd, STAND_LATTICE, 5.0, 60.0, 0.04, "test/field_claims", 0)) return -1;
-    if (fs_grow_append(sd, 0.19, 1, 0.19, 0, &t, NULL) || fs_grow_append(sd, 0.19, 0, 0.19, 0, &t, NULL)) return -1;
+    if (exp_field_grow_append(sd, 0.19, 1, 0.19, 0, &t, NULL) || exp_field_grow_append(sd, 0.19, 0, 0.19, 0, &t, NULL)) return -1;
     stand_free(sd);
     char tp[700];
     fs_trees_path(g_heldout, tp, sizeof tp);

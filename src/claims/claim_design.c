@@ -2,6 +2,7 @@
  * Each value is read from the preregistered gate file (or the header that
  * fixes it), never typed here, so a changed gate shows up in the paper. */
 #include "claims.h"
+#include "paths.h"
 #include "design.h"
 #include <math.h>
 #include <stdio.h>
@@ -18,7 +19,7 @@ static cs_status gate_get(claim_result *res, const char *file, const char *key, 
     if (count) *count = gate_count(g, key);
     double tmp;
     st = gate_value(g, key, idx, v ? v : &tmp);
-    if (!st) snprintf(res->where, sizeof res->where, "gates/%s:%d (%s)", file, gate_line(g, key), key);
+    if (!st) snprintf(res->where, sizeof res->where, PATHS_GATES_DIR "/%s:%d (%s)", file, gate_line(g, key), key);
     gate_free(g);
     return st;
 }
@@ -104,7 +105,7 @@ cs_status claim_design_train_spacings(const claim_row *row, claim_result *res)
         for (size_t i = 0; i < n; i++)
             off += (size_t)snprintf(res->text + off, sizeof res->text - off, "%s%.1f", i ? ", " : "", v[i]);
         res->value = v[0];
-        snprintf(res->where, sizeof res->where, "gates/main.gate:%d (train_spacings_m)", gate_line(g, "train_spacings_m"));
+        snprintf(res->where, sizeof res->where, PATHS_GATE("main") ":%d (train_spacings_m)", gate_line(g, "train_spacings_m"));
     }
     gate_free(g);
     return st;

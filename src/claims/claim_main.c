@@ -5,6 +5,7 @@
  * medians over seeds of the per-run error; p is the exact two-sided Wilcoxon
  * signed-rank test of the paired per-seed errors. */
 #include "claims.h"
+#include "paths.h"
 #include "stats.h"
 #include "tsv.h"
 #include <math.h>
@@ -40,7 +41,7 @@ static cs_status read_runs(const char *path, main_runs *r, claim_result *res)
         for (int k = 0; k < 3; k++)
             if (!seen[s][k]) { st = cs_err(CS_EINPUT, "%s: seed %d lacks its %s row", path, s + 1, k == 0 ? "joint" : k == 1 ? "indep" : "shuffled"); break; }
     double want;
-    if (!st && !(st = gate_read_value("gates/main.gate", "seeds", 0, &want)) && maxs != (int)want)
+    if (!st && !(st = gate_read_value(PATHS_GATE("main"), "seeds", 0, &want)) && maxs != (int)want)
         st = cs_err(CS_EINPUT, "%s: %d seeds, gates/main.gate requires %g", path, maxs, want);
     r->n = maxs;
     snprintf(res->where, sizeof res->where, "%s (%d seeds x 2 arms)", path, maxs);

@@ -5,6 +5,7 @@
  * recomputed from the clearances and the gate thresholds, never read from a
  * stored pass column. */
 #include "claims.h"
+#include "paths.h"
 #include "stats.h"
 #include "tsv.h"
 #include <math.h>
@@ -106,10 +107,10 @@ static cs_status sweep_row_pass(const tsv *t, size_t r, int *pass)
     cs_status st = CS_OK;
     for (int i = 0; i < 3 && !st; i++) {
         st = tsv_double(t, r, kc[i], &k[i]);
-        if (!st) st = gate_read_value("gates/mechanism.gate", gk[i], 0, &kmin[i]);
+        if (!st) st = gate_read_value(PATHS_GATE("mechanism"), gk[i], 0, &kmin[i]);
     }
     if (!st) st = tsv_double(t, r, "cover", &cover);
-    if (!st) st = gate_read_value("gates/mechanism.gate", "cover_min", 0, &cmin);
+    if (!st) st = gate_read_value(PATHS_GATE("mechanism"), "cover_min", 0, &cmin);
     if (st) return st;
     *pass = k[0] >= kmin[0] && k[1] >= kmin[1] && k[2] >= kmin[2] && cover >= cmin;
     return CS_OK;

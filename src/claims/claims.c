@@ -1,5 +1,6 @@
 /* claims: registry, evaluation and numbers.tex (SPEC §9). */
 #include "claims.h"
+#include "paths.h"
 #include "tsv.h"
 #include "afile.h"
 #include <math.h>
@@ -138,7 +139,7 @@ void claim_set_value(const claim_row *row, claim_result *res, double v)
 cs_status claim_gate_load(const char *file, gate **g)
 {
     char path[300];
-    snprintf(path, sizeof path, "gates/%s", file);
+    snprintf(path, sizeof path, PATHS_GATES_DIR "/%s", file);
     return gate_load(path, g);
 }
 

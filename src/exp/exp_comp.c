@@ -5,11 +5,11 @@
  * est_knn_clearance) on the patch trees. */
 #include "exp_comp.h"
 #include "args.h"
-#include "exp_main.h"
 #include "design.h"
 #include "estimator.h"
 #include "figdata.h"
 #include "gate.h"
+#include "paths.h"
 #include "model.h"
 #include "patch.h"
 #include "prov.h"
@@ -17,7 +17,7 @@
 #include "stand.h"
 #include "stats.h"
 #include "stems.h"
-#include "teacher.h"
+#include "stand_grow.h"
 #include "train.h"
 #include "tsv.h"
 #include <gsl/gsl_rng.h>
@@ -34,10 +34,7 @@ static cs_status grow(stand *sd, double beta, double *r)
     teacher_params tp;
     teacher_params_default(&tp);
     tp.beta = beta;
-    teacher_stand v;
-    stand_view(sd, &v);
-    teacher_info info;
-    return teacher_grow(&v, &tp, r, &info);
+    return stand_grow(sd, &tp, NULL, r, NULL, NULL);
 }
 
 /* Median NN clearance over the T patch trees and the count of trees with a
@@ -63,7 +60,7 @@ static cs_status gen_radii(model *m, const patch_set *ps, int Bmax, uint64_t see
     gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
     if (!g) return cs_err(CS_ENOMEM, "out of memory");
     gsl_rng_set(g, (unsigned long)seed);
-    cs_status st = exp_main_sample_radii(m, Bmax, ps, ps->n, 100, g, NULL, r);
+    cs_status st = model_sample_radii(m, Bmax, ps, ps->n, 100, g, NULL, r);
     gsl_rng_free(g);
     return st;
 }
@@ -82,8 +79,8 @@ int exp_comp_cmd_run(int argc, char **argv)
     prov pv;
     prov_begin(&pv, "comparison", argc, argv);
     double beta = 0, jitter = 0;
-    cs_status st = gate_read_value("gates/mechanism.gate", "dieback_train", 0, &beta);
-    if (!st) st = gate_read_value("gates/anisotropy.gate", "canonical_jitter", 0, &jitter);
+    cs_status st = gate_read_value(PATHS_GATE("mechanism"), "dieback_train", 0, &beta);
+    if (!st) st = gate_read_value(PATHS_GATE("anisotropy"), "canonical_jitter", 0, &jitter);
     model *mj = NULL, *mi = NULL;
     double sj = 0, si = 0;
     if (!st) st = train_load_model(cj, &mj, 64, &sj);
@@ -107,14 +104,9 @@ int exp_comp_cmd_run(int argc, char **argv)
     patch p;
     if (!st) st = patch_stand_init(&pst, (int)sd->s->n, sd->s->x, sd->s->y, rt, sd->h, d);
     if (!st) {
-        /* focal: the interior stem nearest the footprint centre */
-        double best = INFINITY, c = 0.5 * sd->s->L;
-        int focal = -1;
-        for (size_t i = 0; i < sd->s->n; i++) {
-            double e = hypot(sd->s->x[i] - c, sd->s->y[i] - c);
-            if (stems_interior(sd->s, i) && e < best) { best = e; focal = (int)i; }
-        }
-        st = focal < 0 ? cs_err(CS_EINPUT, "comparison stand has no interior stem") : patch_build(&pst, focal, &p);
+        size_t focal = 0;
+        st = stems_focal(sd->s, &focal);
+        if (!st) st = patch_build(&pst, (int)focal, &p);
     }
     if (!st) st = patch_set_alloc(&ps, 1);
     if (!st) st = patch_set_add(ps, &p);

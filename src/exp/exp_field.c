@@ -20,10 +20,12 @@
  * Limits: d and L are fixed by the design; stand counts are options (the
  * defaults are the full-run choices recorded in each file's provenance). */
 #include "exp_field.h"
+#include "exp_common.h"
 #include "args.h"
 #include "design.h"
 #include "fieldsim.h"
 #include "gate.h"
+#include "paths.h"
 #include "prov.h"
 #include "stats.h"
 #include "estimator.h"
@@ -93,8 +95,8 @@ static cs_status fs_run_job(fs_job *j, fs_trees *acc, double *worst)
             continue;
         }
         if (st) return st;
-        st = fs_grow_append(sd, j->beta, 1, j->level, s, acc, worst);
-        if (!st && j->twins) st = fs_grow_append(sd, j->beta, 0, j->level, s, acc, NULL);
+        st = exp_field_grow_append(sd, j->beta, 1, j->level, s, acc, worst);
+        if (!st && j->twins) st = exp_field_grow_append(sd, j->beta, 0, j->level, s, acc, NULL);
         stand_free(sd);
         if (st) return st;
     }
@@ -137,7 +139,7 @@ static cs_status fs_write(const char *out, prov *p, const fs_trees *acc, const f
 
 static cs_status fs_canonical_jitter(double *a)
 {
-    return gate_read_value("gates/anisotropy.gate", "canonical_jitter", 0, a);
+    return gate_read_value(PATHS_GATE("anisotropy"), "canonical_jitter", 0, a);
 }
 
 /* ---------------------------------------------------------------- E5 ---- */
@@ -202,10 +204,10 @@ int cmd_field_calibrate(int argc, char **argv)
     prov p;
     prov_begin(&p, "field", argc, argv);
     double lo, hi, step, seeds, a;
-    cs_status st = gate_read_value("gates/field.gate", "dieback_grid", 0, &lo);
-    if (!st) st = gate_read_value("gates/field.gate", "dieback_grid", 1, &hi);
-    if (!st) st = gate_read_value("gates/field.gate", "dieback_grid", 2, &step);
-    if (!st) st = gate_read_value("gates/field.gate", "calibration_seeds", 0, &seeds);
+    cs_status st = gate_read_value(PATHS_GATE("field"), "dieback_grid", 0, &lo);
+    if (!st) st = gate_read_value(PATHS_GATE("field"), "dieback_grid", 1, &hi);
+    if (!st) st = gate_read_value(PATHS_GATE("field"), "dieback_grid", 2, &step);
+    if (!st) st = gate_read_value(PATHS_GATE("field"), "calibration_seeds", 0, &seeds);
     if (!st) st = fs_canonical_jitter(&a);
     if (st) return fs_die("field-calibrate", st);
     size_t nb = (size_t)lround((hi - lo) / step) + 1;
@@ -376,7 +378,7 @@ static int aniso_family(const char *cmd, int argc, char **argv, stand_kind kind,
     prov_begin(&p, "anisotropy", argc, argv);
     double lv[32];
     size_t nl;
-    cs_status st = gate_read_values("gates/anisotropy.gate", key, lv, 32, &nl);
+    cs_status st = gate_read_values(PATHS_GATE("anisotropy"), key, lv, 32, &nl);
     if (st) return fs_die(cmd, st);
     fs_job jobs[32];
     fs_trees acc;
@@ -538,7 +540,7 @@ int cmd_field_diagnose(int argc, char **argv)
     /* 1. open-grown target elongation on the E5 held-out stands' draws */
     size_t n[6] = {0}, ge[6] = {0}, tot = 0, totge = 0;
     double emax = 0, lo;
-    if ((st = gate_read_value("gates/field.gate", "elongation_band", 0, &lo))) return fs_die("field-diagnose", st);
+    if ((st = gate_read_value(PATHS_GATE("field"), "elongation_band", 0, &lo))) return fs_die("field-diagnose", st);
     for (unsigned s = 0; s < o.stands && !st; s++) {
         stand *sd;
         if ((st = stand_alloc(&sd, STAND_LATTICE, d, L, a, "field/heldout", s))) break;

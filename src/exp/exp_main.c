@@ -11,13 +11,14 @@
 #include "afile.h"
 #include "estimator.h"
 #include "gate.h"
+#include "paths.h"
 #include "model.h"
 #include "patch.h"
 #include "prov.h"
 #include "seed.h"
 #include "stand.h"
 #include "stats.h"
-#include "teacher.h"
+#include "stand_grow.h"
 #include "train.h"
 #include "tsv.h"
 #include <gsl/gsl_randist.h>
@@ -40,12 +41,12 @@ typedef struct {
 static cs_status design_get(main_design *d)
 {
     cs_status st;
-    if ((st = gate_read_value("gates/mechanism.gate", "dieback_train", 0, &d->beta))) return st;
-    if ((st = gate_read_value("gates/anisotropy.gate", "canonical_jitter", 0, &d->jitter))) return st;
-    if ((st = gate_read_value("gates/main.gate", "estimator_agreement_tol_m", 0, &d->tol))) return st;
-    if ((st = gate_read_values("gates/main.gate", "train_spacings_m", d->train_d, MAXSP, &d->ntrain))) return st;
-    if ((st = gate_read_values("gates/main.gate", "unseen_spacings_m", d->unseen_d, MAXSP, &d->nunseen))) return st;
-    if ((st = gate_read_values("gates/extrapolation.gate", "spacings_m", d->extrap_d, MAXSP, &d->nextrap))) return st;
+    if ((st = gate_read_value(PATHS_GATE("mechanism"), "dieback_train", 0, &d->beta))) return st;
+    if ((st = gate_read_value(PATHS_GATE("anisotropy"), "canonical_jitter", 0, &d->jitter))) return st;
+    if ((st = gate_read_value(PATHS_GATE("main"), "estimator_agreement_tol_m", 0, &d->tol))) return st;
+    if ((st = gate_read_values(PATHS_GATE("main"), "train_spacings_m", d->train_d, MAXSP, &d->ntrain))) return st;
+    if ((st = gate_read_values(PATHS_GATE("main"), "unseen_spacings_m", d->unseen_d, MAXSP, &d->nunseen))) return st;
+    if ((st = gate_read_values(PATHS_GATE("extrapolation"), "spacings_m", d->extrap_d, MAXSP, &d->nextrap))) return st;
     return CS_OK;
 }
 
@@ -53,8 +54,8 @@ cs_status exp_main_plan_get(const char *scale, exp_main_plan *p)
 {
     double epochs, euler;
     cs_status st;
-    if ((st = gate_read_value("gates/main.gate", "epochs", 0, &epochs))) return st;
-    if ((st = gate_read_value("gates/main.gate", "euler_steps", 0, &euler))) return st;
+    if ((st = gate_read_value(PATHS_GATE("main"), "epochs", 0, &epochs))) return st;
+    if ((st = gate_read_value(PATHS_GATE("main"), "euler_steps", 0, &euler))) return st;
     memset(p, 0, sizeof *p);
     p->euler = (int)euler;
     p->batch = 64;
@@ -90,11 +91,7 @@ static cs_status add_stand_patches(const main_design *ds, const char *exp, doubl
     teacher_params tp;
     teacher_params_default(&tp);
     tp.beta = ds->beta;
-    teacher_stand v;
-    stand_view(sd, &v);
-    teacher_info info;
-    st = teacher_grow(&v, &tp, r, &info);
-    if (!st && info.worst_overlap > *worst) *worst = info.worst_overlap;
+    st = stand_grow(sd, &tp, NULL, r, NULL, worst);
     patch_stand pst;
     if (!st) st = patch_stand_init(&pst, (int)n, sd->s->x, sd->s->y, r, sd->h, d);
     int cnt = 0;
@@ -195,26 +192,6 @@ static cs_status build_train(const main_design *ds, const exp_main_plan *pl, pat
 /* Generate pl->gen_patches (or fewer) patches of e with model m; shuffle != 0
  * permutes the position features among the tokens of each patch (the
  * shuffled-geometry probe), evaluation keeps the true positions. */
-cs_status exp_main_sample_radii(model *m, int Bmax, const patch_set *ps, int n, int nsteps,
-                                gsl_rng *noise, gsl_rng *perm, double *r)
-{
-    size_t tp = (size_t)PATCH_T * PATCH_P;
-    float *x = malloc((size_t)Bmax * tp * sizeof *x);
-    float *feat = malloc((size_t)Bmax * PATCH_T * PATCH_NFEAT * sizeof *feat);
-    cs_status st = x && feat ? CS_OK : cs_err(CS_ENOMEM, "out of memory");
-    for (int k0 = 0; k0 < n && !st; k0 += Bmax) {
-        int b = n - k0 < Bmax ? n - k0 : Bmax;
-        memcpy(feat, ps->feat + (size_t)k0 * PATCH_T * PATCH_NFEAT, (size_t)b * PATCH_T * PATCH_NFEAT * sizeof *feat);
-        if (perm) patch_shuffle_positions(feat, b, perm);
-        st = model_sample(m, noise, b, feat, ps->cond + (size_t)k0 * PATCH_NCOND, nsteps, x);
-        for (int k = 0; k < b && !st; k++)
-            patch_set_radii(ps, k0 + k, x + (size_t)k * tp, r + (size_t)(k0 + k) * tp);
-    }
-    free(x);
-    free(feat);
-    return st;
-}
-
 static cs_status generate(model *m, int Bmax, const exp_main_plan *pl, const eval_set *e, unsigned seed,
                           int shuffle, double *gen, int *ngen)
 {
@@ -225,7 +202,7 @@ static cs_status generate(model *m, int Bmax, const exp_main_plan *pl, const eva
     if (!st) {
         gsl_rng_set(noise, (unsigned long)seed_derive(shuffle ? "main-model-shuffled" : "main-model", e->d, seed, "sample"));
         gsl_rng_set(perm, (unsigned long)seed_derive("main-model", e->d, seed, "shuffle"));
-        st = exp_main_sample_radii(m, Bmax, e->ps, G, pl->euler, noise, shuffle ? perm : NULL, r);
+        st = model_sample_radii(m, Bmax, e->ps, G, pl->euler, noise, shuffle ? perm : NULL, r);
     }
     if (!st) st = patch_focal_clearances(e->ps->px, e->ps->py, r, G, 1, gen);
     *ngen = G;

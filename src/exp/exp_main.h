@@ -35,13 +35,6 @@ typedef struct {
 /* The plan for a scale ("full" or "smoke"); gate values read from gates/. */
 cs_status exp_main_plan_get(const char *scale, exp_main_plan *p);
 
-/* Generate the crowns (radii, m; r[n*T*P]) of patches [0, n) of ps with
- * model m and nsteps Euler steps, in chunks of Bmax, drawing from `noise`.
- * perm != NULL: before each chunk is sampled, the positional features of its
- * patches are permuted (the shuffled-geometry probe), drawing from perm. */
-cs_status exp_main_sample_radii(model *m, int Bmax, const patch_set *ps, int n, int nsteps,
-                                gsl_rng *noise, gsl_rng *perm, double *r);
-
 /* CLI entry points (return process exit codes; SPEC §11). */
 int exp_main_cmd_run(int argc, char **argv);
 int exp_main_cmd_baselines(int argc, char **argv);

@@ -3,9 +3,8 @@
 #include "fieldsim.h"
 #include "crown.h"
 #include "estimator.h"
-#include "stems.h"
-#include "teacher.h"
 #include "gate.h"
+#include "paths.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -41,7 +40,7 @@ static cs_status fs_reserve(fs_trees *t, size_t want)
     return CS_OK;
 }
 
-static cs_status fs_push(fs_trees *t, int coupled, double level, unsigned stand, unsigned tree, const double gap[4], double elong)
+cs_status fs_trees_push(fs_trees *t, int coupled, double level, unsigned stand, unsigned tree, const double gap[4], double elong)
 {
     cs_status st = fs_reserve(t, t->n + 1);
     if (st) return st;
@@ -53,32 +52,6 @@ static cs_status fs_push(fs_trees *t, int coupled, double level, unsigned stand,
     memcpy(t->gap[k], gap, sizeof t->gap[k]);
     t->elong[k] = elong;
     return CS_OK;
-}
-
-cs_status fs_grow_append(const stand *sd, double beta, int coupled, double level, unsigned index,
-                         fs_trees *acc, double *worst)
-{
-    teacher_stand v;
-    stand_view(sd, &v);
-    teacher_params p;
-    teacher_params_default(&p);
-    p.beta = beta;
-    p.coupled = coupled;
-    double *r = malloc((v.n ? v.n : 1) * CROWN_NSEC * sizeof *r);
-    if (!r) return cs_err(CS_ENOMEM, "fieldsim: out of memory");
-    teacher_info info;
-    cs_status st = teacher_grow(&v, &p, r, &info);
-    if (!st && worst && info.worst_overlap > *worst) *worst = info.worst_overlap;
-    for (size_t i = 0; i < v.n && !st; i++) {
-        if (!stems_interior(sd->s, i)) continue;
-        double g[4];
-        est_cardinal_gaps(v.x, v.y, r, v.n, i, g);
-        for (int c = 0; c < 4; c++)
-            if (!isfinite(g[c])) st = cs_err(CS_ENUMERIC, "fieldsim: interior tree %zu of stand %u has no neighbour in cardinal cone %d", i, index, c);
-        if (!st) st = fs_push(acc, coupled, level, index, (unsigned)i, g, est_elongation(r + i * CROWN_NSEC));
-    }
-    free(r);
-    return st;
 }
 
 cs_status fs_group(const fs_trees *t, int coupled, double level, fs_summary *out)
@@ -150,7 +123,7 @@ cs_status fs_trees_read(const char *path, fs_trees *out)
         for (int c = 0; c < 4 && !st; c++) st = tsv_double(t, r, gcol[c], &g[c]);
         if (!st) st = tsv_double(t, r, "elong", &e);
         if (!st && (s < 0 || i < 0)) st = cs_err(CS_EINPUT, "%s:%d: field 'stand'/'tree': negative", path, tsv_line(t, r));
-        if (!st) st = fs_push(out, coupled, level, (unsigned)s, (unsigned)i, g, e);
+        if (!st) st = fs_trees_push(out, coupled, level, (unsigned)s, (unsigned)i, g, e);
     }
     tsv_free(t);
     if (st) fs_trees_free(out);
@@ -286,8 +259,8 @@ cs_status fs_beta_field(const char *calibration_path, fs_calibration *out)
 {
     memset(out, 0, sizeof *out);
     double target, step;
-    cs_status st = gate_read_value("gates/field.gate", "calibration_target_m", 0, &target);
-    if (!st) st = gate_read_value("gates/field.gate", "dieback_grid", 2, &step);
+    cs_status st = gate_read_value(PATHS_GATE("field"), "calibration_target_m", 0, &target);
+    if (!st) st = gate_read_value(PATHS_GATE("field"), "dieback_grid", 2, &step);
     if (st) return st;
     tsv *t;
     fs_trees tr;
@@ -318,7 +291,7 @@ cs_status fs_jitter_star(const char *path, fs_calibration *out)
 {
     memset(out, 0, sizeof *out);
     double target;
-    cs_status st = gate_read_value("gates/anisotropy.gate", "field_median", 0, &target);
+    cs_status st = gate_read_value(PATHS_GATE("anisotropy"), "field_median", 0, &target);
     if (st) return st;
     tsv *t;
     if ((st = tsv_read(path, &t))) return st;

@@ -1,6 +1,6 @@
 /* fieldsim: the simulated side of the field comparisons (SPEC §7 E5, E6;
- * reference paper §5.3, §5.4). A stand is grown by the teacher; for each
- * interior tree (>= 2 d from the edge) the canonical estimator gives the four
+ * reference paper §5.3, §5.4). A stand is grown by the teacher
+ * (exp_field_grow_append, in the experiments); for each interior tree (>= 2 d from the edge) the canonical estimator gives the four
  * cardinal gaps and the crown elongation. Trees are kept individually
  * (fs_trees) so every summary in a frozen table can be recomputed from the
  * per-tree table beside it (X.tsv and X_trees.tsv) with the same code.
@@ -10,7 +10,6 @@
 #define FIELDSIM_H
 #include "cs.h"
 #include "field.h"
-#include "stand.h"
 #include "tsv.h"
 #include <stddef.h>
 
@@ -26,11 +25,10 @@ typedef struct {
 void fs_trees_init(fs_trees *t);
 void fs_trees_free(fs_trees *t);
 
-/* Grow stand sd with the teacher (beta; coupled or the uncoupled twin) and
- * append its interior trees tagged (coupled, level, stand index).
- * *worst (may be NULL) is raised to the self-check overlap of the growth. */
-cs_status fs_grow_append(const stand *sd, double beta, int coupled, double level, unsigned index,
-                         fs_trees *acc, double *worst);
+/* Append one tree: tags (coupled, level, stand, tree), cardinal gaps
+ * (E, N, W, S, m) and crown elongation. */
+cs_status fs_trees_push(fs_trees *t, int coupled, double level, unsigned stand, unsigned tree,
+                        const double gap[4], double elong);
 
 typedef struct {
     field_summary f;      /* trees, tree-mean median, spread, anisotropy median (+ excluded) */

@@ -54,7 +54,7 @@ cs_status stand_alloc(stand **out, stand_kind kind, double d, double L, double s
     return stand_from_stems(out, s, seed_derive(experiment, d, index, "crowns"));
 }
 
-void stand_view(const stand *sd, teacher_stand *v)
+void stand_view(const stand *sd, stand_arrays *v)
 {
     v->n = sd->s->n;
     v->x = sd->s->x;

@@ -7,7 +7,16 @@
 #include "cs.h"
 #include "stems.h"
 #include "crown.h"
-#include "teacher.h"
+
+/* A read-only view of a stand's arrays: what the teacher grows (teacher.h
+ * names it teacher_stand) and what a perturbation modifies (a copy of h). */
+typedef struct {
+    size_t n;
+    const double *x, *y;  /* stems, m */
+    const double *h;      /* heights, m: order and vigour (per-tree override = pass a modified copy) */
+    const double *R;      /* open-grown radii, m (Delta = median R / N) */
+    const double *rstar;  /* targets, n x CROWN_NSEC */
+} stand_arrays;
 
 typedef enum { STAND_LATTICE, STAND_HARDCORE } stand_kind;
 
@@ -23,6 +32,6 @@ cs_status stand_alloc(stand **out, stand_kind kind, double d, double L, double s
 /* Crowns drawn with seed `crown_seed` on given stems (takes ownership of s). */
 cs_status stand_from_stems(stand **out, stems *s, uint64_t crown_seed);
 void stand_free(stand *sd);
-void stand_view(const stand *sd, teacher_stand *v);
+void stand_view(const stand *sd, stand_arrays *v);
 
 #endif

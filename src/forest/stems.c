@@ -144,3 +144,15 @@ cs_status stems_hardcore_alloc(stems **out, double d, double L, double c, uint64
     free(head); free(next); gsl_rng_free(rng);
     return CS_OK;
 }
+
+cs_status stems_focal(const stems *s, size_t *focal)
+{
+    double best = INFINITY, c = 0.5 * s->L;
+    int found = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        if (!stems_interior(s, i)) continue;
+        double dd = hypot(s->x[i] - c, s->y[i] - c);
+        if (dd < best) { best = dd; *focal = i; found = 1; }
+    }
+    return found ? CS_OK : cs_err(CS_EINPUT, "stems: no interior stem (d = %g m, L = %g m)", s->d, s->L);
+}

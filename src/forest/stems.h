@@ -27,5 +27,9 @@ cs_status stems_from_xy(stems **out, size_t n, const double *x, const double *y,
 void stems_free(stems *s);
 /* 1 when stem i is at least 2*d from every edge of [0,L]^2. */
 int stems_interior(const stems *s, size_t i);
+/* The focal stem of a stand (E2's perturbed tree, E7's comparison patch): the
+ * interior stem nearest the footprint centre, the lowest index on a tie.
+ * CS_EINPUT when no stem is interior. */
+cs_status stems_focal(const stems *s, size_t *focal);
 
 #endif

@@ -30,6 +30,7 @@
 #define TEACHER_H
 #include "cs.h"
 #include "crown.h"
+#include "stand.h"
 #include <stddef.h>
 
 #define TEACHER_VERSION "teacher-1"
@@ -48,13 +49,9 @@ typedef struct {
 /* beta 0.06, coupled, N 48, gamma 1, hbar from the heights, no frozen output. */
 void teacher_params_default(teacher_params *p);
 
-typedef struct {
-    size_t n;
-    const double *x, *y;  /* stems, m */
-    const double *h;      /* heights, m: order and vigour (per-tree override = pass a modified copy) */
-    const double *R;      /* open-grown radii, m (Delta = median R / N) */
-    const double *rstar;  /* targets, n x CROWN_NSEC */
-} teacher_stand;
+/* What the teacher reads of a stand (stand.h: stems, heights, radii, targets;
+ * heights may be a modified copy for a perturbation). */
+typedef stand_arrays teacher_stand;
 
 typedef struct {
     double step;          /* Delta, m */

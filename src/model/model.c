@@ -396,3 +396,24 @@ double model_train_flops(const model_cfg *c, int B)
     double attn = c->joint ? 2.0 * B * c->H * T * T * hd * 2 * c->L : 0; /* QK^T and PV */
     return gemm_fwd + gemm_bwd + 3 * attn; /* attention backward = 4 products = 2x forward */
 }
+
+cs_status model_sample_radii(model *m, int Bmax, const patch_set *ps, int n, int nsteps,
+                                gsl_rng *noise, gsl_rng *perm, double *r)
+{
+    size_t tp = (size_t)PATCH_T * PATCH_P;
+    float *x = malloc((size_t)Bmax * tp * sizeof *x);
+    float *feat = malloc((size_t)Bmax * PATCH_T * PATCH_NFEAT * sizeof *feat);
+    cs_status st = x && feat ? CS_OK : cs_err(CS_ENOMEM, "out of memory");
+    for (int k0 = 0; k0 < n && !st; k0 += Bmax) {
+        int b = n - k0 < Bmax ? n - k0 : Bmax;
+        memcpy(feat, ps->feat + (size_t)k0 * PATCH_T * PATCH_NFEAT, (size_t)b * PATCH_T * PATCH_NFEAT * sizeof *feat);
+        if (perm) patch_shuffle_positions(feat, b, perm);
+        st = model_sample(m, noise, b, feat, ps->cond + (size_t)k0 * PATCH_NCOND, nsteps, x);
+        for (int k = 0; k < b && !st; k++)
+            patch_set_radii(ps, k0 + k, x + (size_t)k * tp, r + (size_t)(k0 + k) * tp);
+    }
+    free(x);
+    free(feat);
+    return st;
+}
+

@@ -18,6 +18,7 @@
 #define MODEL_H
 #include "cs.h"
 #include "nn.h"
+#include "patch.h"
 #include <gsl/gsl_rng.h>
 #include <stddef.h>
 
@@ -107,5 +108,13 @@ cs_status model_sample(model *m, gsl_rng *noise, int B, const float *feat,
 /* Model FLOPs of one training step (forward + backward) at batch B: GEMMs
  * (2MNK each) plus the attention score and mix products. */
 double model_train_flops(const model_cfg *cfg, int B);
+
+/* Generate the crowns (radii, m; r[n*T*P]) of patches [0, n) of ps with
+ * model m and nsteps Euler steps, in chunks of Bmax, drawing from `noise`.
+ * perm != NULL: before each chunk is sampled, the positional features of its
+ * patches are permuted (the shuffled-geometry probe), drawing from perm.
+ * Used by E3/E4 (exp_main) and E7 (exp_comp) alike. */
+cs_status model_sample_radii(model *m, int Bmax, const patch_set *ps, int n, int nsteps,
+                             gsl_rng *noise, gsl_rng *perm, double *r);
 
 #endif

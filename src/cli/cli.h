@@ -1,0 +1,31 @@
+/* cli: the command handlers of `crownshy <command>` (SPEC §11). Each returns
+ * the process exit code: 0 ok, 1 a check failed, 2 usage error, 3 bad or
+ * missing input, 4 environment (I/O, memory). Options are parsed by opts.h. */
+#ifndef CLI_H
+#define CLI_H
+#include "cs.h"
+
+/* cli_audit.c */
+int cli_cmd_verify(int argc, char **argv);
+int cli_cmd_numbers(int argc, char **argv);
+int cli_cmd_audit(int argc, char **argv);
+int cli_cmd_trace(int argc, char **argv);
+int cli_cmd_pin(int argc, char **argv);
+int cli_cmd_hash_frozen(int argc, char **argv);
+int cli_cmd_gates(int argc, char **argv);
+int cli_cmd_check_tsv(int argc, char **argv);
+int cli_cmd_figures(int argc, char **argv);
+/* cli_model.c */
+int cli_cmd_train(int argc, char **argv);
+int cli_cmd_sample(int argc, char **argv);
+int cli_cmd_bench_model(int argc, char **argv);
+/* cli_run.c */
+int cli_cmd_run(int argc, char **argv);
+int cli_cmd_bench_teacher(int argc, char **argv);
+
+/* The whole command line: dispatch argv[1] to its handler (cli.c). */
+int cli_main(int argc, char **argv);
+/* "crownshy CMD: <cs_errmsg>" on stderr; the exit code of st. */
+int cli_fail(const char *cmd, cs_status st);
+
+#endif

@@ -1,0 +1,92 @@
+/* cli_run: `crownshy run <unit>` (the teacher experiments' units of E1, E2
+ * and the figure stands, one process per make target of experiments.mk) and
+ * `crownshy bench-teacher`. Only the CLI decides how the process dies. */
+#include "cli.h"
+#include "exp_irred.h"
+#include "exp_mechanism.h"
+#include "exp_stands.h"
+#include "gate.h"
+#include "opts.h"
+#include "paths.h"
+#include "teacher.h"
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+typedef enum { U_PLAIN, U_IRRED } unit_kind;
+typedef struct {
+    const char *name;
+    unit_kind kind;
+    cs_status (*plain)(const exp_opts *);
+    cs_status (*irred)(const exp_opts *, double);
+    const char *help;
+} run_unit;
+
+static const run_unit UNITS[] = {
+    {"mechanism-sweep", U_PLAIN, exp_mechanism_sweep, NULL, "E1: 16 rows beta x d on the controlled lattice -> mechanism/sweep.tsv"},
+    {"mechanism-ablation", U_PLAIN, exp_mechanism_ablation, NULL, "E1: coupling off / abrasion off / both on at 3.5 m -> mechanism/ablation.tsv"},
+    {"irreducibility-perturb", U_IRRED, NULL, exp_irred_perturb, "E2: one tree 30% taller, 5 spacings -> irreducibility/perturb_<tag>.tsv"},
+    {"irreducibility-refine", U_IRRED, NULL, exp_irred_refine, "E2: N in {48,96,192,384} -> irreducibility/refine_<tag>.tsv"},
+    {"irreducibility-reduction", U_IRRED, NULL, exp_irred_reduction, "E2: best-fit Voronoi reduction -> irreducibility/reduction_<tag>.tsv"},
+    {"fig-mechanism", U_PLAIN, exp_mechanism_figure, NULL, "crowns of the three mechanism panels (hard-core, 3.5 m, L = 36 m)"},
+    {"fig-hero", U_PLAIN, exp_hero_figure, NULL, "crowns of the hero figure (hard-core, L = 36 m, d = 3.0..6.5)"},
+    {"fig-pointcloud", U_PLAIN, exp_pointcloud_figure, NULL, "E8: point-cloud stands (5/4/3 m, + uncoupled) and pointcloud/stats.tsv"},
+};
+#define NUNITS (sizeof UNITS / sizeof UNITS[0])
+
+int cli_cmd_run(int argc, char **argv)
+{
+    long stands = EXP_STANDS_DEFAULT;
+    double beta = NAN;
+    const char *out = "build/results", *tag = "train";
+    const opt_spec spec[] = {
+        {"stands", OPT_LONG, &stands, 1, 10000, "stands per cell (default 8)"},
+        {"out", OPT_STR, &out, 0, 0, "results root; each unit writes DIR/<experiment>/<file>.tsv (default build/results)"},
+        {"beta", OPT_DOUBLE, &beta, 0, 0.999, "die-back for E2 and the hero's beta_field row (default: the gate's dieback_train; no beta_field row)"},
+        {"tag", OPT_STR, &tag, 0, 0, "E2 output tag: train or field (default train; field needs --beta)"},
+    };
+    char about[2048];
+    size_t off = (size_t)snprintf(about, sizeof about, "units:\n");
+    for (size_t i = 0; i < NUNITS && off < sizeof about; i++)
+        off += (size_t)snprintf(about + off, sizeof about - off, "  %-26s %s\n", UNITS[i].name, UNITS[i].help);
+    const opts_cmd c = {"run", "<unit> [options]", about, spec, sizeof spec / sizeof *spec, 1, 1};
+    char *pos[argc > 0 ? argc : 1];
+    int r = opts_parse(&c, argc, argv, pos, NULL);
+    if (r) return opts_exit_code(r);
+    const run_unit *u = NULL;
+    for (size_t i = 0; i < NUNITS; i++)
+        if (!strcmp(pos[0], UNITS[i].name)) u = &UNITS[i];
+    if (!u) { opts_usage_error("run", "unknown unit '%s'", pos[0]); return 2; }
+    if (strcmp(tag, "train") && strcmp(tag, "field")) { opts_usage_error("run", "--tag: must be train or field, not '%s'", tag); return 2; }
+    exp_opts o = {.out = out, .stands = (int)stands, .beta = beta, .tag = tag, .argc = argc, .argv = argv};
+    cs_status st = CS_OK;
+    if (u->kind == U_IRRED) {
+        double b = beta;
+        if (isnan(b)) {
+            if (!strcmp(tag, "field")) { opts_usage_error("run", "--tag field needs --beta (the calibrated field die-back)"); return 2; }
+            st = gate_read_value(PATHS_GATE("mechanism"), "dieback_train", 0, &b);
+        }
+        if (!st) st = u->irred(&o, b);
+    } else st = u->plain(&o);
+    if (st) fprintf(stderr, "crownshy run %s: %s\n", u->name, cs_errmsg()[0] ? cs_errmsg() : cs_status_name(st));
+    return cs_exit_code(st);
+}
+
+int cli_cmd_bench_teacher(int argc, char **argv)
+{
+    long reps = 10;
+    const opt_spec spec[] = {{"reps", OPT_LONG, &reps, 1, 10000, "stands timed at N = 48 (a quarter of them at N = 384; default 10)"}};
+    const opts_cmd c = {"bench-teacher", "[--reps N]",
+                        "Teacher ms per 144-tree controlled-lattice stand (d = 3.5 m, beta 0.06) at N = 48 and N = 384 (SPEC §10).",
+                        spec, 1, 0, 0};
+    int r = opts_parse(&c, argc, argv, NULL, NULL);
+    if (r) return opts_exit_code(r);
+    const int levels[2] = {48, 384};
+    for (int k = 0; k < 2; k++) {
+        double ms = 0.0;
+        cs_status st = teacher_bench(levels[k], k ? (int)(reps + 3) / 4 : (int)reps, &ms);
+        if (st) { fprintf(stderr, "crownshy bench-teacher: %s\n", cs_errmsg()); return cs_exit_code(st); }
+        printf("teacher_ms_per_stand_N%d\t%.3f\n", levels[k], ms);
+    }
+    return 0;
+}

@@ -1,0 +1,148 @@
+/* exp_common: what the teacher experiments' units share (SPEC §7, §9): the
+ * output path and atomic commit of a unit's table, the metadata lines every
+ * unit writes, pooled interior-tree clearances and cover, and the crown and
+ * outline tables of the canopy figures (SPEC §12). */
+#include "exp_common.h"
+#include "estimator.h"
+#include "figdata.h"
+#include "stand_grow.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define NS CROWN_NSEC
+
+/* Growable double array. */
+cs_status exp_dvec_push(exp_dvec *a, double x)
+{
+    if (a->n == a->cap) {
+        size_t c = a->cap ? 2 * a->cap : 256;
+        double *nv = realloc(a->v, c * sizeof *nv);
+        if (!nv) return cs_err(CS_ENOMEM, "experiments: out of memory");
+        a->v = nv;
+        a->cap = c;
+    }
+    a->v[a->n++] = x;
+    return CS_OK;
+}
+
+/* k = 1..3 NN clearances of the interior trees, appended to g[0..2]; interior cover. */
+cs_status exp_stand_metrics(const stand *sd, const double *r, exp_dvec g[3], double *cover, size_t *ntrees)
+{
+    const stems *s = sd->s;
+    cs_status st = CS_OK;
+    size_t m = 0;
+    for (size_t i = 0; i < s->n && !st; i++) {
+        if (!stems_interior(s, i)) continue;
+        m++;
+        for (int k = 1; k <= 3 && !st; k++) {
+            double v;
+            st = est_knn_clearance(s->x, s->y, r, s->n, i, k, &v);
+            if (!st) st = exp_dvec_push(&g[k - 1], v);
+        }
+    }
+    if (ntrees) *ntrees += m;
+    if (st || !cover) return st;
+    double lo = 2.0 * s->d, hi = s->L - 2.0 * s->d;
+    return est_cover(s->x, s->y, r, s->n, lo, lo, hi, hi, cover);
+}
+
+cs_status exp_open_out(const exp_opts *o, const char *experiment, const char *file, tsv_writer **w,
+                          char *path, size_t pathsz)
+{
+    snprintf(path, pathsz, "%s/%s/%s", o->out, experiment, file);
+    return tsv_writer_open(w, path);
+}
+
+cs_status exp_finish(tsv_writer *w, prov *pv, const char *path)
+{
+    cs_status st = tsv_writer_commit(w);
+    if (!st) fprintf(stderr, "wrote %s (%.1f s)\n", path, prov_now() - pv->t0);
+    return st;
+}
+
+/* Metadata lines shared by all units (after the provenance block). */
+void exp_common_meta(tsv_writer *w, const exp_opts *o)
+{
+    tsv_writer_meta(w, "stands_per_cell", "%d", o->stands);
+    tsv_writer_meta(w, "teacher_resolution", "N = 48 unless a column says otherwise; gamma = 1");
+}
+
+/* Crowns of one panel: one row per tree: panel, tree, x, y, h, interior, r0..r23. */
+void exp_write_crowns(tsv_writer *w, const char *panel, double d, const stand *sd, const double *r)
+{
+    for (size_t i = 0; i < sd->s->n; i++) {
+        tsv_writer_str(w, panel);
+        tsv_writer_dbl(w, d);
+        tsv_writer_long(w, (long)i);
+        tsv_writer_dbl(w, sd->s->x[i]);
+        tsv_writer_dbl(w, sd->s->y[i]);
+        tsv_writer_dbl(w, sd->h[i]);
+        tsv_writer_long(w, stems_interior(sd->s, i));
+        for (int s = 0; s < NS; s++) tsv_writer_dbl(w, r[i * NS + s]);
+        tsv_writer_endrow(w);
+    }
+}
+
+void exp_crown_columns(tsv_writer *w)
+{
+    char cols[1024];
+    int off = snprintf(cols, sizeof cols, "panel\tspacing_m\ttree\tx_m\ty_m\th_m\tinterior");
+    for (int s = 0; s < NS; s++) off += snprintf(cols + off, sizeof cols - (size_t)off, "\tr%d", s);
+    tsv_writer_columns(w, cols);
+}
+
+cs_status exp_write_polygons(const exp_opts *o, prov *pv, const char *experiment, const char *panel, double d,
+                                const stand *sd, const double *r, double k1)
+{
+    char file[128], path[512];
+    snprintf(file, sizeof file, "figure_poly_%s_%.1f.tsv", panel, d);
+    tsv_writer *w = NULL;
+    cs_status st = exp_open_out(o, experiment, file, &w, path, sizeof path);
+    if (st) return st;
+    st = prov_write(w, pv);
+    if (st) { tsv_writer_abort(w); return st; }
+    size_t n = sd->s->n;
+    tsv_writer_meta(w, "panel", "%s, spacing %.2f m, footprint %.0f m, %zu trees, %d rows per tree", panel, d, sd->s->L, n, FIGDATA_ROWS);
+    tsv_writer_meta(w, "k1_median_m", "%.3f", k1);
+    st = figdata_write_polygons(w, n, sd->s->x, sd->s->y, sd->h, r, NULL, NULL);
+    if (st) { tsv_writer_abort(w); return st; }
+    return tsv_writer_commit(w);
+}
+
+/* Median k1 clearance of the interior trees of one stand. */
+double exp_stand_k1(const stand *sd, const double *r)
+{
+    exp_dvec g[3] = {{0}, {0}, {0}};
+    double med = NAN;
+    if (!exp_stand_metrics(sd, r, g, NULL, NULL)) est_median(g[0].v, g[0].n, &med);
+    for (int k = 0; k < 3; k++) free(g[k].v);
+    return med;
+}
+
+
+cs_status exp_field_grow_append(const stand *sd, double beta, int coupled, double level, unsigned index,
+                         fs_trees *acc, double *worst)
+{
+    stand_arrays v;
+    stand_view(sd, &v);
+    teacher_params p;
+    teacher_params_default(&p);
+    p.beta = beta;
+    p.coupled = coupled;
+    double *r = malloc((v.n ? v.n : 1) * CROWN_NSEC * sizeof *r);
+    if (!r) return cs_err(CS_ENOMEM, "exp_field: out of memory");
+    cs_status st = stand_grow(sd, &p, NULL, r, NULL, worst);
+    for (size_t i = 0; i < v.n && !st; i++) {
+        if (!stems_interior(sd->s, i)) continue;
+        double g[4];
+        est_cardinal_gaps(v.x, v.y, r, v.n, i, g);
+        for (int c = 0; c < 4; c++)
+            if (!isfinite(g[c])) st = cs_err(CS_ENUMERIC, "exp_field: interior tree %zu of stand %u has no neighbour in cardinal cone %d", i, index, c);
+        if (!st) st = fs_trees_push(acc, coupled, level, index, (unsigned)i, g, est_elongation(r + i * CROWN_NSEC));
+    }
+    free(r);
+    return st;
+}
+

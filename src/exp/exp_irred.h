@@ -1,0 +1,11 @@
+/* exp_irred: E2 irreducibility units (SPEC §7 E2; reference paper §3.3),
+ * writing <out>/irreducibility/<unit>_<o->tag>.tsv at die-back beta. */
+#ifndef EXP_IRRED_H
+#define EXP_IRRED_H
+#include "exp_common.h"
+
+cs_status exp_irred_perturb(const exp_opts *o, double beta);
+cs_status exp_irred_refine(const exp_opts *o, double beta);
+cs_status exp_irred_reduction(const exp_opts *o, double beta);
+
+#endif

@@ -1,0 +1,229 @@
+/* exp_mechanism: E1 (SPEC §7 E1; reference paper §3.2), writing
+ * frozen/mechanism: the beta x d sweep on the controlled lattice, the
+ * ablation at 3.5 m (coupling off / abrasion off / both on) and the crowns of
+ * the three figure panels (hard-core stand at 3.5 m, the same draws in all
+ * three). Outputs (columns; every file starts with the provenance block):
+ *  mechanism/sweep.tsv     beta spacing_m stands trees k1_m k2_m k3_m cover
+ *                          worst_overlap_m pass train_row   (16 rows)
+ *  mechanism/ablation.tsv  arm(coupling_off|abrasion_off|both_on) coupled beta
+ *                          spacing_m stands trees k1_m k2_m k3_m cover overlap_m
+ *  mechanism/figure_crowns.tsv, figure_poly_<panel>_<d>.tsv (exp_common.h) */
+#include "exp_mechanism.h"
+#include "exp_common.h"
+#include "estimator.h"
+#include "gate.h"
+#include "paths.h"
+#include "stand_grow.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define NS CROWN_NSEC
+
+typedef struct { double k[3], cover, overlap; size_t trees; } cell_result;
+
+/* One (stem process, d, params) cell over o->stands stands of key `key`. */
+static cs_status run_cell(const exp_opts *o, const char *key, stand_kind kind, double d, double shape,
+                          const teacher_params *p, cell_result *res, double *worst)
+{
+    exp_dvec g[3] = {{0}, {0}, {0}};
+    double cov_sum = 0.0, ovl = 0.0;
+    size_t trees = 0;
+    cs_status st = CS_OK;
+    for (int k = 0; k < o->stands && !st; k++) {
+        stand *sd = NULL;
+        st = stand_alloc(&sd, kind, d, 12.0 * d, shape, key, (unsigned)k);
+        if (st) break;
+        double *r = malloc(sd->s->n * NS * sizeof *r);
+        if (!r) st = cs_err(CS_ENOMEM, "experiments: out of memory");
+        if (!st) st = stand_grow(sd, p, NULL, r, NULL, worst);
+        double cov = 0.0, w = 0.0;
+        if (!st) st = exp_stand_metrics(sd, r, g, &cov, &trees);
+        if (!st) st = teacher_worst_overlap(sd->s->x, sd->s->y, r, sd->s->n, &w);
+        cov_sum += cov;
+        if (w > ovl) ovl = w;
+        free(r);
+        stand_free(sd);
+    }
+    for (int k = 0; k < 3 && !st; k++) st = est_median(g[k].v, g[k].n, &res->k[k]);
+    res->cover = cov_sum / (double)o->stands;
+    res->overlap = ovl;
+    res->trees = trees;
+    for (int k = 0; k < 3; k++) free(g[k].v);
+    return st;
+}
+
+cs_status exp_mechanism_sweep(const exp_opts *o)
+{
+    prov pv;
+    prov_begin(&pv, "mechanism", o->argc, o->argv);
+    double betas[16], ds[16], thr[4], btrain;
+    size_t nb, nd;
+    cs_status st = gate_read_values(PATHS_GATE("mechanism"), "dieback_sweep", betas, 16, &nb);
+    if (!st) st = gate_read_values(PATHS_GATE("mechanism"), "spacings_m", ds, 16, &nd);
+    if (!st) st = gate_read_value(PATHS_GATE("mechanism"), "clearance_k1_min_m", 0, &thr[0]);
+    if (!st) st = gate_read_value(PATHS_GATE("mechanism"), "clearance_k2_min_m", 0, &thr[1]);
+    if (!st) st = gate_read_value(PATHS_GATE("mechanism"), "clearance_k3_min_m", 0, &thr[2]);
+    if (!st) st = gate_read_value(PATHS_GATE("mechanism"), "cover_min", 0, &thr[3]);
+    if (!st) st = gate_read_value(PATHS_GATE("mechanism"), "dieback_train", 0, &btrain);
+    if (st) return st;
+    cell_result *res = calloc(nb * nd, sizeof *res);
+    if (!res) return cs_err(CS_ENOMEM, "experiments: out of memory");
+    double worst = 0.0;
+    for (size_t a = 0; a < nd && !st; a++)
+        for (size_t b = 0; b < nb && !st; b++) {
+            teacher_params p;
+            teacher_params_default(&p);
+            p.beta = betas[b];
+            st = run_cell(o, "mechanism", STAND_LATTICE, ds[a], 0.04, &p, &res[a * nb + b], &worst);
+            if (!st) fprintf(stderr, "mechanism sweep: d=%.1f beta=%.2f k1=%+.3f k2=%+.3f k3=%+.3f cover=%.3f\n",
+                             ds[a], betas[b], res[a * nb + b].k[0], res[a * nb + b].k[1],
+                             res[a * nb + b].k[2], res[a * nb + b].cover);
+        }
+    tsv_writer *w = NULL;
+    char path[512];
+    if (!st) st = exp_open_out(o, "mechanism", "sweep.tsv", &w, path, sizeof path);
+    if (st) { free(res); return st; }
+    pv.worst_overlap_m = worst;
+    snprintf(pv.seeds, sizeof pv.seeds, "seed_derive(mechanism,d,k,stems|crowns) k=0..%d", o->stands - 1);
+    st = prov_write(w, &pv);
+    if (st) { tsv_writer_abort(w); free(res); return st; }
+    exp_common_meta(w, o);
+    tsv_writer_meta(w, "stems", "controlled lattice a = 0.04, L = 12 d");
+    tsv_writer_meta(w, "statistic", "k-th NN clearance: median over interior trees pooled over stands; cover: mean over stands");
+    tsv_writer_columns(w, "beta\tspacing_m\tstands\ttrees\tk1_m\tk2_m\tk3_m\tcover\tworst_overlap_m\tpass\ttrain_row");
+    for (size_t a = 0; a < nd; a++)
+        for (size_t b = 0; b < nb; b++) {
+            const cell_result *c = &res[a * nb + b];
+            int pass = c->k[0] >= thr[0] && c->k[1] >= thr[1] && c->k[2] >= thr[2] && c->cover >= thr[3];
+            tsv_writer_dbl(w, betas[b]);
+            tsv_writer_dbl(w, ds[a]);
+            tsv_writer_long(w, o->stands);
+            tsv_writer_long(w, (long)c->trees);
+            for (int k = 0; k < 3; k++) tsv_writer_dbl(w, c->k[k]);
+            tsv_writer_dbl(w, c->cover);
+            tsv_writer_dbl(w, c->overlap);
+            tsv_writer_long(w, pass);
+            tsv_writer_long(w, betas[b] == btrain);
+            tsv_writer_endrow(w);
+        }
+    free(res);
+    return exp_finish(w, &pv, path);
+}
+
+/* The E1 ablation's three arms (coupling off, abrasion off, both on) at the
+ * gate's ablation spacing; the table unit and the figure unit share them. */
+static const char *const ablation_arms[3] = {"coupling_off", "abrasion_off", "both_on"};
+static const int ablation_coupled[3] = {0, 1, 1};
+
+static cs_status ablation_gate(double *d, double beta[3])
+{
+    double btrain;
+    cs_status st = gate_read_value(PATHS_GATE("mechanism"), "ablation_spacing_m", 0, d);
+    if (!st) st = gate_read_value(PATHS_GATE("mechanism"), "dieback_train", 0, &btrain);
+    if (st) return st;
+    beta[0] = btrain;
+    beta[1] = 0.0;
+    beta[2] = btrain;
+    return CS_OK;
+}
+
+cs_status exp_mechanism_ablation(const exp_opts *o)
+{
+    prov pv;
+    prov_begin(&pv, "mechanism", o->argc, o->argv);
+    double d, beta[3];
+    cs_status st = ablation_gate(&d, beta);
+    if (st) return st;
+    const char *const *arms = ablation_arms;
+    const int *coupled = ablation_coupled;
+    cell_result res[3];
+    double worst = 0.0;
+    for (int a = 0; a < 3 && !st; a++) {
+        teacher_params p;
+        teacher_params_default(&p);
+        p.coupled = coupled[a];
+        p.beta = beta[a];
+        st = run_cell(o, "mechanism", STAND_LATTICE, d, 0.04, &p, &res[a], &worst);
+        if (!st) fprintf(stderr, "mechanism ablation: %s k1=%+.3f k2=%+.3f k3=%+.3f cover=%.3f overlap=%.3g\n",
+                         arms[a], res[a].k[0], res[a].k[1], res[a].k[2], res[a].cover, res[a].overlap);
+    }
+    tsv_writer *w = NULL;
+    char path[512];
+    if (!st) st = exp_open_out(o, "mechanism", "ablation.tsv", &w, path, sizeof path);
+    if (st) return st;
+    pv.worst_overlap_m = worst;
+    snprintf(pv.seeds, sizeof pv.seeds, "seed_derive(mechanism,%.1f,k,stems|crowns) k=0..%d (the sweep's stands)",
+             d, o->stands - 1);
+    st = prov_write(w, &pv);
+    if (st) { tsv_writer_abort(w); return st; }
+    exp_common_meta(w, o);
+    tsv_writer_meta(w, "stems", "controlled lattice a = 0.04, L = 12 d; identical stems and crown draws in all arms");
+    tsv_writer_meta(w, "overlap", "worst overlap of the final crowns (teacher self-check measure), m");
+    tsv_writer_columns(w, "arm\tcoupled\tbeta\tspacing_m\tstands\ttrees\tk1_m\tk2_m\tk3_m\tcover\toverlap_m");
+    for (int a = 0; a < 3; a++) {
+        tsv_writer_str(w, arms[a]);
+        tsv_writer_long(w, coupled[a]);
+        tsv_writer_dbl(w, beta[a]);
+        tsv_writer_dbl(w, d);
+        tsv_writer_long(w, o->stands);
+        tsv_writer_long(w, (long)res[a].trees);
+        for (int k = 0; k < 3; k++) tsv_writer_dbl(w, res[a].k[k]);
+        tsv_writer_dbl(w, res[a].cover);
+        tsv_writer_dbl(w, res[a].overlap);
+        tsv_writer_endrow(w);
+    }
+    return exp_finish(w, &pv, path);
+}
+
+cs_status exp_mechanism_figure(const exp_opts *o)
+{
+    prov pv;
+    prov_begin(&pv, "mechanism", o->argc, o->argv);
+    double d, beta[3];
+    cs_status st = ablation_gate(&d, beta);
+    if (st) return st;
+    stand *sd = NULL;
+    st = stand_alloc(&sd, STAND_HARDCORE, d, EXP_FIG_L, EXP_FIG_C, "fig/mechanism", 0);
+    if (st) return st;
+    size_t n = sd->s->n;
+    double *r = malloc(3 * n * NS * sizeof *r);
+    if (!r) { stand_free(sd); return cs_err(CS_ENOMEM, "experiments: out of memory"); }
+    const char *const *arms = ablation_arms;
+    const int *coupled = ablation_coupled;
+    double worst = 0.0;
+    for (int a = 0; a < 3 && !st; a++) {
+        teacher_params p;
+        teacher_params_default(&p);
+        p.coupled = coupled[a];
+        p.beta = beta[a];
+        st = stand_grow(sd, &p, NULL, r + (size_t)a * n * NS, NULL, &worst);
+    }
+    tsv_writer *w = NULL;
+    char path[512];
+    if (!st) st = exp_open_out(o, "mechanism", "figure_crowns.tsv", &w, path, sizeof path);
+    if (!st) {
+        pv.worst_overlap_m = worst;
+        snprintf(pv.seeds, sizeof pv.seeds, "seed_derive(fig/mechanism,%.1f,0,stems|crowns)", d);
+        st = prov_write(w, &pv);
+        if (st) tsv_writer_abort(w);
+    }
+    if (!st) {
+        tsv_writer_meta(w, "stems", "hard-core Poisson c = %.2f, d = %.2f m, L = %.0f m; one stand, identical in all panels", EXP_FIG_C, d, EXP_FIG_L);
+        /* NN clearance on the stand shown (interior trees), for the panel captions. */
+        for (int a = 0; a < 3; a++)
+            tsv_writer_meta(w, arms[a], "median k1 clearance %.3f m", exp_stand_k1(sd, r + (size_t)a * n * NS));
+        exp_crown_columns(w);
+        for (int a = 0; a < 3; a++) exp_write_crowns(w, arms[a], d, sd, r + (size_t)a * n * NS);
+        for (int a = 0; a < 3 && !st; a++)
+            st = exp_write_polygons(o, &pv, "mechanism", arms[a], d, sd, r + (size_t)a * n * NS,
+                                exp_stand_k1(sd, r + (size_t)a * n * NS));
+        if (st) tsv_writer_abort(w);
+        else st = exp_finish(w, &pv, path);
+    }
+    free(r);
+    stand_free(sd);
+    return st;
+}
+
