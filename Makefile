@@ -90,11 +90,11 @@ $(B)/tests $(B)/asan/tests:
 # Every cmocka binary, then all of them again under ASan+UBSan; one aggregate line.
 check: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS) $(ASAN_TESTS)
-	@bash tests/run.sh $(TESTS) tests/tamper.sh -- $(ASAN_TESTS)
+	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh -- $(ASAN_TESTS)
 
 check-fast: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS)
-	@bash tests/run.sh $(TESTS)
+	@bash tests/run.sh $(TESTS) tests/layout.sh
 
 # ---- verification (the reviewer's job) --------------------------------------
 verify: deps

@@ -1,4 +1,4 @@
-/* Double-precision reference forward of the whole model (src/model.c), built
+/* Double-precision reference forward of the whole model (src/model/model.c), built
  * from the naive kernels in tests/nnref.h and the model's parameter offsets.
  * Used for finite-difference gradient checks and forward agreement. */
 #ifndef MODELREF_H

@@ -1,4 +1,4 @@
-/* Naive double-precision reference kernels for src/nn.c (and, via
+/* Naive double-precision reference kernels for src/model/nn.c (and, via
  * tests/modelref.h, for the whole model). Written for clarity, not speed:
  * straight loops, exact libm tanh/exp. The gradient tests differentiate these
  * by central finite differences and compare with the float backward kernels. */

@@ -1,4 +1,4 @@
-/* Tests for src/crown.c: interpolation rule, lobed targets, draw ranges. */
+/* Tests for src/forest/crown.c: interpolation rule, lobed targets, draw ranges. */
 #include "testutil.h"
 #include "crown.h"
 #include <gsl/gsl_rng.h>

@@ -1,4 +1,4 @@
-/* Tests for src/cs.c: exit-code mapping and the non-aborting GSL handler. */
+/* Tests for src/base/cs.c: exit-code mapping and the non-aborting GSL handler. */
 #include "testutil.h"
 #include "cs.h"
 #include <gsl/gsl_sf_log.h>

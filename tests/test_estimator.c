@@ -1,4 +1,4 @@
-/* Tests for src/estimator.c on hand-built stands: Eq. 5, k-NN, W1 (Eq. 6),
+/* Tests for src/forest/estimator.c on hand-built stands: Eq. 5, k-NN, W1 (Eq. 6),
  * cover, cardinal gaps, anisotropy, elongation, spread. */
 #include "testutil.h"
 #include "estimator.h"

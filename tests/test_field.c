@@ -1,5 +1,5 @@
-/* Tests for src/field.c (raw field table loader, summary, reference table)
- * and the pure helpers of src/fieldsim.c. The fixture
+/* Tests for src/forest/field.c (raw field table loader, summary, reference table)
+ * and the pure helpers of src/forest/fieldsim.c. The fixture
  * tests/data/field_synthetic.tsv is SYNTHETIC (invented for tests). */
 #include "testutil.h"
 #include "field.h"

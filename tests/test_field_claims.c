@@ -1,4 +1,4 @@
-/* Tests for the E5/E6 claim functions (src/claim_field.c, src/claim_aniso.c):
+/* Tests for the E5/E6 claim functions (src/claims/claim_field.c, src/claims/claim_aniso.c):
  * the spread claims are PENDING without FIELD_TABLE and computed (and gated)
  * with the SYNTHETIC fixture tests/data/field_synthetic.tsv (invented for
  * tests, spread 0.625 m); unbuildable sweep levels are reported, not fatal. */

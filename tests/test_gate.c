@@ -1,4 +1,4 @@
-/* Tests for src/gate.c: parsing the preregistered gate files and judging. */
+/* Tests for src/base/gate.c: parsing the preregistered gate files and judging. */
 #include "testutil.h"
 #include "gate.h"
 

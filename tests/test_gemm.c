@@ -1,4 +1,4 @@
-/* Tests for src/gemm.c: every vector path this CPU has is bit-identical to the
+/* Tests for src/model/gemm.c: every vector path this CPU has is bit-identical to the
  * scalar fma chain (the property that makes training reproducible across
  * machines), the scalar chain agrees with a double-precision product, and
  * masked column tails never write outside N. Shapes cover the 6-row and

@@ -1,4 +1,4 @@
-/* Tests for src/model.c: parameter layout, forward agreement with the double
+/* Tests for src/model/model.c: parameter layout, forward agreement with the double
  * reference (tests/modelref.h), whole-model gradients against central finite
  * differences for both arms, the independence of the self-attention arm, and
  * the flow-matching loss pieces (paper Eq. 2). Tiny configuration. */

@@ -1,4 +1,4 @@
-/* Tests for src/nn.c: every float kernel against its naive double reference
+/* Tests for src/model/nn.c: every float kernel against its naive double reference
  * (tests/nnref.h), forward values and backward gradients (central finite
  * differences in double precision). Odd sizes exercise the scalar tails. */
 #include "testutil.h"

@@ -1,6 +1,6 @@
-/* The hot kernels of src/nn.c are built as AVX2 and baseline x86-64 clones
- * picked at load time. This test compiles a second, baseline-only copy of
- * nn.c (NN_NO_CLONES, symbols renamed) and checks that it gives bit-identical
+/* The hot kernels of src/model/nn.c and nn_attn.c are built as AVX2 and
+ * baseline x86-64 clones picked at load time. This test compiles a second,
+ * baseline-only copy of both (NN_NO_CLONES, symbols renamed) and checks that it gives bit-identical
  * results to the library's dispatched kernels on the reference shapes, so a
  * run does not depend on which clone the machine selects. */
 #include "testutil.h"
@@ -27,7 +27,10 @@
 #define nn_linear_backward_gelu base_linear_backward_gelu
 #define nn_linear_attention_forward base_linear_attention_forward
 #define nn_linear_backward_attention base_linear_backward_attention
+#define nn_linear_forward_epi base_linear_forward_epi
+#define nn_linear_backward_epi base_linear_backward_epi
 #include "nn.c"
+#include "nn_attn.c"
 #undef nn_expf
 #undef nn_layernorm_forward
 #undef nn_layernorm_backward

@@ -1,4 +1,4 @@
-/* Tests for src/patch.c: neighbour order, features and conditions, the global
+/* Tests for src/model/patch.c: neighbour order, features and conditions, the global
  * standardisation, r(theta) interpolation, clearance (paper Eq. 5) and the
  * check against a reference estimator passed by pointer. */
 #include "testutil.h"
@@ -199,7 +199,7 @@ static void test_check_passes_against_reference_and_focal_clearances_agree(void 
     patch_set_free(ps);
 }
 
-/* The canonical estimator (src/estimator.c, pinned) and the batched copy agree
+/* The canonical estimator (src/forest/estimator.c, pinned) and the batched copy agree
  * within 1e-6 m on every pair of toy patches (SPEC §5, paper §4.3). */
 static void test_batched_clearance_agrees_with_canonical_estimator(void **s)
 {

@@ -1,4 +1,4 @@
-/* Tests for src/sha256.c (FIPS 180-4 vectors) and src/prov.c. */
+/* Tests for src/base/sha256.c (FIPS 180-4 vectors) and src/base/prov.c. */
 #include "testutil.h"
 #include "sha256.h"
 #include "prov.h"

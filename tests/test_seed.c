@@ -1,4 +1,4 @@
-/* Tests for src/seed.c: a pure, documented function of its four arguments. */
+/* Tests for src/base/seed.c: a pure, documented function of its four arguments. */
 #include "testutil.h"
 #include "seed.h"
 

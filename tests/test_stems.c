@@ -1,4 +1,4 @@
-/* Tests for src/stems.c and src/stand.c: lattice, hard-core, interior, twins. */
+/* Tests for src/forest/stems.c and src/forest/stand.c: lattice, hard-core, interior, twins. */
 #include "testutil.h"
 #include "stems.h"
 #include "stand.h"

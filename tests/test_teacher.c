@@ -1,4 +1,4 @@
-/* Tests for src/teacher.c (SPEC §4): exact targets for a lone tree and for
+/* Tests for src/forest/teacher.c (SPEC §4): exact targets for a lone tree and for
  * coupling off, no overlap over random stands at every spacing and die-back
  * of the sweeps, beta = 0 gaps within one step, bit-identical repeats, the
  * self-check itself, and the perturbation rule (order and vigour by height). */

@@ -1,4 +1,4 @@
-/* Tests for src/adamw.c and src/train.c: the AdamW step, the learning-rate
+/* Tests for src/model/adamw.c and src/model/train.c: the AdamW step, the learning-rate
  * schedule, toy learning (a known profile; a neighbour-dependent target that
  * only the joint arm can learn, paper Eq. 6), bit-identical determinism and
  * kill-and-resume, and rejection of truncated / tampered / foreign checkpoints. */

@@ -1,4 +1,4 @@
-/* Tests for src/tsv.c: provenance, round-trip of doubles, and errors that
+/* Tests for src/base/tsv.c: provenance, round-trip of doubles, and errors that
  * name file, line and field (SPEC §9, §11). */
 #include "testutil.h"
 #include "tsv.h"

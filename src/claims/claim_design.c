@@ -128,7 +128,7 @@ cs_status claim_design_jitter_canonical_pct(const claim_row *row, claim_result *
 
 cs_status claim_design_nsec(const claim_row *row, claim_result *res)
 {
-    snprintf(res->where, sizeof res->where, "src/crown.h (CROWN_NSEC)");
+    snprintf(res->where, sizeof res->where, "src/forest/crown.h (CROWN_NSEC)");
     claim_set_value(row, res, (double)CROWN_NSEC);
     return CS_OK;
 }
@@ -140,7 +140,7 @@ cs_status claim_design_patch_trees(const claim_row *row, claim_result *res)
 
 cs_status claim_design_gencomp_spacing(const claim_row *row, claim_result *res)
 {
-    snprintf(res->where, sizeof res->where, "src/design.h (DESIGN_GENCOMP_SPACING_M)");
+    snprintf(res->where, sizeof res->where, "src/base/design.h (DESIGN_GENCOMP_SPACING_M)");
     claim_set_value(row, res, DESIGN_GENCOMP_SPACING_M);
     return CS_OK;
 }
@@ -152,7 +152,7 @@ cs_status claim_design_pc_spacing(const claim_row *row, claim_result *res)
     else if (!strcmp(row->macro, "PcOtherASpacing")) v = DESIGN_PC_OTHER_A_SPACING_M;
     else if (!strcmp(row->macro, "PcOtherBSpacing")) v = DESIGN_PC_OTHER_B_SPACING_M;
     else return cs_err(CS_EINPUT, "claim_design_pc_spacing: no spacing for macro %s", row->macro);
-    snprintf(res->where, sizeof res->where, "src/design.h");
+    snprintf(res->where, sizeof res->where, "src/base/design.h");
     claim_set_value(row, res, v);
     return CS_OK;
 }

@@ -2,8 +2,12 @@
  * per-tree crown draws (SPEC §1, §3; reference paper §3.1, Eq. 1).
  * Sector s is centred on bearing 2*pi*s/24, counter-clockwise from east (+x);
  * north (+y) is sector 6. Between sector centres the radius is linear in
- * angle (periodic). crown_radius_at is the only implementation of that rule:
- * teacher, estimator and renderers all call it. */
+ * angle (periodic). crown_radius_at implements that rule for the teacher,
+ * the estimator and the renderers. One copy stands elsewhere on purpose:
+ * patch_radius_at (src/model/patch.c), the batched estimator the model's
+ * training and evaluation use on patches (paper §4.3), which is kept
+ * independent of this stage and is checked against the canonical estimator
+ * within 1e-6 m at the start of every run (patch_clearance_check). */
 #ifndef CROWN_H
 #define CROWN_H
 #include "cs.h"

@@ -1,6 +1,10 @@
 /* estimator: the canonical instrument (SPEC §5; reference paper §4.3,
- * Eqs. 5 and 6). Every clearance, W1, cover and directional statistic in the
- * package is computed here; src/estimator.c is pinned by SHA-256.
+ * Eqs. 5 and 6). Every clearance, W1, cover and directional statistic of the
+ * teacher experiments and the claims is computed here; src/forest/estimator.c
+ * is pinned by SHA-256. The one other clearance code is the batched estimator
+ * on model patches (src/model/patch.c, paper §4.3's guarded instrument), which
+ * every training and evaluation run checks against est_clearance within
+ * 1e-6 m before it starts, and whose W1 is this file's est_w1.
  * Crowns are CROWN_NSEC radii per tree (n x 24, row-major); stems x, y in m.
  * Bearings are atan2(dy, dx), counter-clockwise from east. */
 #ifndef ESTIMATOR_H

@@ -6,7 +6,11 @@
  * (paper Eq. 5; SPEC §1, §5) with a check against the canonical estimator.
  * Sector s of a crown vector is centred on theta_s = 2 pi s / 24, counter-
  * clockwise from east; r(theta) is periodic linear interpolation in angle.
- * Independent of the teacher module: stands come in as arrays. */
+ * Independent of the teacher module: stands come in as arrays. The batched
+ * clearance (patch_radius_at, patch_clearance) is a second copy of the
+ * canonical rule (crown.h, estimator.h), kept here so the model stage does
+ * not import the forest stage; patch_clearance_check compares the two within
+ * 1e-6 m at the start of every run (paper §4.3). */
 #ifndef PATCH_H
 #define PATCH_H
 #include "cs.h"

@@ -1,4 +1,4 @@
-/* libFuzzer harness: checkpoint reader (src/train.c train_load_model). A
+/* libFuzzer harness: checkpoint reader (src/model/train.c train_load_model). A
  * truncated, tampered or foreign checkpoint must be rejected cleanly. */
 #include "fuzz_common.h"
 #include "train.h"

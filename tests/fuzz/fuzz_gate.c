@@ -1,4 +1,4 @@
-/* libFuzzer harness: gate-file parser (src/gate.c). */
+/* libFuzzer harness: gate-file parser (src/base/gate.c). */
 #include "fuzz_common.h"
 #include "gate.h"
 

@@ -1,4 +1,4 @@
-/* libFuzzer harness: paper/numbers.tex reader (src/claims.c numbers_read). */
+/* libFuzzer harness: paper/numbers.tex reader (src/claims/claims.c numbers_read). */
 #include "fuzz_common.h"
 #include "claims.h"
 

@@ -1,4 +1,4 @@
-/* libFuzzer harness: frozen-table reader (src/tsv.c). Any input must give
+/* libFuzzer harness: frozen-table reader (src/base/tsv.c). Any input must give
  * CS_OK or a clean error, never a crash; every cell of an accepted table is read. */
 #include "fuzz_common.h"
 #include "tsv.h"

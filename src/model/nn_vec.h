@@ -1,0 +1,162 @@
+/* nn_vec: the vector helpers the layer kernels share (nn.c, nn_attn.c):
+ * 8-lane GCC vector types, fixed-order reductions, the polynomial exp, and
+ * (where the compiler can build AVX-512 code) their 16-lane forms. Internal
+ * to the model stage: every helper is static inline and always inlined, so
+ * the kernels of both files execute the same lane-wise IEEE operations in
+ * the same order. Also declares the two linear-layer cores both files use. */
+#ifndef NN_VEC_H
+#define NN_VEC_H
+#include "gemm.h"
+#include <stddef.h>
+#include <string.h>
+
+/* The vector helpers are always inlined, so no vector crosses a call boundary. */
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(NN_NO_CLONES)
+#define HOT __attribute__((target_clones("avx2", "default")))
+#else
+#define HOT
+#endif
+#define INL static inline __attribute__((always_inline))
+/* AVX-512 forms of the GELU and of attention at the reference head shape,
+ * taken at run time where the CPU has AVX-512F (absent from the baseline copy
+ * that test_nn_clones compares them with). */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(NN_NO_CLONES)
+#define NN_AVX512 1
+#endif
+
+typedef float vf __attribute__((vector_size(32)));
+typedef int vi __attribute__((vector_size(32)));
+enum { VL = 8 };
+
+INL vf ld(const float *p) { vf v; memcpy(&v, p, sizeof v); return v; }
+INL void st(float *p, vf v) { memcpy(p, &v, sizeof v); }
+/* A vector constructor {a, a, ...} is lowered to insert chains in the AVX2
+ * clone by GCC 12, while a scalar operand of a vector operation becomes one
+ * broadcast; so splat is written as 0 + a (exact except that -0 becomes +0,
+ * identically in both clones), and hot loops write `scalar * vector`. */
+INL vf splat(float a) { vf z = {0}; return z + a; }
+/* Horizontal sum by butterfly, result in every lane:
+ * ((v0+v4)+(v2+v6)) + ((v1+v5)+(v3+v7)). One fixed order everywhere. */
+#if defined(__clang__)
+#define SWAP4(v) __builtin_shufflevector((v), (v), 4, 5, 6, 7, 0, 1, 2, 3)
+#define SWAP2(v) __builtin_shufflevector((v), (v), 2, 3, 0, 1, 6, 7, 4, 5)
+#define SWAP1(v) __builtin_shufflevector((v), (v), 1, 0, 3, 2, 5, 4, 7, 6)
+#else
+#define SWAP4(v) __builtin_shuffle((v), (vi){4, 5, 6, 7, 0, 1, 2, 3})
+#define SWAP2(v) __builtin_shuffle((v), (vi){2, 3, 0, 1, 6, 7, 4, 5})
+#define SWAP1(v) __builtin_shuffle((v), (vi){1, 0, 3, 2, 5, 4, 7, 6})
+#endif
+INL vf hsumv(vf v)
+{
+    v = v + SWAP4(v);
+    v = v + SWAP2(v);
+    return v + SWAP1(v);
+}
+INL float hsum(vf v) { return hsumv(v)[0]; }
+
+/* y[0..n) += a * x[0..n) */
+INL void axpy(float *restrict y, float a, const float *restrict x, int n)
+{
+    int i = 0;
+    for (; i + VL <= n; i += VL) st(y + i, ld(y + i) + a * ld(x + i));
+    for (; i < n; i++) y[i] += a * x[i];
+}
+
+/* sum of x[0..n), fixed order: 8 lanes, then the tail. */
+INL float vsum(const float *x, int n)
+{
+    vf acc = splat(0.f);
+    int i = 0;
+    for (; i + VL <= n; i += VL) acc += ld(x + i);
+    float s = hsum(acc);
+    for (; i < n; i++) s += x[i];
+    return s;
+}
+
+INL vf vmax(vf a, vf b) { vi m = a > b; return (vf)(((vi)a & m) | ((vi)b & ~m)); }
+/* Horizontal max by butterfly, result in every lane (max is exact). */
+INL vf hmaxv(vf v)
+{
+    v = vmax(v, SWAP4(v));
+    v = vmax(v, SWAP2(v));
+    return vmax(v, SWAP1(v));
+}
+
+/* max of x[0..n), n >= 1 (max is exact, so the order does not matter). */
+INL float vmaxv(const float *x, int n)
+{
+    float mx = x[0];
+    int i = 0;
+    if (n >= VL) {
+        vf m = ld(x);
+        for (i = VL; i + VL <= n; i += VL) m = vmax(m, ld(x + i));
+        mx = hmaxv(m)[0];
+    }
+    for (; i < n; i++) mx = x[i] > mx ? x[i] : mx;
+    return mx;
+}
+
+/* sum of a[i]*b[i], fixed order: 8 lanes, then the tail. */
+INL float vdot(const float *a, const float *b, int n)
+{
+    vf acc = splat(0.f);
+    int i = 0;
+    for (; i + VL <= n; i += VL) acc += ld(a + i) * ld(b + i);
+    float s = hsum(acc);
+    for (; i < n; i++) s += a[i] * b[i];
+    return s;
+}
+
+/* ---- exp ------------------------------------------------------------------ */
+/* exp(x) = 2^n * p(r), x = n ln2 + r, |r| <= ln2/2, p = Taylor to degree 7. */
+#define DEF_VEXP(NAME, VF, VI, SPLAT) \
+INL VF NAME(VF x) \
+{ \
+    const VF lo = SPLAT(-87.0f), hi = SPLAT(88.0f); \
+    VI mlo = x < lo, mhi = x > hi; \
+    x = (VF)(((VI)x & ~mlo) | ((VI)lo & mlo)); \
+    x = (VF)(((VI)x & ~mhi) | ((VI)hi & mhi)); \
+    const VF shifter = SPLAT(12582912.0f); /* 1.5*2^23: add-subtract rounds to nearest */ \
+    VF kn = (x * SPLAT(1.44269504088896341f) + shifter) - shifter; \
+    VF r = x - kn * SPLAT(0.693145751953125f);      /* ln2 high part (kn*hi exact) */ \
+    r = r - kn * SPLAT(1.428606765330187e-06f);     /* ln2 low part */ \
+    VF p = SPLAT(1.f / 5040.f); \
+    p = p * r + SPLAT(1.f / 720.f); \
+    p = p * r + SPLAT(1.f / 120.f); \
+    p = p * r + SPLAT(1.f / 24.f); \
+    p = p * r + SPLAT(1.f / 6.f); \
+    p = p * r + SPLAT(0.5f); \
+    p = p * r + SPLAT(1.f); \
+    p = p * r + SPLAT(1.f); \
+    VI n = __builtin_convertvector(kn, VI); \
+    VI bits = (n + 127) << 23; \
+    return p * (VF)bits; \
+}
+DEF_VEXP(vexp, vf, vi, splat)
+
+/* Scalar tails go through the same lane arithmetic, so a value does not depend
+ * on whether it sat in a full vector or in the tail. */
+INL float sexp(float x) { return vexp(splat(x))[0]; }
+
+#ifdef NN_AVX512
+typedef float vf16 __attribute__((vector_size(64)));
+typedef int vi16 __attribute__((vector_size(64)));
+INL vf16 ld16(const float *p) { vf16 v; memcpy(&v, p, sizeof v); return v; }
+INL void st16(float *p, vf16 v) { memcpy(p, &v, sizeof v); }
+INL vf16 splat16(float a) { vf16 z = {0}; return z + a; }
+DEF_VEXP(vexp16, vf16, vi16, splat16)
+#endif
+
+/* out = in w^T (+ b), then epi on each finished strip (may be NULL); w == NULL
+ * means wt already holds the transpose. Every forward linear layer. */
+void nn_linear_forward_epi(float *out, const float *in, const float *w, const float *b,
+                           int M, int K, int N, float *wt, gemm_epilogue epi, void *ctx);
+/* dinp = dout w with epi on its strips (both skipped when dinp == NULL),
+ * dw += dout^T in, db += column sums; every backward linear layer. */
+void nn_linear_backward_epi(float *dinp, float *dw, float *db, const float *dout,
+                            const float *in, const float *w, int M, int K, int N,
+                            gemm_epilogue epi, void *ctx);
+
+#endif

@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# The layout of src/ (issue 12): the pipeline is visible in its folders and
+# imports only point down it. Checks, from the sources alone:
+#  1. no source file over 600 lines;
+#  2. the module import graph has no cycle (a module is a basename: x.c +
+#     x.h; an edge is an #include "y.h" or "y.inc"), and the include depth
+#     is at most 6 levels (a file's level is 1 + the deepest level of the
+#     files it includes: cs.h is 1, a CLI handler at most 6);
+#  3. each stage imports only its own stage and the stages below it:
+#       base   <- forest, model <- exp, claims <- cli
+#     forest and model do not import each other, exp and claims do not import
+#     each other, an experiment file imports no other experiment file (only
+#     exp_common), and nothing the claims reach (transitively) is the teacher
+#     or the model stage.
+# Prints cmocka-style lines so tests/run.sh counts it like a test binary.
+set -u
+cd "$(dirname "$0")/.."
+pass=0; fail=0
+ok()  { echo "[       OK ] $1"; pass=$((pass + 1)); }
+bad() { echo "[  FAILED  ] $1: $2"; fail=$((fail + 1)); }
+
+# module stage edges: "stage module -> module" lines
+edges=$(for f in src/*/*.c src/*/*.h src/*/*.inc; do
+  [ -f "$f" ] || continue
+  st=$(basename "$(dirname "$f")"); m=$(basename "$f"); m=${m%.*}
+  sed -n 's/^#include "\([^"]*\)\.\(h\|inc\)".*/\1/p' "$f" | while read -r d; do
+    [ "$d" = "$m" ] || echo "$m $d"
+  done
+done | sort -u)
+stage_of() { local f; f=$(ls src/*/"$1".c src/*/"$1".h src/*/"$1".inc 2>/dev/null | head -1); basename "$(dirname "$f")"; }
+declare -A STAGE
+for f in src/*/*.c src/*/*.h src/*/*.inc; do
+  [ -f "$f" ] || continue
+  m=$(basename "$f"); STAGE[${m%.*}]=$(basename "$(dirname "$f")")
+done
+
+# 1. file length
+long=$(wc -l src/*/*.c src/*/*.h src/*/*.inc 2>/dev/null | awk '$2 != "total" && $1 > 600 {print $2 " (" $1 " lines)"}')
+if [ -z "$long" ]; then ok "no source file over 600 lines"; else bad "no source file over 600 lines" "$(echo $long)"; fi
+
+# 2. cycles (module graph) and include depth (file graph)
+cyc=$(awk '
+  { dep[$1] = dep[$1] " " $2; mods[$1]; mods[$2] }
+  END {
+    for (m in mods) lv[m] = 1
+    for (it = 0; it < 200; it++) {
+      changed = 0
+      for (m in mods) { n = split(dep[m], d, " "); for (i = 1; i <= n; i++) if (lv[d[i]] + 1 > lv[m]) { lv[m] = lv[d[i]] + 1; changed = 1 } }
+      if (!changed) break
+    }
+    if (changed) { for (m in mods) if (lv[m] > 150) printf "%s ", m; print "" }
+  }' <<<"$edges")
+if [ -z "$cyc" ]; then ok "no import cycle between modules"; else bad "no import cycle between modules" "modules on a cycle: $cyc"; fi
+fedges=$(for f in src/*/*.c src/*/*.h src/*/*.inc; do
+  [ -f "$f" ] || continue
+  sed -n 's/^#include "\([^"]*\)".*/\1/p' "$f" | while read -r d; do echo "$(basename "$f") $d"; done
+done)
+depth=$(awk '
+  { dep[$1] = dep[$1] " " $2; f[$1]; f[$2] }
+  END {
+    for (m in f) lv[m] = 1
+    for (it = 0; it < 200; it++) {
+      changed = 0
+      for (m in f) { n = split(dep[m], d, " "); for (i = 1; i <= n; i++) if (lv[d[i]] + 1 > lv[m]) { lv[m] = lv[d[i]] + 1; changed = 1 } }
+      if (!changed) break
+    }
+    for (m in f) print lv[m], m
+  }' <<<"$fedges" | sort -n | tail -1)
+if [ "${depth%% *}" -le 6 ]; then ok "include depth at most 6 levels (deepest: $depth)"
+else bad "include depth at most 6 levels" "deepest: $depth"; fi
+
+# 3. direction of imports
+rank() { case "$1" in base) echo 0;; forest|model) echo 1;; exp|claims) echo 2;; cli) echo 3;; *) echo 9;; esac; }
+wrong=""
+while read -r a b; do
+  [ -n "$a" ] || continue
+  sa=${STAGE[$a]:-?}; sb=${STAGE[$b]:-?}
+  [ "$sb" = "?" ] && continue   # a system header spelt with quotes would land here
+  ra=$(rank "$sa"); rb=$(rank "$sb")
+  if [ "$rb" -gt "$ra" ] || { [ "$rb" -eq "$ra" ] && [ "$sa" != "$sb" ]; }; then wrong="$wrong $a($sa)->$b($sb)"; fi
+  if [ "$sa" = exp ] && [ "$sb" = exp ] && [[ "$a" == exp_* ]] && [[ "$b" == exp_* ]] && [ "$b" != exp_common ] && [ "${a}" != "$b" ]; then
+    wrong="$wrong $a->$b(experiment->experiment)"; fi
+done <<<"$edges"
+if [ -z "$wrong" ]; then ok "imports point down the pipeline"; else bad "imports point down the pipeline" "$wrong"; fi
+
+# claims reach neither the teacher nor the model (transitively)
+reach=$(awk -v stages="$(for m in "${!STAGE[@]}"; do echo -n "$m=${STAGE[$m]} "; done)" '
+  BEGIN { n = split(stages, s, " "); for (i = 1; i <= n; i++) { split(s[i], kv, "="); st[kv[1]] = kv[2] } }
+  { dep[$1] = dep[$1] " " $2 }
+  END {
+    for (m in st) if (st[m] == "claims") { q[m]; seen[m] }
+    do { grew = 0; for (m in q) { k = split(dep[m], d, " "); for (i = 1; i <= k; i++) if (!(d[i] in seen)) { seen[d[i]]; q[d[i]]; grew = 1 } } } while (grew)
+    for (m in seen) if (m == "teacher" || m == "stand_grow" || st[m] == "model" || st[m] == "exp") print m
+  }' <<<"$edges" | sort | tr '\n' ' ')
+if [ -z "$reach" ]; then ok "the claims reach neither the teacher nor the model"
+else bad "the claims reach neither the teacher nor the model" "reached: $reach"; fi
+
+echo "[==========] layout tests run."
+echo "[  PASSED  ] $pass test(s)."
+[ $fail -eq 0 ] || echo "[  FAILED  ] $fail test(s)."
+[ $fail -eq 0 ]
