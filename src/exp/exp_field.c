@@ -21,10 +21,10 @@
  * defaults are the full-run choices recorded in each file's provenance). */
 #include "exp_field.h"
 #include "exp_common.h"
-#include "args.h"
 #include "design.h"
 #include "fieldsim.h"
 #include "gate.h"
+#include "opts.h"
 #include "paths.h"
 #include "prov.h"
 #include "stats.h"
@@ -37,10 +37,16 @@
 
 #define FS_L_FACTOR 12.0  /* L = 12 d (SPEC §2) */
 
+/* The options of the E5/E6 commands; each command's table lists the ones it takes. */
 typedef struct {
     const char *out, *calibration, *sweep, *jitter_calibration;
-    unsigned stands;
+    long stands_opt;  /* --stands, parsed */
+    unsigned stands;  /* the same, set by fs_parse */
 } fs_opts;
+
+#define FS_OPT_OUT(o) {"out", OPT_STR, &(o).out, 0, 0, "output table (required)"}
+#define FS_OPT_CAL(o) {"calibration", OPT_STR, &(o).calibration, 0, 0, "E5 calibration table DIR/calibration.tsv, gives beta_field (required)"}
+#define FS_OPT_STANDS(o, help) {"stands", OPT_LONG, &(o).stands_opt, 1, 10000, help}
 
 static int fs_die(const char *cmd, cs_status st)
 {
@@ -48,28 +54,16 @@ static int fs_die(const char *cmd, cs_status st)
     return cs_exit_code(st);
 }
 
-/* Parse --out/--calibration/--sweep/--jitter-calibration/--stands; 0 ok, 2 usage. */
-static int fs_parse(const char *cmd, int argc, char **argv, fs_opts *o, unsigned default_stands)
+/* opts_parse with the table of c (no positional arguments), then --out is
+ * required when the table has it. An opts result: OPTS_OK, OPTS_HELP, OPTS_USAGE. */
+static int fs_parse(const opts_cmd *c, int argc, char **argv, fs_opts *o)
 {
-    memset(o, 0, sizeof *o);
-    o->stands = default_stands;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (i + 1 >= argc) { fprintf(stderr, "crownshy %s: option '%s' needs a value (or unknown)\n", cmd, a); return 2; }
-        const char *v = argv[++i];
-        if (!strcmp(a, "--out")) o->out = v;
-        else if (!strcmp(a, "--calibration")) o->calibration = v;
-        else if (!strcmp(a, "--sweep")) o->sweep = v;
-        else if (!strcmp(a, "--jitter-calibration")) o->jitter_calibration = v;
-        else if (!strcmp(a, "--stands")) {
-            char *end;
-            long n = strtol(v, &end, 10);
-            if (*end || n < 1 || n > 10000) { fprintf(stderr, "crownshy %s: --stands '%s': need an integer 1..10000\n", cmd, v); return 2; }
-            o->stands = (unsigned)n;
-        } else { fprintf(stderr, "crownshy %s: unknown option '%s'\n", cmd, a); return 2; }
-    }
-    if (!o->out) { fprintf(stderr, "crownshy %s: --out PATH is required\n", cmd); return 2; }
-    return 0;
+    int r = opts_parse(c, argc, argv, NULL, NULL);
+    if (r) return r;
+    o->stands = (unsigned)o->stands_opt;
+    for (size_t i = 0; i < c->nopts; i++)
+        if (c->opts[i].dst == &o->out && !o->out) { opts_usage_error(c->cmd, "--out PATH is required"); return OPTS_USAGE; }
+    return OPTS_OK;
 }
 
 /* One group of stands: `nstands` stands of one stem process at one level. */
@@ -146,16 +140,17 @@ static cs_status fs_canonical_jitter(double *a)
 
 int cmd_field_summary(int argc, char **argv)
 {
-    if (args_help(argc, argv,
-                  "usage: crownshy field-summary [TABLE.tsv]\n"
-                  "Summarise a raw field table (default: $FIELD_TABLE): trees, measurements, tree-mean\n"
-                  "median clearance, spread (IQR of all cardinal gaps), anisotropy median (+ excluded),\n"
-                  "with the canonical estimator's functions, next to the published figures of\n"
-                  "frozen/field/reference.tsv. Columns: tree, direction (E/N/W/S or east/north/west/south),\n"
-                  "clearance_m; each tree needs each direction exactly once. Exit 3 on a bad table.\n"))
-        return 0;
-    if (argc > 2) { fprintf(stderr, "usage: crownshy field-summary [TABLE.tsv]\n"); return 2; }
-    const char *path = argc == 2 ? argv[1] : field_table_env();
+    const opts_cmd oc = {"field-summary", "[TABLE.tsv]",
+                         "Summarise a raw field table (default: $FIELD_TABLE): trees, measurements, tree-mean\n"
+                         "median clearance, spread (IQR of all cardinal gaps), anisotropy median (+ excluded),\n"
+                         "with the canonical estimator's functions, next to the published figures of\n"
+                         "frozen/field/reference.tsv. Columns: tree, direction (E/N/W/S or east/north/west/south),\n"
+                         "clearance_m; each tree needs each direction exactly once. Exit 3 on a bad table.",
+                         NULL, 0, 0, 1};
+    char *pos[argc > 0 ? argc : 1];
+    int npos = 0, rc = opts_parse(&oc, argc, argv, pos, &npos);
+    if (rc) return opts_exit_code(rc);
+    const char *path = npos ? pos[0] : field_table_env();
     if (!path) {
         fprintf(stderr, "crownshy field-summary: no table given and %s is not set; the raw field table "
                         "(Dryad doi:10.5061/dryad.34tmpg4hk) is not on this machine\n", FIELD_TABLE_ENV);
@@ -191,16 +186,16 @@ static void meta_calibration(tsv_writer *w, void *ctx)
 
 int cmd_field_calibrate(int argc, char **argv)
 {
-    const char *help =
-        "usage: crownshy field-calibrate --out DIR/calibration.tsv\n"
-        "E5 calibration (SPEC §7): grow the calibration stands (gates/field.gate calibration_seeds)\n"
-        "at every beta of dieback_grid, record the median tree-mean clearance per beta, and print\n"
-        "beta_field (interpolated to calibration_target_m, rounded to the grid). Also writes\n"
-        "DIR/calibration_trees.tsv.\n";
-    if (args_help(argc, argv, help)) return 0;
-    fs_opts o;
-    int rc = fs_parse("field-calibrate", argc, argv, &o, 0);
-    if (rc) return rc;
+    fs_opts o = {0};
+    const opt_spec spec[] = {FS_OPT_OUT(o)};
+    const opts_cmd oc = {"field-calibrate", "--out DIR/calibration.tsv",
+                         "E5 calibration (SPEC §7): grow the calibration stands (gates/field.gate calibration_seeds)\n"
+                         "at every beta of dieback_grid, record the median tree-mean clearance per beta, and print\n"
+                         "beta_field (interpolated to calibration_target_m, rounded to the grid). Also writes\n"
+                         "DIR/calibration_trees.tsv.",
+                         spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = fs_parse(&oc, argc, argv, &o);
+    if (rc) return opts_exit_code(rc);
     prov p;
     prov_begin(&p, "field", argc, argv);
     double lo, hi, step, seeds, a;
@@ -236,14 +231,15 @@ int cmd_field_calibrate(int argc, char **argv)
 
 int cmd_field_beta(int argc, char **argv)
 {
-    if (args_help(argc, argv,
-                  "usage: crownshy field-beta DIR/calibration.tsv\n"
-                  "Print beta_field (%.17g) recomputed from an E5 calibration table (used by the make units\n"
-                  "that rerun E2 at the field operating point).\n"))
-        return 0;
-    if (argc != 2) { fprintf(stderr, "usage: crownshy field-beta DIR/calibration.tsv\n"); return 2; }
+    const opts_cmd oc = {"field-beta", "DIR/calibration.tsv",
+                         "Print beta_field (%.17g) recomputed from an E5 calibration table (used by the make units\n"
+                         "that rerun E2 at the field operating point).",
+                         NULL, 0, 1, 1};
+    char *pos[argc > 0 ? argc : 1];
+    int rc = opts_parse(&oc, argc, argv, pos, NULL);
+    if (rc) return opts_exit_code(rc);
     fs_calibration c;
-    cs_status st = fs_beta_field(argv[1], &c);
+    cs_status st = fs_beta_field(pos[0], &c);
     if (st) return fs_die("field-beta", st);
     printf("%.17g\n", c.value);
     return 0;
@@ -252,7 +248,7 @@ int cmd_field_beta(int argc, char **argv)
 /* beta_field from --calibration, or a usage/input error code. */
 static int need_beta(const char *cmd, const fs_opts *o, fs_calibration *c)
 {
-    if (!o->calibration) { fprintf(stderr, "crownshy %s: --calibration DIR/calibration.tsv is required (beta_field)\n", cmd); return 2; }
+    if (!o->calibration) { opts_usage_error(cmd, "--calibration DIR/calibration.tsv is required (beta_field)"); return 2; }
     cs_status st = fs_beta_field(o->calibration, c);
     if (st) return fs_die(cmd, st);
     return 0;
@@ -293,15 +289,15 @@ static void print_spread_ratios(const char *cmd, const fs_trees *acc, double lev
 
 int cmd_field_heldout(int argc, char **argv)
 {
-    const char *help =
-        "usage: crownshy field-heldout --calibration DIR/calibration.tsv --out DIR/heldout.tsv [--stands N]\n"
-        "E5 held-out (SPEC §7): N stands (default 28) on seeds disjoint from the calibration, grown at\n"
-        "beta_field coupled and as the uncoupled twin: tree-mean median, spread, elongation, anisotropy.\n"
-        "The spread ratios need the raw field table (FIELD_TABLE=path); without it they are pending.\n";
-    if (args_help(argc, argv, help)) return 0;
-    fs_opts o;
-    int rc = fs_parse("field-heldout", argc, argv, &o, 28);
-    if (rc) return rc;
+    fs_opts o = {.stands_opt = 28};
+    const opt_spec spec[] = {FS_OPT_CAL(o), FS_OPT_OUT(o), FS_OPT_STANDS(o, "stands (default 28)")};
+    const opts_cmd oc = {"field-heldout", "--calibration DIR/calibration.tsv --out DIR/heldout.tsv [--stands N]",
+                         "E5 held-out (SPEC §7): N stands (default 28) on seeds disjoint from the calibration, grown at\n"
+                         "beta_field coupled and as the uncoupled twin: tree-mean median, spread, elongation, anisotropy.\n"
+                         "The spread ratios need the raw field table (FIELD_TABLE=path); without it they are pending.",
+                         spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = fs_parse(&oc, argc, argv, &o);
+    if (rc) return opts_exit_code(rc);
     fs_calibration c;
     if ((rc = need_beta("field-heldout", &o, &c))) return rc;
     prov p;
@@ -333,14 +329,14 @@ int cmd_field_heldout(int argc, char **argv)
 
 int cmd_aniso_lattice(int argc, char **argv)
 {
-    const char *help =
-        "usage: crownshy aniso-lattice --calibration DIR/calibration.tsv --out DIR/lattice.tsv [--stands N]\n"
-        "E6 (SPEC §7): anisotropy on the controlled lattice (d = 5 m, canonical jitter) at beta_field,\n"
-        "N stands (default 28).\n";
-    if (args_help(argc, argv, help)) return 0;
-    fs_opts o;
-    int rc = fs_parse("aniso-lattice", argc, argv, &o, 28);
-    if (rc) return rc;
+    fs_opts o = {.stands_opt = 28};
+    const opt_spec spec[] = {FS_OPT_CAL(o), FS_OPT_OUT(o), FS_OPT_STANDS(o, "stands (default 28)")};
+    const opts_cmd oc = {"aniso-lattice", "--calibration DIR/calibration.tsv --out DIR/lattice.tsv [--stands N]",
+                         "E6 (SPEC §7): anisotropy on the controlled lattice (d = 5 m, canonical jitter) at beta_field,\n"
+                         "N stands (default 28).",
+                         spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = fs_parse(&oc, argc, argv, &o);
+    if (rc) return opts_exit_code(rc);
     fs_calibration c;
     if ((rc = need_beta("aniso-lattice", &o, &c))) return rc;
     prov p;
@@ -367,11 +363,14 @@ int cmd_aniso_lattice(int argc, char **argv)
 }
 
 /* A family sweep: one job per level of `key` in anisotropy.gate. */
-static int aniso_family(const char *cmd, int argc, char **argv, stand_kind kind, const char *key, const char *seed_exp, const char *what)
+static int aniso_family(const char *cmd, const char *synopsis, const char *about, int argc, char **argv,
+                        stand_kind kind, const char *key, const char *seed_exp, const char *what)
 {
-    fs_opts o;
-    int rc = fs_parse(cmd, argc, argv, &o, 12);
-    if (rc) return rc;
+    fs_opts o = {.stands_opt = 12};
+    const opt_spec spec[] = {FS_OPT_CAL(o), FS_OPT_OUT(o), FS_OPT_STANDS(o, "stands per level (default 12)")};
+    const opts_cmd oc = {cmd, synopsis, about, spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = fs_parse(&oc, argc, argv, &o);
+    if (rc) return opts_exit_code(rc);
     fs_calibration c;
     if ((rc = need_beta(cmd, &o, &c))) return rc;
     prov p;
@@ -404,38 +403,37 @@ static int aniso_family(const char *cmd, int argc, char **argv, stand_kind kind,
 
 int cmd_aniso_hardcore(int argc, char **argv)
 {
-    if (args_help(argc, argv,
-                  "usage: crownshy aniso-hardcore --calibration DIR/calibration.tsv --out DIR/hardcore.tsv [--stands N]\n"
-                  "E6 hard-core family (SPEC §7): stems by random sequential addition with minimum distance c d,\n"
-                  "c in anisotropy.gate hardcore_levels, N stands per level (default 12), teacher at beta_field.\n"
-                  "A level whose stands cannot be built is recorded (stands_failed, trees 0), not a crash.\n"))
-        return 0;
-    return aniso_family("aniso-hardcore", argc, argv, STAND_HARDCORE, "hardcore_levels", "anisotropy/hardcore",
+    return aniso_family("aniso-hardcore", "--calibration DIR/calibration.tsv --out DIR/hardcore.tsv [--stands N]",
+                        "E6 hard-core family (SPEC §7): stems by random sequential addition with minimum distance c d,\n"
+                        "c in anisotropy.gate hardcore_levels, N stands per level (default 12), teacher at beta_field.\n"
+                        "A level whose stands cannot be built is recorded (stands_failed, trees 0), not a crash.",
+                        argc, argv, STAND_HARDCORE, "hardcore_levels", "anisotropy/hardcore",
                         "E6 hard-core family: n = (L/d)^2 stems, minimum distance c d (level = c), d = 5 m, L = 60 m, teacher at beta_field");
 }
 
 int cmd_aniso_jitter(int argc, char **argv)
 {
-    if (args_help(argc, argv,
-                  "usage: crownshy aniso-jitter --calibration DIR/calibration.tsv --out DIR/jitter.tsv [--stands N]\n"
-                  "E6 jitter family (SPEC §7): controlled lattice with per-axis jitter sd a d, a in\n"
-                  "anisotropy.gate jitter_levels, N stands per level (default 12), teacher at beta_field.\n"))
-        return 0;
-    return aniso_family("aniso-jitter", argc, argv, STAND_LATTICE, "jitter_levels", "anisotropy/jitter",
+    return aniso_family("aniso-jitter", "--calibration DIR/calibration.tsv --out DIR/jitter.tsv [--stands N]",
+                        "E6 jitter family (SPEC §7): controlled lattice with per-axis jitter sd a d, a in\n"
+                        "anisotropy.gate jitter_levels, N stands per level (default 12), teacher at beta_field.",
+                        argc, argv, STAND_LATTICE, "jitter_levels", "anisotropy/jitter",
                         "E6 jitter family: lattice d = 5 m, L = 60 m, jitter sd a d (level = a), teacher at beta_field");
 }
 
 int cmd_aniso_jitter_calibrate(int argc, char **argv)
 {
-    if (args_help(argc, argv,
-                  "usage: crownshy aniso-jitter-calibrate --sweep DIR/jitter.tsv --out DIR/jitter_calibration.tsv\n"
-                  "E6: the jitter sweep's median anisotropy per level (checked against the per-tree table) and\n"
-                  "a* = linear interpolation to anisotropy.gate field_median, rounded to 0.01.\n"))
-        return 0;
-    fs_opts o;
-    int rc = fs_parse("aniso-jitter-calibrate", argc, argv, &o, 1);
-    if (rc) return rc;
-    if (!o.sweep) { fprintf(stderr, "crownshy aniso-jitter-calibrate: --sweep DIR/jitter.tsv is required\n"); return 2; }
+    fs_opts o = {0};
+    const opt_spec spec[] = {
+        {"sweep", OPT_STR, &o.sweep, 0, 0, "E6 jitter sweep table DIR/jitter.tsv (required)"},
+        FS_OPT_OUT(o),
+    };
+    const opts_cmd oc = {"aniso-jitter-calibrate", "--sweep DIR/jitter.tsv --out DIR/jitter_calibration.tsv",
+                         "E6: the jitter sweep's median anisotropy per level (checked against the per-tree table) and\n"
+                         "a* = linear interpolation to anisotropy.gate field_median, rounded to 0.01.",
+                         spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = fs_parse(&oc, argc, argv, &o);
+    if (rc) return opts_exit_code(rc);
+    if (!o.sweep) { opts_usage_error("aniso-jitter-calibrate", "--sweep DIR/jitter.tsv is required"); return 2; }
     prov p;
     prov_begin(&p, "anisotropy", argc, argv);
     tsv *t;
@@ -474,18 +472,24 @@ int cmd_aniso_jitter_calibrate(int argc, char **argv)
 
 int cmd_aniso_heldout(int argc, char **argv)
 {
-    const char *help =
-        "usage: crownshy aniso-heldout --calibration DIR/calibration.tsv --jitter-calibration DIR/jitter_calibration.tsv\n"
-        "                              --out DIR/heldout.tsv [--stands N]\n"
-        "E6 held-out (SPEC §7): N stands (default 28) at jitter a* on seeds disjoint from the sweep,\n"
-        "teacher at beta_field: anisotropy, elongation, spread; every stand must build.\n";
-    if (args_help(argc, argv, help)) return 0;
-    fs_opts o;
-    int rc = fs_parse("aniso-heldout", argc, argv, &o, 28);
-    if (rc) return rc;
+    fs_opts o = {.stands_opt = 28};
+    const opt_spec spec[] = {
+        FS_OPT_CAL(o),
+        {"jitter-calibration", OPT_STR, &o.jitter_calibration, 0, 0, "E6 jitter calibration table DIR/jitter_calibration.tsv, gives a* (required)"},
+        FS_OPT_OUT(o),
+        FS_OPT_STANDS(o, "stands (default 28)"),
+    };
+    const opts_cmd oc = {"aniso-heldout",
+                         "--calibration DIR/calibration.tsv --jitter-calibration DIR/jitter_calibration.tsv\n"
+                         "                              --out DIR/heldout.tsv [--stands N]",
+                         "E6 held-out (SPEC §7): N stands (default 28) at jitter a* on seeds disjoint from the sweep,\n"
+                         "teacher at beta_field: anisotropy, elongation, spread; every stand must build.",
+                         spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = fs_parse(&oc, argc, argv, &o);
+    if (rc) return opts_exit_code(rc);
+    if (!o.jitter_calibration) { opts_usage_error("aniso-heldout", "--jitter-calibration is required (a*)"); return 2; }
     fs_calibration c, js;
     if ((rc = need_beta("aniso-heldout", &o, &c))) return rc;
-    if (!o.jitter_calibration) { fprintf(stderr, "crownshy aniso-heldout: --jitter-calibration is required (a*)\n"); return 2; }
     cs_status st = fs_jitter_star(o.jitter_calibration, &js);
     if (st) return fs_die("aniso-heldout", st);
     prov p;
@@ -516,22 +520,16 @@ int cmd_aniso_heldout(int argc, char **argv)
  * open-grown crown targets (SPEC §3) and the two knobs' reach. */
 int cmd_field_diagnose(int argc, char **argv)
 {
-    if (args_help(argc, argv,
-                  "usage: crownshy field-diagnose --calibration DIR/calibration.tsv [--stands N]\n"
-                  "Print diagnostics for the E5/E6 verdicts: elongation of the open-grown crown targets\n"
-                  "(by lobe count k), the reach of beta over the calibration grid (elongation, anisotropy),\n"
-                  "and the anisotropy of a perfect lattice (a = 0) at beta_field (N stands, default 12,\n"
-                  "seeds 'field/diagnose'). Nothing is written.\n"))
-        return 0;
-    fs_opts o;
-    char *av[16];
-    int ac = 0;
-    if (argc > 14) { fprintf(stderr, "crownshy field-diagnose: too many arguments\n"); return 2; }
-    for (int i = 0; i < argc; i++) av[ac++] = argv[i];
-    av[ac++] = "--out";
-    av[ac++] = "-";
-    int rc = fs_parse("field-diagnose", ac, av, &o, 12);
-    if (rc) return rc;
+    fs_opts o = {.stands_opt = 12};
+    const opt_spec spec[] = {FS_OPT_CAL(o), FS_OPT_STANDS(o, "stands of the perfect lattice (default 12)")};
+    const opts_cmd oc = {"field-diagnose", "--calibration DIR/calibration.tsv [--stands N]",
+                         "Print diagnostics for the E5/E6 verdicts: elongation of the open-grown crown targets\n"
+                         "(by lobe count k), the reach of beta over the calibration grid (elongation, anisotropy),\n"
+                         "and the anisotropy of a perfect lattice (a = 0) at beta_field (N stands, default 12,\n"
+                         "seeds 'field/diagnose'). Nothing is written.",
+                         spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = fs_parse(&oc, argc, argv, &o);
+    if (rc) return opts_exit_code(rc);
     fs_calibration c;
     if ((rc = need_beta("field-diagnose", &o, &c))) return rc;
     double d = DESIGN_FIELD_SPACING_M, L = FS_L_FACTOR * d, a;
