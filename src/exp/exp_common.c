@@ -2,7 +2,9 @@
  * path and atomic commit of a unit's table, the metadata lines every unit
  * writes, pooled interior-tree clearances and cover, the crown and outline
  * tables of the canopy figures (SPEC §12), and the field stands, options and
- * tables of E5 (exp_field.c) and E6 (exp_aniso.c). */
+ * tables of E5 (exp_field.c, reference paper §5.3) and E6 (exp_aniso.c,
+ * §5.4). Limits: no command lives here and no experiment's choices (seeds,
+ * levels, stand counts) are made here; each experiment's file records its own. */
 #include "exp_common.h"
 #include "estimator.h"
 #include "figdata.h"
