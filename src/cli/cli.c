@@ -4,6 +4,7 @@
  * (exp_main, exp_comp, exp_field, exp_aniso). Only the CLI decides how the
  * process dies; library calls return a cs_status. */
 #include "cli.h"
+#include "exp_aniso.h"
 #include "exp_comp.h"
 #include "exp_field.h"
 #include "exp_main.h"

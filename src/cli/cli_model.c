@@ -56,7 +56,7 @@ int cli_cmd_train(int argc, char **argv)
     model_cfg cfg = model_cfg_reference(PATCH_NCOND);
     cfg.C = (int)width; cfg.L = (int)depth; cfg.H = (int)heads; cfg.F = (int)mlp; cfg.joint = joint;
     cs_status st = model_cfg_check(&cfg);
-    if (st) { fprintf(stderr, "crownshy train: %s\n", cs_errmsg()); return 2; }
+    if (st) { opts_usage_error("train", "%s", cs_errmsg()); return 2; }
     patch_set *ps;
     if ((st = toy_data(&ps, stands, d, 1000 + 1000 * (unsigned long)seed, 0))) return cli_fail("train", st);
     /* SPEC §5 / paper §4.3: the batched clearance estimator must agree with

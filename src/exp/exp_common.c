@@ -1,10 +1,17 @@
-/* exp_common: what the teacher experiments' units share (SPEC §7, §9): the
- * output path and atomic commit of a unit's table, the metadata lines every
- * unit writes, pooled interior-tree clearances and cover, and the crown and
- * outline tables of the canopy figures (SPEC §12). */
+/* exp_common: what the experiments' units share (SPEC §7, §9): the output
+ * path and atomic commit of a unit's table, the metadata lines every unit
+ * writes, pooled interior-tree clearances and cover, the crown and outline
+ * tables of the canopy figures (SPEC §12), and the field stands, options and
+ * tables of E5 (exp_field.c, reference paper §5.3) and E6 (exp_aniso.c,
+ * §5.4). Limits: no command lives here and no experiment's choices (seeds,
+ * levels, stand counts) are made here; each experiment's file records its own. */
 #include "exp_common.h"
 #include "estimator.h"
 #include "figdata.h"
+#include "design.h"
+#include "field.h"
+#include "gate.h"
+#include "paths.h"
 #include "stand_grow.h"
 #include <math.h>
 #include <stdio.h>
@@ -146,3 +153,120 @@ cs_status exp_field_grow_append(const stand *sd, double beta, int coupled, doubl
     return st;
 }
 
+/* ------------------------------------------------ E5/E6 field stands ---- */
+
+int exp_fail(const char *cmd, cs_status st)
+{
+    fprintf(stderr, "crownshy %s: %s\n", cmd, cs_errmsg()[0] ? cs_errmsg() : cs_status_name(st));
+    return cs_exit_code(st);
+}
+
+/* opts_parse with the table of c (no positional arguments), then --out is
+ * required when the table has it. An opts result: OPTS_OK, OPTS_HELP, OPTS_USAGE. */
+int exp_field_parse(const opts_cmd *c, int argc, char **argv, exp_field_opts *o)
+{
+    int r = opts_parse(c, argc, argv, NULL, NULL);
+    if (r) return r;
+    o->stands = (unsigned)o->stands_opt;
+    for (size_t i = 0; i < c->nopts; i++)
+        if (c->opts[i].dst == &o->out && !o->out) { opts_usage_error(c->cmd, "--out PATH is required"); return OPTS_USAGE; }
+    return OPTS_OK;
+}
+
+cs_status exp_field_run_job(exp_field_job *j, fs_trees *acc, double *worst)
+{
+    double d = DESIGN_FIELD_SPACING_M, L = EXP_FIELD_L_FACTOR * d;
+    j->failed = 0;
+    for (unsigned s = 0; s < j->nstands; s++) {
+        stand *sd;
+        cs_status st = stand_alloc(&sd, j->kind, d, L, j->shape, j->seed_exp, s);
+        if (st == CS_EINPUT && j->kind == STAND_HARDCORE && strstr(cs_errmsg(), "unbuildable")) {
+            /* A level the stem process cannot reach is a finding, not a crash. */
+            j->failed++;
+            continue;
+        }
+        if (st) return st;
+        st = exp_field_grow_append(sd, j->beta, 1, j->level, s, acc, worst);
+        if (!st && j->twins) st = exp_field_grow_append(sd, j->beta, 0, j->level, s, acc, NULL);
+        stand_free(sd);
+        if (st) return st;
+    }
+    return CS_OK;
+}
+
+/* Write X_trees.tsv then X.tsv (one summary row per job and arm). */
+cs_status exp_field_write(const char *out, prov *p, const fs_trees *acc, const exp_field_job *jobs, size_t nj,
+                          exp_field_meta_fn meta, void *ctx)
+{
+    char tp[600];
+    fs_trees_path(out, tp, sizeof tp);
+    tsv_writer *w;
+    cs_status st = tsv_writer_open(&w, tp);
+    if (st) return st;
+    if ((st = prov_write(w, p))) { tsv_writer_abort(w); return st; }
+    tsv_writer_meta(w, "what", "one row per interior tree (>= 2 d from the edge): cardinal gaps E N W S (m) and crown elongation, canonical estimator");
+    tsv_writer_meta(w, "summary", "%s", out);
+    fs_trees_write(w, acc);
+    if ((st = tsv_writer_commit(w))) return st;
+    if ((st = tsv_writer_open(&w, out))) return st;
+    if ((st = prov_write(w, p))) { tsv_writer_abort(w); return st; }
+    tsv_writer_meta(w, "trees_table", "%s", tp);
+    if (meta) meta(w, ctx);
+    tsv_writer_columns(w, FS_SUMMARY_COLUMNS);
+    for (size_t k = 0; k < nj && !st; k++)
+        for (int arm = 1; arm >= (jobs[k].twins ? 0 : 1) && !st; arm--) {
+            fs_summary s;
+            memset(&s, 0, sizeof s);
+            size_t have = 0;
+            for (size_t i = 0; i < acc->n; i++) have += acc->coupled[i] == arm && acc->level[i] == jobs[k].level;
+            if (have) st = fs_group(acc, arm, jobs[k].level, &s);
+            if (!st) fs_summary_write_row(w, arm, jobs[k].level, jobs[k].beta, jobs[k].failed, &s);
+        }
+    if (st) { tsv_writer_abort(w); return st; }
+    return tsv_writer_commit(w);
+}
+
+cs_status exp_canonical_jitter(double *a)
+{
+    return gate_read_value(PATHS_GATE("anisotropy"), "canonical_jitter", 0, a);
+}
+
+/* beta_field from --calibration, or a usage/input error code. */
+int exp_need_beta(const char *cmd, const exp_field_opts *o, fs_calibration *c)
+{
+    if (!o->calibration) { opts_usage_error(cmd, "--calibration DIR/calibration.tsv is required (beta_field)"); return 2; }
+    cs_status st = fs_beta_field(o->calibration, c);
+    if (st) return exp_fail(cmd, st);
+    return 0;
+}
+
+void exp_meta_generic(tsv_writer *w, void *ctx)
+{
+    exp_meta_ctx *m = ctx;
+    tsv_writer_meta(w, "what", "%s", m->what);
+    tsv_writer_meta(w, "beta_field", "%.17g", m->beta_field);
+}
+
+/* With FIELD_TABLE: print sim/field spread ratios (informational; the claims
+ * recompute them from the frozen table and the same field table). */
+void exp_print_spread_ratios(const char *cmd, const fs_trees *acc, double level, int twins)
+{
+    const char *path = field_table_env();
+    if (!path) {
+        printf("%s: spread ratio PENDING: needs the raw field table (%s=path), not on this machine\n", cmd, FIELD_TABLE_ENV);
+        return;
+    }
+    field_table ft;
+    field_summary fsum;
+    if (field_table_load(path, &ft) || field_summarize((const double (*)[4])ft.gap, ft.n, &fsum)) {
+        printf("%s: spread ratio not computed: %s\n", cmd, cs_errmsg());
+        field_table_free(&ft);
+        return;
+    }
+    field_table_free(&ft);
+    for (int arm = 1; arm >= (twins ? 0 : 1); arm--) {
+        fs_summary s;
+        if (!fs_group(acc, arm, level, &s))
+            printf("%s: %s spread %.4f m / field spread %.4f m = %.3f\n", cmd, arm ? "coupled" : "uncoupled", s.f.spread, fsum.spread, s.f.spread / fsum.spread);
+    }
+}

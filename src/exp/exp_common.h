@@ -14,6 +14,7 @@
 #define EXP_COMMON_H
 #include "cs.h"
 #include "fieldsim.h"
+#include "opts.h"
 #include "prov.h"
 #include "stand.h"
 #include "tsv.h"
@@ -65,5 +66,59 @@ cs_status exp_write_polygons(const exp_opts *o, prov *pv, const char *experiment
  * *worst (may be NULL) is raised to the self-check overlap of the growth. */
 cs_status exp_field_grow_append(const stand *sd, double beta, int coupled, double level, unsigned index,
                                 fs_trees *acc, double *worst);
+
+/* ---- E5/E6 (exp_field.c, exp_aniso.c): field stands, options and tables ----
+ * Field stands: the controlled lattice (or a hard-core family) at
+ * d = DESIGN_FIELD_SPACING_M, L = EXP_FIELD_L_FACTOR d, teacher at N = 48,
+ * gamma = 1; each command's seeds and outputs are described in its file. */
+#define EXP_FIELD_L_FACTOR 12.0  /* L = 12 d (SPEC §2) */
+
+/* The options of the E5/E6 commands; each command's table lists the ones it takes. */
+typedef struct {
+    const char *out, *calibration, *sweep, *jitter_calibration;
+    long stands_opt;  /* --stands, parsed */
+    unsigned stands;  /* the same, set by exp_field_parse */
+} exp_field_opts;
+
+#define EXP_OPT_OUT(o) {"out", OPT_STR, &(o).out, 0, 0, "output table (required)"}
+#define EXP_OPT_CAL(o) {"calibration", OPT_STR, &(o).calibration, 0, 0, "E5 calibration table DIR/calibration.tsv, gives beta_field (required)"}
+#define EXP_OPT_STANDS(o, help) {"stands", OPT_LONG, &(o).stands_opt, 1, 10000, help}
+
+/* "crownshy CMD: <cs_errmsg>" on stderr; the exit code of st. */
+int exp_fail(const char *cmd, cs_status st);
+/* opts_parse with the table of c (no positional arguments), then --out is
+ * required when the table has it. An opts result: OPTS_OK, OPTS_HELP, OPTS_USAGE. */
+int exp_field_parse(const opts_cmd *c, int argc, char **argv, exp_field_opts *o);
+/* beta_field from o->calibration: 0, or the exit code after printing the
+ * usage error (no --calibration) or the input error. */
+int exp_need_beta(const char *cmd, const exp_field_opts *o, fs_calibration *c);
+/* The canonical jitter of the field stands (gates/anisotropy.gate). */
+cs_status exp_canonical_jitter(double *a);
+
+/* One group of stands: `nstands` stands of one stem process at one level. */
+typedef struct {
+    const char *seed_exp;
+    stand_kind kind;
+    double shape, level, beta;
+    unsigned nstands;
+    int twins;          /* also grow the uncoupled twin of each stand */
+    size_t failed;      /* out: stands that could not be built (hard-core "unbuildable") */
+} exp_field_job;
+
+/* Grow the stands of j (and their uncoupled twins) and append their interior
+ * trees to acc; a hard-core stand that cannot be built counts in j->failed. */
+cs_status exp_field_run_job(exp_field_job *j, fs_trees *acc, double *worst);
+
+typedef void (*exp_field_meta_fn)(tsv_writer *w, void *ctx);
+/* Write X_trees.tsv then X.tsv (one summary row per job and arm); meta (may
+ * be NULL) adds the metadata lines of the summary. */
+cs_status exp_field_write(const char *out, prov *p, const fs_trees *acc, const exp_field_job *jobs, size_t nj,
+                          exp_field_meta_fn meta, void *ctx);
+/* The metadata of most E5/E6 tables ("what", "beta_field"): ctx is an exp_meta_ctx. */
+typedef struct { double beta_field, a; const char *what; } exp_meta_ctx;
+void exp_meta_generic(tsv_writer *w, void *ctx);
+/* With FIELD_TABLE: print sim/field spread ratios (informational; the claims
+ * recompute them from the frozen table and the same field table). */
+void exp_print_spread_ratios(const char *cmd, const fs_trees *acc, double level, int twins);
 
 #endif

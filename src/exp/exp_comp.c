@@ -4,13 +4,13 @@
  * from training. Clearances use the pinned estimator (est_clearance,
  * est_knn_clearance) on the patch trees. */
 #include "exp_comp.h"
-#include "args.h"
 #include "design.h"
 #include "estimator.h"
 #include "figdata.h"
 #include "gate.h"
 #include "paths.h"
 #include "model.h"
+#include "opts.h"
 #include "patch.h"
 #include "prov.h"
 #include "seed.h"
@@ -67,15 +67,20 @@ static cs_status gen_radii(model *m, const patch_set *ps, int Bmax, uint64_t see
 
 int exp_comp_cmd_run(int argc, char **argv)
 {
-    if (args_help(argc, argv,
-                  "usage: crownshy comp-run --joint CKPT --indep CKPT --out DIR\n"
-                  "E7: one 24-tree patch at 5.0 m (teacher, joint, independent arm) and the dart probe\n"
-                  "(joint model on hard-core stems); writes DIR/comparison/{patch,patch_crowns,dart_probe}.tsv."))
-        return 0;
-    static const char *known[] = {"--joint", "--indep", "--out", NULL};
-    if (args_check("comp-run", argc, argv, known)) return 2;
-    const char *cj = args_value(argc, argv, "--joint", NULL), *ci = args_value(argc, argv, "--indep", NULL), *dir = args_value(argc, argv, "--out", NULL);
-    if (!cj || !ci || !dir) { fprintf(stderr, "usage: crownshy comp-run --joint CKPT --indep CKPT --out DIR\n"); return 2; }
+    const char *cj = NULL, *ci = NULL, *dir = NULL;
+    const opt_spec spec[] = {
+        {"joint", OPT_STR, &cj, 0, 0, "joint-arm checkpoint CKPT of E3 seed 1 (required)"},
+        {"indep", OPT_STR, &ci, 0, 0, "independent-arm checkpoint CKPT of E3 seed 1 (required)"},
+        {"out", OPT_STR, &dir, 0, 0, "results root DIR (required)"},
+    };
+    const opts_cmd c = {"comp-run", "--joint CKPT --indep CKPT --out DIR",
+                        "E7: one 24-tree patch at 5.0 m (teacher, joint, independent arm) and the dart probe\n"
+                        "(joint model on hard-core stems); writes DIR/comparison/{patch,patch_crowns,dart_probe}.tsv.",
+                        spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = opts_parse(&c, argc, argv, NULL, NULL);
+    if (rc) return opts_exit_code(rc);
+    for (size_t i = 0; i < sizeof spec / sizeof *spec; i++)
+        if (!*(const char **)spec[i].dst) { opts_usage_error("comp-run", "--%s is required", spec[i].name); return 2; }
     prov pv;
     prov_begin(&pv, "comparison", argc, argv);
     double beta = 0, jitter = 0;

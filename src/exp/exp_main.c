@@ -7,12 +7,12 @@
  * (patch_focal_clearances), checked against est_clearance to 1e-6 m before
  * every run (paper §4.3); a mismatch aborts the run. */
 #include "exp_main.h"
-#include "args.h"
 #include "afile.h"
 #include "estimator.h"
 #include "gate.h"
 #include "paths.h"
 #include "model.h"
+#include "opts.h"
 #include "patch.h"
 #include "prov.h"
 #include "seed.h"
@@ -214,23 +214,29 @@ static cs_status generate(model *m, int Bmax, const exp_main_plan *pl, const eva
 
 int exp_main_cmd_run(int argc, char **argv)
 {
-    if (args_help(argc, argv,
-                  "usage: crownshy main-run --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--ckpt FILE]\n"
-                  "One (seed, arm) unit of E3/E4: build teacher data, train the flow model (resuming from\n"
-                  "--ckpt if it exists), evaluate W1 of focal nearest-neighbour clearances at the unseen and\n"
-                  "extrapolation spacings (joint arm: also the shuffled-geometry probe), write FILE.tsv."))
-        return 0;
-    static const char *known[] = {"--seed", "--arm", "--out", "--scale", "--ckpt", "--epochs", "--train-stands", NULL};
-    if (args_check("main-run", argc, argv, known)) return 2;
-    const char *seed_s = args_value(argc, argv, "--seed", NULL), *arm = args_value(argc, argv, "--arm", NULL);
-    const char *out = args_value(argc, argv, "--out", NULL), *scale = args_value(argc, argv, "--scale", "full");
-    const char *ckpt = args_value(argc, argv, "--ckpt", NULL);
-    char *end = NULL;
-    long seedl = seed_s ? strtol(seed_s, &end, 10) : 0;
-    if (!seed_s || *end || seedl < 1 || !arm || (strcmp(arm, "joint") && strcmp(arm, "indep")) || !out) {
-        fprintf(stderr, "usage: crownshy main-run --seed S(>=1) --arm joint|indep --out FILE.tsv [--scale full|smoke] [--ckpt FILE]\n");
-        return 2;
-    }
+    long seedl = 0, epochs = 0, train_stands = 0;
+    const char *arm = NULL, *out = NULL, *scale = "full", *ckpt = NULL;
+    const opt_spec spec[] = {
+        {"seed", OPT_LONG, &seedl, 1, 4294967295.0, "model seed (required; zero-padded 01 is 1)"},
+        {"arm", OPT_STR, &arm, 0, 0, "joint or indep (required)"},
+        {"out", OPT_STR, &out, 0, 0, "output table FILE.tsv (required)"},
+        {"scale", OPT_STR, &scale, 0, 0, "full or smoke (default full)"},
+        {"ckpt", OPT_STR, &ckpt, 0, 0, "checkpoint FILE, resumed from when it exists (default none)"},
+        {"epochs", OPT_LONG, &epochs, 1, 1000000, "exploration override of the plan's epochs (default: the plan's)"},
+        {"train-stands", OPT_LONG, &train_stands, 1, 10000, "exploration override of the plan's stands per training spacing (default: the plan's)"},
+    };
+    const opts_cmd c = {"main-run", "--seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--ckpt FILE]",
+                        "One (seed, arm) unit of E3/E4: build teacher data, train the flow model (resuming from\n"
+                        "--ckpt if it exists), evaluate W1 of focal nearest-neighbour clearances at the unseen and\n"
+                        "extrapolation spacings (joint arm: also the shuffled-geometry probe), write FILE.tsv.",
+                        spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = opts_parse(&c, argc, argv, NULL, NULL);
+    if (rc) return opts_exit_code(rc);
+    if (!seedl) { opts_usage_error("main-run", "--seed is required"); return 2; }
+    if (!arm) { opts_usage_error("main-run", "--arm is required"); return 2; }
+    if (strcmp(arm, "joint") && strcmp(arm, "indep")) { opts_usage_error("main-run", "--arm: must be joint or indep, not '%s'", arm); return 2; }
+    if (!out) { opts_usage_error("main-run", "--out is required"); return 2; }
+    if (strcmp(scale, "full") && strcmp(scale, "smoke")) { opts_usage_error("main-run", "--scale: must be full or smoke, not '%s'", scale); return 2; }
     unsigned seed = (unsigned)seedl;
     int joint = !strcmp(arm, "joint");
     prov pv;
@@ -241,9 +247,9 @@ int exp_main_cmd_run(int argc, char **argv)
     if (!st) st = exp_main_plan_get(scale, &pl);
     if (st) return fail_with(st);
     /* exploration overrides (recorded in the provenance command line) */
-    if (args_value(argc, argv, "--epochs", NULL)) pl.epochs = atoi(args_value(argc, argv, "--epochs", NULL));
-    if (args_value(argc, argv, "--train-stands", NULL)) pl.train_stands = atoi(args_value(argc, argv, "--train-stands", NULL));
-    if (pl.epochs < 1 || pl.train_stands < 1) { fprintf(stderr, "crownshy main-run: --epochs and --train-stands must be >= 1\n"); return 2; }
+    if (epochs) pl.epochs = (int)epochs;
+    if (train_stands) pl.train_stands = (int)train_stands;
+    if (pl.epochs < 1) { opts_usage_error("main-run", "the plan's epochs must be >= 1"); return 2; }
     double worst = 0.0, maxdiff = 0.0;
     patch_set *tr = NULL;
     if ((st = build_train(&ds, &pl, &tr, &worst))) return fail_with(st);
@@ -342,15 +348,19 @@ int exp_main_cmd_run(int argc, char **argv)
 
 int exp_main_cmd_baselines(int argc, char **argv)
 {
-    if (args_help(argc, argv,
-                  "usage: crownshy main-baselines --out FILE.tsv [--scale full|smoke]\n"
-                  "Direction-blind baseline (every crown replaced by its circular mean) and split-half\n"
-                  "noise floor of the teacher, as W1 of focal nearest-neighbour clearances per eval spacing."))
-        return 0;
-    static const char *known[] = {"--out", "--scale", NULL};
-    if (args_check("main-baselines", argc, argv, known)) return 2;
-    const char *out = args_value(argc, argv, "--out", NULL), *scale = args_value(argc, argv, "--scale", "full");
-    if (!out) { fprintf(stderr, "usage: crownshy main-baselines --out FILE.tsv [--scale full|smoke]\n"); return 2; }
+    const char *out = NULL, *scale = "full";
+    const opt_spec spec[] = {
+        {"out", OPT_STR, &out, 0, 0, "output table FILE.tsv (required)"},
+        {"scale", OPT_STR, &scale, 0, 0, "full or smoke (default full)"},
+    };
+    const opts_cmd c = {"main-baselines", "--out FILE.tsv [--scale full|smoke]",
+                        "Direction-blind baseline (every crown replaced by its circular mean) and split-half\n"
+                        "noise floor of the teacher, as W1 of focal nearest-neighbour clearances per eval spacing.",
+                        spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = opts_parse(&c, argc, argv, NULL, NULL);
+    if (rc) return opts_exit_code(rc);
+    if (!out) { opts_usage_error("main-baselines", "--out is required"); return 2; }
+    if (strcmp(scale, "full") && strcmp(scale, "smoke")) { opts_usage_error("main-baselines", "--scale: must be full or smoke, not '%s'", scale); return 2; }
     prov pv;
     prov_begin(&pv, "main", argc, argv);
     main_design ds;
@@ -416,16 +426,21 @@ int exp_main_cmd_baselines(int argc, char **argv)
  * the shuffled probe, per seed and arm) and extrapolation/runs.tsv. */
 int exp_main_cmd_summary(int argc, char **argv)
 {
-    if (args_help(argc, argv,
-                  "usage: crownshy main-summary --dir RESULTS --seeds N\n"
-                  "Read RESULTS/main/run_s<seed>_<arm>.tsv for seeds 1..N and both arms; write\n"
-                  "RESULTS/main/runs.tsv (per-run errors) and RESULTS/extrapolation/runs.tsv."))
-        return 0;
-    static const char *known[] = {"--dir", "--seeds", NULL};
-    if (args_check("main-summary", argc, argv, known)) return 2;
-    const char *dir = args_value(argc, argv, "--dir", NULL), *ns = args_value(argc, argv, "--seeds", NULL);
-    int nseeds = ns ? atoi(ns) : 0;
-    if (!dir || nseeds < 1 || nseeds > 64) { fprintf(stderr, "usage: crownshy main-summary --dir RESULTS --seeds N\n"); return 2; }
+    const char *dir = NULL;
+    long ns = 0;
+    const opt_spec spec[] = {
+        {"dir", OPT_STR, &dir, 0, 0, "results root RESULTS (required)"},
+        {"seeds", OPT_LONG, &ns, 1, 64, "seeds 1..N to gather (required)"},
+    };
+    const opts_cmd c = {"main-summary", "--dir RESULTS --seeds N",
+                        "Read RESULTS/main/run_s<seed>_<arm>.tsv for seeds 1..N and both arms; write\n"
+                        "RESULTS/main/runs.tsv (per-run errors) and RESULTS/extrapolation/runs.tsv.",
+                        spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = opts_parse(&c, argc, argv, NULL, NULL);
+    if (rc) return opts_exit_code(rc);
+    if (!dir) { opts_usage_error("main-summary", "--dir is required"); return 2; }
+    if (!ns) { opts_usage_error("main-summary", "--seeds is required"); return 2; }
+    int nseeds = (int)ns;
     prov pv;
     prov_begin(&pv, "main", argc, argv);
     const char *arms[2] = {"joint", "indep"};

@@ -2,7 +2,7 @@
 # Makefile). Each experiment block appends its units to REPRODUCE_UNITS and
 # gives a rule writing $(RESULTS)/<experiment>/<unit>.tsv via the CLI.
 
-# ---- E3 main experiment + E4 extrapolation (src/exp_main.c) ------------------
+# ---- E3 main experiment + E4 extrapolation (src/exp/exp_main.c) ------------------
 # One unit per (seed, arm); checkpoints in build/ckpt/<scale>/ make a killed
 # unit resume bit-identically. `make -j2 reproduce` runs two units at a time.
 ifeq ($(SCALE),smoke)
@@ -60,7 +60,7 @@ $(RESULTS)/hero/figure_crowns.tsv: $(TEACHER_DEPS) $(RESULTS)/field/calibration.
 $(RESULTS)/pointcloud/figure_crowns.tsv: $(TEACHER_DEPS) | $(CLI)
 	$(CLI) run fig-pointcloud --out $(RESULTS)
 
-# ---- E5 field validation and E6 anisotropy attribution (SPEC §7) -------------
+# ---- E5 field validation (src/exp/exp_field.c), E6 anisotropy (src/exp/exp_aniso.c) --
 # Stand counts: full run 28 held-out stands (E5, E6 lattice, E6 held-out) and 12
 # per sweep level; smoke 3 and 2. Calibration seeds come from gates/field.gate.
 # E6 runs at beta_field, so every E6 unit depends on the E5 calibration.
@@ -104,7 +104,7 @@ $(RESULTS)/irreducibility/reduction_field.tsv: $(FIELD_CAL) | $(CLI)
 	$(CLI) run irreducibility-reduction --stands $(TEACHER_STANDS) --beta $$($(CLI) field-beta $(FIELD_CAL)) --tag field --out $(RESULTS)
 REPRODUCE_UNITS += $(IRRED_FIELD_UNITS)
 
-# ---- E7 comparison patch and dart probe (src/exp_comp.c): E3 seed-1 models ----
+# ---- E7 comparison patch and dart probe (src/exp/exp_comp.c): E3 seed-1 models ----
 $(RESULTS)/comparison/patch.tsv: $(RESULTS)/main/run_s01_joint.tsv $(RESULTS)/main/run_s01_indep.tsv | $(CLI)
 	$(CLI) comp-run --joint $(B)/ckpt/$(SCALE)/main_s01_joint.ckpt --indep $(B)/ckpt/$(SCALE)/main_s01_indep.ckpt --out $(RESULTS)
 REPRODUCE_UNITS += $(RESULTS)/comparison/patch.tsv

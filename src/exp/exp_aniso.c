@@ -1,0 +1,214 @@
+/* exp_aniso: E6 anisotropy attribution (SPEC §7 E6; reference paper §5.4):
+ * the commands aniso-lattice, aniso-hardcore, aniso-jitter,
+ * aniso-jitter-calibrate and aniso-heldout. Every E6 unit runs the teacher at
+ * beta_field, read from the E5 calibration table (--calibration).
+ *
+ * Stands as in E5 (exp_field.c): d = 5.0 m, L = 12 d, teacher at N = 48,
+ * gamma = 1. Seeds: seed_derive(<seed experiment>, 5.0, stand,
+ * "stems"/"crowns"), one seed-experiment string per role, disjoint from E5's:
+ *   anisotropy/lattice  E6 lattice statistic at beta_field
+ *   anisotropy/hardcore hard-core family, same indices at every c
+ *   anisotropy/jitter   jitter family (a* calibration), same indices at every a
+ *   anisotropy/heldout  held-out stands at a*
+ * Re-using the same indices across the levels of one sweep (common random
+ * numbers) makes the sweep curves smooth in the knob without favouring any
+ * level. Outputs: X.tsv and X_trees.tsv as in E5, summary written last.
+ * Limits: d and L are fixed by the design; the levels come from
+ * gates/anisotropy.gate (at most 32 per family); a hard-core level that
+ * cannot be built is recorded, not a crash; stand counts are options. */
+#include "exp_aniso.h"
+#include "exp_common.h"
+#include "fieldsim.h"
+#include "gate.h"
+#include "opts.h"
+#include "paths.h"
+#include "prov.h"
+#include <stdio.h>
+#include <string.h>
+
+int cmd_aniso_lattice(int argc, char **argv)
+{
+    exp_field_opts o = {.stands_opt = 28};
+    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands (default 28)")};
+    const opts_cmd oc = {"aniso-lattice", "--calibration DIR/calibration.tsv --out DIR/lattice.tsv [--stands N]",
+                         "E6 (SPEC §7): anisotropy on the controlled lattice (d = 5 m, canonical jitter) at beta_field,\n"
+                         "N stands (default 28).",
+                         spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = exp_field_parse(&oc, argc, argv, &o);
+    if (rc) return opts_exit_code(rc);
+    fs_calibration c;
+    if ((rc = exp_need_beta("aniso-lattice", &o, &c))) return rc;
+    prov p;
+    prov_begin(&p, "anisotropy", argc, argv);
+    double a;
+    cs_status st = exp_canonical_jitter(&a);
+    if (st) return exp_fail("aniso-lattice", st);
+    exp_field_job j = {"anisotropy/lattice", STAND_LATTICE, a, a, c.value, o.stands, 0, 0};
+    fs_trees acc;
+    fs_trees_init(&acc);
+    double worst = 0;
+    st = exp_field_run_job(&j, &acc, &worst);
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"anisotropy/lattice\", 5.0, s, stems|crowns), s = 0..%u", o.stands - 1);
+    p.worst_overlap_m = worst;
+    exp_meta_ctx m = {c.value, a, "E6 lattice: controlled lattice d = 5 m, L = 60 m, canonical jitter (level = a), teacher at beta_field"};
+    if (!st) st = exp_field_write(o.out, &p, &acc, &j, 1, exp_meta_generic, &m);
+    if (!st) {
+        fs_summary s;
+        if (!fs_group(&acc, 1, a, &s))
+            printf("aniso-lattice: anisotropy median %.4f over %zu trees (%zu excluded) in %zu stands\n", s.f.aniso_median, s.f.aniso_trees, s.f.aniso_excluded, s.stands);
+    }
+    fs_trees_free(&acc);
+    return st ? exp_fail("aniso-lattice", st) : 0;
+}
+
+/* A family sweep: one job per level of `key` in anisotropy.gate. */
+static int aniso_family(const char *cmd, const char *synopsis, const char *about, int argc, char **argv,
+                        stand_kind kind, const char *key, const char *seed_exp, const char *what)
+{
+    exp_field_opts o = {.stands_opt = 12};
+    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands per level (default 12)")};
+    const opts_cmd oc = {cmd, synopsis, about, spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = exp_field_parse(&oc, argc, argv, &o);
+    if (rc) return opts_exit_code(rc);
+    fs_calibration c;
+    if ((rc = exp_need_beta(cmd, &o, &c))) return rc;
+    prov p;
+    prov_begin(&p, "anisotropy", argc, argv);
+    double lv[32];
+    size_t nl;
+    cs_status st = gate_read_values(PATHS_GATE("anisotropy"), key, lv, 32, &nl);
+    if (st) return exp_fail(cmd, st);
+    exp_field_job jobs[32];
+    fs_trees acc;
+    fs_trees_init(&acc);
+    double worst = 0;
+    for (size_t k = 0; k < nl && !st; k++) {
+        jobs[k] = (exp_field_job){seed_exp, kind, lv[k], lv[k], c.value, o.stands, 0, 0};
+        st = exp_field_run_job(&jobs[k], &acc, &worst);
+        if (!st) {
+            fs_summary s;
+            if (jobs[k].failed == o.stands) fprintf(stderr, "%s: level %.2f UNBUILDABLE (%zu of %u stands failed)\n", cmd, lv[k], jobs[k].failed, o.stands);
+            else if (!fs_group(&acc, 1, lv[k], &s))
+                fprintf(stderr, "%s: level %.2f: anisotropy median %.4f (%zu trees, %zu excluded; %zu stands failed)\n", cmd, lv[k], s.f.aniso_median, s.f.aniso_trees, s.f.aniso_excluded, jobs[k].failed);
+        }
+    }
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"%s\", 5.0, s, stems|crowns), s = 0..%u at every level", seed_exp, o.stands - 1);
+    p.worst_overlap_m = worst;
+    exp_meta_ctx m = {c.value, 0, what};
+    if (!st) st = exp_field_write(o.out, &p, &acc, jobs, nl, exp_meta_generic, &m);
+    fs_trees_free(&acc);
+    return st ? exp_fail(cmd, st) : 0;
+}
+
+int cmd_aniso_hardcore(int argc, char **argv)
+{
+    return aniso_family("aniso-hardcore", "--calibration DIR/calibration.tsv --out DIR/hardcore.tsv [--stands N]",
+                        "E6 hard-core family (SPEC §7): stems by random sequential addition with minimum distance c d,\n"
+                        "c in anisotropy.gate hardcore_levels, N stands per level (default 12), teacher at beta_field.\n"
+                        "A level whose stands cannot be built is recorded (stands_failed, trees 0), not a crash.",
+                        argc, argv, STAND_HARDCORE, "hardcore_levels", "anisotropy/hardcore",
+                        "E6 hard-core family: n = (L/d)^2 stems, minimum distance c d (level = c), d = 5 m, L = 60 m, teacher at beta_field");
+}
+
+int cmd_aniso_jitter(int argc, char **argv)
+{
+    return aniso_family("aniso-jitter", "--calibration DIR/calibration.tsv --out DIR/jitter.tsv [--stands N]",
+                        "E6 jitter family (SPEC §7): controlled lattice with per-axis jitter sd a d, a in\n"
+                        "anisotropy.gate jitter_levels, N stands per level (default 12), teacher at beta_field.",
+                        argc, argv, STAND_LATTICE, "jitter_levels", "anisotropy/jitter",
+                        "E6 jitter family: lattice d = 5 m, L = 60 m, jitter sd a d (level = a), teacher at beta_field");
+}
+
+int cmd_aniso_jitter_calibrate(int argc, char **argv)
+{
+    exp_field_opts o = {0};
+    const opt_spec spec[] = {
+        {"sweep", OPT_STR, &o.sweep, 0, 0, "E6 jitter sweep table DIR/jitter.tsv (required)"},
+        EXP_OPT_OUT(o),
+    };
+    const opts_cmd oc = {"aniso-jitter-calibrate", "--sweep DIR/jitter.tsv --out DIR/jitter_calibration.tsv",
+                         "E6: the jitter sweep's median anisotropy per level (checked against the per-tree table) and\n"
+                         "a* = linear interpolation to anisotropy.gate field_median, rounded to 0.01.",
+                         spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = exp_field_parse(&oc, argc, argv, &o);
+    if (rc) return opts_exit_code(rc);
+    if (!o.sweep) { opts_usage_error("aniso-jitter-calibrate", "--sweep DIR/jitter.tsv is required"); return 2; }
+    prov p;
+    prov_begin(&p, "anisotropy", argc, argv);
+    tsv *t;
+    fs_trees tr;
+    cs_status st = fs_load_checked(o.sweep, &t, &tr);
+    if (st) return exp_fail("aniso-jitter-calibrate", st);
+    fs_trees_free(&tr);
+    tsv_writer *w;
+    if ((st = tsv_writer_open(&w, o.out))) { tsv_free(t); return exp_fail("aniso-jitter-calibrate", st); }
+    snprintf(p.seeds, sizeof p.seeds, "%s", tsv_meta(t, "seeds") ? tsv_meta(t, "seeds") : "-");
+    p.worst_overlap_m = -1;
+    if ((st = prov_write(w, &p))) { tsv_writer_abort(w); tsv_free(t); return exp_fail("aniso-jitter-calibrate", st); }
+    tsv_writer_meta(w, "what", "E6 jitter calibration curve: median anisotropy per jitter level (from %s); a* = interpolation to the field median, rounded to 0.01 (fs_jitter_star)", o.sweep);
+    tsv_writer_columns(w, "level\taniso_median\taniso_trees");
+    for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+        double lv, am;
+        long n;
+        const char *arm;
+        if ((st = tsv_text(t, r, "arm", &arm))) break;
+        if (strcmp(arm, "coupled")) continue;
+        if ((st = tsv_double(t, r, "level", &lv)) || (st = tsv_double(t, r, "aniso_median", &am)) || (st = tsv_long(t, r, "aniso_trees", &n))) break;
+        tsv_writer_dbl(w, lv);
+        tsv_writer_dbl(w, am);
+        tsv_writer_long(w, n);
+        tsv_writer_endrow(w);
+    }
+    tsv_free(t);
+    if (st) { tsv_writer_abort(w); return exp_fail("aniso-jitter-calibrate", st); }
+    if ((st = tsv_writer_commit(w))) return exp_fail("aniso-jitter-calibrate", st);
+    fs_calibration c;
+    if ((st = fs_jitter_star(o.out, &c))) return exp_fail("aniso-jitter-calibrate", st);
+    printf("aniso-jitter-calibrate: field median %.3f, a interpolated %.6f, a* %.2f%s\n", c.target, c.interp, c.value,
+           c.bracketed ? "" : " (FIELD MEDIAN NOT BRACKETED by the sweep: nearest end)");
+    return 0;
+}
+
+int cmd_aniso_heldout(int argc, char **argv)
+{
+    exp_field_opts o = {.stands_opt = 28};
+    const opt_spec spec[] = {
+        EXP_OPT_CAL(o),
+        {"jitter-calibration", OPT_STR, &o.jitter_calibration, 0, 0, "E6 jitter calibration table DIR/jitter_calibration.tsv, gives a* (required)"},
+        EXP_OPT_OUT(o),
+        EXP_OPT_STANDS(o, "stands (default 28)"),
+    };
+    const opts_cmd oc = {"aniso-heldout",
+                         "--calibration DIR/calibration.tsv --jitter-calibration DIR/jitter_calibration.tsv\n"
+                         "                              --out DIR/heldout.tsv [--stands N]",
+                         "E6 held-out (SPEC §7): N stands (default 28) at jitter a* on seeds disjoint from the sweep,\n"
+                         "teacher at beta_field: anisotropy, elongation, spread; every stand must build.",
+                         spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = exp_field_parse(&oc, argc, argv, &o);
+    if (rc) return opts_exit_code(rc);
+    if (!o.jitter_calibration) { opts_usage_error("aniso-heldout", "--jitter-calibration is required (a*)"); return 2; }
+    fs_calibration c, js;
+    if ((rc = exp_need_beta("aniso-heldout", &o, &c))) return rc;
+    cs_status st = fs_jitter_star(o.jitter_calibration, &js);
+    if (st) return exp_fail("aniso-heldout", st);
+    prov p;
+    prov_begin(&p, "anisotropy", argc, argv);
+    exp_field_job j = {"anisotropy/heldout", STAND_LATTICE, js.value, js.value, c.value, o.stands, 0, 0};
+    fs_trees acc;
+    fs_trees_init(&acc);
+    double worst = 0;
+    st = exp_field_run_job(&j, &acc, &worst);
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"anisotropy/heldout\", 5.0, s, stems|crowns), s = 0..%u", o.stands - 1);
+    p.worst_overlap_m = worst;
+    exp_meta_ctx m = {c.value, js.value, "E6 held-out at a*: lattice d = 5 m, L = 60 m, jitter a* (level), teacher at beta_field"};
+    if (!st) st = exp_field_write(o.out, &p, &acc, &j, 1, exp_meta_generic, &m);
+    if (!st) {
+        fs_summary s;
+        if (!fs_group(&acc, 1, js.value, &s))
+            printf("aniso-heldout: a* %.2f: anisotropy median %.4f (%zu trees, %zu excluded), elongation %.4f, spread %.4f m; %zu of %u stands built\n",
+                   js.value, s.f.aniso_median, s.f.aniso_trees, s.f.aniso_excluded, s.elong_median, s.f.spread, s.stands, o.stands);
+        exp_print_spread_ratios("aniso-heldout", &acc, js.value, 0);
+    }
+    fs_trees_free(&acc);
+    return st ? exp_fail("aniso-heldout", st) : 0;
+}
