@@ -128,7 +128,7 @@ cs_status prov_write(tsv_writer *w, prov *p)
     p->wall_s = prov_now() - p->t0;
     tsv_writer_meta(w, "experiment", "%s", p->experiment);
     tsv_writer_meta(w, "command", "%s", p->command);
-    tsv_writer_meta(w, "teacher_version", "%s", TEACHER_VERSION);
+    tsv_writer_meta(w, "teacher_version", "%s", p->teacher_version[0] ? p->teacher_version : TEACHER_VERSION);
     tsv_writer_meta(w, "teacher_sha256", "%s", th);
     tsv_writer_meta(w, "estimator_sha256", "%s", eh);
     tsv_writer_meta(w, "gates_sha256", "%s", gh);

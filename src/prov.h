@@ -1,5 +1,6 @@
 /* prov: the provenance block every frozen TSV starts with (SPEC §9):
- * experiment, command, teacher version, teacher/estimator/gates SHA-256,
+ * experiment, command, teacher version (the reading that made the result:
+ * prov.teacher_version, default TEACHER_VERSION), teacher/estimator/gates SHA-256,
  * git commit, seeds, date, wall time, worst overlap. Hashes are computed from
  * the source files at run time (src/teacher.c, src/estimator.c, gates/ *.gate
  * in name order), so the audit can compare them with audit/pins. */
@@ -14,6 +15,8 @@ typedef struct {
     char seeds[256];     /* how seeds were derived, e.g. "seed_derive(mechanism,d,stand,stream) stands 0..7" */
     double wall_s;       /* wall time of the producing run, seconds */
     double worst_overlap_m; /* max teacher self-check overlap over the run; <0 if not applicable */
+    char teacher_version[16]; /* reading that made the result (teacher_version(params));
+                                 empty: the default, TEACHER_VERSION */
     double t0;           /* start time (internal) */
 } prov;
 
