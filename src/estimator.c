@@ -5,9 +5,11 @@
  * spread. Crown radius between sector centres: crown_radius_at (the one rule);
  * at a sector centre r(theta_s) is r_s by definition, read directly.
  * Elongation (paper §5.3, revision 2 of SPEC §5): longest / shortest of the
- * 12 axes r_s + r_{s+12}; limit: the 24-sector profile resolves axes only at
- * 15 degree steps, exactly (axis length is piecewise linear in between). The
- * revision-1 cardinal reading stays as est_elongation_cardinal (readings only).
+ * 12 axes r_s + r_{s+12}. Between sector centres an axis length is linear
+ * (both ends interpolate over the same fraction), so these 12 hold its extremes
+ * and the value is exact for the 24-sector profile. Limit: shape finer than
+ * 15 degrees is not in the profile, so not in the statistic. The revision-1
+ * cardinal reading stays as est_elongation_cardinal (readings only).
  * Plain loops, no acceleration structures: the instrument favours being
  * obviously right over being fast. */
 #include "estimator.h"
