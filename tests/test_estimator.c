@@ -1,5 +1,7 @@
 /* Tests for src/forest/estimator.c on hand-built stands: Eq. 5, k-NN, W1 (Eq. 6),
- * cover, cardinal gaps, anisotropy, elongation, spread. */
+ * cover, cardinal gaps, anisotropy, elongation over all 12 axes (a square
+ * reads sqrt 2 at 0, 15 and 30 degrees; a fine sweep agrees) beside the
+ * revision-1 cardinal reading (the square reads 1), spread. */
 #include "testutil.h"
 #include "estimator.h"
 #include "crown.h"
@@ -115,7 +117,15 @@ static void test_elongation_of_an_oval(void **st)
     double r[CROWN_NSEC];
     fill(r, 0.7);
     r[0] = 1.0; r[12] = 1.2; r[6] = 0.6; r[18] = 0.8;
+    /* Axes E-W 2.2, N-S 1.4, every other 0.7 + 0.7 = 1.4: both readings agree. */
     ASSERT_NEAR(est_elongation(r), 2.2 / 1.4, 1e-15);
+    ASSERT_NEAR(est_elongation_cardinal(r), 2.2 / 1.4, 1e-15);
+    /* The same oval turned 45 degrees (long axis NE-SW, sectors 3 and 15): the
+     * cardinal axes are both 1.4, only the all-axis reading sees it. */
+    fill(r, 0.7);
+    r[3] = 1.0; r[15] = 1.2; r[9] = 0.6; r[21] = 0.8;
+    ASSERT_NEAR(est_elongation(r), 2.2 / 1.4, 1e-15);
+    ASSERT_EXACT(est_elongation_cardinal(r), 1.0);
 }
 
 static void test_w1_of_a_shift_is_the_shift(void **st)
@@ -187,8 +197,66 @@ static void test_directional_summary_of_the_hand_built_stand(void **st)
     ASSERT_NEAR(d.spread, 0.475, 1e-14);
     ASSERT_NEAR(d.aniso_median, 3.0, 1e-14);
     ASSERT_EXACT(d.elong_median, 1.0);
+    ASSERT_EXACT(d.elong_cardinal_median, 1.0);
     unsigned char none[5] = {0, 0, 0, 0, 0};
     assert_int_equal(est_directional_summary(X5, Y5, r, 5, none, &d), CS_EINPUT);
+}
+
+/* Square crown of half-width hw rotated by alpha: r(theta) = hw / max(|cos|,
+ * |sin|)(theta - alpha) at the 24 sector centres. */
+static void square(double *r, double hw, double alpha)
+{
+    for (int s = 0; s < CROWN_NSEC; s++) {
+        double u = crown_theta(s) - alpha;
+        r[s] = hw / fmax(fabs(cos(u)), fabs(sin(u)));
+    }
+}
+
+/* Revision 2 (SPEC §5): elongation over the 12 axes r(theta_s) + r(theta_s + pi).
+ * For a square the shortest axis is the side-to-side width 2 hw and the longest
+ * the diagonal 2 sqrt(2) hw. At 0, 15 and 30 degrees both directions fall on
+ * sector centres (they are 15 degrees apart): the diagonal at 45, 60, 75
+ * degrees (sectors 3, 4, 5), the width at 0, 15, 30 (sectors 0, 1, 2). So the
+ * all-axis reading is sqrt(2) up to rounding of cos/sin and two divisions
+ * (a few ulp of ~1.4, i.e. < 1e-15); tolerance 1e-14. The two cardinal axes of
+ * a square are equal at any rotation (90 degree symmetry): the revision-1
+ * reading is 1, same tolerance. */
+static void test_elongation_of_a_square_is_sqrt2_over_all_axes_and_1_over_the_cardinal_two(void **st)
+{
+    (void)st;
+    const double deg[3] = {0.0, 15.0, 30.0};
+    for (int k = 0; k < 3; k++) {
+        double r[CROWN_NSEC];
+        square(r, 1.7, deg[k] * CROWN_PI / 180.0);
+        double all = est_elongation(r), card = est_elongation_cardinal(r);
+        print_message("square rotated %g deg: all-axis %.17g (expected %.17g), cardinal %.17g (expected 1)\n",
+                      deg[k], all, sqrt(2.0), card);
+        ASSERT_NEAR(all, sqrt(2.0), 1e-14);
+        ASSERT_NEAR(card, 1.0, 1e-14);
+    }
+}
+
+/* Axis lengths are piecewise linear between sector centres (both ends of an
+ * axis interpolate over sectors 12 apart), so no finer axis is longer or
+ * shorter than the 12 on sector centres: a 4800-axis sweep through
+ * crown_radius_at gives the same ratio, for lobed crowns of every k. */
+static void test_elongation_twelve_axes_equal_a_fine_sweep(void **st)
+{
+    (void)st;
+    for (int k = 2; k <= 5; k++) {
+        crown_draw c = {.h = 25.0, .R = 3.1, .a = 0.17, .k = k, .phi = 0.3 * k};
+        double r[CROWN_NSEC];
+        crown_target(&c, r);
+        r[5] *= 1.3; /* an odd bump so the extremes are not symmetric */
+        double lo = INFINITY, hi = 0.0;
+        for (int q = 0; q < 4800; q++) {
+            double th = CROWN_PI * (double)q / 4800.0;
+            double ax = crown_radius_at(r, th) + crown_radius_at(r, th + CROWN_PI);
+            if (ax < lo) lo = ax;
+            if (ax > hi) hi = ax;
+        }
+        ASSERT_NEAR(est_elongation(r), hi / lo, 1e-12);
+    }
 }
 
 int main(void)
@@ -203,6 +271,8 @@ int main(void)
         cmocka_unit_test(test_cardinal_gap_takes_the_smallest_in_the_cone),
         cmocka_unit_test(test_anisotropy_excludes_nonpositive_gaps),
         cmocka_unit_test(test_elongation_of_an_oval),
+        cmocka_unit_test(test_elongation_of_a_square_is_sqrt2_over_all_axes_and_1_over_the_cardinal_two),
+        cmocka_unit_test(test_elongation_twelve_axes_equal_a_fine_sweep),
         cmocka_unit_test(test_w1_of_a_shift_is_the_shift),
         cmocka_unit_test(test_w1_different_sizes_by_hand),
         cmocka_unit_test(test_w1_rejects_empty_and_nonfinite),

@@ -2,6 +2,8 @@
 #include "testutil.h"
 #include "sha256.h"
 #include "prov.h"
+#include "audit.h"
+#include "teacher.h"
 
 static void test_sha256_known_vectors(void **s)
 {
@@ -57,7 +59,13 @@ static void test_provenance_block_has_every_key(void **s)
     for (size_t i = 0; i < sizeof keys / sizeof *keys; i++)
         if (!tsv_meta(t, keys[i])) fail_msg("missing provenance key %s", keys[i]);
     assert_string_equal(tsv_meta(t, "command"), "crownshy run demo");
-    assert_string_equal(tsv_meta(t, "teacher_version"), "teacher-1");
+    /* The default reading is the pinned one (audit/pins.tsv, read here). */
+    tsv *pins;
+    assert_int_equal(tsv_read(PATHS_PINS, &pins), CS_OK);
+    long pr = tsv_find(pins, "key", "teacher_version");
+    assert_true(pr >= 0);
+    assert_string_equal(tsv_meta(t, "teacher_version"), tsv_str(pins, (size_t)pr, "value"));
+    tsv_free(pins);
     assert_int_equal(strlen(tsv_meta(t, "gates_sha256")), 64);
     tsv_free(t);
 }
@@ -76,6 +84,34 @@ static void test_gates_hash_changes_with_one_byte(void **s)
     assert_string_not_equal(h1, h2);
 }
 
+/* A result made by the revision-1 reading says so in its provenance. */
+static void test_provenance_names_the_teacher_reading(void **s)
+{
+    (void)s;
+    const char *dir = tu_tmpdir("prov_reading");
+    char path[600];
+    snprintf(path, sizeof path, "%s/p.tsv", dir);
+    teacher_params tp;
+    teacher_params_default(&tp);
+    tp.one_sided = 1;
+    prov p;
+    char *argv[] = {"run", "demo"};
+    prov_begin(&p, "demo", 2, argv);
+    snprintf(p.teacher_version, sizeof p.teacher_version, "%s", teacher_version(&tp));
+    p.worst_overlap_m = 0.0;
+    tsv_writer *w;
+    assert_int_equal(tsv_writer_open(&w, path), CS_OK);
+    assert_int_equal(prov_write(w, &p), CS_OK);
+    tsv_writer_columns(w, "x");
+    tsv_writer_dbl(w, 1.5);
+    tsv_writer_endrow(w);
+    assert_int_equal(tsv_writer_commit(w), CS_OK);
+    tsv *t;
+    assert_int_equal(tsv_read(path, &t), CS_OK);
+    assert_string_equal(tsv_meta(t, "teacher_version"), "teacher-1");
+    tsv_free(t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -83,6 +119,7 @@ int main(void)
         cmocka_unit_test(test_sha256_streaming_equals_one_shot),
         cmocka_unit_test(test_provenance_block_has_every_key),
         cmocka_unit_test(test_gates_hash_changes_with_one_byte),
+        cmocka_unit_test(test_provenance_names_the_teacher_reading),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

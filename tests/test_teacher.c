@@ -1,7 +1,11 @@
 /* Tests for src/forest/teacher.c (SPEC §4): exact targets for a lone tree and for
  * coupling off, no overlap over random stands at every spacing and die-back
  * of the sweeps, beta = 0 gaps within one step, bit-identical repeats, the
- * self-check itself, and the perturbation rule (order and vigour by height). */
+ * self-check itself, and the perturbation rule (order and vigour by height).
+ * teacher-2 (mutual abrasion): two spikes meeting tip to tip, where both
+ * contacting sectors lose exactly beta of their own length and freeze; the
+ * teacher-1 switch still gives the one-sided rule on the same pair (the
+ * entered crown regrows); worst overlap exactly 0 on full 144-tree stands. */
 #include "testutil.h"
 #include "teacher.h"
 #include "stand.h"
@@ -274,6 +278,143 @@ static void test_bad_parameters_are_rejected(void **st)
     assert_int_equal(teacher_grow(&s, &p, r, NULL), CS_EINPUT);
 }
 
+/* ---- teacher-2: mutual abrasion (SPEC §4, revision 2) -------------------------
+ * Two spikes meeting tip to tip: tree 0 has target 3 m in sector 0 (east) and
+ * 0.5 m elsewhere, tree 1 (4 m east) 3 m in sector 12 (west), 0.5 m elsewhere.
+ * Equal heights, so both step by Delta = 3/48 = 0.0625 m per round (exact)
+ * from 0.05 * 3 m, tree 0 first (ties by index). After 29 rounds both spikes
+ * are at v29 = 1.9625 (sum 3.925 m < 4 m); in round 30 tree 0 reaches v30 =
+ * 2.025 legally (2.025 + 1.9625 = 3.9875 < 4), then tree 1's proposal 2.025
+ * would enter tree 0 (4.05 > 4): the contact. The flanks (0.5 m) sit at target
+ * long before, so the spikes are the only sectors that can ever touch. */
+static void spikes(double *t)
+{
+    for (int k = 0; k < 2 * CROWN_NSEC; k++) t[k] = 0.5;
+    t[0] = 3.0;              /* tree 0, sector 0 (east, toward tree 1) */
+    t[CROWN_NSEC + 12] = 3.0; /* tree 1, sector 12 (west, toward tree 0) */
+}
+
+/* v_k with the teacher's own arithmetic: r = 0.05 r*, then r <- r + Delta. */
+static double spike_len(int k)
+{
+    double v = 0.05 * 3.0;
+    for (int q = 0; q < k; q++) v = fmin(v + 3.0 / 48.0, 3.0);
+    return v;
+}
+
+static void grow_spikes(int one_sided, double *r, unsigned char *fz, teacher_info *inf)
+{
+    double x[2] = {0.0, 4.0}, y[2] = {0.0, 0.0}, h[2] = {25.0, 25.0}, R[2] = {3.0, 3.0};
+    double t[2 * CROWN_NSEC];
+    spikes(t);
+    teacher_stand s = {2, x, y, h, R, t};
+    teacher_params p;
+    teacher_params_default(&p);
+    p.one_sided = one_sided;
+    p.frozen_out = fz;
+    assert_int_equal(teacher_grow(&s, &p, r, inf), CS_OK);
+    ASSERT_EXACT(inf->step, 0.0625);
+    ASSERT_EXACT(inf->worst_overlap, 0.0);
+    /* The flanks never touch: every other sector ends at its target, unfrozen. */
+    for (int k = 0; k < 2 * CROWN_NSEC; k++) {
+        if (k == 0 || k == CROWN_NSEC + 12) continue;
+        ASSERT_EXACT(r[k], t[k]);
+        assert_int_equal(fz[k], 0);
+    }
+}
+
+static void test_mutual_abrasion_both_sectors_die_back_by_beta_of_their_own_length(void **st)
+{
+    (void)st;
+    double r[2 * CROWN_NSEC];
+    unsigned char fz[2 * CROWN_NSEC];
+    teacher_info inf;
+    grow_spikes(0, r, fz, &inf);
+    const double beta = 0.06; /* the default */
+    double v29 = spike_len(29), v30 = spike_len(30);
+    ASSERT_EXACT(v29, 1.9625);
+    ASSERT_EXACT(v30, 2.025);
+    /* Tree 1 (the one whose proposal made contact) loses beta of its 1.9625 m,
+     * tree 0 (the crown it would have entered) beta of its own 2.025 m. */
+    ASSERT_EXACT(r[CROWN_NSEC + 12], (1.0 - beta) * v29);
+    ASSERT_EXACT(r[0], (1.0 - beta) * v30);
+    assert_int_equal(fz[CROWN_NSEC + 12], 1);
+    assert_int_equal(fz[0], 1);
+    assert_int_equal(inf.frozen, 2);
+    /* Both frozen for good: the gap stays open at 4 - 0.94 (1.9625 + 2.025). */
+    double g = est_clearance(0.0, 0.0, r, 4.0, 0.0, r + CROWN_NSEC);
+    ASSERT_NEAR(g, 4.0 - (1.0 - beta) * (v29 + v30), 1e-12);
+    assert_string_equal(teacher_version(&(teacher_params){.one_sided = 0}), "teacher-2");
+}
+
+static void test_one_sided_switch_keeps_the_revision_1_rule(void **st)
+{
+    (void)st;
+    double r[2 * CROWN_NSEC];
+    unsigned char fz[2 * CROWN_NSEC];
+    teacher_info inf;
+    grow_spikes(1, r, fz, &inf);
+    const double beta = 0.06;
+    /* Only tree 1's sector dies back (to 0.94 * 1.9625 = 1.84475); tree 0's
+     * spike is untouched and regrows into the space given up: v31 + 1.84475 =
+     * 3.93225 and v32 + 1.84475 = 3.99475 are legal, v33 = 2.2125 is not, so
+     * tree 0 freezes at 0.94 * v32 on its own contact. */
+    ASSERT_EXACT(r[CROWN_NSEC + 12], (1.0 - beta) * spike_len(29));
+    ASSERT_EXACT(r[0], (1.0 - beta) * spike_len(32));
+    assert_int_equal(fz[CROWN_NSEC + 12], 1);
+    assert_int_equal(fz[0], 1);
+    assert_int_equal(inf.frozen, 2);
+    teacher_params p;
+    teacher_params_default(&p);
+    assert_int_equal(p.one_sided, 0);
+    assert_string_equal(teacher_version(&p), "teacher-2");
+    assert_string_equal(teacher_version(&p), TEACHER_VERSION);
+    p.one_sided = 1;
+    assert_string_equal(teacher_version(&p), "teacher-1");
+}
+
+/* Worst overlap 0 on full 144-tree stands (12 d footprints) under teacher-2,
+ * lattice and hard-core, at the closest, the figure and a wide spacing and at
+ * die-backs 0 (freeze without retreat), 0.03, 0.06 and 0.09. Independent of
+ * the self-check: every pair's Eq. 5 clearance >= 0. */
+static void test_mutual_abrasion_never_overlaps_on_full_stands(void **st)
+{
+    (void)st;
+    const double spacings[3] = {3.0, 3.5, 5.5};
+    const double betas[4] = {0.0, 0.03, 0.06, 0.09};
+    double worst = 0.0;
+    size_t stands = 0;
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 4; b++)
+            for (int kind = 0; kind < 2; kind++) {
+                stand *sd = NULL;
+                stand_kind sk = kind ? STAND_HARDCORE : STAND_LATTICE;
+                double shape = kind ? 0.5 : 0.04;
+                assert_int_equal(stand_alloc(&sd, sk, spacings[a], 12.0 * spacings[a], shape, "test/mutual", (unsigned)b), CS_OK);
+                teacher_stand v;
+                stand_view(sd, &v);
+                double *r = malloc(v.n * CROWN_NSEC * sizeof *r);
+                teacher_params p;
+                teacher_params_default(&p);
+                p.beta = betas[b];
+                teacher_info inf;
+                cs_status rc = teacher_grow(&v, &p, r, &inf);
+                if (rc) fail_msg("%s d=%g beta=%g: %s", kind ? "hardcore" : "lattice", spacings[a], betas[b], cs_errmsg());
+                if (inf.worst_overlap > worst) worst = inf.worst_overlap;
+                if (!(inf.frozen > 0)) fail_msg("d=%g beta=%g: no contact at all", spacings[a], betas[b]);
+                for (size_t i = 0; i < v.n; i++)
+                    for (size_t j = i + 1; j < v.n; j++) {
+                        double g = est_clearance(v.x[i], v.y[i], r + i * CROWN_NSEC, v.x[j], v.y[j], r + j * CROWN_NSEC);
+                        if (g < -1e-9) fail_msg("d=%g beta=%g pair %zu,%zu g=%.17g", spacings[a], betas[b], i, j, g);
+                    }
+                stands++;
+                free(r);
+                stand_free(sd);
+            }
+    if (!(worst <= 1e-9)) fail_msg("worst overlap %.17g m over %zu stands, expected <= 1e-9", worst, stands);
+    ASSERT_EXACT(worst, 0.0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -289,6 +430,9 @@ int main(void)
         cmocka_unit_test(test_stems_closer_than_the_starting_crowns_are_unbuildable),
         cmocka_unit_test(test_frozen_output_marks_contact_sectors_only),
         cmocka_unit_test(test_bad_parameters_are_rejected),
+        cmocka_unit_test(test_mutual_abrasion_both_sectors_die_back_by_beta_of_their_own_length),
+        cmocka_unit_test(test_one_sided_switch_keeps_the_revision_1_rule),
+        cmocka_unit_test(test_mutual_abrasion_never_overlaps_on_full_stands),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,5 +1,6 @@
 /* prov: the provenance block every frozen TSV starts with (SPEC §9):
- * experiment, command, teacher version, teacher/estimator/gates SHA-256,
+ * experiment, command, teacher version (the reading that made the result),
+ * teacher/estimator/gates SHA-256,
  * git commit, seeds, date, wall time, worst overlap. Hashes are computed from
  * the source files at run time (the pinned sources named in paths.h, gates/
  * *.gate in name order), so the audit can compare them with audit/pins. The
@@ -13,7 +14,9 @@
 typedef struct {
     char experiment[64];
     char command[512];   /* the command line that produced the file */
-    char teacher_version[32]; /* from PATHS_TEACHER_HDR at prov_begin */
+    char teacher_version[32]; /* the reading that made the result: prov_begin sets the
+                                 pinned default (PATHS_TEACHER_HDR); a unit that runs
+                                 another reading copies teacher_version(params) here */
     char seeds[256];     /* how seeds were derived, e.g. "seed_derive(mechanism,d,stand,stream) stands 0..7" */
     double wall_s;       /* wall time of the producing run, seconds */
     double worst_overlap_m; /* max teacher self-check overlap over the run; <0 if not applicable */

@@ -2,7 +2,14 @@
  * This file is pinned by SHA-256 (audit/pins): any edit changes the pin.
  * Eq. 5 clearance, k-NN clearance, exact W1 (Eq. 6), canopy cover on a
  * 0.05 m grid, cardinal gaps, tree-mean clearance, anisotropy, elongation,
- * spread. Crown radius between sector centres: crown_radius_at (the one rule).
+ * spread. Crown radius between sector centres: crown_radius_at (the one rule);
+ * at a sector centre r(theta_s) is r_s by definition, read directly.
+ * Elongation (paper §5.3, revision 2 of SPEC §5): longest / shortest of the
+ * 12 axes r_s + r_{s+12}. Between sector centres an axis length is linear
+ * (both ends interpolate over the same fraction), so these 12 hold its extremes
+ * and the value is exact for the 24-sector profile. Limit: shape finer than
+ * 15 degrees is not in the profile, so not in the statistic. The revision-1
+ * cardinal reading stays as est_elongation_cardinal (readings only).
  * Plain loops, no acceleration structures: the instrument favours being
  * obviously right over being fast. */
 #include "estimator.h"
@@ -170,12 +177,25 @@ int est_anisotropy(const double gaps[4], double *aniso)
     return 1;
 }
 
-double est_elongation(const double *ri)
+double est_elongation_cardinal(const double *ri)
 {
-    /* Cardinal bearings fall exactly on sectors 0, 6, 12, 18. */
     double ns = crown_radius_at(ri, 0.5 * CROWN_PI) + crown_radius_at(ri, 1.5 * CROWN_PI);
     double ew = crown_radius_at(ri, 0.0) + crown_radius_at(ri, CROWN_PI);
     return ns > ew ? ns / ew : ew / ns;
+}
+
+double est_elongation(const double *ri)
+{
+    /* Axis s runs through sector centres s and s + 12; between centres both
+     * ends interpolate linearly over the same angle fraction, so the axis
+     * length is piecewise linear and its extremes lie on these 12. */
+    double lo = INFINITY, hi = 0.0;
+    for (int s = 0; s < CROWN_NSEC / 2; s++) {
+        double ax = ri[s] + ri[s + CROWN_NSEC / 2];
+        if (ax < lo) lo = ax;
+        if (ax > hi) hi = ax;
+    }
+    return hi / lo;
 }
 
 cs_status est_quantile(const double *v, size_t n, double q, double *out)
@@ -215,9 +235,9 @@ cs_status est_directional_summary(const double *x, const double *y, const double
     out->aniso_median = NAN;
     size_t m = n ? n : 1;
     double *tm = malloc(m * sizeof *tm), *gp = malloc(4 * m * sizeof *gp);
-    double *an = malloc(m * sizeof *an), *el = malloc(m * sizeof *el);
-    if (!tm || !gp || !an || !el) {
-        free(tm); free(gp); free(an); free(el);
+    double *an = malloc(m * sizeof *an), *el = malloc(m * sizeof *el), *ec = malloc(m * sizeof *ec);
+    if (!tm || !gp || !an || !el || !ec) {
+        free(tm); free(gp); free(an); free(el); free(ec);
         return cs_err(CS_ENOMEM, "estimator: out of memory");
     }
     size_t nt = 0, na = 0;
@@ -229,6 +249,7 @@ cs_status est_directional_summary(const double *x, const double *y, const double
         for (int c = 0; c < 4; c++) gp[4 * nt + c] = g[c];
         tm[nt] = est_tree_mean(g);
         el[nt] = est_elongation(r + i * CROWN_NSEC);
+        ec[nt] = est_elongation_cardinal(r + i * CROWN_NSEC);
         if (est_anisotropy(g, &an[na])) na++;
         else out->aniso_excluded++;
         nt++;
@@ -239,7 +260,8 @@ cs_status est_directional_summary(const double *x, const double *y, const double
     if (!st) st = est_median(tm, nt, &out->tree_mean_median);
     if (!st) st = est_spread(gp, 4 * nt, &out->spread);
     if (!st) st = est_median(el, nt, &out->elong_median);
+    if (!st) st = est_median(ec, nt, &out->elong_cardinal_median);
     if (!st && na > 0) st = est_median(an, na, &out->aniso_median);
-    free(tm); free(gp); free(an); free(el);
+    free(tm); free(gp); free(an); free(el); free(ec);
     return st;
 }

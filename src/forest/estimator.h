@@ -1,5 +1,5 @@
 /* estimator: the canonical instrument (SPEC §5; reference paper §4.3,
- * Eqs. 5 and 6). Every clearance, W1, cover and directional statistic of the
+ * Eqs. 5 and 6; elongation paper §5.3). Every clearance, W1, cover and directional statistic of the
  * teacher experiments and the claims is computed here; src/forest/estimator.c
  * is pinned by SHA-256. The one other clearance code is the batched estimator
  * on model patches (src/model/patch.c, paper §4.3's guarded instrument), which
@@ -51,9 +51,16 @@ double est_tree_mean(const double gaps[4]);
  * untouched) when a gap is non-positive or NaN: the tree is excluded and the
  * caller counts it; 1 when *aniso was set. */
 int est_anisotropy(const double gaps[4], double *aniso);
-/* Elongation: longest / shortest of the two cardinal crown axes,
- * r(N)+r(S) and r(E)+r(W). */
+/* Elongation (paper §5.3, "the ratio of the longest to shortest crown axis";
+ * SPEC §5, revision 2): max / min over the 12 axes r(theta_s) + r(theta_s + pi),
+ * s = 0..11. Axis length is piecewise linear between sector centres, so no
+ * finer axis gives another value. A square crown reads sqrt(2) at any rotation
+ * that puts sector centres on its diagonals and sides (every multiple of 15 deg). */
 double est_elongation(const double *ri);
+/* Revision-1 reading, kept for the readings table (SPEC §7 E0): longest /
+ * shortest of the two cardinal axes only, r(N)+r(S) and r(E)+r(W). A square
+ * crown reads 1 at any rotation, so this reads ~1 on any lattice. */
+double est_elongation_cardinal(const double *ri);
 
 /* Directional summary of a set of trees (the field comparisons, SPEC §7 E5/E6):
  * for every tree with use[i] != 0 (use NULL: all trees), its four cardinal
@@ -67,7 +74,8 @@ typedef struct {
     double tree_mean_median; /* median over trees of the tree-mean clearance, m */
     double spread;           /* IQR of the pooled cardinal gaps (4 per tree), m */
     double aniso_median;     /* median anisotropy (NaN when every tree is excluded) */
-    double elong_median;     /* median elongation */
+    double elong_median;     /* median elongation (all 12 axes) */
+    double elong_cardinal_median; /* median revision-1 elongation (cardinal axes; readings only) */
 } est_directional;
 cs_status est_directional_summary(const double *x, const double *y, const double *r, size_t n,
                                   const unsigned char *use, est_directional *out);

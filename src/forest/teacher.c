@@ -1,5 +1,10 @@
-/* teacher: coupled growth with contact abrasion (SPEC §4; paper §3.1, Eqs. 1-3).
- * See teacher.h for the rule and the contact test. Why the test is shaped as it
+/* teacher: coupled growth with contact abrasion (SPEC §4; paper §3.1, Eqs. 1-3),
+ * `teacher-2` (mutual abrasion) by default, `teacher-1` (one-sided) on the
+ * one_sided switch. See teacher.h for the rule, the readings, why the entered
+ * crown's die-back is safe, and the contact test. Limits: 24 sectors, 8 sample
+ * points per sector interval; overlap thinner than the gap between sample
+ * points is invisible to the contact test and to the self-check alike.
+ * Why the test is shaped as it
  * is: the self-check must never fire, so the contact test evaluates the very
  * same sample points and clearances, with the same arithmetic (smp_point,
  * pen_into, est_clearance), that teacher_worst_overlap measures. The cheap
@@ -28,6 +33,12 @@ void teacher_params_default(teacher_params *p)
     p->gamma = 1.0;
     p->hbar = 0.0;
     p->frozen_out = NULL;
+    p->one_sided = 0;
+}
+
+const char *teacher_version(const teacher_params *p)
+{
+    return p->one_sided ? TEACHER_VERSION_ONE_SIDED : TEACHER_VERSION;
 }
 
 /* Unit vectors of the 192 sample bearings (index 8s+q) and of the sector centres. */
@@ -191,15 +202,21 @@ typedef struct {
     double *pvx, *pvy, *pnu; /* per neighbour entry: p_j - p_i and its length */
     smp_dirs dirs;
     double uc[NS], us[NS]; /* sector-centre unit vectors */
+    size_t *hits;     /* teacher-2: the crowns one proposal would enter (<= max degree) */
 } grow_ws;
 
-/* Would proposal r_i,s = rp enter another crown? (teacher.h (a)-(c)) */
-static int conflict(grow_ws *w, size_t i, int s, double rp, double clear_i)
+/* Would proposal r_i,s = rp enter another crown? (teacher.h (a)-(c)) With
+ * hits == NULL (teacher-1) the answer comes at the first crown entered; with
+ * hits (teacher-2) every neighbour is tested against the same state and each
+ * crown the proposal would enter is listed (ascending neighbour-list order),
+ * *nhit of them. */
+static int conflict(grow_ws *w, size_t i, int s, double rp, double clear_i, size_t *hits, size_t *nhit)
 {
     const teacher_stand *st = w->st;
     const double *ri = w->r + i * NS;
     int sm = (s + NS - 1) % NS, sp = (s + 1) % NS;
     double rho_max = fmax(rp, fmax(ri[sm], ri[sp]));
+    if (nhit) *nhit = 0;
     if (rho_max + MARGIN < clear_i) return 0;
     double xi = st->x[i], yi = st->y[i];
     double tmp[NS];
@@ -237,17 +254,17 @@ static int conflict(grow_ws *w, size_t i, int s, double rp, double clear_i)
         double xj = st->x[j], yj = st->y[j];
         double rjmax = w->curmax[j];
         /* (b) clearance along the stem line, Eq. 5. */
-        if (est_clearance(xi, yi, tmp, xj, yj, rj) < 0.0) return 1;
+        if (est_clearance(xi, yi, tmp, xj, yj, rj) < 0.0) goto contact;
         /* (a) i's changed sample points: intervals sm (q = 1..7) and s (q = 0..7). */
         for (int k = sm * SPS + 1; k < sm * SPS + SPS; k++) {
             double px, py;
             smp_point(&w->dirs, xi, yi, tmp, k, &px, &py);
-            if (pen_into(px, py, xj, yj, rj, rjmax) > 0.0) return 1;
+            if (pen_into(px, py, xj, yj, rj, rjmax) > 0.0) goto contact;
         }
         for (int k = s * SPS; k < s * SPS + SPS; k++) {
             double px, py;
             smp_point(&w->dirs, xi, yi, tmp, k, &px, &py);
-            if (pen_into(px, py, xj, yj, rj, rjmax) > 0.0) return 1;
+            if (pen_into(px, py, xj, yj, rj, rjmax) > 0.0) goto contact;
         }
         /* (c) j's sample points inside i's proposed crown. Points farther from
          * p_i than rho_max are outside the changed arcs, and were outside i's
@@ -272,10 +289,22 @@ static int conflict(grow_ws *w, size_t i, int s, double rp, double clear_i)
             /* Outside the closed wedge [theta_sm, theta_sp] i's radius is unchanged. */
             double scale = MARGIN * (fabs(qx) + fabs(qy));
             if (w->uc[sm] * qy - w->us[sm] * qx < -scale || w->uc[sp] * qy - w->us[sp] * qx > scale) continue;
-            if (pen_into(px, py, xi, yi, tmp, rho_max) > 0.0) return 1;
+            if (pen_into(px, py, xi, yi, tmp, rho_max) > 0.0) goto contact;
         }
+        continue;
+    contact:
+        if (!hits) return 1;
+        hits[(*nhit)++] = j;
     }
-    return 0;
+    return hits ? *nhit > 0 : 0;
+}
+
+/* Sector whose centre is nearest bearing atan2(dy, dx): round(theta / (2 pi/24))
+ * mod 24, a bearing exactly half-way going to the counter-clockwise sector. */
+static int nearest_sector(double dx, double dy)
+{
+    int t = (int)floor(atan2(dy, dx) / CROWN_DTHETA + 0.5);
+    return ((t % NS) + NS) % NS;
 }
 
 static const double *sort_h;
@@ -358,13 +387,18 @@ cs_status teacher_grow(const teacher_stand *st, const teacher_params *p, double 
         w.pvy = malloc((ne ? ne : 1) * sizeof *w.pvy);
         w.pnu = malloc((ne ? ne : 1) * sizeof *w.pnu);
         if (!w.pvx || !w.pvy || !w.pnu) { rc = cs_err(CS_ENOMEM, "teacher: out of memory"); goto done; }
-        for (size_t i = 0; i < n; i++)
+        size_t deg = 1;
+        for (size_t i = 0; i < n; i++) {
+            if (w.nb.start[i + 1] - w.nb.start[i] > deg) deg = w.nb.start[i + 1] - w.nb.start[i];
             for (size_t e = w.nb.start[i]; e < w.nb.start[i + 1]; e++) {
                 size_t j = w.nb.idx[e];
                 w.pvx[e] = st->x[j] - st->x[i];
                 w.pvy[e] = st->y[j] - st->y[i];
                 w.pnu[e] = sqrt(w.pvx[e] * w.pvx[e] + w.pvy[e] * w.pvy[e]);
             }
+        }
+        w.hits = malloc(deg * sizeof *w.hits);
+        if (!w.hits) { rc = cs_err(CS_ENOMEM, "teacher: out of memory"); goto done; }
     }
     /* Stems closer than their starting crowns (0.05 r*) cannot start without
      * overlap; the rule is not bent for them: the stand is reported unbuildable. */
@@ -382,6 +416,7 @@ cs_status teacher_grow(const teacher_stand *st, const teacher_params *p, double 
     qsort(order, n, sizeof *order, cmp_desc_h);
 
     long max_rounds = 100L * p->nres;
+    const int mutual = !p->one_sided;
     for (;;) {
         int moved = 0;
         for (size_t oi = 0; oi < n; oi++) {
@@ -400,11 +435,28 @@ cs_status teacher_grow(const teacher_stand *st, const teacher_params *p, double 
                 if (fi[s] || ri[s] == ti[s]) continue;
                 double rp = fmin(ri[s] + step[i], ti[s]);
                 moved = 1;
-                if (conflict(&w, i, s, rp, clear_i)) {
+                size_t nhit = 0;
+                if (conflict(&w, i, s, rp, clear_i, mutual ? w.hits : NULL, &nhit)) {
                     fi[s] = 1;
                     ri[s] = (1.0 - p->beta) * ri[s];
                     inf.frozen++;
                     active[i]--;
+                    /* teacher-2: each crown j the proposal would enter loses beta
+                     * of the sector nearest the bearing from p_j to i's proposed
+                     * tip, and that sector freezes (again at every contact). */
+                    double tx = st->x[i] + rp * w.uc[s], ty = st->y[i] + rp * w.us[s];
+                    for (size_t h = 0; h < nhit; h++) {
+                        size_t j = w.hits[h];
+                        int t = nearest_sector(tx - st->x[j], ty - st->y[j]);
+                        size_t jt = j * NS + (size_t)t;
+                        if (!w.frozen[jt]) {
+                            if (r[jt] != st->rstar[jt]) active[j]--;
+                            w.frozen[jt] = 1;
+                            inf.frozen++;
+                        }
+                        r[jt] = (1.0 - p->beta) * r[jt];
+                        inf.abraded++;
+                    }
                 } else {
                     ri[s] = rp;
                     if (rp > w.curmax[i]) w.curmax[i] = rp;
@@ -426,7 +478,7 @@ cs_status teacher_grow(const teacher_stand *st, const teacher_params *p, double 
                     inf.worst_overlap, TEACHER_OVERLAP_MAX_M);
 done:
     nbrs_free(&w.nb);
-    free(w.pvx); free(w.pvy); free(w.pnu);
+    free(w.pvx); free(w.pvy); free(w.pnu); free(w.hits);
     free(w.frozen); free(w.curmax); free(step); free(reach); free(order); free(active);
     if (info) *info = inf;
     return rc;

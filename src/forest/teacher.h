@@ -1,15 +1,39 @@
 /* teacher: coupled crown growth with contact abrasion (SPEC §4; reference
- * paper §3.1, Eqs. 1-3). Version string pinned by the audit.
+ * paper §3.1, Eqs. 1-3). Two readings of Eq. 3, chosen by
+ * teacher_params.one_sided and named by teacher_version(): `teacher-2`
+ * (default, SPEC revision 2, pinned by the audit) and `teacher-1` (revision 1).
  *
  * Rule: step Delta = median_i(R_i) / N; hbar = mean height as drawn (or an
  * explicit override: a perturbation keeps the unperturbed mean). Start at
- * r = 0.05 r*. Rounds: trees in descending height (ties by lower index); each
- * tree advances, in sector order 0..23, every sector neither frozen nor at
- * target to r' = min(r + Delta (h_i/hbar)^gamma, r*_s). Coupling on: if the
- * proposed boundary would enter another crown, the sector freezes for good
- * and dies back, r <- (1 - beta) r (Eq. 3); otherwise r <- r'. Coupling off:
- * every sector ends at its target. Stop when a round changes nothing; more
- * than 100 N rounds is an error.
+ * r = 0.05 r* (Eq. 1 targets). Rounds: trees in descending height (ties by
+ * lower index); each tree advances, in sector order 0..23, every sector
+ * neither frozen nor at target to r' = min(r + Delta (h_i/hbar)^gamma, r*_s)
+ * (Eq. 2). Coupling on: if the proposed boundary of sector s of tree i would
+ * enter another crown (the contact test below), the sector freezes for good
+ * and dies back, r <- (1 - beta) r (Eq. 3, "where sector s made contact");
+ * otherwise r <- r'. Coupling off: every sector ends at its target. Stop when
+ * a round changes nothing; more than 100 N rounds is an error.
+ *
+ * teacher-2, mutual abrasion (Eq. 3 read for each crown in the contact): in
+ * addition, every crown j the proposal would enter loses beta of its own
+ * sector t nearest the bearing from p_j to i's proposed tip p_i + r' u_s
+ * (t = round(bearing / 15 deg) mod 24, half-way to the counter-clockwise
+ * sector), r_j,t <- (1 - beta) r_j,t, and that sector freezes; at every such
+ * contact, so a frozen sector can lose beta again. All crowns entered are
+ * found against the same state before any die-back is applied.
+ * teacher-1, one-sided: only i's sector dies back; j may regrow into the
+ * space i gave up (kept runnable for the readings, SPEC §7 E0).
+ * Why j's die-back is safe for the self-check: it only lowers r_j,t, so j's
+ * region shrinks (interpolation weights are >= 0): no clearance g falls and no
+ * point enters j that was outside. j's changed sample points move inward along
+ * their own rays by at least beta r_j,t / 8; such a point can land inside a
+ * crown k only where j and k already overlapped in area that deep, and the
+ * test below leaves no overlap beyond the sub-sample lens between sample
+ * points (depth ~ r dphi^2 / 8 ~ 0.5 mm at r = 4 m, dphi = 2 pi/192). So for
+ * beta >= ~0.01 it cannot raise the measured overlap; at beta = 0 nothing
+ * moves; the end-of-growth self-check guards whatever this bound leaves.
+ * Freezing j's sector only stops its growth (fewer proposals, never a larger
+ * crown); the bookkeeping counts it once as no longer active.
  *
  * Contact test ("would enter"): moving sector s changes the boundary on the
  * two arcs [theta_{s-1}, theta_{s+1}]. For every neighbour j that a cheap
@@ -33,7 +57,8 @@
 #include "stand.h"
 #include <stddef.h>
 
-#define TEACHER_VERSION "teacher-1"
+#define TEACHER_VERSION "teacher-2"           /* the default reading, pinned by the audit */
+#define TEACHER_VERSION_ONE_SIDED "teacher-1" /* revision 1, kept for the readings (SPEC §7 E0) */
 #define TEACHER_SAMPLES_PER_SECTOR 8
 #define TEACHER_OVERLAP_MAX_M 1e-9
 
@@ -43,10 +68,16 @@ typedef struct {
     int nres;       /* growth resolution N (default 48) */
     double gamma;   /* vigour exponent (1) */
     double hbar;    /* > 0: use this stand mean height; <= 0: mean of h */
-    unsigned char *frozen_out; /* optional, n x CROWN_NSEC: 1 where a sector froze on contact */
+    unsigned char *frozen_out; /* optional, n x CROWN_NSEC: 1 where a sector froze on contact
+                                  (teacher-2: both the entering and the entered sector) */
+    int one_sided;  /* 0 (default): teacher-2, mutual abrasion; 1: teacher-1, revision 1's one-sided rule */
 } teacher_params;
 
-/* beta 0.06, coupled, N 48, gamma 1, hbar from the heights, no frozen output. */
+/* The version string of the reading p selects: TEACHER_VERSION ("teacher-2")
+ * or TEACHER_VERSION_ONE_SIDED ("teacher-1"). Provenance records this. */
+const char *teacher_version(const teacher_params *p);
+
+/* beta 0.06, coupled, N 48, gamma 1, hbar from the heights, no frozen output, teacher-2. */
 void teacher_params_default(teacher_params *p);
 
 /* What the teacher reads of a stand (stand.h: stems, heights, radii, targets;
@@ -57,7 +88,8 @@ typedef struct {
     double step;          /* Delta, m */
     double hbar;          /* mean height used, m */
     long rounds;          /* rounds run (0 when uncoupled: targets copied) */
-    size_t frozen;        /* frozen sectors */
+    size_t frozen;        /* frozen sectors (teacher-2: both sides of each contact) */
+    size_t abraded;       /* teacher-2: die-backs of entered crowns (repeats counted); 0 under teacher-1 */
     double worst_overlap; /* self-check, m (coupled runs); 0 when uncoupled */
 } teacher_info;
 
