@@ -8,7 +8,7 @@
 #include "gate.h"
 #include "opts.h"
 #include "paths.h"
-#include "teacher.h"
+#include "stand_grow.h"
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -84,7 +84,7 @@ int cli_cmd_bench_teacher(int argc, char **argv)
     const int levels[2] = {48, 384};
     for (int k = 0; k < 2; k++) {
         double ms = 0.0;
-        cs_status st = teacher_bench(levels[k], k ? (int)(reps + 3) / 4 : (int)reps, &ms);
+        cs_status st = stand_grow_bench(levels[k], k ? (int)(reps + 3) / 4 : (int)reps, &ms);
         if (st) { fprintf(stderr, "crownshy bench-teacher: %s\n", cs_errmsg()); return cs_exit_code(st); }
         printf("teacher_ms_per_stand_N%d\t%.3f\n", levels[k], ms);
     }

@@ -16,4 +16,10 @@
 cs_status stand_grow(const stand *sd, const teacher_params *p, const double *h, double *r,
                      teacher_info *info, double *worst);
 
+/* Bench (SPEC §10): CPU ms (one core) per 144-tree controlled-lattice stand at
+ * d = 3.5 m, beta 0.06 (the default teacher reading), for resolution nres,
+ * averaged over `reps` stands; process CPU time, which stays comparable when
+ * other jobs share the machine. */
+cs_status stand_grow_bench(int nres, int reps, double *ms_per_stand);
+
 #endif

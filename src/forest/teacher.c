@@ -12,11 +12,9 @@
  * skip neighbours that provably cannot be touched, with a 1e-9 m margin. */
 #include "teacher.h"
 #include "estimator.h"
-#include "stand.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <gsl/gsl_sort.h>
 #include <gsl/gsl_statistics_double.h>
 
@@ -482,39 +480,4 @@ done:
     free(w.frozen); free(w.curmax); free(step); free(reach); free(order); free(active);
     if (info) *info = inf;
     return rc;
-}
-
-/* ---- bench ---------------------------------------------------------------------- */
-/* Process CPU time: the target is "on one core", and CPU time is what stays
- * comparable when other jobs share the machine (wall time does not). */
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-cs_status teacher_bench(int nres, int reps, double *ms_per_stand)
-{
-    double total = 0.0;
-    for (int k = 0; k < reps; k++) {
-        stand *sd = NULL;
-        cs_status rc = stand_alloc(&sd, STAND_LATTICE, 3.5, 12.0 * 3.5, 0.04, "bench", (unsigned)k);
-        if (rc) return rc;
-        double *r = malloc(sd->s->n * NS * sizeof *r);
-        if (!r) { stand_free(sd); return cs_err(CS_ENOMEM, "teacher: out of memory"); }
-        teacher_stand v;
-        stand_view(sd, &v);
-        teacher_params p;
-        teacher_params_default(&p);
-        p.nres = nres;
-        double t0 = now_s();
-        rc = teacher_grow(&v, &p, r, NULL);
-        total += now_s() - t0;
-        free(r);
-        stand_free(sd);
-        if (rc) return rc;
-    }
-    *ms_per_stand = 1e3 * total / (double)reps;
-    return CS_OK;
 }

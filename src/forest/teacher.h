@@ -104,8 +104,5 @@ cs_status teacher_grow(const teacher_stand *st, const teacher_params *p, double 
 cs_status teacher_worst_overlap(const double *x, const double *y, const double *r, size_t n,
                                 double *worst);
 
-/* Bench (SPEC §10): CPU ms (one core) per 144-tree controlled-lattice stand at
- * d = 3.5 m, beta 0.06, for resolution nres, averaged over `reps` stands. */
-cs_status teacher_bench(int nres, int reps, double *ms_per_stand);
 
 #endif
