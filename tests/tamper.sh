@@ -78,6 +78,14 @@ if [ -n "$f" ] && [ -f "$scratch/$f" ]; then
 else
   echo "[  SKIPPED ] frozen number: nothing frozen yet"
 fi
+# 5. the record of a superseded reading: without it, tables that reading made fail
+fresh
+if [ -f "$scratch/audit/pins_superseded.tsv" ] && [ "$(grep -vc '^#' "$scratch/audit/pins_superseded.tsv")" -gt 1 ]; then
+  rm "$scratch/audit/pins_superseded.tsv"
+  expect "superseded reading unrecorded" "does not match the current pin"
+else
+  echo "[  SKIPPED ] superseded reading unrecorded: no frozen table made by a superseded reading"
+fi
 rm -rf "$scratch"
 echo "[==========] tamper tests run."
 echo "[  PASSED  ] $pass test(s)."

@@ -13,6 +13,9 @@
 #define PATHS_GATE(name) PATHS_GATES_DIR "/" name ".gate"
 
 #define PATHS_PINS "audit/pins.tsv"
+/* Earlier pins of the teacher and estimator that still made frozen results
+ * (a re-run is pending): `crownshy pin` appends a pin here when it changes. */
+#define PATHS_PINS_SUPERSEDED "audit/pins_superseded.tsv"
 #define PATHS_FROZEN_HASHES "audit/frozen.sha256"
 #define PATHS_CLAIMS "audit/claims.tsv"
 #define PATHS_NUMBERS "paper/numbers.tex"

@@ -93,13 +93,76 @@ static void current_pins(pin *p, size_t *n)
     *n = k;
 }
 
+/* The instrument pins that name a reading (not the gates: a gate is never
+ * superseded, it is preregistered). */
+static int reading_key(const char *key)
+{
+    return !strcmp(key, "teacher_version") || !strcmp(key, "teacher_sha256") || !strcmp(key, "estimator_sha256");
+}
+
+/* Line of (key, value) in the superseded pins t (may be NULL), 0 if absent. */
+static int superseded_line(const tsv *t, const char *key, const char *value)
+{
+    for (size_t r = 0; t && r < tsv_nrows(t); r++) {
+        const char *k = tsv_str(t, r, "key"), *v = tsv_str(t, r, "value");
+        if (k && v && !strcmp(k, key) && !strcmp(v, value)) return tsv_line(t, r);
+    }
+    return 0;
+}
+
+/* Keep every earlier pin of a reading that changes now, with the commit it
+ * was superseded at: frozen results it made stay traceable until re-run. */
+static cs_status supersede(const pin *cur, size_t n)
+{
+    tsv *old = NULL, *sup = NULL;
+    if (tsv_read(PATHS_PINS, &old)) return CS_OK; /* first pinning: nothing superseded */
+    tsv_read(PATHS_PINS_SUPERSEDED, &sup);        /* absent: none yet */
+    size_t add = 0;
+    const char *newv[64] = {0};
+    for (size_t r = 0; r < tsv_nrows(old); r++) {
+        const char *key = tsv_str(old, r, "key"), *val = tsv_str(old, r, "value");
+        if (!key || !val || !reading_key(key)) continue;
+        for (size_t i = 0; i < n; i++)
+            if (!strcmp(cur[i].key, key) && strcmp(cur[i].value, val) && !superseded_line(sup, key, val)) { newv[r < 64 ? r : 63] = val; add++; }
+    }
+    cs_status st = CS_OK;
+    if (add) {
+        char commit[64] = "unknown";
+        FILE *g = popen("git rev-parse --short=12 HEAD 2>/dev/null", "r");
+        if (g) { if (fgets(commit, sizeof commit, g)) commit[strcspn(commit, "\n")] = '\0'; pclose(g); }
+        tsv_writer *w;
+        if (!(st = tsv_writer_open(&w, PATHS_PINS_SUPERSEDED))) {
+            tsv_writer_meta(w, "what", "earlier pins of the teacher and estimator whose frozen results are not yet re-run");
+            tsv_writer_meta(w, "written_by", "crownshy pin (appends a reading's pin when it changes)");
+            tsv_writer_columns(w, "key\tvalue\tpath\tsuperseded_at");
+            for (size_t r = 0; sup && r < tsv_nrows(sup); r++) {
+                const char *c[4] = {tsv_str(sup, r, "key"), tsv_str(sup, r, "value"), tsv_str(sup, r, "path"), tsv_str(sup, r, "superseded_at")};
+                for (int k = 0; k < 4; k++) tsv_writer_str(w, c[k] ? c[k] : "-");
+                tsv_writer_endrow(w);
+            }
+            for (size_t r = 0; r < tsv_nrows(old) && r < 64; r++) {
+                if (!newv[r]) continue;
+                tsv_writer_str(w, tsv_str(old, r, "key")); tsv_writer_str(w, newv[r]);
+                tsv_writer_str(w, tsv_str(old, r, "path")); tsv_writer_str(w, commit);
+                tsv_writer_endrow(w);
+            }
+            st = tsv_writer_commit(w);
+        }
+    }
+    tsv_free(old);
+    if (sup) tsv_free(sup);
+    return st;
+}
+
 cs_status audit_pin(void)
 {
     pin p[64];
     size_t n;
     current_pins(p, &n);
+    cs_status st = supersede(p, n);
+    if (st) return st;
     tsv_writer *w;
-    cs_status st = tsv_writer_open(&w, PATHS_PINS);
+    st = tsv_writer_open(&w, PATHS_PINS);
     if (st) return st;
     tsv_writer_meta(w, "what", "pins of the instrument: teacher version and source hash, estimator source hash, gate hashes");
     tsv_writer_meta(w, "regenerate", "crownshy pin (deliberate: afterwards frozen/ must be regenerated with make reproduce freeze)");
@@ -216,11 +279,15 @@ static void check_frozen(const claims *c, checklist *cl, paths_list *frozen_file
     if (!bad) checklist_add(cl, VERDICT_PASS, "frozen hashes", "%zu frozen files match %s", ok, PATHS_FROZEN_HASHES);
 }
 
-static void check_provenance(checklist *cl, const paths_list *frozen_files)
+static void check_provenance(const claims *c, checklist *cl, const paths_list *frozen_files)
 {
     pin cur[64];
     size_t n;
     current_pins(cur, &n);
+    tsv *sup = NULL;
+    tsv_read(PATHS_PINS_SUPERSEDED, &sup); /* absent: no superseded reading */
+    struct { char dir[256], old[256], claims[700]; int line; size_t files; } sups[32];
+    size_t nsup = 0;
     size_t checked = 0, bad = 0;
     for (size_t i = 0; i < frozen_files->n; i++) {
         const char *p = frozen_files->p[i];
@@ -231,20 +298,59 @@ static void check_provenance(checklist *cl, const paths_list *frozen_files)
         const char *keys[] = {"teacher_version", "teacher_sha256", "estimator_sha256", "gates_sha256"};
         if (tsv_meta(t, "experiment") && tsv_meta(t, "teacher_version")) {
             checked++;
+            char old[512] = "";
+            size_t off = 0;
+            int mismatch = 0, excused = 0, first_line = 0;
             for (int k = 0; k < 4; k++) {
                 const char *v = tsv_meta(t, keys[k]);
                 const char *want = NULL;
                 for (size_t j = 0; j < n; j++) if (!strcmp(cur[j].key, keys[k])) want = cur[j].value;
-                if (!v || !want || strcmp(v, want)) {
-                    checklist_add(cl, VERDICT_FAIL, "provenance", "%s: provenance %s = %.16s does not match the current pin %.16s (frozen with other code: regenerate)",
-                                  p, keys[k], v ? v : "(missing)", want ? want : "(none)");
-                    bad++;
+                if (v && want && !strcmp(v, want)) continue;
+                mismatch++;
+                int line = v && reading_key(keys[k]) ? superseded_line(sup, keys[k], v) : 0;
+                if (line) {
+                    excused++;
+                    if (!first_line) first_line = line;
+                    off += (size_t)snprintf(old + off, off < sizeof old ? sizeof old - off : 0, "%s%s %.12s",
+                                            off ? ", " : "", keys[k] + (strncmp(keys[k], "teacher_v", 9) ? 0 : 8), v);
+                    continue;
+                }
+                checklist_add(cl, VERDICT_FAIL, "provenance", "%s: provenance %s = %.16s does not match the current pin %.16s (frozen with other code: regenerate)",
+                              p, keys[k], v ? v : "(missing)", want ? want : "(none)");
+                bad++;
+            }
+            if (mismatch && excused == mismatch) {
+                /* one line per frozen folder and reading, not per file */
+                char dir[256];
+                snprintf(dir, sizeof dir, "%.*s", (int)(strrchr(p, '/') - p), p);
+                size_t k = 0;
+                while (k < nsup && (strcmp(sups[k].dir, dir) || strcmp(sups[k].old, old))) k++;
+                if (k == nsup && nsup < 32) {
+                    snprintf(sups[k].dir, sizeof sups[k].dir, "%s", dir);
+                    snprintf(sups[k].old, sizeof sups[k].old, "%s", old);
+                    sups[k].line = first_line;
+                    sups[k].files = 0;
+                    sups[k].claims[0] = '\0';
+                    nsup++;
+                }
+                if (k < nsup) {
+                    char affected[600];
+                    claims_of(c, p, NULL, affected, sizeof affected);
+                    size_t l = strlen(sups[k].claims);
+                    if (strcmp(affected, "(no claim)"))
+                        snprintf(sups[k].claims + l, sizeof sups[k].claims - l, "%s%s", l ? ", " : "", affected);
+                    sups[k].files++;
                 }
             }
         }
         tsv_free(t);
     }
-    if (!bad) checklist_add(cl, VERDICT_PASS, "provenance", "%zu frozen tables carry provenance matching the pins", checked);
+    if (sup) tsv_free(sup);
+    for (size_t k = 0; k < nsup; k++)
+        checklist_add(cl, VERDICT_PENDING, "provenance", "%s/: %zu tables made by a superseded reading (%s; %s:%d), their numbers that reading's until re-run; claims: %s",
+                      sups[k].dir, sups[k].files, sups[k].old, PATHS_PINS_SUPERSEDED, sups[k].line,
+                      sups[k].claims[0] ? sups[k].claims : "(no claim)");
+    if (!bad) checklist_add(cl, VERDICT_PASS, "provenance", "%zu frozen tables carry provenance matching the pins or a superseded reading listed in %s", checked, PATHS_PINS_SUPERSEDED);
 }
 
 static void check_registry(const claims *c, checklist *cl)
@@ -372,7 +478,7 @@ cs_status audit_run(const claims *c, const claim_result *res, checklist *out)
     paths_list frozen_files = {0};
     check_pins(c, out);
     check_frozen(c, out, &frozen_files);
-    check_provenance(out, &frozen_files);
+    check_provenance(c, out, &frozen_files);
     paths_list_free(&frozen_files);
     check_registry(c, out);
     audit_numbers(c, res, out);
