@@ -241,9 +241,11 @@ int exp_main_cmd_run(int argc, char **argv)
                   "usage: crownshy main-run --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--ckpt FILE]\n"
                   "One (seed, arm) unit of E3/E4: build teacher data, train the flow model (resuming from\n"
                   "--ckpt if it exists), evaluate W1 of focal nearest-neighbour clearances at the unseen and\n"
-                  "extrapolation spacings (joint arm: also the shuffled-geometry probe), write FILE.tsv."))
+                  "extrapolation spacings (joint arm: also the shuffled-geometry probe), write FILE.tsv.\n"
+                  "Exploration (recorded in the provenance): --epochs N, --train-stands N, --pair 1 (the\n"
+                  "pair-aware model of SPEC §8 revision 2; both arms then run the shuffled probe)."))
         return 0;
-    static const char *known[] = {"--seed", "--arm", "--out", "--scale", "--ckpt", "--epochs", "--train-stands", NULL};
+    static const char *known[] = {"--seed", "--arm", "--out", "--scale", "--ckpt", "--epochs", "--train-stands", "--pair", NULL};
     if (args_check("main-run", argc, argv, known)) return 2;
     const char *seed_s = args_value(argc, argv, "--seed", NULL), *arm = args_value(argc, argv, "--arm", NULL);
     const char *out = args_value(argc, argv, "--out", NULL), *scale = args_value(argc, argv, "--scale", "full");
@@ -266,6 +268,10 @@ int exp_main_cmd_run(int argc, char **argv)
     /* exploration overrides (recorded in the provenance command line) */
     if (args_value(argc, argv, "--epochs", NULL)) pl.epochs = atoi(args_value(argc, argv, "--epochs", NULL));
     if (args_value(argc, argv, "--train-stands", NULL)) pl.train_stands = atoi(args_value(argc, argv, "--train-stands", NULL));
+    /* --pair 1: the revision-2 model (SPEC §8 "Pair awareness"); both arms then
+     * also run the shuffled-geometry probe (the independent arm as its control) */
+    const int pair = args_value(argc, argv, "--pair", NULL) ? atoi(args_value(argc, argv, "--pair", NULL)) : 0;
+    if (pair != 0 && pair != 1) { fprintf(stderr, "crownshy main-run: --pair must be 0 or 1\n"); return 2; }
     if (pl.epochs < 1 || pl.train_stands < 1) { fprintf(stderr, "crownshy main-run: --epochs and --train-stands must be >= 1\n"); return 2; }
     double worst = 0.0, maxdiff = 0.0;
     patch_set *tr = NULL;
@@ -275,6 +281,7 @@ int exp_main_cmd_run(int argc, char **argv)
 
     model_cfg cfg = model_cfg_reference(PATCH_NCOND);
     cfg.joint = joint;
+    cfg.pair = pair;
     train_opts o = train_opts_default();
     o.batch = pl.batch;
     o.lr = pl.lr;
@@ -311,7 +318,7 @@ int exp_main_cmd_run(int argc, char **argv)
         double d = si < ds.nunseen ? ds.unseen_d[si] : ds.extrap_d[si - ds.nunseen];
         eval_set e;
         st = eval_build(&ds, &pl, d, data_scale, &e, &worst, &maxdiff);
-        for (int probe = 0; probe < (joint ? 2 : 1) && !st; probe++) {
+        for (int probe = 0; probe < (joint || pair ? 2 : 1) && !st; probe++) {
             int ng = 0;
             double w1 = 0;
             st = generate(t->m, t->B, &pl, &e, seed, probe, gen, &ng);
@@ -334,8 +341,12 @@ int exp_main_cmd_run(int argc, char **argv)
     }
     if (!st) {
         tsv_writer_meta(w, "scale", "%s", pl.scale);
-        tsv_writer_meta(w, "model", "T %d P %d width %d blocks %d heads %d mlp %d joint %d params %zu",
-                        cfg.T, cfg.P, cfg.C, cfg.L, cfg.H, cfg.F, cfg.joint, model_nparams(&cfg));
+        if (cfg.pair)
+            tsv_writer_meta(w, "model", "T %d P %d width %d blocks %d heads %d mlp %d joint %d pair %d params %zu",
+                            cfg.T, cfg.P, cfg.C, cfg.L, cfg.H, cfg.F, cfg.joint, cfg.pair, model_nparams(&cfg));
+        else
+            tsv_writer_meta(w, "model", "T %d P %d width %d blocks %d heads %d mlp %d joint %d params %zu",
+                            cfg.T, cfg.P, cfg.C, cfg.L, cfg.H, cfg.F, cfg.joint, model_nparams(&cfg));
         tsv_writer_meta(w, "training", "%d patches, batch %d, %d epochs = %ld steps, lr %g, final loss %.6g, deviation scale %.17g m",
                         tr->n, o.batch, pl.epochs, o.steps, o.lr, final_loss, data_scale);
         tsv_writer_meta(w, "eval", "%d teacher stands per spacing, up to %d generated patches, %d Euler steps",
