@@ -92,7 +92,7 @@ static cs_status toy_data(patch_set **out, long nstands, double d, unsigned long
 static int cmd_train(int argc, char **argv)
 {
     const char *arm = "joint", *ckpt = NULL;
-    long steps = 2000, batch = 64, width = 64, depth = 3, heads = 4, mlp = 256, seed = 1, stands = 8, every = 200;
+    long steps = 2000, batch = 64, width = 64, depth = 3, heads = 4, mlp = 256, seed = 1, stands = 8, every = 200, pair = 0;
     double lr = 2e-3, d = 4.5;
     const cli_opt o[] = {
         {"arm", 's', &arm, "joint (attention across the patch) or independent (default joint)"},
@@ -103,6 +103,7 @@ static int cmd_train(int argc, char **argv)
         {"depth", 'l', &depth, "transformer blocks (default 3)"},
         {"heads", 'l', &heads, "attention heads (default 4)"},
         {"mlp", 'l', &mlp, "MLP width (default 256)"},
+        {"pair", 'l', &pair, "1: pair-aware model with standardised features (SPEC §8 revision 2; default 0)"},
         {"seed", 'l', &seed, "run seed: init/batch/noise streams use 3s+1, 3s+2, 3s+3 (default 1)"},
         {"stands", 'l', &stands, "toy training stands, 64 patches each (default 8)"},
         {"spacing", 'd', &d, "toy stand spacing in m (default 4.5)"},
@@ -113,12 +114,13 @@ static int cmd_train(int argc, char **argv)
     if (rc) return rc == 1 ? 0 : 2;
     int joint = !strcmp(arm, "joint") ? 1 : !strcmp(arm, "independent") ? 0 : -1;
     if (joint < 0) { fprintf(stderr, "crownshy train: --arm must be joint or independent, not '%s'\n", arm); return 2; }
+    if (pair != 0 && pair != 1) { fprintf(stderr, "crownshy train: --pair must be 0 or 1\n"); return 2; }
     if (steps < 1 || batch < 1 || stands < 1 || stands > 100000 || seed < 0 || !(lr > 0) || !(d > 0) || every < 0) {
         fprintf(stderr, "crownshy train: steps, batch, stands, lr and spacing must be positive\n");
         return 2;
     }
     model_cfg cfg = model_cfg_reference(PATCH_NCOND);
-    cfg.C = (int)width; cfg.L = (int)depth; cfg.H = (int)heads; cfg.F = (int)mlp; cfg.joint = joint;
+    cfg.C = (int)width; cfg.L = (int)depth; cfg.H = (int)heads; cfg.F = (int)mlp; cfg.joint = joint; cfg.pair = (int)pair;
     cs_status st = model_cfg_check(&cfg);
     if (st) { fprintf(stderr, "crownshy train: %s\n", cs_errmsg()); return 2; }
     patch_set *ps;
