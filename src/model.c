@@ -143,8 +143,11 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
     m->wtall = calloc(m->ndecay, sizeof(float));
     m->nnorm = model_nnorm(cfg);
     m->norm = calloc(m->nnorm ? m->nnorm : 1, sizeof(float));
-    if (m->norm) /* identity z-scores until model_norm_fit */
-        for (size_t i = 0; i < m->nnorm / 2; i++) m->norm[cfg->nfeat + (i >= (size_t)cfg->nfeat ? PAIRATTN_Q : 0) + i] = 1.f;
+    if (m->norm && cfg->pair) { /* identity z-scores (mean 0, 1/sd 1) until model_norm_fit */
+        float *fisd = m->norm + cfg->nfeat, *pisd = m->norm + 2 * cfg->nfeat + PAIRATTN_Q;
+        for (int k = 0; k < cfg->nfeat; k++) fisd[k] = 1.f;
+        for (int q = 0; q < PAIRATTN_Q; q++) pisd[q] = 1.f;
+    }
 
     const size_t N = (size_t)Bmax * cfg->T, C = cfg->C, F = cfg->F, B = Bmax;
     const size_t I = cfg->P + cfg->nfeat, E = cfg->ncond + cfg->ntime, TP = (size_t)cfg->T * cfg->P;
