@@ -99,6 +99,13 @@ static void test_bad_config_is_rejected(void **s)
     assert_int_equal(model_alloc(&m, &c, 2), CS_EINPUT);
     assert_null(m);
     assert_non_null(strstr(cs_errmsg(), "heads"));
+    c = tiny2(1, 1);
+    c.nfeat = 2; /* the pair geometry needs x, y and rbar */
+    assert_int_equal(model_alloc(&m, &c, 2), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "nfeat"));
+    c = tiny2(1, 2);
+    assert_int_equal(model_alloc(&m, &c, 2), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "pair"));
 }
 
 static void check_forward2(int joint, int pair)
