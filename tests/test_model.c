@@ -296,11 +296,11 @@ static model *pass_model(const model_cfg *c, int B, int micro, unsigned long see
  * gradients and loss are bit-identical for any pass size: whole batch, 3
  * (passes of 3, 3, 1) and 1. Reference shapes, so the attention kernels of
  * the training runs are the ones exercised. */
-static void test_fm_grad_same_bits_for_any_pass_size(void **s)
+static void check_fm_grad_passes(int pair)
 {
-    (void)s;
     enum { B = 7 };
     model_cfg c = model_cfg_reference(3);
+    c.pair = pair;
     const size_t n = (size_t)c.T * c.P;
     float *x1 = malloc(sizeof(float) * B * n), *feat = malloc(sizeof(float) * B * c.T * c.nfeat);
     float cond[B * 3];
@@ -333,15 +333,17 @@ static void test_fm_grad_same_bits_for_any_pass_size(void **s)
     }
     free(g0); free(v0); free(x1); free(feat);
 }
+static void test_fm_grad_same_bits_for_any_pass_size(void **s) { (void)s; check_fm_grad_passes(0); }
+static void test_pair_fm_grad_same_bits_for_any_pass_size(void **s) { (void)s; check_fm_grad_passes(1); }
 
 /* model_sample runs each Euler step's forward in passes of m->micro patches
  * (patches do not interact in the forward): the same samples for any pass
  * size. */
-static void test_sample_same_bits_for_any_pass_size(void **s)
+static void check_sample_passes(int pair)
 {
-    (void)s;
     enum { B = 5, STEPS = 3 };
     model_cfg c = model_cfg_reference(3);
+    c.pair = pair;
     const size_t n = (size_t)B * c.T * c.P;
     float *feat = malloc(sizeof(float) * B * c.T * c.nfeat), cond[B * 3];
     float *x0 = malloc(sizeof(float) * n), *x1 = malloc(sizeof(float) * n);
@@ -358,6 +360,8 @@ static void test_sample_same_bits_for_any_pass_size(void **s)
     assert_memory_equal(x0, x1, sizeof(float) * n);
     free(feat); free(x0); free(x1);
 }
+static void test_sample_same_bits_for_any_pass_size(void **s) { (void)s; check_sample_passes(0); }
+static void test_pair_sample_same_bits_for_any_pass_size(void **s) { (void)s; check_sample_passes(1); }
 
 static void test_forward_rejects_oversized_batch(void **s)
 {
@@ -392,6 +396,8 @@ int main(void)
         cmocka_unit_test(test_pair_norm_fit_standardises),
         cmocka_unit_test(test_fm_grad_same_bits_for_any_pass_size),
         cmocka_unit_test(test_sample_same_bits_for_any_pass_size),
+        cmocka_unit_test(test_pair_fm_grad_same_bits_for_any_pass_size),
+        cmocka_unit_test(test_pair_sample_same_bits_for_any_pass_size),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
