@@ -4,6 +4,7 @@
 #ifndef MODELREF_H
 #define MODELREF_H
 #include "nnref.h"
+#include "pairref.h"
 #include "model.h"
 
 static void ref_model_forward(const model *m, const double *p, int B, const double *xt,
@@ -19,7 +20,17 @@ static void ref_model_forward(const model *m, const double *p, int B, const doub
     double *tmp = malloc(sizeof(double) * N * C), *h = malloc(sizeof(double) * N * F);
     for (int r = 0; r < N; r++) {
         for (int k = 0; k < P; k++) tin[r * I + k] = xt[r * P + k];
-        for (int k = 0; k < c->nfeat; k++) tin[r * I + P + k] = feat[r * c->nfeat + k];
+        for (int k = 0; k < c->nfeat; k++) /* the pair model standardises (m->norm) */
+            tin[r * I + P + k] = c->pair ? (feat[r * c->nfeat + k] - m->norm[k]) * m->norm[c->nfeat + k]
+                                         : feat[r * c->nfeat + k];
+    }
+    /* pair model: standardised pair features of every patch from the raw features */
+    double *phi = c->pair ? malloc(sizeof(double) * (size_t)B * T * T * REF_PQ) : NULL;
+    for (int b = 0; c->pair && b < B; b++) {
+        double *pb = phi + (size_t)b * T * T * REF_PQ;
+        ref_pair_features(pb, feat + (size_t)b * T * c->nfeat, c->nfeat, T);
+        const float *mu = m->norm + 2 * c->nfeat, *isd = mu + REF_PQ;
+        for (int e = 0; e < T * T * REF_PQ; e++) pb[e] = (pb[e] - mu[e % REF_PQ]) * isd[e % REF_PQ];
     }
     for (int b = 0; b < B; b++) {
         for (int k = 0; k < c->ncond; k++) cin[b * E + k] = cond[b * c->ncond + k];
@@ -39,7 +50,8 @@ static void ref_model_forward(const model *m, const double *p, int B, const doub
         const model_block_off *o = &m->blk[l];
         ref_layernorm(ln, x, p + o->ln1_g, p + o->ln1_b, N, C);
         ref_linear(qkv, ln, p + o->qkv_w, p + o->qkv_b, N, C, 3 * C);
-        ref_attention(att, qkv, B, T, C, c->H, c->joint ? 0 : 1);
+        if (c->pair) ref_pair_attention(att, qkv, phi, p + o->pb_w, p + o->pv_w, B, T, C, c->H, c->joint ? 0 : 1);
+        else ref_attention(att, qkv, B, T, C, c->H, c->joint ? 0 : 1);
         ref_linear(tmp, att, p + o->proj_w, p + o->proj_b, N, C, C);
         for (int i = 0; i < N * C; i++) x[i] += tmp[i];
         ref_layernorm(ln, x, p + o->ln2_g, p + o->ln2_b, N, C);
@@ -50,6 +62,7 @@ static void ref_model_forward(const model *m, const double *p, int B, const doub
     }
     ref_layernorm(ln, x, p + m->lnf_g, p + m->lnf_b, N, C);
     ref_linear(v, ln, p + m->head_w, p + m->head_b, N, C, P);
+    free(phi);
     free(tin); free(cin); free(e1); free(e); free(x); free(ln); free(qkv); free(att); free(tmp); free(h);
 }
 #endif

@@ -63,14 +63,15 @@ static int file_equal(const char *a, const char *b)
     return system(cmd) == 0;
 }
 
-static void test_killed_training_resumes_to_identical_bytes(void **s)
+/* pair = 1: the pair-aware model (checkpoint format 2 with its z-scores) */
+static void check_kill(int pair)
 {
-    (void)s;
-    const char *dir = tu_tmpdir("cli_model_kill");
+    const char *dir = tu_tmpdir(pair ? "cli_model_kill_pair" : "cli_model_kill");
+    const char *extra = pair ? " --pair 1" : "";
     char straight[600], killed[600], a[2048];
     snprintf(straight, sizeof straight, "%s/straight.ckpt", dir);
     snprintf(killed, sizeof killed, "%s/killed.ckpt", dir);
-    snprintf(a, sizeof a, SMALL " --ckpt %s", straight);
+    snprintf(a, sizeof a, SMALL "%s --ckpt %s", extra, straight);
     if (run(a) != 0) fail_msg("straight run failed: %s", out);
     assert_non_null(strstr(out, "final step 300"));
 
@@ -82,7 +83,7 @@ static void test_killed_training_resumes_to_identical_bytes(void **s)
         setenv("OPENBLAS_NUM_THREADS", "1", 1);
         execl("build/crownshy", "crownshy", "train", "--width", "32", "--depth", "2", "--heads", "2",
               "--mlp", "64", "--batch", "16", "--stands", "1", "--steps", "300", "--ckpt-every", "10",
-              "--ckpt", killed, (char *)NULL);
+              "--pair", pair ? "1" : "0", "--ckpt", killed, (char *)NULL);
         _exit(127);
     }
     struct timespec ts = {0, 150 * 1000 * 1000};
@@ -91,11 +92,13 @@ static void test_killed_training_resumes_to_identical_bytes(void **s)
     int st;
     waitpid(pid, &st, 0);
     int was_killed = WIFSIGNALED(st);
-    snprintf(a, sizeof a, SMALL " --ckpt %s", killed);
+    snprintf(a, sizeof a, SMALL "%s --ckpt %s", extra, killed);
     if (run(a) != 0) fail_msg("resumed run failed: %s", out);
-    print_message("kill-and-resume: %s\n", was_killed ? (strstr(out, "resumed from") ? "killed mid-run, resumed" : "killed before the first checkpoint, restarted") : "finished before the kill");
+    print_message("kill-and-resume%s: %s\n", extra, was_killed ? (strstr(out, "resumed from") ? "killed mid-run, resumed" : "killed before the first checkpoint, restarted") : "finished before the kill");
     assert_true(file_equal(straight, killed));
 }
+static void test_killed_training_resumes_to_identical_bytes(void **s) { (void)s; check_kill(0); }
+static void test_killed_pair_training_resumes_to_identical_bytes(void **s) { (void)s; check_kill(1); }
 
 static void test_sample_runs_on_a_trained_checkpoint(void **s)
 {
@@ -116,6 +119,7 @@ int main(void)
         cmocka_unit_test(test_usage_errors_exit_2),
         cmocka_unit_test(test_missing_and_tampered_checkpoints_exit_3),
         cmocka_unit_test(test_killed_training_resumes_to_identical_bytes),
+        cmocka_unit_test(test_killed_pair_training_resumes_to_identical_bytes),
         cmocka_unit_test(test_sample_runs_on_a_trained_checkpoint),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -26,7 +26,7 @@ typedef struct {
 
 static const cmd_case CMDS[] = {
     {"figures", "", {{0}}},
-    {"main-run", "", {{"seed", "0"}, {"epochs", "0"}, {"train-stands", "10001"}}},
+    {"main-run", "", {{"seed", "0"}, {"epochs", "0"}, {"train-stands", "10001"}, {"pair", "2"}}},
     {"main-baselines", "", {{0}}},
     {"main-summary", "", {{"seeds", "65"}}},
     {"comp-run", "", {{0}}},
@@ -52,7 +52,7 @@ static const cmd_case CMDS[] = {
     {"field-diagnose", "", {{"stands", "0"}}},
     {"version", "", {{0}}},
     {"train", "", {{"steps", "0"}, {"batch", "4097"}, {"lr", "0"}, {"width", "0"}, {"depth", "65"}, {"heads", "0"},
-                   {"mlp", "16385"}, {"seed", "-1"}, {"stands", "0"}, {"spacing", "0.05"}, {"ckpt-every", "-1"}}},
+                   {"mlp", "16385"}, {"seed", "-1"}, {"stands", "0"}, {"spacing", "0.05"}, {"ckpt-every", "-1"}, {"pair", "2"}}},
     {"sample", "", {{"n", "0"}, {"euler", "100001"}, {"seed", "4294967296"}, {"spacing", "1e3"}}},
     {"bench-model", "", {{"repeats", "16"}, {"steps", "0"}, {"batch", "0"}}},
 };

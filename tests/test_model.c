@@ -5,14 +5,17 @@
 #include "testutil.h"
 #include "modelref.h"
 #include "model.h"
+#include "pairattn.h"
 #include <gsl/gsl_randist.h>
 
-static model_cfg tiny(int joint)
+/* pair: the revision-2 model (standardised features, pair-aware attention) */
+static model_cfg tiny2(int joint, int pair)
 {
     model_cfg c = {.T = 5, .P = 6, .nfeat = 3, .ncond = 2, .ntime = 4,
-                   .C = 8, .L = 2, .H = 2, .F = 12, .joint = joint};
+                   .C = 8, .L = 2, .H = 2, .F = 12, .joint = joint, .pair = pair};
     return c;
 }
+static model_cfg tiny(int joint) { return tiny2(joint, 0); }
 
 typedef struct {
     model *m; int B;
@@ -20,9 +23,9 @@ typedef struct {
     double *p, *xt_d, *feat_d, *cond_d, *t_d, *v_d, *dv_d;
 } fx;
 
-static void fx_make(fx *f, int joint, int B, unsigned seed)
+static void fx_make2(fx *f, int joint, int pair, int B, unsigned seed)
 {
-    model_cfg c = tiny(joint);
+    model_cfg c = tiny2(joint, pair);
     assert_int_equal(model_alloc(&f->m, &c, B), CS_OK);
     gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
     gsl_rng_set(r, 11);
@@ -49,7 +52,13 @@ static void fx_make(fx *f, int joint, int B, unsigned seed)
     f->feat_d = malloc(sizeof(double) * B * c.T * c.nfeat); tu_f2d(f->feat_d, f->feat, (size_t)B * c.T * c.nfeat);
     f->cond_d = malloc(sizeof(double) * B * c.ncond); tu_f2d(f->cond_d, f->cond, (size_t)B * c.ncond);
     f->t_d = malloc(sizeof(double) * B); tu_f2d(f->t_d, f->t, B);
+    if (pair) { /* z-scores of these very features, so standardisation is not the identity */
+        for (int i = 0; i < B * c.T; i++) f->feat[i * c.nfeat + 2] = 0.3f + 0.1f * f->feat[i * c.nfeat + 2];
+        tu_f2d(f->feat_d, f->feat, (size_t)B * c.T * c.nfeat);
+        assert_int_equal(model_norm_fit(f->m, f->feat, B), CS_OK);
+    }
 }
+static void fx_make(fx *f, int joint, int B, unsigned seed) { fx_make2(f, joint, 0, B, seed); }
 
 static void fx_free(fx *f)
 {
@@ -90,41 +99,70 @@ static void test_bad_config_is_rejected(void **s)
     assert_int_equal(model_alloc(&m, &c, 2), CS_EINPUT);
     assert_null(m);
     assert_non_null(strstr(cs_errmsg(), "heads"));
+    c = tiny2(1, 1);
+    c.nfeat = 2; /* the pair geometry needs x, y and rbar */
+    assert_int_equal(model_alloc(&m, &c, 2), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "nfeat"));
+    c = tiny2(1, 2);
+    assert_int_equal(model_alloc(&m, &c, 2), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "pair"));
 }
 
-static void check_forward(int joint)
+static void check_forward2(int joint, int pair)
 {
     fx f;
-    fx_make(&f, joint, 2, 21);
+    fx_make2(&f, joint, pair, 2, 21);
     assert_int_equal(model_forward(f.m, f.B, f.xt, f.feat, f.cond, f.t, f.v), CS_OK);
     fx_loss(&f);
     ASSERT_GRAD(f.v, f.v_d, (size_t)f.B * 5 * 6, 2e-5, "model forward");
     fx_free(&f);
 }
+static void check_forward(int joint) { check_forward2(joint, 0); }
 static void test_forward_matches_reference_joint(void **s) { (void)s; check_forward(1); }
+static void test_pair_forward_matches_reference_joint(void **s) { (void)s; check_forward2(1, 1); }
+static void test_pair_forward_matches_reference_independent(void **s) { (void)s; check_forward2(0, 1); }
 static void test_forward_matches_reference_independent(void **s) { (void)s; check_forward(0); }
 
-static void check_gradients(int joint)
+static void check_gradients2(int joint, int pair)
 {
     fx f;
-    fx_make(&f, joint, 2, 31 + joint);
+    fx_make2(&f, joint, pair, 2, 31 + joint);
     assert_int_equal(model_forward(f.m, f.B, f.xt, f.feat, f.cond, f.t, f.v), CS_OK);
     model_backward(f.m, f.dv);
     double *g = malloc(sizeof(double) * f.m->nparams);
     tu_fd_grad(g, f.p, f.m->nparams, fx_loss, &f, 1e-5);
     ASSERT_GRAD(f.m->grads, g, f.m->nparams, 5e-4, joint ? "joint model d/dparams" : "independent model d/dparams");
+    if (pair) { /* the pair parameters, with %.17g, and the self arm's dead score weights */
+        for (int l = 0; l < f.m->cfg.L; l++) {
+            const model_block_off *o = &f.m->blk[l];
+            size_t nb = (size_t)f.m->cfg.H * 8, nv = (size_t)f.m->cfg.C * 8, w;
+            double e = tu_maxrel(f.m->grads + o->pv_w, g + o->pv_w, nv, &w);
+            if (!(e <= 5e-4)) { print_error("block %d d/dpv_w[%zu]: observed %.17g, expected %.17g\n", l, w,
+                                            (double)f.m->grads[o->pv_w + w], g[o->pv_w + w]); fail(); }
+            e = tu_maxrel(f.m->grads + o->pb_w, g + o->pb_w, nb, &w);
+            if (!(e <= 5e-4)) { print_error("block %d d/dpb_w[%zu]: observed %.17g, expected %.17g\n", l, w,
+                                            (double)f.m->grads[o->pb_w + w], g[o->pb_w + w]); fail(); }
+            /* joint: every value weight is live (self pairs alone leave the
+             * antisymmetric features dx, dy, cos, sin at their mean, 0) */
+            for (size_t i = 0; joint && i < nv; i++) assert_true(g[o->pv_w + i] != 0.0);
+            for (size_t i = 0; !joint && i < nb; i++) ASSERT_EXACT(f.m->grads[o->pb_w + i], 0.0);
+        }
+    }
     free(g);
     fx_free(&f);
 }
+static void check_gradients(int joint) { check_gradients2(joint, 0); }
 static void test_gradients_joint(void **s) { (void)s; check_gradients(1); }
+static void test_pair_gradients_joint(void **s) { (void)s; check_gradients2(1, 1); }
+static void test_pair_gradients_independent(void **s) { (void)s; check_gradients2(0, 1); }
 static void test_gradients_independent(void **s) { (void)s; check_gradients(0); }
 
 /* Changing every other token of the patch leaves token 0's velocity bit-identical
  * in the independent arm, and changes it in the joint arm. */
-static void check_isolation(int joint)
+static void check_isolation2(int joint, int pair)
 {
     fx f;
-    fx_make(&f, joint, 1, 41);
+    fx_make2(&f, joint, pair, 1, 41);
     const int T = 5, P = 6, nf = 3;
     float v1[T * P], v2[T * P];
     assert_int_equal(model_forward(f.m, 1, f.xt, f.feat, f.cond, f.t, v1), CS_OK);
@@ -138,7 +176,72 @@ static void check_isolation(int joint)
     assert_int_equal(same, !joint);
     fx_free(&f);
 }
+static void check_isolation(int joint) { check_isolation2(joint, 0); }
 static void test_independent_token_ignores_other_tokens(void **s) { (void)s; check_isolation(0); }
+static void test_pair_independent_token_ignores_other_tokens(void **s) { (void)s; check_isolation2(0, 1); }
+static void test_pair_joint_token_sees_other_tokens(void **s) { (void)s; check_isolation2(1, 1); }
+
+/* The pair parameters come after every revision-1 parameter (whose layout and
+ * initial draws stay as they were), L x (H + C) x Q of them, decayed; both
+ * arms have them. */
+static void test_pair_layout_extends_the_revision_1_layout(void **s)
+{
+    (void)s;
+    model_cfg c0 = model_cfg_reference(5), c1 = c0, i1 = c0;
+    c1.pair = 1; i1.pair = 1; i1.joint = 0;
+    assert_int_equal(model_nparams(&c1), model_nparams(&c0) + (size_t)c0.L * (c0.H + c0.C) * 8);
+    assert_int_equal(model_nparams(&c1), model_nparams(&i1));
+    model *m0, *m1;
+    assert_int_equal(model_alloc(&m0, &c0, 1), CS_OK);
+    assert_int_equal(model_alloc(&m1, &c1, 1), CS_OK);
+    assert_int_equal(m1->ndecay, m0->ndecay + (size_t)c0.L * (c0.H + c0.C) * 8);
+    assert_int_equal(m1->head_w, m0->head_w);
+    assert_int_equal(m1->blk[0].pb_w, m0->ndecay);
+    assert_int_equal(m1->nnorm, 2 * (size_t)c0.nfeat + 16);
+    assert_int_equal(m0->nnorm, 0);
+    gsl_rng *r0 = gsl_rng_alloc(gsl_rng_mt19937), *r1 = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(r0, 4); gsl_rng_set(r1, 4);
+    model_init(m0, r0); model_init(m1, r1);
+    assert_memory_equal(m0->params, m1->params, sizeof(float) * m0->ndecay);
+    gsl_rng_free(r0); gsl_rng_free(r1);
+    model_free(m0); model_free(m1);
+}
+
+/* z-scores: mean 0 and sd 1 of each standardised token feature and of the
+ * pair features over the pairs i != j. */
+static void test_pair_norm_fit_standardises(void **s)
+{
+    (void)s;
+    enum { B = 3 };
+    model_cfg c = tiny2(1, 1);
+    model *m;
+    assert_int_equal(model_alloc(&m, &c, B), CS_OK);
+    float feat[B * 5 * 3];
+    unsigned st = 61;
+    tu_fill(feat, B * 5 * 3, 2.f, &st);
+    assert_int_equal(model_norm_fit(m, feat, B), CS_OK);
+    for (int k = 0; k < 3; k++) {
+        double sum = 0, ss = 0;
+        for (int i = 0; i < B * 5; i++) { double z = ((double)feat[i * 3 + k] - m->norm[k]) * m->norm[3 + k]; sum += z; ss += z * z; }
+        ASSERT_NEAR(sum / (B * 5), 0.0, 1e-6);
+        ASSERT_NEAR(ss / (B * 5), 1.0, 1e-5);
+    }
+    float f[25 * 8];
+    double sum[8] = {0}, ss[8] = {0};
+    for (int b = 0; b < B; b++) {
+        pairattn_features(f, feat + b * 15, 3, 5);
+        for (int e = 0; e < 25; e++)
+            for (int q = 0; e % 6 && q < 8; q++) {
+                double z = ((double)f[e * 8 + q] - m->norm[6 + q]) * m->norm[14 + q];
+                sum[q] += z; ss[q] += z * z;
+            }
+    }
+    for (int q = 0; q < 8; q++) {
+        ASSERT_NEAR(sum[q] / (B * 20), 0.0, 1e-6);
+        ASSERT_NEAR(ss[q] / (B * 20), 1.0, 1e-5);
+    }
+    model_free(m);
+}
 static void test_joint_token_sees_other_tokens(void **s) { (void)s; check_isolation(1); }
 
 static void test_fm_draw_is_linear_path(void **s)
@@ -193,11 +296,11 @@ static model *pass_model(const model_cfg *c, int B, int micro, unsigned long see
  * gradients and loss are bit-identical for any pass size: whole batch, 3
  * (passes of 3, 3, 1) and 1. Reference shapes, so the attention kernels of
  * the training runs are the ones exercised. */
-static void test_fm_grad_same_bits_for_any_pass_size(void **s)
+static void check_fm_grad_passes(int pair)
 {
-    (void)s;
     enum { B = 7 };
     model_cfg c = model_cfg_reference(3);
+    c.pair = pair;
     const size_t n = (size_t)c.T * c.P;
     float *x1 = malloc(sizeof(float) * B * n), *feat = malloc(sizeof(float) * B * c.T * c.nfeat);
     float cond[B * 3];
@@ -230,15 +333,17 @@ static void test_fm_grad_same_bits_for_any_pass_size(void **s)
     }
     free(g0); free(v0); free(x1); free(feat);
 }
+static void test_fm_grad_same_bits_for_any_pass_size(void **s) { (void)s; check_fm_grad_passes(0); }
+static void test_pair_fm_grad_same_bits_for_any_pass_size(void **s) { (void)s; check_fm_grad_passes(1); }
 
 /* model_sample runs each Euler step's forward in passes of m->micro patches
  * (patches do not interact in the forward): the same samples for any pass
  * size. */
-static void test_sample_same_bits_for_any_pass_size(void **s)
+static void check_sample_passes(int pair)
 {
-    (void)s;
     enum { B = 5, STEPS = 3 };
     model_cfg c = model_cfg_reference(3);
+    c.pair = pair;
     const size_t n = (size_t)B * c.T * c.P;
     float *feat = malloc(sizeof(float) * B * c.T * c.nfeat), cond[B * 3];
     float *x0 = malloc(sizeof(float) * n), *x1 = malloc(sizeof(float) * n);
@@ -255,6 +360,8 @@ static void test_sample_same_bits_for_any_pass_size(void **s)
     assert_memory_equal(x0, x1, sizeof(float) * n);
     free(feat); free(x0); free(x1);
 }
+static void test_sample_same_bits_for_any_pass_size(void **s) { (void)s; check_sample_passes(0); }
+static void test_pair_sample_same_bits_for_any_pass_size(void **s) { (void)s; check_sample_passes(1); }
 
 static void test_forward_rejects_oversized_batch(void **s)
 {
@@ -279,8 +386,18 @@ int main(void)
         cmocka_unit_test(test_fm_draw_is_linear_path),
         cmocka_unit_test(test_fm_loss_is_mse_with_its_gradient),
         cmocka_unit_test(test_forward_rejects_oversized_batch),
+        cmocka_unit_test(test_pair_forward_matches_reference_joint),
+        cmocka_unit_test(test_pair_forward_matches_reference_independent),
+        cmocka_unit_test(test_pair_gradients_joint),
+        cmocka_unit_test(test_pair_gradients_independent),
+        cmocka_unit_test(test_pair_independent_token_ignores_other_tokens),
+        cmocka_unit_test(test_pair_joint_token_sees_other_tokens),
+        cmocka_unit_test(test_pair_layout_extends_the_revision_1_layout),
+        cmocka_unit_test(test_pair_norm_fit_standardises),
         cmocka_unit_test(test_fm_grad_same_bits_for_any_pass_size),
         cmocka_unit_test(test_sample_same_bits_for_any_pass_size),
+        cmocka_unit_test(test_pair_fm_grad_same_bits_for_any_pass_size),
+        cmocka_unit_test(test_pair_sample_same_bits_for_any_pass_size),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

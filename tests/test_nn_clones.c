@@ -21,6 +21,8 @@
 #define nn_attention_forward base_attention_forward
 #define nn_attention_backward base_attention_backward
 #define nn_attention_scratch_len base_attention_scratch_len
+#define nn_attention_forward_biased base_attention_forward_biased
+#define nn_attention_backward_biased base_attention_backward_biased
 #define nn_product_gflops base_product_gflops
 #define nn_linear_bias_gelu_forward base_linear_bias_gelu_forward
 #define nn_linear_bias_residual_forward base_linear_bias_residual_forward
@@ -39,6 +41,8 @@
 #undef nn_attention_forward
 #undef nn_attention_backward
 #undef nn_attention_scratch_len
+#undef nn_attention_forward_biased
+#undef nn_attention_backward_biased
 #undef nn_bias_gelu_forward_save
 /* the library's (dispatched) kernels; nn.h was consumed by the renamed copy */
 void nn_expf(float *y, const float *x, size_t n);
@@ -56,6 +60,11 @@ void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
                            const float *prob, int B, int T, int C, int H,
                            nn_attn_mode mode, float *scratch);
 size_t nn_attention_scratch_len(int T, int C, int H);
+void nn_attention_forward_biased(float *out, float *prob, const float *qkv, const float *sbias,
+                                 int B, int T, int C, int H, nn_attn_mode mode, float *scratch);
+void nn_attention_backward_biased(float *dqkv, const float *dout, const float *qkv,
+                                  const float *prob, const float *dpadd, int B, int T, int C,
+                                  int H, nn_attn_mode mode, float *scratch);
 void nn_bias_gelu_forward_save(float *h, float *sig, float *out, const float *b, int M, int N);
 
 static void tu_fill(float *x, size_t n, float a, unsigned *state)
@@ -100,6 +109,28 @@ static void test_baseline_and_dispatched_kernels_agree_bitwise(void **s)
     nn_attention_backward(o1, dout, qkv, p1, B, T, C, H, NN_ATTN_JOINT, scr);
     base_attention_backward(o2, dout, qkv, p1, B, T, C, H, NN_ATTN_JOINT, scr);
     same(o1, o2, (size_t)N * 3 * C, "attention backward");
+
+    /* the pair-aware forms (src/pairattn.h): score bias and dP term, and the
+     * dS left in the scratch by a one-patch backward */
+    {
+        float *sb = malloc(sizeof(float) * B * H * T * T), *dpx = malloc(sizeof(float) * B * H * T * T);
+        float *scr2 = malloc(sizeof(float) * nn_attention_scratch_len(T, C, H));
+        tu_fill(sb, (size_t)B * H * T * T, 1.5f, &st); tu_fill(dpx, (size_t)B * H * T * T, 1.f, &st);
+        nn_attention_forward_biased(o1, p1, qkv, sb, B, T, C, H, NN_ATTN_JOINT, scr);
+        base_attention_forward_biased(o2, p2, qkv, sb, B, T, C, H, NN_ATTN_JOINT, scr2);
+        same(o1, o2, (size_t)N * C, "biased attention forward");
+        same(p1, p2, (size_t)B * H * T * T, "biased attention probabilities");
+        for (int b = 0; b < B; b++) {
+            const size_t r = (size_t)b * T, ph = (size_t)b * H * T * T;
+            nn_attention_backward_biased(o1 + r * 3 * C, dout + r * C, qkv + r * 3 * C, p1 + ph, dpx + ph,
+                                         1, T, C, H, NN_ATTN_JOINT, scr);
+            base_attention_backward_biased(o2 + r * 3 * C, dout + r * C, qkv + r * 3 * C, p1 + ph, dpx + ph,
+                                           1, T, C, H, NN_ATTN_JOINT, scr2);
+            same(scr, scr2, (size_t)H * T * T, "biased attention dS in the scratch");
+        }
+        same(o1, o2, (size_t)N * 3 * C, "biased attention backward");
+        free(sb); free(dpx); free(scr2);
+    }
 
     nn_gelu_forward_save(g1, s1, h, (size_t)N * F);
     base_gelu_forward_save(g2, s2, h, (size_t)N * F);

@@ -8,12 +8,13 @@
 #include <gsl/gsl_randist.h>
 #include <unistd.h>
 
-static model_cfg small_cfg(int joint)
+static model_cfg small_cfg2(int joint, int pair)
 {
     model_cfg c = {.T = PATCH_T, .P = PATCH_P, .nfeat = PATCH_NFEAT, .ncond = PATCH_NCOND,
-                   .ntime = 4, .C = 32, .L = 1, .H = 2, .F = 64, .joint = joint};
+                   .ntime = 4, .C = 32, .L = 1, .H = 2, .F = 64, .joint = joint, .pair = pair};
     return c;
 }
+static model_cfg small_cfg(int joint) { return small_cfg2(joint, 0); }
 
 /* A set of n patches with target x1 = S * u (u_s = sqrt(2) cos theta_s, unit RMS).
  * mode 0: S = +1 everywhere (a known profile);
@@ -217,11 +218,10 @@ static void test_training_is_bit_identical_across_runs(void **s)
 
 /* The same training on every gemm path this CPU has gives the same bits, so a
  * run reproduces exactly on a machine without AVX-512 (or without AVX2). */
-static void test_training_is_bit_identical_on_every_gemm_path(void **s)
+static void check_gemm_paths(int pair)
 {
-    (void)s;
     patch_set *d = toy_set(40, 1, 4);
-    model_cfg c = small_cfg(1);
+    model_cfg c = small_cfg2(1, pair);
     train_opts o = small_opts(6);
     train *ref;
     gemm_isa before = gemm_set_isa(GEMM_SCALAR);
@@ -242,12 +242,15 @@ static void test_training_is_bit_identical_on_every_gemm_path(void **s)
     patch_set_free(d);
 }
 
-static void check_resume(int joint)
+static void test_training_is_bit_identical_on_every_gemm_path(void **s) { (void)s; check_gemm_paths(0); }
+static void test_pair_training_is_bit_identical_on_every_gemm_path(void **s) { (void)s; check_gemm_paths(1); }
+
+static void check_resume2(int joint, int pair)
 {
     patch_set *d = toy_set(40, 1, 5); /* 40 patches, batch 16: epochs of 2 steps, cursor mid-epoch */
-    model_cfg c = small_cfg(joint);
+    model_cfg c = small_cfg2(joint, pair);
     train_opts o = small_opts(20);
-    const char *dir = tu_tmpdir(joint ? "resume_joint" : "resume_indep");
+    const char *dir = tu_tmpdir(pair ? (joint ? "resume_pair_joint" : "resume_pair_indep") : joint ? "resume_joint" : "resume_indep");
     char path[600];
     snprintf(path, sizeof path, "%s/run.ckpt", dir);
     train *straight, *first, *second;
@@ -270,10 +273,15 @@ static void check_resume(int joint)
     assert_memory_equal(second->m->params, straight->m->params, nb);
     assert_memory_equal(second->am, straight->am, nb);
     assert_memory_equal(second->av, straight->av, nb);
+    assert_int_equal(second->m->nnorm, straight->m->nnorm);
+    assert_memory_equal(second->m->norm, straight->m->norm, sizeof(float) * straight->m->nnorm);
     train_free(straight); train_free(second);
     patch_set_free(d);
 }
+static void check_resume(int joint) { check_resume2(joint, 0); }
 static void test_kill_and_resume_is_bit_identical_joint(void **s) { (void)s; check_resume(1); }
+static void test_pair_kill_and_resume_is_bit_identical_joint(void **s) { (void)s; check_resume2(1, 1); }
+static void test_pair_kill_and_resume_is_bit_identical_independent(void **s) { (void)s; check_resume2(0, 1); }
 static void test_kill_and_resume_is_bit_identical_independent(void **s) { (void)s; check_resume(0); }
 
 static void write_ckpt(const char *name, char *path, size_t n, train **t, patch_set **d)
@@ -345,6 +353,61 @@ static void test_foreign_missing_and_mismatched_checkpoints_are_rejected(void **
     train_free(t); patch_set_free(d);
 }
 
+/* A checkpoint of format version 1 (before the pair model) is refused with a
+ * message naming its version and what to do. */
+static void test_version_1_checkpoint_is_refused_clearly(void **s)
+{
+    (void)s;
+    char path[600];
+    train *t; patch_set *d;
+    write_ckpt("ckpt_v1", path, sizeof path, &t, &d);
+    FILE *f = fopen(path, "r+b");
+    assert_non_null(f);
+    const uint32_t v1 = 1;
+    assert_int_equal(fseek(f, 8, SEEK_SET), 0);
+    assert_int_equal(fwrite(&v1, 4, 1, f), 1);
+    fclose(f);
+    assert_int_equal(train_load(t, path), CS_EINPUT);
+    print_message("%s\n", cs_errmsg());
+    assert_non_null(strstr(cs_errmsg(), "version 1 is no longer read"));
+    assert_non_null(strstr(cs_errmsg(), "delete it"));
+    model *m = NULL;
+    assert_int_equal(train_load_model(path, &m, 2, NULL), CS_EINPUT);
+    assert_null(m);
+    train_free(t); patch_set_free(d);
+}
+
+/* The pair model's z-scores travel with its parameters. */
+static void test_pair_model_loads_with_its_z_scores(void **s)
+{
+    (void)s;
+    patch_set *d = toy_set(20, 1, 6);
+    model_cfg c = small_cfg2(1, 1);
+    train_opts o = small_opts(4);
+    char path[600];
+    snprintf(path, sizeof path, "%s/p.ckpt", tu_tmpdir("ckpt_pair_model"));
+    train *t;
+    assert_int_equal(train_alloc(&t, &c, d, &o), CS_OK);
+    assert_int_equal(train_run(t, 2, path, 0, NULL), CS_OK);
+    assert_true(t->m->norm[0] != 0.f && t->m->norm[PATCH_NFEAT] != 1.f); /* fitted, not the identity */
+    model *m;
+    assert_int_equal(train_load_model(path, &m, 3, NULL), CS_OK);
+    assert_int_equal(m->cfg.pair, 1);
+    assert_memory_equal(m->norm, t->m->norm, sizeof(float) * t->m->nnorm);
+    assert_memory_equal(m->params, t->m->params, sizeof(float) * m->nparams);
+    /* and samples as the trained model does */
+    float x1[2 * PATCH_T * PATCH_P], x2[2 * PATCH_T * PATCH_P];
+    gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(g, 9);
+    assert_int_equal(model_sample(m, g, 2, d->feat, d->cond, 3, x1), CS_OK);
+    gsl_rng_set(g, 9);
+    assert_int_equal(model_sample(t->m, g, 2, d->feat, d->cond, 3, x2), CS_OK);
+    assert_memory_equal(x1, x2, sizeof x1);
+    gsl_rng_free(g);
+    model_free(m);
+    train_free(t); patch_set_free(d);
+}
+
 static void test_model_loads_from_checkpoint(void **s)
 {
     (void)s;
@@ -377,6 +440,11 @@ int main(void)
         cmocka_unit_test(test_tampered_checkpoint_is_rejected),
         cmocka_unit_test(test_foreign_missing_and_mismatched_checkpoints_are_rejected),
         cmocka_unit_test(test_model_loads_from_checkpoint),
+        cmocka_unit_test(test_pair_training_is_bit_identical_on_every_gemm_path),
+        cmocka_unit_test(test_pair_kill_and_resume_is_bit_identical_joint),
+        cmocka_unit_test(test_pair_kill_and_resume_is_bit_identical_independent),
+        cmocka_unit_test(test_version_1_checkpoint_is_refused_clearly),
+        cmocka_unit_test(test_pair_model_loads_with_its_z_scores),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -214,7 +214,7 @@ static cs_status generate(model *m, int Bmax, const exp_main_plan *pl, const eva
 
 int exp_main_cmd_run(int argc, char **argv)
 {
-    long seedl = 0, epochs = 0, train_stands = 0;
+    long seedl = 0, epochs = 0, train_stands = 0, pairl = 0;
     const char *arm = NULL, *out = NULL, *scale = "full", *ckpt = NULL;
     const opt_spec spec[] = {
         {"seed", OPT_LONG, &seedl, 1, 4294967295.0, "model seed (required; zero-padded 01 is 1)"},
@@ -224,6 +224,7 @@ int exp_main_cmd_run(int argc, char **argv)
         {"ckpt", OPT_STR, &ckpt, 0, 0, "checkpoint FILE, resumed from when it exists (default none)"},
         {"epochs", OPT_LONG, &epochs, 1, 1000000, "exploration override of the plan's epochs (default: the plan's)"},
         {"train-stands", OPT_LONG, &train_stands, 1, 10000, "exploration override of the plan's stands per training spacing (default: the plan's)"},
+        {"pair", OPT_LONG, &pairl, 0, 1, "1: the pair-aware model of SPEC §8 revision 2; both arms then run the shuffled probe (default 0)"},
     };
     const opts_cmd c = {"main-run", "--seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--ckpt FILE]",
                         "One (seed, arm) unit of E3/E4: build teacher data, train the flow model (resuming from\n"
@@ -250,6 +251,9 @@ int exp_main_cmd_run(int argc, char **argv)
     if (epochs) pl.epochs = (int)epochs;
     if (train_stands) pl.train_stands = (int)train_stands;
     if (pl.epochs < 1) { opts_usage_error("main-run", "the plan's epochs must be >= 1"); return 2; }
+    /* --pair 1: the revision-2 model (SPEC §8 "Pair awareness"); both arms then
+     * also run the shuffled-geometry probe (the independent arm as its control) */
+    const int pair = (int)pairl;
     double worst = 0.0, maxdiff = 0.0;
     patch_set *tr = NULL;
     if ((st = build_train(&ds, &pl, &tr, &worst))) return fail_with(st);
@@ -258,6 +262,7 @@ int exp_main_cmd_run(int argc, char **argv)
 
     model_cfg cfg = model_cfg_reference(PATCH_NCOND);
     cfg.joint = joint;
+    cfg.pair = pair;
     train_opts o = train_opts_default();
     o.batch = pl.batch;
     o.lr = pl.lr;
@@ -294,7 +299,7 @@ int exp_main_cmd_run(int argc, char **argv)
         double d = si < ds.nunseen ? ds.unseen_d[si] : ds.extrap_d[si - ds.nunseen];
         eval_set e;
         st = eval_build(&ds, &pl, d, data_scale, &e, &worst, &maxdiff);
-        for (int probe = 0; probe < (joint ? 2 : 1) && !st; probe++) {
+        for (int probe = 0; probe < (joint || pair ? 2 : 1) && !st; probe++) {
             int ng = 0;
             double w1 = 0;
             st = generate(t->m, t->B, &pl, &e, seed, probe, gen, &ng);
@@ -317,8 +322,12 @@ int exp_main_cmd_run(int argc, char **argv)
     }
     if (!st) {
         tsv_writer_meta(w, "scale", "%s", pl.scale);
-        tsv_writer_meta(w, "model", "T %d P %d width %d blocks %d heads %d mlp %d joint %d params %zu",
-                        cfg.T, cfg.P, cfg.C, cfg.L, cfg.H, cfg.F, cfg.joint, model_nparams(&cfg));
+        if (cfg.pair)
+            tsv_writer_meta(w, "model", "T %d P %d width %d blocks %d heads %d mlp %d joint %d pair %d params %zu",
+                            cfg.T, cfg.P, cfg.C, cfg.L, cfg.H, cfg.F, cfg.joint, cfg.pair, model_nparams(&cfg));
+        else
+            tsv_writer_meta(w, "model", "T %d P %d width %d blocks %d heads %d mlp %d joint %d params %zu",
+                            cfg.T, cfg.P, cfg.C, cfg.L, cfg.H, cfg.F, cfg.joint, model_nparams(&cfg));
         tsv_writer_meta(w, "training", "%d patches, batch %d, %d epochs = %ld steps, lr %g, final loss %.6g, deviation scale %.17g m",
                         tr->n, o.batch, pl.epochs, o.steps, o.lr, final_loss, data_scale);
         tsv_writer_meta(w, "eval", "%d teacher stands per spacing, up to %d generated patches, %d Euler steps",

@@ -4,6 +4,7 @@
 #include "model.h"
 #include "patch.h"
 #include "gemm.h"
+#include "pairattn.h"
 #include <gsl/gsl_randist.h>
 #include <math.h>
 #include <stdlib.h>
@@ -24,6 +25,8 @@ cs_status model_cfg_check(const model_cfg *c)
     if (c->C % c->H) return cs_err(CS_EINPUT, "model config: width C = %d not divisible by heads H = %d", c->C, c->H);
     if (c->ntime % 2) return cs_err(CS_EINPUT, "model config: ntime = %d must be even", c->ntime);
     if (c->joint != 0 && c->joint != 1) return cs_err(CS_EINPUT, "model config: joint = %d must be 0 or 1", c->joint);
+    if (c->pair != 0 && c->pair != 1) return cs_err(CS_EINPUT, "model config: pair = %d must be 0 or 1", c->pair);
+    if (c->pair && c->nfeat < 3) return cs_err(CS_EINPUT, "model config: the pair model needs nfeat >= 3 (x, y, rbar), got %d", c->nfeat);
     return CS_OK;
 }
 
@@ -44,6 +47,11 @@ static size_t layout(const model_cfg *c, model *m, size_t *ndecay)
         PUTB(l, fc2_w, C * F);
     }
     PUT(head_w, (size_t)c->P * C);
+    if (c->pair) /* after every revision-1 matrix, so pair = 0 keeps its layout */
+        for (int l = 0; l < c->L; l++) {
+            PUTB(l, pb_w, (size_t)c->H * PAIRATTN_Q);
+            PUTB(l, pv_w, C * PAIRATTN_Q);
+        }
     if (ndecay) *ndecay = o;
     PUT(tok_b, C);
     PUT(e1_b, C);
@@ -64,10 +72,48 @@ static size_t layout(const model_cfg *c, model *m, size_t *ndecay)
 
 size_t model_nparams(const model_cfg *cfg) { return layout(cfg, NULL, NULL); }
 
+size_t model_nnorm(const model_cfg *cfg) { return cfg->pair ? 2 * (size_t)cfg->nfeat + 2 * PAIRATTN_Q : 0; }
+
+/* mean and population sd (double) of n values x[k*stride]; isd = 1/sd (1 if sd is 0) */
+static void zscore(const float *x, size_t n, size_t stride, const unsigned char *skip, float *mu, float *isd)
+{
+    double s = 0, ss = 0;
+    size_t cnt = 0;
+    for (size_t k = 0; k < n; k++) if (!skip || !skip[k]) { s += x[k * stride]; cnt++; }
+    double m = cnt ? s / (double)cnt : 0.0;
+    for (size_t k = 0; k < n; k++) if (!skip || !skip[k]) { double d = x[k * stride] - m; ss += d * d; }
+    double sd = cnt ? sqrt(ss / (double)cnt) : 0.0;
+    *mu = (float)m;
+    *isd = sd > 0 ? (float)(1.0 / sd) : 1.f;
+}
+
+cs_status model_norm_fit(model *m, const float *feat, int n)
+{
+    const model_cfg *c = &m->cfg;
+    if (!c->pair) return CS_OK;
+    if (n < 1) return cs_err(CS_EINPUT, "model_norm_fit: no patches");
+    const int T = c->T, nf = c->nfeat, Q = PAIRATTN_Q;
+    const size_t TT = (size_t)T * T, npairs = (size_t)n * TT;
+    for (int k = 0; k < nf; k++)
+        zscore(feat + k, (size_t)n * T, nf, NULL, m->norm + k, m->norm + nf + k);
+    float *f = malloc(sizeof(float) * npairs * Q);
+    unsigned char *self = malloc(npairs);
+    if (!f || !self) { free(f); free(self); return cs_err(CS_ENOMEM, "model_norm_fit: out of memory"); }
+    for (int b = 0; b < n; b++) {
+        pairattn_features(f + (size_t)b * TT * Q, feat + (size_t)b * T * nf, nf, T);
+        for (size_t e = 0; e < TT; e++) self[(size_t)b * TT + e] = e % (T + 1) == 0;
+    }
+    for (int q = 0; q < Q; q++)
+        zscore(f + q, npairs, Q, self, m->norm + 2 * nf + q, m->norm + 2 * nf + Q + q);
+    free(f);
+    free(self);
+    return CS_OK;
+}
+
 void model_free(model *m)
 {
     if (!m) return;
-    free(m->params); free(m->grads); free(m->wtall); free(m->mem); free(m->blk);
+    free(m->params); free(m->grads); free(m->wtall); free(m->mem); free(m->blk); free(m->norm);
     free(m->x); /* the per-block pointer arrays share one allocation */
     free(m);
 }
@@ -85,27 +131,38 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
     m->micro = MODEL_MICRO;
     const int L = cfg->L;
     m->blk = calloc((size_t)L, sizeof *m->blk);
-    float **ptrs = calloc((size_t)14 * (L + 1), sizeof *ptrs);
+    float **ptrs = calloc((size_t)15 * (L + 1), sizeof *ptrs);
     if (!m->blk || !ptrs) { free(ptrs); model_free(m); return cs_err(CS_ENOMEM, "model: out of memory"); }
     m->x = ptrs; m->ln1 = ptrs + (L + 1); m->mu1 = m->ln1 + L; m->rs1 = m->mu1 + L;
     m->qkv = m->rs1 + L; m->prob = m->qkv + L; m->att = m->prob + L; m->xm = m->att + L;
     m->ln2 = m->xm + L; m->mu2 = m->ln2 + L; m->rs2 = m->mu2 + L; m->h = m->rs2 + L; m->hs = m->h + L; m->hg = m->hs + L;
+    m->Phi = m->hg + L;
     m->nparams = layout(cfg, m, &m->ndecay);
     m->params = calloc(m->nparams, sizeof(float));
     m->grads = calloc(m->nparams, sizeof(float));
     m->wtall = calloc(m->ndecay, sizeof(float));
+    m->nnorm = model_nnorm(cfg);
+    m->norm = calloc(m->nnorm ? m->nnorm : 1, sizeof(float));
+    if (m->norm && cfg->pair) { /* identity z-scores (mean 0, 1/sd 1) until model_norm_fit */
+        float *fisd = m->norm + cfg->nfeat, *pisd = m->norm + 2 * cfg->nfeat + PAIRATTN_Q;
+        for (int k = 0; k < cfg->nfeat; k++) fisd[k] = 1.f;
+        for (int q = 0; q < PAIRATTN_Q; q++) pisd[q] = 1.f;
+    }
 
     const size_t N = (size_t)Bmax * cfg->T, C = cfg->C, F = cfg->F, B = Bmax;
     const size_t I = cfg->P + cfg->nfeat, E = cfg->ncond + cfg->ntime, TP = (size_t)cfg->T * cfg->P;
     const size_t probn = cfg->joint ? B * cfg->H * cfg->T * cfg->T : 0;
-    size_t per_block = N * C * 4 + N * 4 + N * 3 * C + probn + N * F * 3;
+    const size_t TTQ = cfg->pair ? (size_t)cfg->T * cfg->T * PAIRATTN_Q : 0;
+    const size_t Phin = cfg->pair ? N * cfg->H * PAIRATTN_Q : 0;
+    const size_t ascrn = cfg->pair ? pairattn_scratch_len(cfg->T, cfg->C, cfg->H)
+                                   : nn_attention_scratch_len(cfg->T, cfg->C, cfg->H);
+    size_t per_block = N * C * 4 + N * 4 + N * 3 * C + probn + N * F * 3 + Phin;
     size_t total = N * I + B * E + 3 * B * C + N * C + 2 * N + N * cfg->P
                  + (size_t)(L + 1) * N * C + (size_t)L * per_block
                  + 3 * N * C + N * 3 * C + N * F + 2 * B * C
-                 + nn_attention_scratch_len(cfg->T, cfg->C, cfg->H)
-                 + 4 * B * TP + B;
+                 + ascrn + 4 * B * TP + B + 2 * B * TTQ;
     m->mem = calloc(total, sizeof(float));
-    if (!m->params || !m->grads || !m->wtall || !m->mem) { model_free(m); return cs_err(CS_ENOMEM, "model: out of memory"); }
+    if (!m->params || !m->grads || !m->wtall || !m->mem || !m->norm) { model_free(m); return cs_err(CS_ENOMEM, "model: out of memory"); }
     float *p = m->mem;
 #define TAKE(n) (p += (n), p - (n))
     m->tin = TAKE(N * I); m->cin = TAKE(B * E);
@@ -117,12 +174,14 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
         m->qkv[l] = TAKE(N * 3 * C); m->prob[l] = TAKE(probn); m->att[l] = TAKE(N * C);
         m->xm[l] = TAKE(N * C); m->ln2[l] = TAKE(N * C); m->mu2[l] = TAKE(N); m->rs2[l] = TAKE(N);
         m->h[l] = TAKE(N * F); m->hs[l] = TAKE(N * F); m->hg[l] = TAKE(N * F);
+        m->Phi[l] = TAKE(Phin);
     }
     m->dx = TAKE(N * C); m->dtmp = TAKE(N * C); m->dln = TAKE(N * C);
     m->dqkv = TAKE(N * 3 * C); m->dh = TAKE(N * F); m->de = TAKE(B * C); m->de1 = TAKE(B * C);
-    m->ascr = TAKE(nn_attention_scratch_len(cfg->T, cfg->C, cfg->H));
+    m->ascr = TAKE(ascrn);
     m->fm_xt = TAKE(B * TP); m->fm_u = TAKE(B * TP); m->fm_v = TAKE(B * TP); m->fm_dv = TAKE(B * TP);
     m->fm_t = TAKE(B);
+    m->phi = TAKE(B * TTQ); m->phit = TAKE(B * TTQ);
 #undef TAKE
     if ((size_t)(p - m->mem) != total) { model_free(m); return cs_err(CS_EINVARIANT, "model: activation layout mismatch"); }
     *out = m;
@@ -154,6 +213,11 @@ void model_init(model *m, gsl_rng *r)
     }
     init_matrix(p + m->head_w, c->P, C, 0.1, r);
     for (size_t i = 0; i < C; i++) p[m->lnf_g + i] = 1.f;
+    /* pair weights last, so the revision-1 draws are unchanged */
+    for (int l = 0; c->pair && l < c->L; l++) {
+        init_matrix(p + m->blk[l].pb_w, c->H, PAIRATTN_Q, 1.0, r);
+        init_matrix(p + m->blk[l].pv_w, C, PAIRATTN_Q, 1.0, r);
+    }
 }
 
 /* w^T of every weight matrix (the forward's B operands) into m->wtall, each
@@ -176,6 +240,8 @@ static void transpose_all(model *m)
         gemm_transpose(t + o->fc2_w, w + o->fc2_w, C, F);
     }
     gemm_transpose(t + m->head_w, w + m->head_w, c->P, C);
+    for (int l = 0; c->pair && l < c->L; l++)
+        gemm_transpose(t + m->blk[l].pv_w, w + m->blk[l].pv_w, C, PAIRATTN_Q);
 }
 
 /* model_forward on weights already transposed by transpose_all; 1 <= B <=
@@ -190,10 +256,18 @@ static void forward(model *m, int B, const float *xt, const float *feat,
     float *wt = m->wtall;
     const nn_attn_mode mode = c->joint ? NN_ATTN_JOINT : NN_ATTN_SELF;
     m->B = B;
+    const int nf = c->nfeat;
     for (int r = 0; r < N; r++) {
         memcpy(m->tin + (size_t)r * I, xt + (size_t)r * P, sizeof(float) * P);
-        memcpy(m->tin + (size_t)r * I + P, feat + (size_t)r * c->nfeat, sizeof(float) * c->nfeat);
+        if (!c->pair) memcpy(m->tin + (size_t)r * I + P, feat + (size_t)r * nf, sizeof(float) * nf);
+        else /* standardised features */
+            for (int k = 0; k < nf; k++)
+                m->tin[(size_t)r * I + P + k] = (feat[(size_t)r * nf + k] - m->norm[k]) * m->norm[nf + k];
     }
+    const size_t TTQ = (size_t)T * T * PAIRATTN_Q;
+    for (int b = 0; c->pair && b < B; b++) /* pair geometry from the raw features */
+        pairattn_geometry(m->phi + b * TTQ, m->phit + b * TTQ, feat + (size_t)b * T * nf, nf, T,
+                          m->norm + 2 * nf, m->norm + 2 * nf + PAIRATTN_Q);
     for (int b = 0; b < B; b++) {
         float *ci = m->cin + (size_t)b * E;
         memcpy(ci, cond + (size_t)b * c->ncond, sizeof(float) * c->ncond);
@@ -219,8 +293,13 @@ static void forward(model *m, int B, const float *xt, const float *feat,
         /* Every layer runs fused with its product (nn.h): each strip of rows
          * gets its attention (per patch), bias, residual and the following
          * layer norm, or bias and GELU, while in cache; values as unfused. */
-        nn_linear_attention_forward(m->qkv[l], m->att[l], m->prob[l], m->ln1[l], NULL,
-                                    w + o->qkv_b, B, T, C, c->H, mode, wt + o->qkv_w, m->ascr);
+        if (c->pair)
+            pairattn_linear_forward(m->qkv[l], m->att[l], m->prob[l], m->Phi[l], m->ln1[l], NULL,
+                                    w + o->qkv_b, m->phi, m->phit, w + o->pb_w, wt + o->pv_w, B, T, C,
+                                    c->H, mode, wt + o->qkv_w, m->ascr);
+        else
+            nn_linear_attention_forward(m->qkv[l], m->att[l], m->prob[l], m->ln1[l], NULL,
+                                        w + o->qkv_b, B, T, C, c->H, mode, wt + o->qkv_w, m->ascr);
         nn_linear_bias_residual_forward(m->xm[l], m->att[l], NULL, w + o->proj_b, m->x[l],
                                         m->ln2[l], m->mu2[l], m->rs2[l], w + o->ln2_g, w + o->ln2_b,
                                         N, C, C, wt + o->proj_w);
@@ -281,8 +360,13 @@ static void backward(model *m, const float *dv, int zero)
                                 m->h[l], m->hs[l], N, F, C);
         nn_linear_backward(m->dln, g + o->fc1_w, g + o->fc1_b, m->dh, m->ln2[l], w + o->fc1_w, N, C, F);
         nn_layernorm_backward(m->dx, g + o->ln2_g, g + o->ln2_b, m->dln, m->xm[l], m->mu2[l], m->rs2[l], w + o->ln2_g, N, C);
-        nn_linear_backward_attention(m->dqkv, m->dtmp, g + o->proj_w, g + o->proj_b, m->dx, m->att[l],
-                                     w + o->proj_w, m->qkv[l], m->prob[l], B, T, C, c->H, mode, m->ascr);
+        if (c->pair)
+            pairattn_linear_backward(m->dqkv, m->dtmp, g + o->proj_w, g + o->proj_b, g + o->pb_w,
+                                     g + o->pv_w, m->dx, m->att[l], w + o->proj_w, m->qkv[l], m->prob[l],
+                                     m->Phi[l], m->phi, m->phit, w + o->pv_w, B, T, C, c->H, mode, m->ascr);
+        else
+            nn_linear_backward_attention(m->dqkv, m->dtmp, g + o->proj_w, g + o->proj_b, m->dx, m->att[l],
+                                         w + o->proj_w, m->qkv[l], m->prob[l], B, T, C, c->H, mode, m->ascr);
         nn_linear_backward(m->dln, g + o->qkv_w, g + o->qkv_b, m->dqkv, m->ln1[l], w + o->qkv_w, N, C, 3 * C);
         nn_layernorm_backward(m->dx, g + o->ln1_g, g + o->ln1_b, m->dln, m->x[l], m->mu1[l], m->rs1[l], w + o->ln1_g, N, C);
     }
@@ -394,7 +478,11 @@ double model_train_flops(const model_cfg *c, int B)
     /* backward: weight gradients for all, input gradients for all but the token and e1 layers */
     double gemm_bwd = 2 * gemm_fwd - 2 * N * I * C - 2.0 * B * E * C;
     double attn = c->joint ? 2.0 * B * c->H * T * T * hd * 2 * c->L : 0; /* QK^T and PV */
-    return gemm_fwd + gemm_bwd + 3 * attn; /* attention backward = 4 products = 2x forward */
+    /* pair terms per patch and block: beta, Phi, the value term and, backward,
+     * dPhi, dWv, dP's term and dwb (joint); the value term, dPhi, dWv (self) */
+    const double TT = T * T, Q = PAIRATTN_Q;
+    double pair = !c->pair ? 0 : 2.0 * B * c->L * (c->joint ? 4 * c->H * TT * Q + 3 * T * C * Q : 3 * T * C * Q);
+    return gemm_fwd + gemm_bwd + 3 * attn + pair; /* attention backward = 4 products = 2x forward */
 }
 
 cs_status model_sample_radii(model *m, int Bmax, const patch_set *ps, int n, int nsteps,

@@ -33,10 +33,15 @@ typedef struct {
     int H;     /* heads (C % H == 0) */
     int F;     /* MLP width */
     int joint; /* 1: attention across the patch; 0: each token attends only to itself */
+    int pair;  /* 1: revision 2 (SPEC §8 "Pair awareness"): per-token features
+                * standardised with the model's z-scores (model_norm_fit) and
+                * pair-aware attention (src/pairattn.h) from features 0..2 =
+                * (x, y, rbar) / d; 0: the revision-1 model, unchanged */
 } model_cfg;
 
 typedef struct {
     size_t ln1_g, ln1_b, qkv_w, qkv_b, proj_w, proj_b, ln2_g, ln2_b, fc1_w, fc1_b, fc2_w, fc2_b;
+    size_t pb_w, pv_w; /* pair model only: score weights [H x Q], value weights [C x Q] */
 } model_block_off;
 
 /* Patches per forward/backward pass of model_fm_grad (see model.c). */
@@ -52,6 +57,12 @@ typedef struct model {
     /* offsets into params/grads */
     size_t tok_w, tok_b, e1_w, e1_b, e2_w, e2_b, lnf_g, lnf_b, head_w, head_b;
     model_block_off *blk;
+    /* pair model: z-scores fitted on the training data (model_norm_fit) and
+     * stored with the parameters in checkpoints: fmu, fisd [nfeat] of the
+     * token features, pmu, pisd [PAIRATTN_Q] of the pair features; model_nnorm
+     * floats (0 for the revision-1 model) */
+    float *norm;
+    size_t nnorm;
     /* patches per forward/backward pass of model_fm_grad (default
      * MODEL_MICRO; the results do not depend on it, only the speed) */
     int micro;
@@ -62,6 +73,7 @@ typedef struct model {
     float **x, **ln1, **mu1, **rs1, **qkv, **prob, **att, **xm, **ln2, **mu2, **rs2, **h, **hs, **hg;
     float *dx, *dtmp, *dln, *dqkv, *dh, *de, *de1, *ascr;
     float *fm_xt, *fm_u, *fm_t, *fm_v, *fm_dv;
+    float *phi, *phit, **Phi; /* pair model: geometry of the pass, saved pair mixes */
 } model;
 
 /* The reference configuration of SPEC §10: T = P = 24, nfeat = PATCH_NFEAT, ntime = 16,
@@ -71,6 +83,13 @@ model_cfg model_cfg_reference(int ncond);
 cs_status model_cfg_check(const model_cfg *cfg);
 /* Number of parameters (independent of cfg->joint). */
 size_t model_nparams(const model_cfg *cfg);
+
+/* Floats of m->norm for cfg (2 nfeat + 2 PAIRATTN_Q for the pair model, else 0). */
+size_t model_nnorm(const model_cfg *cfg);
+/* Pair model: z-scores of the token features over all n*T tokens and of the
+ * pair features over all ordered pairs i != j of the n patches feat[n*T*nfeat]
+ * (mean and population sd in double; sd 0 -> 1). No-op for the revision-1 model. */
+cs_status model_norm_fit(model *m, const float *feat, int n);
 
 cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax);
 void model_free(model *m);

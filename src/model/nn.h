@@ -83,6 +83,17 @@ void nn_attention_forward(float *out, float *prob, const float *qkv,
 void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
                            const float *prob, int B, int T, int C, int H,
                            nn_attn_mode mode, float *scratch);
+/* The same with additive terms for pair-aware attention (src/pairattn.h):
+ * sbias[B x H x T x T] (NULL: none) is added to the scaled scores before the
+ * softmax; dpadd[B x H x T x T] (NULL: none) is added to dP = dO V^T before
+ * the softmax backward. Both are ignored by NN_ATTN_SELF. After a backward
+ * with B = 1, scratch[0 .. H*T*T) holds that patch's dS, the gradient w.r.t.
+ * the unscaled scores Q K^T (1/sqrt(C/H) times that w.r.t. the logits). */
+void nn_attention_forward_biased(float *out, float *prob, const float *qkv, const float *sbias,
+                                 int B, int T, int C, int H, nn_attn_mode mode, float *scratch);
+void nn_attention_backward_biased(float *dqkv, const float *dout, const float *qkv,
+                                  const float *prob, const float *dpadd, int B, int T, int C,
+                                  int H, nn_attn_mode mode, float *scratch);
 /* Floats of scratch the attention kernels need (H*T*T + T*C/H). */
 size_t nn_attention_scratch_len(int T, int C, int H);
 

@@ -26,6 +26,14 @@ size_t nn_attention_scratch_len(int T, int C, int H)
     return (size_t)H * T * T + (size_t)(C / H) * T;
 }
 
+/* y[0..n) += x (the pair terms of nn_attention_*_biased). */
+INL void add_rows(float *restrict y, const float *restrict x, int n)
+{
+    int i = 0;
+    for (; i + VL <= n; i += VL) st(y + i, ld(y + i) + ld(x + i));
+    for (; i < n; i++) y[i] += x[i];
+}
+
 /* In place softmax of s[0..n). */
 INL void softmax_row(float *s, int n)
 {
@@ -139,7 +147,7 @@ A512 void softmax_backward24(float *d, const float *p, float scale)
 /* One patch (24 tokens), all heads: the values of nn_attention_forward. */
 __attribute__((target("avx512f,fma"))) static void attention_forward24(float *out, float *prob,
                                                                        const float *qkv, int C, int H,
-                                                                       float *kt)
+                                                                       float *kt, const float *sb)
 {
     const int C3 = 3 * C;
     const float scale = 1.f / sqrtf(16.f);
@@ -148,6 +156,7 @@ __attribute__((target("avx512f,fma"))) static void attention_forward24(float *ou
         gemm_transpose_scaled(kt, 24, qkv + C + h * 16, C3, 24, 16, scale);
         for (int i0 = 0; i0 < 24; i0 += 12) {
             tt_block(P + i0 * 24, qkv + (size_t)i0 * C3 + h * 16, C3, kt);
+            if (sb) add_rows(P + i0 * 24, sb + (size_t)h * 576 + i0 * 24, 12 * 24);
             softmax24x12(P + i0 * 24);
             hw_block(out + (size_t)i0 * C + h * 16, C, P + i0 * 24, 24, 1, qkv + 2 * C + h * 16, C3);
         }
@@ -158,7 +167,8 @@ __attribute__((target("avx512f,fma"))) static void attention_forward24(float *ou
 __attribute__((target("avx512f,fma"))) static void attention_backward24(float *g, const float *dO,
                                                                         const float *qkv,
                                                                         const float *prob, int C,
-                                                                        int H, float *ds, float *vt)
+                                                                        int H, float *ds, float *vt,
+                                                                        const float *dpx)
 {
     const int C3 = 3 * C;
     const float scale = 1.f / sqrtf(16.f);
@@ -168,6 +178,7 @@ __attribute__((target("avx512f,fma"))) static void attention_backward24(float *g
         gemm_transpose_scaled(vt, 24, qkv + 2 * C + h * 16, C3, 24, 16, 1.f);
         for (int i0 = 0; i0 < 24; i0 += 12) {
             tt_block(dsh + i0 * 24, dO + (size_t)i0 * C + h * 16, C, vt);
+            if (dpx) add_rows(dsh + i0 * 24, dpx + (size_t)h * 576 + i0 * 24, 12 * 24);
             for (int r = i0; r < i0 + 12; r++) softmax_backward24(dsh + r * 24, P + r * 24, scale);
         }
         for (int i0 = 0; i0 < 24; i0 += 12) {
@@ -183,6 +194,12 @@ __attribute__((target("avx512f,fma"))) static void attention_backward24(float *g
 void nn_attention_forward(float *out, float *prob, const float *qkv,
                           int B, int T, int C, int H, nn_attn_mode mode, float *scratch)
 {
+    nn_attention_forward_biased(out, prob, qkv, NULL, B, T, C, H, mode, scratch);
+}
+
+void nn_attention_forward_biased(float *out, float *prob, const float *qkv, const float *sbias,
+                                 int B, int T, int C, int H, nn_attn_mode mode, float *scratch)
+{
     const int hd = C / H, C3 = 3 * C;
     if (mode == NN_ATTN_SELF) {
         /* Softmax over one admissible key is exactly 1: the output is v itself. */
@@ -194,7 +211,8 @@ void nn_attention_forward(float *out, float *prob, const float *qkv,
     if (T == 24 && hd == 16 && gemm_isa_available(GEMM_AVX512)) {
         for (int b = 0; b < B; b++)
             attention_forward24(out + (size_t)b * T * C, prob + (size_t)b * H * T * T,
-                                qkv + (size_t)b * T * C3, C, H, scratch);
+                                qkv + (size_t)b * T * C3, C, H, scratch,
+                                sbias ? sbias + (size_t)b * H * T * T : NULL);
         return;
     }
 #endif
@@ -207,6 +225,7 @@ void nn_attention_forward(float *out, float *prob, const float *qkv,
             /* P = Q (scale K^T), softmax by rows, out = P V */
             gemm_transpose_scaled(kt, T, base + C + h * hd, C3, T, hd, scale);
             gemm_fma(T, T, hd, base + h * hd, C3, 1, kt, T, P, T, 0);
+            if (sbias) add_rows(P, sbias + ((size_t)b * H + h) * T * T, T * T);
             softmax_rows(P, T);
         }
         /* out_h = P_h V_h for all heads in one pass */
@@ -218,6 +237,13 @@ void nn_attention_forward(float *out, float *prob, const float *qkv,
 void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
                            const float *prob, int B, int T, int C, int H,
                            nn_attn_mode mode, float *scratch)
+{
+    nn_attention_backward_biased(dqkv, dout, qkv, prob, NULL, B, T, C, H, mode, scratch);
+}
+
+void nn_attention_backward_biased(float *dqkv, const float *dout, const float *qkv,
+                                  const float *prob, const float *dpadd, int B, int T, int C,
+                                  int H, nn_attn_mode mode, float *scratch)
 {
     const int hd = C / H, C3 = 3 * C;
     if (mode == NN_ATTN_SELF) {
@@ -234,7 +260,8 @@ void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
     if (T == 24 && hd == 16 && gemm_isa_available(GEMM_AVX512)) {
         for (int b = 0; b < B; b++)
             attention_backward24(dqkv + (size_t)b * T * C3, dout + (size_t)b * T * C,
-                                 qkv + (size_t)b * T * C3, prob + (size_t)b * H * T * T, C, H, ds, vt);
+                                 qkv + (size_t)b * T * C3, prob + (size_t)b * H * T * T, C, H, ds, vt,
+                                 dpadd ? dpadd + (size_t)b * H * T * T : NULL);
         return;
     }
 #endif
@@ -250,6 +277,7 @@ void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
             float *dsh = ds + (size_t)h * T * T;
             gemm_transpose_scaled(vt, T, v, C3, T, hd, 1.f);
             gemm_fma(T, T, hd, dO + h * hd, C, 1, vt, T, dsh, T, 0);
+            if (dpadd) add_rows(dsh, dpadd + ((size_t)b * H + h) * T * T, T * T);
             softmax_backward_rows(dsh, P, T, scale);
         }
         /* dV = P^T dO, dQ = dS K, dK = dS^T Q, all heads per pass */

@@ -11,7 +11,10 @@
 #include <unistd.h>
 
 #define CKPT_MAGIC "CSHYCKPT"
-#define CKPT_VERSION 1u
+/* Version 2 (revision 2): the configuration gains `pair`, the header nnorm,
+ * and the model's z-scores (nnorm floats) follow the permutation. Version 1
+ * files are refused with a message saying so. */
+#define CKPT_VERSION 2u
 
 train_opts train_opts_default(void)
 {
@@ -90,6 +93,8 @@ cs_status train_alloc(train **out, const model_cfg *cfg, const patch_set *data, 
     gsl_rng_set(t->rng_batch, o->seed_batch);
     gsl_rng_set(t->rng_noise, o->seed_noise);
     model_init(t->m, t->rng_init);
+    st = model_norm_fit(t->m, data->feat, data->n);
+    if (st) { train_free(t); return st; }
     for (int i = 0; i < data->n; i++) t->perm[i] = i;
     t->pos = data->n; /* forces a shuffle (epoch 1) at the first step */
     *out = t;
@@ -210,10 +215,10 @@ static void put(buf *b, const void *src, size_t n)
 #define PUTV(b, v) put((b), &(v), sizeof(v))
 
 typedef struct {
-    int32_t cfg[10]; /* T P nfeat ncond ntime C L H F joint */
+    int32_t cfg[11]; /* T P nfeat ncond ntime C L H F joint pair */
     int32_t batch, epoch, pos, ndata;
     int64_t step, steps;
-    uint64_t nparams, data_hash, rng_size;
+    uint64_t nparams, data_hash, rng_size, nnorm;
     double scale, lr, warmup, lr_final, b1, b2, eps, wd;
     uint64_t seeds[3];
 } ckpt_head;
@@ -222,11 +227,11 @@ static void fill_head(const train *t, ckpt_head *h)
 {
     memset(h, 0, sizeof *h);
     const model_cfg *c = &t->m->cfg;
-    int32_t v[10] = {c->T, c->P, c->nfeat, c->ncond, c->ntime, c->C, c->L, c->H, c->F, c->joint};
+    int32_t v[11] = {c->T, c->P, c->nfeat, c->ncond, c->ntime, c->C, c->L, c->H, c->F, c->joint, c->pair};
     memcpy(h->cfg, v, sizeof v);
     h->batch = t->B; h->epoch = t->epoch; h->pos = t->pos; h->ndata = t->data->n;
     h->step = t->step; h->steps = t->o.steps;
-    h->nparams = t->m->nparams; h->data_hash = t->data_hash;
+    h->nparams = t->m->nparams; h->data_hash = t->data_hash; h->nnorm = t->m->nnorm;
     h->rng_size = gsl_rng_size(t->rng_noise);
     h->scale = t->data->scale; h->lr = t->o.lr; h->warmup = t->o.warmup; h->lr_final = t->o.lr_final;
     h->b1 = t->o.hp.beta1; h->b2 = t->o.hp.beta2; h->eps = t->o.hp.eps; h->wd = t->o.hp.wd;
@@ -236,7 +241,7 @@ static void fill_head(const train *t, ckpt_head *h)
 static size_t ckpt_body_size(const ckpt_head *h)
 {
     return 8 + 4 + sizeof *h + 3 * h->rng_size + sizeof(int32_t) * (size_t)h->ndata
-         + 3 * sizeof(float) * h->nparams;
+         + sizeof(float) * h->nnorm + 3 * sizeof(float) * h->nparams;
 }
 
 cs_status train_save(const train *t, const char *path)
@@ -252,6 +257,7 @@ cs_status train_save(const train *t, const char *path)
     put(&b, gsl_rng_state(t->rng_batch), h.rng_size);
     put(&b, gsl_rng_state(t->rng_noise), h.rng_size);
     for (int i = 0; i < t->data->n; i++) { int32_t v = t->perm[i]; PUTV(&b, v); }
+    put(&b, t->m->norm, sizeof(float) * h.nnorm);
     put(&b, t->m->params, sizeof(float) * h.nparams);
     put(&b, t->am, sizeof(float) * h.nparams);
     put(&b, t->av, sizeof(float) * h.nparams);
@@ -293,10 +299,17 @@ static cs_status ckpt_read(const char *path, unsigned char **data, size_t *len, 
     if (memcmp(p, CKPT_MAGIC, 8) != 0) { free(p); return cs_err(CS_EINPUT, "%s: not a crownshy checkpoint (bad magic)", path); }
     uint32_t ver;
     memcpy(&ver, p + 8, 4);
-    if (ver != CKPT_VERSION) { free(p); return cs_err(CS_EINPUT, "%s: checkpoint version %u, expected %u", path, ver, CKPT_VERSION); }
+    if (ver != CKPT_VERSION) {
+        free(p);
+        if (ver < CKPT_VERSION)
+            return cs_err(CS_EINPUT, "%s: checkpoint format version %u is no longer read (this build writes and reads "
+                          "version %u: pair-aware model configuration and feature z-scores); delete it to restart the run",
+                          path, ver, CKPT_VERSION);
+        return cs_err(CS_EINPUT, "%s: checkpoint version %u, expected %u", path, ver, CKPT_VERSION);
+    }
     memcpy(h, p + 12, sizeof *h);
     /* bound the declared sizes before using them in arithmetic */
-    if (h->nparams > ((uint64_t)1 << 34) || h->rng_size > (1u << 20) || h->ndata < 0 || h->ndata > (1 << 28)) {
+    if (h->nparams > ((uint64_t)1 << 34) || h->nnorm > (1u << 20) || h->rng_size > (1u << 20) || h->ndata < 0 || h->ndata > (1 << 28)) {
         free(p);
         return cs_err(CS_EINPUT, "%s: corrupt checkpoint header (implausible sizes)", path);
     }
@@ -324,7 +337,7 @@ cs_status train_load(train *t, const char *path)
     fill_head(t, &mine);
     const char *what = NULL;
     if (memcmp(h.cfg, mine.cfg, sizeof h.cfg)) what = "model configuration";
-    else if (h.nparams != mine.nparams) what = "parameter count";
+    else if (h.nparams != mine.nparams || h.nnorm != mine.nnorm) what = "parameter count";
     else if (h.batch != mine.batch || h.steps != mine.steps || h.lr != mine.lr || h.warmup != mine.warmup ||
              h.lr_final != mine.lr_final || h.b1 != mine.b1 || h.b2 != mine.b2 || h.eps != mine.eps || h.wd != mine.wd)
         what = "training options";
@@ -343,6 +356,7 @@ cs_status train_load(train *t, const char *path)
         if (v < 0 || v >= h.ndata) { free(p); return cs_err(CS_EINPUT, "%s: corrupt permutation entry %d", path, i); }
         t->perm[i] = v;
     }
+    memcpy(t->m->norm, q, sizeof(float) * h.nnorm); q += sizeof(float) * h.nnorm;
     size_t nb = sizeof(float) * h.nparams;
     memcpy(t->m->params, q, nb); q += nb;
     memcpy(t->am, q, nb); q += nb;
@@ -360,12 +374,14 @@ cs_status train_load_model(const char *path, model **out, int Bmax, double *scal
     *out = NULL;
     cs_status st = ckpt_read(path, &p, &len, &h);
     if (st) return st;
-    model_cfg c = {h.cfg[0], h.cfg[1], h.cfg[2], h.cfg[3], h.cfg[4], h.cfg[5], h.cfg[6], h.cfg[7], h.cfg[8], h.cfg[9]};
+    model_cfg c = {h.cfg[0], h.cfg[1], h.cfg[2], h.cfg[3], h.cfg[4], h.cfg[5], h.cfg[6], h.cfg[7], h.cfg[8], h.cfg[9], h.cfg[10]};
     model *m;
     st = model_alloc(&m, &c, Bmax);
     if (st) { free(p); return cs_err(CS_EINPUT, "%s: checkpoint model configuration unusable: %s", path, cs_errmsg()); }
-    if (m->nparams != h.nparams) { model_free(m); free(p); return cs_err(CS_EINPUT, "%s: parameter count mismatch", path); }
-    memcpy(m->params, p + 12 + sizeof h + 3 * h.rng_size + sizeof(int32_t) * (size_t)h.ndata, sizeof(float) * h.nparams);
+    if (m->nparams != h.nparams || m->nnorm != h.nnorm) { model_free(m); free(p); return cs_err(CS_EINPUT, "%s: parameter count mismatch", path); }
+    const unsigned char *q = p + 12 + sizeof h + 3 * h.rng_size + sizeof(int32_t) * (size_t)h.ndata;
+    memcpy(m->norm, q, sizeof(float) * h.nnorm);
+    memcpy(m->params, q + sizeof(float) * h.nnorm, sizeof(float) * h.nparams);
     if (scale) *scale = h.scale;
     free(p);
     *out = m;

@@ -10,9 +10,15 @@
  * RNG states, so a run killed and resumed ends with the same bytes as a run
  * that was never interrupted (one BLAS thread, same machine).
  *
- * Checkpoint file: magic "CSHYCKPT", version, model configuration, sizes, a
- * fingerprint of the training data, the state above, and a 64-bit FNV-1a
- * checksum of everything before it. Written to "<path>.tmp", fsync'd and
+ * Checkpoint file (format version 2): magic "CSHYCKPT", uint32 version, a
+ * header (model configuration T P nfeat ncond ntime C L H F joint pair as
+ * int32; batch, epoch, cursor, data size; step counts; parameter, z-score
+ * and RNG state sizes; a fingerprint of the training data; scale, optimiser
+ * options and seeds), the three RNG states, the permutation (int32), the
+ * model's feature z-scores (nnorm floats, 0 for the revision-1 model), the
+ * parameters and both AdamW moments (float), and a 64-bit FNV-1a checksum of
+ * everything before it; native little-endian x86-64 layout. Version 1 files
+ * (before the pair model) are refused with a message naming the version. Written to "<path>.tmp", fsync'd and
  * renamed. A truncated, tampered, foreign or mismatched file is rejected with
  * CS_EINPUT and a message naming the file and the problem. */
 #ifndef TRAIN_H

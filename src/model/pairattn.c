@@ -1,0 +1,193 @@
+/* pairattn: pair-aware attention (see pairattn.h; SPEC §8 revision 2).
+ * Per patch and layer the pair terms are a handful of small gemm_fma
+ * products around nn.c's attention kernels, which take the score bias and
+ * the extra dP term through nn_attention_*_biased (their AVX-512 kernel at
+ * the reference shape included). Every product is one fma chain per element
+ * (gemm.h) and the remaining loops are scalar, so the values do not depend
+ * on the ISA (tested against all gemm paths and nn.c's baseline clone). */
+#include "pairattn.h"
+#include "gemm.h"
+#include <math.h>
+#include <string.h>
+
+enum { Q = PAIRATTN_Q };
+
+void pairattn_features(float *f, const float *tok, int stride, int T)
+{
+    for (int i = 0; i < T; i++) {
+        const double xi = tok[(size_t)i * stride], yi = tok[(size_t)i * stride + 1];
+        const double ri = tok[(size_t)i * stride + 2];
+        for (int j = 0; j < T; j++) {
+            const double dx = (double)tok[(size_t)j * stride] - xi;
+            const double dy = (double)tok[(size_t)j * stride + 1] - yi;
+            const double dist = sqrt(dx * dx + dy * dy);
+            const double c = dist > 0 ? dx / dist : 0.0, s = dist > 0 ? dy / dist : 0.0;
+            float *o = f + ((size_t)i * T + j) * Q;
+            o[0] = (float)dx;
+            o[1] = (float)dy;
+            o[2] = (float)dist;
+            o[3] = (float)(dist - ri - (double)tok[(size_t)j * stride + 2]);
+            o[4] = (float)c;
+            o[5] = (float)s;
+            o[6] = (float)(c * c - s * s);
+            o[7] = (float)(2 * c * s);
+        }
+    }
+}
+
+void pairattn_geometry(float *phi, float *phit, const float *tok, int stride, int T,
+                       const float *mu, const float *isd)
+{
+    const size_t TT = (size_t)T * T;
+    pairattn_features(phi, tok, stride, T);
+    for (size_t e = 0; e < TT; e++)
+        for (int q = 0; q < Q; q++) {
+            float z = (phi[e * Q + q] - mu[q]) * isd[q];
+            phi[e * Q + q] = z;
+            phit[(size_t)q * TT + e] = z;
+        }
+}
+
+size_t pairattn_scratch_len(int T, int C, int H)
+{
+    return nn_attention_scratch_len(T, C, H) + (size_t)H * T * T + (size_t)H * T * Q;
+}
+
+/* One patch: out[T x C], prob[H x T x T], Phi[H x T x Q] from qkv[T x 3C]. */
+static void patch_forward(float *out, float *prob, float *Phi, const float *qkv, const float *phi,
+                          const float *phit, const float *wb, const float *wvt, int T, int C, int H,
+                          nn_attn_mode mode, float *scratch)
+{
+    const int hd = C / H, TT = T * T;
+    float *sb = scratch + nn_attention_scratch_len(T, C, H); /* [H x T x T] scale * beta */
+    if (mode == NN_ATTN_JOINT) {
+        const float scale = 1.f / sqrtf((float)hd);
+        gemm_fma(H, TT, Q, wb, Q, 1, phit, TT, sb, TT, 0); /* beta[h][ij] = wb_h . phi_ij */
+        for (size_t e = 0; e < (size_t)H * TT; e++) sb[e] = scale * sb[e];
+        nn_attention_forward_biased(out, prob, qkv, sb, 1, T, C, H, mode, scratch);
+        /* Phi[h][i][q] = sum_j a_hij phi_ijq: all heads of row i per product */
+        for (int i = 0; i < T; i++)
+            gemm_fma(H, Q, T, prob + (size_t)i * T, TT, 1, phi + (size_t)i * T * Q, Q,
+                     Phi + (size_t)i * Q, (ptrdiff_t)T * Q, 0);
+    } else {
+        nn_attention_forward(out, NULL, qkv, 1, T, C, H, mode, scratch);
+        for (int h = 0; h < H; h++)
+            for (int i = 0; i < T; i++)
+                memcpy(Phi + ((size_t)h * T + i) * Q, phi + ((size_t)i * T + i) * Q, sizeof(float) * Q);
+    }
+    for (int h = 0; h < H; h++) /* out_h += Phi_h Wv_h^T */
+        gemm_fma(T, hd, Q, Phi + (size_t)h * T * Q, Q, 1, wvt + h * hd, C, out + h * hd, C, 1);
+}
+
+/* One patch: dqkv[T x 3C] from dO[T x C]; dwb, dwv accumulate. */
+static void patch_backward(float *dqkv, float *dwb, float *dwv, const float *dO, const float *qkv,
+                           const float *prob, const float *Phi, const float *phi, const float *phit,
+                           const float *wv, int T, int C, int H, nn_attn_mode mode, float *scratch)
+{
+    const int hd = C / H, TT = T * T;
+    float *dpx = scratch + nn_attention_scratch_len(T, C, H); /* [H x T x T] */
+    float *dPhi = dpx + (size_t)H * TT;                       /* [H x T x Q] */
+    for (int h = 0; h < H; h++) {
+        /* dPhi_h = dO_h Wv_h; dWv_h += dO_h^T Phi_h */
+        gemm_fma(T, Q, hd, dO + h * hd, C, 1, wv + (size_t)h * hd * Q, Q, dPhi + (size_t)h * T * Q, Q, 0);
+        gemm_fma(hd, Q, T, dO + h * hd, 1, C, Phi + (size_t)h * T * Q, Q, dwv + (size_t)h * hd * Q, Q, 1);
+    }
+    if (mode == NN_ATTN_JOINT) {
+        /* dP[h][i][j] gains dPhi_hi . phi_ij */
+        for (int i = 0; i < T; i++)
+            gemm_fma(H, T, Q, dPhi + (size_t)i * Q, (ptrdiff_t)T * Q, 1, phit + (size_t)i * T, TT,
+                     dpx + (size_t)i * T, TT, 0);
+        nn_attention_backward_biased(dqkv, dO, qkv, prob, dpx, 1, T, C, H, mode, scratch);
+        /* scratch holds dS = d/d(q.k), which is d/d(beta): dwb += dS phi */
+        gemm_fma(H, Q, TT, scratch, TT, 1, phi, Q, dwb, Q, 1);
+    } else {
+        nn_attention_backward(dqkv, dO, qkv, NULL, 1, T, C, H, mode, scratch);
+    }
+}
+
+void pairattn_forward(float *out, float *prob, float *Phi, const float *qkv, const float *phi,
+                      const float *phit, const float *wb, const float *wv, float *wvt,
+                      int B, int T, int C, int H, nn_attn_mode mode, float *scratch)
+{
+    const size_t TT = (size_t)T * T;
+    if (wv) gemm_transpose(wvt, wv, C, Q);
+    for (int b = 0; b < B; b++)
+        patch_forward(out + (size_t)b * T * C, mode == NN_ATTN_JOINT ? prob + b * H * TT : NULL,
+                      Phi + (size_t)b * H * T * Q, qkv + (size_t)b * T * 3 * C, phi + b * TT * Q,
+                      phit + b * TT * Q, wb, wvt, T, C, H, mode, scratch);
+}
+
+void pairattn_backward(float *dqkv, float *dwb, float *dwv, const float *dout, const float *qkv,
+                       const float *prob, const float *Phi, const float *phi, const float *phit,
+                       const float *wv, int B, int T, int C, int H, nn_attn_mode mode,
+                       float *scratch)
+{
+    const size_t TT = (size_t)T * T;
+    for (int b = 0; b < B; b++)
+        patch_backward(dqkv + (size_t)b * T * 3 * C, dwb, dwv, dout + (size_t)b * T * C,
+                       qkv + (size_t)b * T * 3 * C, mode == NN_ATTN_JOINT ? prob + b * H * TT : NULL,
+                       Phi + (size_t)b * H * T * Q, phi + b * TT * Q, phit + b * TT * Q, wv, T, C, H,
+                       mode, scratch);
+}
+
+/* ---- fused into the neighbouring products (as nn.c's attention) ------------------- */
+typedef struct {
+    float *out, *prob, *Phi, *dwb, *dwv;
+    const float *qkv, *dout, *cprob, *cPhi, *phi, *phit, *wb, *wv;
+    int T, C, H, next;
+    nn_attn_mode mode;
+    float *scratch;
+} pair_ctx;
+
+static void epi_forward(void *p, int i0, int rows)
+{
+    pair_ctx *a = p;
+    const size_t T = a->T, C = a->C, H = a->H, TT = T * T;
+    for (int done = (i0 + rows) / a->T; a->next < done; a->next++) {
+        size_t b = a->next;
+        patch_forward(a->out + b * T * C, a->mode == NN_ATTN_JOINT ? a->prob + b * H * TT : NULL,
+                      a->Phi + b * H * T * Q, a->qkv + b * T * 3 * C, a->phi + b * TT * Q,
+                      a->phit + b * TT * Q, a->wb, a->wv, a->T, a->C, a->H, a->mode, a->scratch);
+    }
+}
+
+static void epi_backward(void *p, int i0, int rows)
+{
+    pair_ctx *a = p;
+    const size_t T = a->T, C = a->C, H = a->H, TT = T * T;
+    for (int done = (i0 + rows) / a->T; a->next < done; a->next++) {
+        size_t b = a->next;
+        patch_backward(a->out + b * T * 3 * C, a->dwb, a->dwv, a->dout + b * T * C,
+                       a->qkv + b * T * 3 * C, a->mode == NN_ATTN_JOINT ? a->cprob + b * H * TT : NULL,
+                       a->cPhi + b * H * T * Q, a->phi + b * TT * Q, a->phit + b * TT * Q, a->wv,
+                       a->T, a->C, a->H, a->mode, a->scratch);
+    }
+}
+
+void pairattn_linear_forward(float *qkv, float *out, float *prob, float *Phi, const float *in,
+                             const float *w, const float *b, const float *phi, const float *phit,
+                             const float *wb, const float *wvt, int B, int T, int C, int H,
+                             nn_attn_mode mode, float *wt, float *scratch)
+{
+    const int M = B * T, N = 3 * C;
+    pair_ctx a = {.out = out, .prob = prob, .Phi = Phi, .qkv = qkv, .phi = phi, .phit = phit,
+                  .wb = wb, .wv = wvt, .T = T, .C = C, .H = H, .mode = mode, .scratch = scratch};
+    if (w) gemm_transpose(wt, w, N, C);
+    gemm_fma_bias_epi(M, N, C, in, C, 1, wt, N, qkv, N, b, epi_forward, &a);
+}
+
+void pairattn_linear_backward(float *dqkv, float *datt, float *dpw, float *dpb, float *dwb,
+                              float *dwv, const float *dout, const float *att, const float *pw,
+                              const float *qkv, const float *prob, const float *Phi,
+                              const float *phi, const float *phit, const float *wv, int B, int T,
+                              int C, int H, nn_attn_mode mode, float *scratch)
+{
+    const int M = B * T;
+    pair_ctx a = {.out = dqkv, .dwb = dwb, .dwv = dwv, .qkv = qkv, .dout = datt, .cprob = prob,
+                  .cPhi = Phi, .phi = phi, .phit = phit, .wv = wv, .T = T, .C = C, .H = H,
+                  .mode = mode, .scratch = scratch};
+    /* datt = dout pw with the pair backward on each finished patch, then the
+     * projection's own gradients: the calls of nn_linear_backward */
+    gemm_fma_epi(M, C, C, dout, C, 1, pw, C, datt, C, 0, epi_backward, &a);
+    nn_linear_backward(NULL, dpw, dpb, dout, att, pw, M, C, C);
+}
