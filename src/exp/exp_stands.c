@@ -26,6 +26,7 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
 {
     prov pv;
     prov_begin(&pv, experiment, o->argc, o->argv);
+    exp_reading_prov(&o->rd, &pv);
     tsv_writer *w = NULL;
     char path[512];
     cs_status st = exp_open_out(o, experiment, "figure_crowns.tsv", &w, path, sizeof path);
@@ -43,7 +44,7 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
             rs[a * (nrows + (size_t)with_uncoupled) + b] = r;
             if (!r) { st = cs_err(CS_ENOMEM, "experiments: out of memory"); break; }
             teacher_params p;
-            teacher_params_default(&p);
+            exp_teacher_params(&o->rd, &p);
             if (b < nrows) p.beta = betas[b];
             else p.coupled = 0;
             st = stand_grow(sds[a], &p, NULL, r, NULL, &worst);
@@ -84,6 +85,7 @@ static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size
 {
     prov pv;
     prov_begin(&pv, "pointcloud", o->argc, o->argv);
+    exp_reading_prov(&o->rd, &pv);
     typedef struct { size_t trees; double contact, ovl_c, ovl_u, k1_c, k1_u; } pc_row;
     pc_row rows[8];
     double worst = 0.0;
@@ -97,7 +99,7 @@ static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size
         unsigned char *fz = malloc(n * NS);
         if (!rc || !ru || !fz) st = cs_err(CS_ENOMEM, "experiments: out of memory");
         teacher_params p;
-        teacher_params_default(&p);
+        exp_teacher_params(&o->rd, &p);
         p.beta = beta;
         p.frozen_out = fz;
         if (!st) st = stand_grow(sd, &p, NULL, rc, NULL, &worst);
