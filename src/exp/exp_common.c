@@ -141,7 +141,7 @@ cs_status exp_reading_parse(const char *teacher, const char *layout, exp_reading
     return CS_OK;
 }
 
-void exp_teacher_params(const exp_reading *r, teacher_params *p)
+static void exp_teacher_params(const exp_reading *r, teacher_params *p)
 {
     teacher_params_default(p);
     p->one_sided = r ? r->one_sided : 0;

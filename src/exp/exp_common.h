@@ -17,7 +17,6 @@
 #include "opts.h"
 #include "prov.h"
 #include "stand.h"
-#include "teacher.h"
 #include "tsv.h"
 #include <stddef.h>
 
@@ -30,8 +29,9 @@ typedef enum { EXP_LAYOUT_R2 = 0, EXP_LAYOUT_R1 = 1 } exp_layout;
 typedef struct { int one_sided; exp_layout layout; } exp_reading;
 /* Parse the two switches (NULL: the default); CS_EUSAGE-like CS_EINPUT naming the option. */
 cs_status exp_reading_parse(const char *teacher, const char *layout, exp_reading *r);
-/* teacher_params_default, then the reading's rule. */
-void exp_teacher_params(const exp_reading *r, teacher_params *p);
+/* A unit sets its teacher_params from the reading with
+ * teacher_params_default(&p); p.one_sided = rd.one_sided; (exp_common.h does
+ * not include the teacher, so the include depth stays within the layout's). */
 /* Copy the reading's teacher_version into the provenance. */
 void exp_reading_prov(const exp_reading *r, prov *p);
 /* Field stands of a layout: spacing and footprint (design.h). */

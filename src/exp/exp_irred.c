@@ -39,7 +39,8 @@ static cs_status perturb_stand(const stand *sd, const exp_reading *rd, double be
     double *ra = malloc(n * NS * sizeof *ra), *rb = malloc(n * NS * sizeof *rb), *h2 = malloc(n * sizeof *h2);
     cs_status st = (!ra || !rb || !h2) ? cs_err(CS_ENOMEM, "experiments: out of memory") : CS_OK;
     teacher_params p;
-    exp_teacher_params(rd, &p);
+    teacher_params_default(&p);
+    p.one_sided = rd->one_sided;
     p.beta = beta;
     p.nres = nres;
     teacher_info ia;
@@ -263,7 +264,8 @@ cs_status exp_irred_reduction(const exp_opts *o, double beta)
             if (st) break;
             double *r = malloc(sd->s->n * NS * sizeof *r);
             teacher_params p;
-            exp_teacher_params(&o->rd, &p);
+            teacher_params_default(&p);
+            p.one_sided = o->rd.one_sided;
             p.beta = beta;
             teacher_info inf;
             st = r ? stand_grow(sd, &p, NULL, r, &inf, &worst) : cs_err(CS_ENOMEM, "experiments: out of memory");

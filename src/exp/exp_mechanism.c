@@ -79,7 +79,8 @@ cs_status exp_mechanism_sweep(const exp_opts *o)
     for (size_t a = 0; a < nd && !st; a++)
         for (size_t b = 0; b < nb && !st; b++) {
             teacher_params p;
-            exp_teacher_params(&o->rd, &p);
+            teacher_params_default(&p);
+            p.one_sided = o->rd.one_sided;
             p.beta = betas[b];
             st = run_cell(o, "mechanism", STAND_LATTICE, ds[a], 0.04, &p, &res[a * nb + b], &worst);
             if (!st) fprintf(stderr, "mechanism sweep: d=%.1f beta=%.2f k1=%+.3f k2=%+.3f k3=%+.3f cover=%.3f\n",
@@ -195,7 +196,8 @@ cs_status exp_mechanism_ablation(const exp_opts *o)
     double worst = 0.0;
     for (int a = 0; a < 3 && !st; a++) {
         teacher_params p;
-        exp_teacher_params(&o->rd, &p);
+        teacher_params_default(&p);
+            p.one_sided = o->rd.one_sided;
         p.coupled = coupled[a];
         p.beta = beta[a];
         st = run_cell(o, "mechanism", STAND_LATTICE, d, 0.04, &p, &res[a], &worst);
@@ -229,7 +231,8 @@ cs_status exp_mechanism_figure(const exp_opts *o)
     double worst = 0.0;
     for (int a = 0; a < 3 && !st; a++) {
         teacher_params p;
-        exp_teacher_params(&o->rd, &p);
+        teacher_params_default(&p);
+            p.one_sided = o->rd.one_sided;
         p.coupled = coupled[a];
         p.beta = beta[a];
         st = stand_grow(sd, &p, NULL, r + (size_t)a * n * NS, NULL, &worst);

@@ -44,7 +44,8 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
             rs[a * (nrows + (size_t)with_uncoupled) + b] = r;
             if (!r) { st = cs_err(CS_ENOMEM, "experiments: out of memory"); break; }
             teacher_params p;
-            exp_teacher_params(&o->rd, &p);
+            teacher_params_default(&p);
+            p.one_sided = o->rd.one_sided;
             if (b < nrows) p.beta = betas[b];
             else p.coupled = 0;
             st = stand_grow(sds[a], &p, NULL, r, NULL, &worst);
@@ -99,7 +100,8 @@ static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size
         unsigned char *fz = malloc(n * NS);
         if (!rc || !ru || !fz) st = cs_err(CS_ENOMEM, "experiments: out of memory");
         teacher_params p;
-        exp_teacher_params(&o->rd, &p);
+        teacher_params_default(&p);
+            p.one_sided = o->rd.one_sided;
         p.beta = beta;
         p.frozen_out = fz;
         if (!st) st = stand_grow(sd, &p, NULL, rc, NULL, &worst);
