@@ -48,6 +48,8 @@ cs_status readings_write(const char *path, const char *dir, const readings_row *
 /* Check a frozen summary against freshly computed rows: every value, paper
  * value and relative difference bit for bit; CS_EINPUT naming file, line, field. */
 cs_status readings_check(const char *path, const readings_row *rows, size_t n);
+/* paper/readings.tex (generated; see readings.c). */
+cs_status readings_write_tex(const char *path, const readings_row *rows, size_t n);
 /* "N of M within 10 % / 25 %" counts over the rows of one reading. */
 void readings_within(const readings_row *rows, size_t n, const char *reading, size_t *m, size_t *in10, size_t *in25);
 
