@@ -10,14 +10,14 @@
 nr = 5
 nq = real(system("awk -F'\t' '!/^#/ && $1!=\"quantity\"{n++} END{print n/5}' frozen/readings/summary.tsv"))
 do for [fmt in "png pdf"] {
-  if (fmt eq "png") { set terminal pngcairo size 1100,820 font "Sans,12"; set output "figures/readings.png" } \
-  else { set terminal pdfcairo size 11in,8.2in font "Sans,12"; set output "figures/readings.pdf" }
+  if (fmt eq "png") { set terminal pngcairo size 1000,760 font "Sans,12"; set output "figures/readings.png" } \
+  else { set terminal pdfcairo size 8in,6.1in font "Sans,11"; set output "figures/readings.pdf" }
   set datafile separator "\t"
   set key autotitle columnhead
-  set key outside right top vertical box opaque
+  set key inside right bottom vertical box opaque font "Sans,11" width -2
   set title "E0 readings: each number relative to the reference paper's value"
   set xlabel "our value / paper's value"
-  set xrange [0.2:1.8]
+  set xrange [0.2:2.2]
   set yrange [-nq+0.4:0.6]
   set ytics scale 0 font "Sans,11"
   set grid xtics lc rgb "#cccccc"
