@@ -146,7 +146,9 @@ freeze: deps
 	@if [ "$(SCALE)" = smoke ]; then echo "freeze: smoke results are never frozen" >&2; exit 2; fi
 	@if [ -d $(B)/results ]; then \
 	  for d in $(B)/results/*/; do [ -d "$$d" ] || continue; e=$$(basename $$d); mkdir -p frozen/$$e; \
-	    find $$d -name '*.tsv' ! -name '*.tmp' -exec cp {} frozen/$$e/ \; ; done; fi
+	    (cd $$d && find . -name '*.tsv' ! -name '*.tmp' ! -path './*/*/figure_crowns*' ! -path './*/*/figure_poly*' -exec cp --parents {} $(CURDIR)/frozen/$$e/ \;) ; done; fi
+	@# the readings keep their run folders; their figure tables are not part of the readings table
+	@if [ -f frozen/readings/summary.tsv ]; then $(CLI) readings-summary --dir frozen/readings --out frozen/readings/summary.tsv >/dev/null; fi
 	@$(CLI) hash-frozen
 	@$(CLI) numbers
 

@@ -30,7 +30,7 @@ do for [fmt in "png pdf"] {
   set arrow 1 from graph 0, first bmed to graph 1, first bmed nohead dt 3 lw 2 lc rgb "#1a6b1a"
   set label 1 sprintf("field band %.2f-%.2f, median %.3f", blo, bhi, bmed) at graph 0.02, graph 0.04 tc rgb "#1a6b1a"
   # ---- left: jitter family
-  set title "Jitter family (lattice, d = 5 m, {/Symbol b}_{field})"
+  set title "Jitter family (lattice, d = 4 m, L = 36 m, {/Symbol b}_{field})"
   set xlabel "stem jitter amplitude a (sd / spacing)"
   set ylabel "median anisotropy (widest / narrowest cardinal gap)"
   set xrange [0.02:0.18]
@@ -42,7 +42,7 @@ do for [fmt in "png pdf"] {
        "+" using (ho_a):(ho_v) every ::0::0 with points pt 3 ps 3 lw 2 lc rgb "#d62728" title sprintf("held out at a* = %.2f: %.3f", ho_a, ho_v)
   unset label 2
   # ---- right: hard-core family
-  set title "Hard-core family (d = 5 m, {/Symbol b}_{field})"
+  set title "Hard-core family (d = 4 m, L = 36 m, {/Symbol b}_{field})"
   set xlabel "minimum stem distance c (fraction of spacing)"
   set xrange [0.25:0.75]
   set yrange [1.0:*]

@@ -33,12 +33,12 @@ do for [fmt in "png pdf"] {
   set xtics autofreq   # the right panel's tics must not leak into this one on the second pass
   set xlabel "die-back fraction {/Symbol b}"
   set ylabel "median tree-mean clearance (m)"
-  set key top left
+  set key top left Left reverse samplen 2
   set xrange [0:0.32]
-  set yrange [0:*]
+  set yrange [0:1.5]
   set arrow 1 from bfield, graph 0 to bfield, graph 1 nohead dt 3 lc rgb "#555555"
   set label 1 sprintf("{/Symbol b}_{field} = %.2f", bfield) at bfield, graph 0.08 offset 0.5,0
-  plot "frozen/field/calibration.tsv" using (strcol(1) eq "coupled" ? $2 : NaN):7 with linespoints pt 7 ps 0.7 lc rgb "#1f77b4" title "simulated (lattice, d = 5 m)", \
+  plot "frozen/field/calibration.tsv" using (strcol(1) eq "coupled" ? $2 : NaN):7 with linespoints pt 7 ps 0.7 lc rgb "#1f77b4" title "simulated (lattice, d = 4 m, L = 36 m)", \
        target with lines dt 2 lw 2 lc rgb "#d62728" title sprintf("field target %.3f m", target)
   # ---- centre: spread
   unset arrow; unset label

@@ -163,7 +163,7 @@ static void test_trees_roundtrip_and_tamper(void **s)
     stand *sd;
     assert_int_equal(stand_alloc(&sd, STAND_LATTICE, 5.0, 60.0, 0.04, "test/fieldsim", 0), CS_OK);
     double worst = 0;
-    assert_int_equal(exp_field_grow_append(sd, 0.16, 1, 0.04, 0, &t, &worst), CS_OK);
+    assert_int_equal(exp_field_grow_append(sd, NULL, 0.16, 1, 0.04, 0, &t, &worst), CS_OK);
     stand_free(sd);
     assert_true(t.n > 30);
     assert_true(worst <= 1e-9);

@@ -22,7 +22,7 @@ static int setup_heldout(void **s)
     fs_trees_init(&t);
     stand *sd;
     if (stand_alloc(&sd, STAND_LATTICE, 5.0, 60.0, 0.04, "test/field_claims", 0)) return -1;
-    if (exp_field_grow_append(sd, 0.19, 1, 0.19, 0, &t, NULL) || exp_field_grow_append(sd, 0.19, 0, 0.19, 0, &t, NULL)) return -1;
+    if (exp_field_grow_append(sd, NULL, 0.19, 1, 0.19, 0, &t, NULL) || exp_field_grow_append(sd, NULL, 0.19, 0, 0.19, 0, &t, NULL)) return -1;
     stand_free(sd);
     char tp[700];
     fs_trees_path(g_heldout, tp, sizeof tp);
@@ -128,7 +128,7 @@ static void test_unbuildable_level_is_reported_not_fatal(void **s)
     for (int k = 0; k < 3; k++) {
         double hi = 2.0 - 0.2 * k; /* anisotropy hi/1.0 */
         char row[256];
-        snprintf(row, sizeof row, "coupled\t%.17g\t0\t0\t1\t%.17g\t1\t1\t1.1\n", levels[k], hi);
+        snprintf(row, sizeof row, "coupled\t%.17g\t0\t0\t1\t%.17g\t1\t1\t1.1\t1\n", levels[k], hi);
         strcat(tb, row);
     }
     tu_write(tp, tb);
@@ -137,11 +137,12 @@ static void test_unbuildable_level_is_reported_not_fatal(void **s)
         fs_summary sm;
         assert_int_equal(fs_group(&t, 1, levels[k], &sm), CS_OK);
         char row[512];
-        snprintf(row, sizeof row, "coupled\t%.17g\t0.19\t%zu\t0\t%zu\t%.17g\t%.17g\t%.17g\t%zu\t%zu\t%.17g\n", levels[k], sm.stands, sm.f.trees,
-                 sm.f.tree_mean_median, sm.f.spread, sm.f.aniso_median, sm.f.aniso_trees, sm.f.aniso_excluded, sm.elong_median);
+        snprintf(row, sizeof row, "coupled\t%.17g\t0.19\t%zu\t0\t%zu\t%.17g\t%.17g\t%.17g\t%zu\t%zu\t%.17g\t%.17g\n", levels[k], sm.stands, sm.f.trees,
+                 sm.f.tree_mean_median, sm.f.spread, sm.f.aniso_median, sm.f.aniso_trees, sm.f.aniso_excluded, sm.elong_median,
+                 sm.elong_card_median);
         strcat(sb, row);
     }
-    strcat(sb, "coupled\t0.7\t0.19\t0\t12\t0\tnan\tnan\tnan\t0\t0\tnan\n");
+    strcat(sb, "coupled\t0.7\t0.19\t0\t12\t0\tnan\tnan\tnan\t0\t0\tnan\tnan\n");
     tu_write(sp, sb);
     fs_trees_free(&t);
     claim_row row = row_for("HardcoreRho", "claim_aniso_rho", "anisotropy.gate:hardcore_rho_max", sp);

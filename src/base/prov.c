@@ -33,22 +33,27 @@ void prov_begin(prov *p, const char *experiment, int argc, char **argv)
     p->t0 = prov_now();
 }
 
-cs_status prov_teacher_version(char *out, size_t n)
+static cs_status header_define(const char *name, char *out, size_t n);
+cs_status prov_teacher_version(char *out, size_t n) { return header_define("TEACHER_VERSION", out, n); }
+cs_status prov_teacher_version_one_sided(char *out, size_t n) { return header_define("TEACHER_VERSION_ONE_SIDED", out, n); }
+
+static cs_status header_define(const char *name, char *out, size_t n)
 {
     FILE *f = fopen(PATHS_TEACHER_HDR, "r");
     if (!f) return cs_err(CS_EINPUT, "%s: cannot open: %s", PATHS_TEACHER_HDR, strerror(errno));
     char line[512];
     int lineno = 0;
-    cs_status st = cs_err(CS_EINPUT, "%s: no '#define TEACHER_VERSION \"...\"' line", PATHS_TEACHER_HDR);
+    cs_status st = cs_err(CS_EINPUT, "%s: no '#define %s \"...\"' line", PATHS_TEACHER_HDR, name);
+    size_t nl = strlen(name);
     while (fgets(line, sizeof line, f)) {
         lineno++;
         const char *q = line;
-        if (strncmp(q, "#define TEACHER_VERSION", 23) || !isspace((unsigned char)q[23])) continue;
-        q += 23;
+        if (strncmp(q, "#define ", 8) || strncmp(q + 8, name, nl) || !isspace((unsigned char)q[8 + nl])) continue;
+        q += 8 + nl;
         while (isspace((unsigned char)*q)) q++;
         const char *e = *q == '"' ? strchr(q + 1, '"') : NULL;
         if (!e || e - q - 1 <= 0 || (size_t)(e - q - 1) >= n) {
-            st = cs_err(CS_EINPUT, "%s:%d: field 'TEACHER_VERSION': not a quoted version string", PATHS_TEACHER_HDR, lineno);
+            st = cs_err(CS_EINPUT, "%s:%d: field '%s': not a quoted version string", PATHS_TEACHER_HDR, lineno, name);
             break;
         }
         snprintf(out, n, "%.*s", (int)(e - q - 1), q + 1);

@@ -31,6 +31,9 @@ cs_status prov_write(tsv_writer *w, prov *p);
 /* The version string the pinned teacher header declares
  * (#define TEACHER_VERSION "..."); CS_EINPUT naming file and line if absent. */
 cs_status prov_teacher_version(char *out, size_t n);
+/* The revision-1 reading's string (#define TEACHER_VERSION_ONE_SIDED "..."),
+ * which the readings (SPEC §7 E0) record under frozen/readings/. */
+cs_status prov_teacher_version_one_sided(char *out, size_t n);
 /* SHA-256 of a file as 64 lowercase hex chars (+NUL). */
 cs_status prov_sha256_file(const char *path, char hex[65]);
 /* SHA-256 of gates/ *.gate concatenated in name order. */

@@ -59,6 +59,11 @@ cs_status claims_write_numbers(const char *path, const claims *c, const claim_re
 /* Write paper/comparison.tex: every claim, the reference paper's value, ours,
  * the gate verdict and whether the values agree (generated, atomic). */
 cs_status claims_write_comparison(const char *path, const claims *c, const claim_result *res);
+/* Distance to the reference paper: 1 and *ref, *rel = (value - ref) / |ref|
+ * for a computed measured claim whose reference is a non-zero number; else 0. */
+int claims_rel_diff(const claim_row *row, const claim_result *res, double *ref, double *rel);
+/* Over those claims: how many (m), within 10 % and within 25 %. */
+void claims_within(const claims *c, const claim_result *res, size_t *m, size_t *in10, size_t *in25);
 /* Parse a numbers.tex: value text of \newcommand{\NAME}{...}; NULL if absent. */
 typedef struct { size_t n; char (*name)[80]; char (*value)[192]; int *line; } numbers_tex;
 cs_status numbers_read(const char *path, numbers_tex *out);

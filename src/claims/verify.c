@@ -124,7 +124,11 @@ cs_status verify_run(const verify_opts *o)
         verdict v = verify_claim(&c.rows[i], &res[i], have_nt ? &nt : NULL, msg, sizeof msg);
         const char *val = res[i].status == VERDICT_PASS ? res[i].text : "-";
         const char *g = strcmp(c.rows[i].gate, "-") ? verdict_name(res[i].gate) : "-";
-        printf("  %-7s %-19s %-12s %-10s %-8s %s\n", verdict_name(v), c.rows[i].macro, val, c.rows[i].kind, g, msg);
+        double ref, rel;
+        char dist[96] = "";
+        if (claims_rel_diff(&c.rows[i], &res[i], &ref, &rel))
+            snprintf(dist, sizeof dist, " [paper %s: %+.1f %%]", c.rows[i].reference, 100.0 * rel);
+        printf("  %-7s %-19s %-12s %-10s %-8s %s%s\n", verdict_name(v), c.rows[i].macro, val, c.rows[i].kind, g, msg, dist);
         count[v]++;
     }
 
@@ -137,6 +141,9 @@ cs_status verify_run(const verify_opts *o)
         checklist_free(&fl);
     }
     printf("\n%zu pending (experiment not yet run and frozen, or input data missing: reason above; never counted as passed)\n", count[VERDICT_PENDING]);
+    size_t m, a10, a25;
+    claims_within(&c, res, &m, &a10, &a25);
+    printf("%zu of %zu measured numbers within 10 %% / %zu within 25 %% of the reference paper (distance, not a verdict)\n", a10, m, a25);
     printf("%zu passed, %zu failed\n", count[VERDICT_PASS], count[VERDICT_FAIL]);
     if (have_nt) numbers_free(&nt);
     free(res);

@@ -36,6 +36,7 @@ static const cli_cmd cli_cmds[] = {
     {"main-baselines", exp_main_cmd_baselines, "E3/E4: direction-blind baseline and noise floor"},
     {"main-summary", exp_main_cmd_summary, "E3/E4: gather runs into frozen tables"},
     {"comp-run", exp_comp_cmd_run, "E7: comparison patch (teacher, joint, independent) and dart probe"},
+    {"readings-summary", cli_cmd_readings_summary, "E0: the readings table from the runs under --dir (SPEC §7 E0)"},
     {"bench-teacher", cli_cmd_bench_teacher, "teacher ms per 144-tree stand at N = 48 and 384"},
     {"run", cli_cmd_run, "run one experiment unit of E1/E2/figure data (crownshy run --help)"},
     {"gates", cli_cmd_gates, "parse and list the preregistered gate files"},

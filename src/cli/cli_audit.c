@@ -7,6 +7,8 @@
 #include "gate.h"
 #include "opts.h"
 #include "paths.h"
+#include "readings.h"
+#include <sys/stat.h>
 #include "tsv.h"
 #include "verify.h"
 #include <stdio.h>
@@ -62,6 +64,16 @@ int cli_cmd_numbers(int argc, char **argv)
     }
     st = claims_write_numbers(PATHS_NUMBERS, &c, res);
     if (!st) st = claims_write_comparison(PATHS_COMPARISON, &c, res);
+    /* the E0 readings table, recomputed from frozen/readings/ and checked against its summary */
+    struct stat sb;
+    if (!st && stat(PATHS_READINGS_SUMMARY, &sb) == 0) {
+        size_t nr = readings_count();
+        readings_row *rows = calloc(nr, sizeof *rows);
+        st = rows ? readings_compute(&c, PATHS_READINGS_DIR, rows) : cs_err(CS_ENOMEM, "out of memory");
+        if (!st) st = readings_check(PATHS_READINGS_SUMMARY, rows, nr);
+        if (!st) st = readings_write_tex(PATHS_READINGS_TEX, rows, nr);
+        free(rows);
+    }
     size_t pend = 0;
     for (size_t i = 0; i < c.n; i++) pend += res[i].status != VERDICT_PASS;
     if (!st) printf("wrote %s: %zu claims (%zu pending)\n", PATHS_NUMBERS, c.n, pend);

@@ -8,9 +8,11 @@
 #include "gate.h"
 #include "opts.h"
 #include "paths.h"
+#include "readings.h"
 #include "stand_grow.h"
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 typedef enum { U_PLAIN, U_IRRED } unit_kind;
@@ -38,12 +40,13 @@ int cli_cmd_run(int argc, char **argv)
 {
     long stands = EXP_STANDS_DEFAULT;
     double beta = NAN;
-    const char *out = "build/results", *tag = "train";
+    const char *out = "build/results", *tag = "train", *teacher = NULL;
     const opt_spec spec[] = {
         {"stands", OPT_LONG, &stands, 1, 10000, "stands per cell (default 8)"},
         {"out", OPT_STR, &out, 0, 0, "results root; each unit writes DIR/<experiment>/<file>.tsv (default build/results)"},
         {"beta", OPT_DOUBLE, &beta, 0, 0.999, "die-back for E2 and the hero's beta_field row (default: the gate's dieback_train; no beta_field row)"},
         {"tag", OPT_STR, &tag, 0, 0, "E2 output tag: train or field (default train; field needs --beta)"},
+        EXP_OPT_TEACHER(teacher),
     };
     char about[2048];
     size_t off = (size_t)snprintf(about, sizeof about, "units:\n");
@@ -59,6 +62,7 @@ int cli_cmd_run(int argc, char **argv)
     if (!u) { opts_usage_error("run", "unknown unit '%s'", pos[0]); return 2; }
     if (strcmp(tag, "train") && strcmp(tag, "field")) { opts_usage_error("run", "--tag: must be train or field, not '%s'", tag); return 2; }
     exp_opts o = {.out = out, .stands = (int)stands, .beta = beta, .tag = tag, .argc = argc, .argv = argv};
+    if (exp_reading_parse(teacher, NULL, &o.rd)) { opts_usage_error("run", "%s", cs_errmsg()); return 2; }
     cs_status st = CS_OK;
     if (u->kind == U_IRRED) {
         double b = beta;
@@ -88,5 +92,43 @@ int cli_cmd_bench_teacher(int argc, char **argv)
         if (st) { fprintf(stderr, "crownshy bench-teacher: %s\n", cs_errmsg()); return cs_exit_code(st); }
         printf("teacher_ms_per_stand_N%d\t%.3f\n", levels[k], ms);
     }
+    return 0;
+}
+
+/* E0 readings summary (SPEC §7 E0): one row per quantity and reading from
+ * the runs under --dir (readings.h), with the paper's value and the
+ * relative difference; prints the within-10 %/25 % counts per reading. */
+int cli_cmd_readings_summary(int argc, char **argv)
+{
+    const char *dir = NULL, *out = NULL;
+    const opt_spec spec[] = {
+        {"dir", OPT_STR, &dir, 0, 0, "readings root holding t1-r1/, t2-r1/, t1-r2/, t2-r2/ (required)"},
+        {"out", OPT_STR, &out, 0, 0, "summary table (required), e.g. DIR/summary.tsv"},
+    };
+    const opts_cmd c = {"readings-summary", "--dir DIR --out DIR/summary.tsv",
+                        "E0 readings: recompute every quantity of the readings table from each run's tables with the\n"
+                        "registry's computing functions, beside the reference paper's value (audit/claims.tsv).",
+                        spec, 2, 0, 0};
+    int r = opts_parse(&c, argc, argv, NULL, NULL);
+    if (r) return opts_exit_code(r);
+    if (!dir || !out) { opts_usage_error("readings-summary", "--dir and --out are required"); return 2; }
+    claims cl;
+    cs_status st = claims_load(PATHS_CLAIMS, &cl);
+    if (st) { fprintf(stderr, "crownshy readings-summary: %s\n", cs_errmsg()); return cs_exit_code(st); }
+    size_t n = readings_count(), nr;
+    readings_row *rows = calloc(n, sizeof *rows);
+    st = rows ? readings_compute(&cl, dir, rows) : cs_err(CS_ENOMEM, "out of memory");
+    if (!st) st = readings_write(out, dir, rows, n);
+    if (!st) {
+        const readings_def *d = readings_list(&nr);
+        for (size_t k = 0; k < nr; k++) {
+            size_t m, a, b;
+            readings_within(rows, n, d[k].name, &m, &a, &b);
+            printf("%-11s %zu of %zu within 10 %%, %zu within 25 %% of the reference paper\n", d[k].name, a, m, b);
+        }
+    }
+    free(rows);
+    claims_free(&cl);
+    if (st) { fprintf(stderr, "crownshy readings-summary: %s\n", cs_errmsg()); return cs_exit_code(st); }
     return 0;
 }

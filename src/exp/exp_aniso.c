@@ -3,8 +3,9 @@
  * aniso-jitter-calibrate and aniso-heldout. Every E6 unit runs the teacher at
  * beta_field, read from the E5 calibration table (--calibration).
  *
- * Stands as in E5 (exp_field.c): d = 5.0 m, L = 12 d, teacher at N = 48,
- * gamma = 1. Seeds: seed_derive(<seed experiment>, 5.0, stand,
+ * Stands as in E5 (exp_field.c; --layout r2: d = 4 m on 36 m, r1: 5 m on
+ * 60 m; E6 varies only the stem process at that density and footprint),
+ * teacher (--teacher) at N = 48, gamma = 1. Seeds: seed_derive(<seed experiment>, d, stand,
  * "stems"/"crowns"), one seed-experiment string per role, disjoint from E5's:
  *   anisotropy/lattice  E6 lattice statistic at beta_field
  *   anisotropy/hardcore hard-core family, same indices at every c
@@ -29,9 +30,9 @@
 int cmd_aniso_lattice(int argc, char **argv)
 {
     exp_field_opts o = {.stands_opt = 28};
-    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands (default 28)")};
+    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands (default 28)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout)};
     const opts_cmd oc = {"aniso-lattice", "--calibration DIR/calibration.tsv --out DIR/lattice.tsv [--stands N]",
-                         "E6 (SPEC §7): anisotropy on the controlled lattice (d = 5 m, canonical jitter) at beta_field,\n"
+                         "E6 (SPEC §7): anisotropy on the controlled lattice (field layout, canonical jitter) at beta_field,\n"
                          "N stands (default 28).",
                          spec, sizeof spec / sizeof *spec, 0, 0};
     int rc = exp_field_parse(&oc, argc, argv, &o);
@@ -40,17 +41,18 @@ int cmd_aniso_lattice(int argc, char **argv)
     if ((rc = exp_need_beta("aniso-lattice", &o, &c))) return rc;
     prov p;
     prov_begin(&p, "anisotropy", argc, argv);
+    exp_reading_prov(&o.rd, &p);
     double a;
     cs_status st = exp_canonical_jitter(&a);
     if (st) return exp_fail("aniso-lattice", st);
-    exp_field_job j = {"anisotropy/lattice", STAND_LATTICE, a, a, c.value, o.stands, 0, 0};
+    exp_field_job j = {"anisotropy/lattice", STAND_LATTICE, a, a, c.value, o.stands, 0, 0, o.rd};
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
     st = exp_field_run_job(&j, &acc, &worst);
-    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"anisotropy/lattice\", 5.0, s, stems|crowns), s = 0..%u", o.stands - 1);
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"anisotropy/lattice\", %g, s, stems|crowns), s = 0..%u", exp_field_d(o.rd.layout), o.stands - 1);
     p.worst_overlap_m = worst;
-    exp_meta_ctx m = {c.value, a, "E6 lattice: controlled lattice d = 5 m, L = 60 m, canonical jitter (level = a), teacher at beta_field"};
+    exp_meta_ctx m = {c.value, a, "E6 lattice: controlled lattice (layout in the layout line), canonical jitter (level = a), teacher at beta_field"};
     if (!st) st = exp_field_write(o.out, &p, &acc, &j, 1, exp_meta_generic, &m);
     if (!st) {
         fs_summary s;
@@ -66,7 +68,7 @@ static int aniso_family(const char *cmd, const char *synopsis, const char *about
                         stand_kind kind, const char *key, const char *seed_exp, const char *what)
 {
     exp_field_opts o = {.stands_opt = 12};
-    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands per level (default 12)")};
+    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands per level (default 12)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout)};
     const opts_cmd oc = {cmd, synopsis, about, spec, sizeof spec / sizeof *spec, 0, 0};
     int rc = exp_field_parse(&oc, argc, argv, &o);
     if (rc) return opts_exit_code(rc);
@@ -74,6 +76,7 @@ static int aniso_family(const char *cmd, const char *synopsis, const char *about
     if ((rc = exp_need_beta(cmd, &o, &c))) return rc;
     prov p;
     prov_begin(&p, "anisotropy", argc, argv);
+    exp_reading_prov(&o.rd, &p);
     double lv[32];
     size_t nl;
     cs_status st = gate_read_values(PATHS_GATE("anisotropy"), key, lv, 32, &nl);
@@ -83,7 +86,7 @@ static int aniso_family(const char *cmd, const char *synopsis, const char *about
     fs_trees_init(&acc);
     double worst = 0;
     for (size_t k = 0; k < nl && !st; k++) {
-        jobs[k] = (exp_field_job){seed_exp, kind, lv[k], lv[k], c.value, o.stands, 0, 0};
+        jobs[k] = (exp_field_job){seed_exp, kind, lv[k], lv[k], c.value, o.stands, 0, 0, o.rd};
         st = exp_field_run_job(&jobs[k], &acc, &worst);
         if (!st) {
             fs_summary s;
@@ -92,7 +95,7 @@ static int aniso_family(const char *cmd, const char *synopsis, const char *about
                 fprintf(stderr, "%s: level %.2f: anisotropy median %.4f (%zu trees, %zu excluded; %zu stands failed)\n", cmd, lv[k], s.f.aniso_median, s.f.aniso_trees, s.f.aniso_excluded, jobs[k].failed);
         }
     }
-    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"%s\", 5.0, s, stems|crowns), s = 0..%u at every level", seed_exp, o.stands - 1);
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"%s\", %g, s, stems|crowns), s = 0..%u at every level", seed_exp, exp_field_d(o.rd.layout), o.stands - 1);
     p.worst_overlap_m = worst;
     exp_meta_ctx m = {c.value, 0, what};
     if (!st) st = exp_field_write(o.out, &p, &acc, jobs, nl, exp_meta_generic, &m);
@@ -107,7 +110,7 @@ int cmd_aniso_hardcore(int argc, char **argv)
                         "c in anisotropy.gate hardcore_levels, N stands per level (default 12), teacher at beta_field.\n"
                         "A level whose stands cannot be built is recorded (stands_failed, trees 0), not a crash.",
                         argc, argv, STAND_HARDCORE, "hardcore_levels", "anisotropy/hardcore",
-                        "E6 hard-core family: n = (L/d)^2 stems, minimum distance c d (level = c), d = 5 m, L = 60 m, teacher at beta_field");
+                        "E6 hard-core family: n = (L/d)^2 stems, minimum distance c d (level = c), layout in the layout line, teacher at beta_field");
 }
 
 int cmd_aniso_jitter(int argc, char **argv)
@@ -116,7 +119,7 @@ int cmd_aniso_jitter(int argc, char **argv)
                         "E6 jitter family (SPEC §7): controlled lattice with per-axis jitter sd a d, a in\n"
                         "anisotropy.gate jitter_levels, N stands per level (default 12), teacher at beta_field.",
                         argc, argv, STAND_LATTICE, "jitter_levels", "anisotropy/jitter",
-                        "E6 jitter family: lattice d = 5 m, L = 60 m, jitter sd a d (level = a), teacher at beta_field");
+                        "E6 jitter family: lattice (layout in the layout line), jitter sd a d (level = a), teacher at beta_field");
 }
 
 int cmd_aniso_jitter_calibrate(int argc, char **argv)
@@ -135,6 +138,7 @@ int cmd_aniso_jitter_calibrate(int argc, char **argv)
     if (!o.sweep) { opts_usage_error("aniso-jitter-calibrate", "--sweep DIR/jitter.tsv is required"); return 2; }
     prov p;
     prov_begin(&p, "anisotropy", argc, argv);
+    exp_reading_prov(&o.rd, &p);
     tsv *t;
     fs_trees tr;
     cs_status st = fs_load_checked(o.sweep, &t, &tr);
@@ -177,6 +181,7 @@ int cmd_aniso_heldout(int argc, char **argv)
         {"jitter-calibration", OPT_STR, &o.jitter_calibration, 0, 0, "E6 jitter calibration table DIR/jitter_calibration.tsv, gives a* (required)"},
         EXP_OPT_OUT(o),
         EXP_OPT_STANDS(o, "stands (default 28)"),
+        EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout),
     };
     const opts_cmd oc = {"aniso-heldout",
                          "--calibration DIR/calibration.tsv --jitter-calibration DIR/jitter_calibration.tsv\n"
@@ -193,14 +198,15 @@ int cmd_aniso_heldout(int argc, char **argv)
     if (st) return exp_fail("aniso-heldout", st);
     prov p;
     prov_begin(&p, "anisotropy", argc, argv);
-    exp_field_job j = {"anisotropy/heldout", STAND_LATTICE, js.value, js.value, c.value, o.stands, 0, 0};
+    exp_reading_prov(&o.rd, &p);
+    exp_field_job j = {"anisotropy/heldout", STAND_LATTICE, js.value, js.value, c.value, o.stands, 0, 0, o.rd};
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
     st = exp_field_run_job(&j, &acc, &worst);
-    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"anisotropy/heldout\", 5.0, s, stems|crowns), s = 0..%u", o.stands - 1);
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"anisotropy/heldout\", %g, s, stems|crowns), s = 0..%u", exp_field_d(o.rd.layout), o.stands - 1);
     p.worst_overlap_m = worst;
-    exp_meta_ctx m = {c.value, js.value, "E6 held-out at a*: lattice d = 5 m, L = 60 m, jitter a* (level), teacher at beta_field"};
+    exp_meta_ctx m = {c.value, js.value, "E6 held-out at a*: lattice (layout in the layout line), jitter a* (level), teacher at beta_field"};
     if (!st) st = exp_field_write(o.out, &p, &acc, &j, 1, exp_meta_generic, &m);
     if (!st) {
         fs_summary s;

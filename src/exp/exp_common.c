@@ -129,13 +129,42 @@ double exp_stand_k1(const stand *sd, const double *r)
 }
 
 
-cs_status exp_field_grow_append(const stand *sd, double beta, int coupled, double level, unsigned index,
-                         fs_trees *acc, double *worst)
+cs_status exp_reading_parse(const char *teacher, const char *layout, exp_reading *r)
+{
+    r->one_sided = 0;
+    r->layout = EXP_LAYOUT_R2;
+    if (teacher && !strcmp(teacher, TEACHER_VERSION_ONE_SIDED)) r->one_sided = 1;
+    else if (teacher && strcmp(teacher, TEACHER_VERSION))
+        return cs_err(CS_EINPUT, "--teacher: must be %s or %s, not '%s'", TEACHER_VERSION, TEACHER_VERSION_ONE_SIDED, teacher);
+    if (layout && !strcmp(layout, "r1")) r->layout = EXP_LAYOUT_R1;
+    else if (layout && strcmp(layout, "r2")) return cs_err(CS_EINPUT, "--layout: must be r1 or r2, not '%s'", layout);
+    return CS_OK;
+}
+
+static void exp_teacher_params(const exp_reading *r, teacher_params *p)
+{
+    teacher_params_default(p);
+    p->one_sided = r ? r->one_sided : 0;
+}
+
+void exp_reading_prov(const exp_reading *r, prov *p)
+{
+    teacher_params tp;
+    exp_teacher_params(r, &tp);
+    snprintf(p->teacher_version, sizeof p->teacher_version, "%s", teacher_version(&tp));
+}
+
+double exp_field_d(exp_layout l) { return l == EXP_LAYOUT_R1 ? DESIGN_FIELD_SPACING_R1_M : DESIGN_FIELD_SPACING_M; }
+double exp_field_L(exp_layout l) { return l == EXP_LAYOUT_R1 ? DESIGN_FIELD_L_R1_M : DESIGN_FIELD_L_M; }
+const char *exp_layout_name(exp_layout l) { return l == EXP_LAYOUT_R1 ? "r1" : "r2"; }
+
+cs_status exp_field_grow_append(const stand *sd, const exp_reading *rd, double beta, int coupled, double level,
+                                unsigned index, fs_trees *acc, double *worst)
 {
     stand_arrays v;
     stand_view(sd, &v);
     teacher_params p;
-    teacher_params_default(&p);
+    exp_teacher_params(rd, &p);
     p.beta = beta;
     p.coupled = coupled;
     double *r = malloc((v.n ? v.n : 1) * CROWN_NSEC * sizeof *r);
@@ -147,7 +176,8 @@ cs_status exp_field_grow_append(const stand *sd, double beta, int coupled, doubl
         est_cardinal_gaps(v.x, v.y, r, v.n, i, g);
         for (int c = 0; c < 4; c++)
             if (!isfinite(g[c])) st = cs_err(CS_ENUMERIC, "exp_field: interior tree %zu of stand %u has no neighbour in cardinal cone %d", i, index, c);
-        if (!st) st = fs_trees_push(acc, coupled, level, index, (unsigned)i, g, est_elongation(r + i * CROWN_NSEC));
+        if (!st) st = fs_trees_push(acc, coupled, level, index, (unsigned)i, g, est_elongation(r + i * CROWN_NSEC),
+                                          est_elongation_cardinal(r + i * CROWN_NSEC));
     }
     free(r);
     return st;
@@ -168,6 +198,7 @@ int exp_field_parse(const opts_cmd *c, int argc, char **argv, exp_field_opts *o)
     int r = opts_parse(c, argc, argv, NULL, NULL);
     if (r) return r;
     o->stands = (unsigned)o->stands_opt;
+    if (exp_reading_parse(o->teacher, o->layout, &o->rd)) { opts_usage_error(c->cmd, "%s", cs_errmsg()); return OPTS_USAGE; }
     for (size_t i = 0; i < c->nopts; i++)
         if (c->opts[i].dst == &o->out && !o->out) { opts_usage_error(c->cmd, "--out PATH is required"); return OPTS_USAGE; }
     return OPTS_OK;
@@ -175,7 +206,7 @@ int exp_field_parse(const opts_cmd *c, int argc, char **argv, exp_field_opts *o)
 
 cs_status exp_field_run_job(exp_field_job *j, fs_trees *acc, double *worst)
 {
-    double d = DESIGN_FIELD_SPACING_M, L = EXP_FIELD_L_FACTOR * d;
+    double d = exp_field_d(j->rd.layout), L = exp_field_L(j->rd.layout);
     j->failed = 0;
     for (unsigned s = 0; s < j->nstands; s++) {
         stand *sd;
@@ -186,8 +217,8 @@ cs_status exp_field_run_job(exp_field_job *j, fs_trees *acc, double *worst)
             continue;
         }
         if (st) return st;
-        st = exp_field_grow_append(sd, j->beta, 1, j->level, s, acc, worst);
-        if (!st && j->twins) st = exp_field_grow_append(sd, j->beta, 0, j->level, s, acc, NULL);
+        st = exp_field_grow_append(sd, &j->rd, j->beta, 1, j->level, s, acc, worst);
+        if (!st && j->twins) st = exp_field_grow_append(sd, &j->rd, j->beta, 0, j->level, s, acc, NULL);
         stand_free(sd);
         if (st) return st;
     }
@@ -204,13 +235,16 @@ cs_status exp_field_write(const char *out, prov *p, const fs_trees *acc, const e
     cs_status st = tsv_writer_open(&w, tp);
     if (st) return st;
     if ((st = prov_write(w, p))) { tsv_writer_abort(w); return st; }
-    tsv_writer_meta(w, "what", "one row per interior tree (>= 2 d from the edge): cardinal gaps E N W S (m) and crown elongation, canonical estimator");
+    tsv_writer_meta(w, "what", "one row per interior tree (>= 2 d from the edge): cardinal gaps E N W S (m) and crown elongation, all-axis (elong, SPEC §5) and cardinal (elong_card, revision 1), canonical estimator");
     tsv_writer_meta(w, "summary", "%s", out);
     fs_trees_write(w, acc);
     if ((st = tsv_writer_commit(w))) return st;
     if ((st = tsv_writer_open(&w, out))) return st;
     if ((st = prov_write(w, p))) { tsv_writer_abort(w); return st; }
     tsv_writer_meta(w, "trees_table", "%s", tp);
+    if (nj) tsv_writer_meta(w, "layout", "%s: field stands d = %g m on L = %g m (SPEC §7 E5%s)", exp_layout_name(jobs[0].rd.layout),
+                            exp_field_d(jobs[0].rd.layout), exp_field_L(jobs[0].rd.layout),
+                            jobs[0].rd.layout == EXP_LAYOUT_R1 ? ", revision 1 reading" : "");
     if (meta) meta(w, ctx);
     tsv_writer_columns(w, FS_SUMMARY_COLUMNS);
     for (size_t k = 0; k < nj && !st; k++)

@@ -20,8 +20,30 @@
 #include "tsv.h"
 #include <stddef.h>
 
+/* ---- readings (SPEC §7 E0): the teacher rule and the E5/E6 field layout ----
+ * A reading is a runnable switch, never a copied file: --teacher teacher-1|
+ * teacher-2 (default teacher-2, SPEC §4) on every teacher unit, --layout r1|r2
+ * (default r2, SPEC §7 E5) on the field/anisotropy units. The provenance's
+ * teacher_version names the reading that made the file. */
+typedef enum { EXP_LAYOUT_R2 = 0, EXP_LAYOUT_R1 = 1 } exp_layout;
+typedef struct { int one_sided; exp_layout layout; } exp_reading;
+/* Parse the two switches (NULL: the default); CS_EUSAGE-like CS_EINPUT naming the option. */
+cs_status exp_reading_parse(const char *teacher, const char *layout, exp_reading *r);
+/* A unit sets its teacher_params from the reading with
+ * teacher_params_default(&p); p.one_sided = rd.one_sided; (exp_common.h does
+ * not include the teacher, so the include depth stays within the layout's). */
+/* Copy the reading's teacher_version into the provenance. */
+void exp_reading_prov(const exp_reading *r, prov *p);
+/* Field stands of a layout: spacing and footprint (design.h). */
+double exp_field_d(exp_layout l);
+double exp_field_L(exp_layout l);
+const char *exp_layout_name(exp_layout l);
+#define EXP_OPT_TEACHER(var) {"teacher", OPT_STR, &(var), 0, 0, "teacher reading: teacher-2 (default, mutual abrasion) or teacher-1 (revision 1, one-sided)"}
+#define EXP_OPT_LAYOUT(var) {"layout", OPT_STR, &(var), 0, 0, "field layout: r2 (default, d = 4 m on L = 36 m) or r1 (revision 1, d = 5 m on L = 60 m)"}
+
 typedef struct {
     const char *out;  /* results root, e.g. build/results */
+    exp_reading rd;   /* the reading the unit runs (teacher rule) */
     int stands;       /* stands per cell */
     double beta;      /* NAN: the gate's dieback_train (E2), no beta_field row (hero) */
     const char *tag;  /* E2 output tag: "train" | "field" */
@@ -64,20 +86,22 @@ cs_status exp_write_polygons(const exp_opts *o, prov *pv, const char *experiment
 /* E5/E6: grow stand sd with the teacher (beta; coupled or the uncoupled
  * twin) and append its interior trees tagged (coupled, level, stand index).
  * *worst (may be NULL) is raised to the self-check overlap of the growth. */
-cs_status exp_field_grow_append(const stand *sd, double beta, int coupled, double level, unsigned index,
-                                fs_trees *acc, double *worst);
+cs_status exp_field_grow_append(const stand *sd, const exp_reading *rd, double beta, int coupled, double level,
+                                unsigned index, fs_trees *acc, double *worst);
 
 /* ---- E5/E6 (exp_field.c, exp_aniso.c): field stands, options and tables ----
  * Field stands: the controlled lattice (or a hard-core family) at
- * d = DESIGN_FIELD_SPACING_M, L = EXP_FIELD_L_FACTOR d, teacher at N = 48,
- * gamma = 1; each command's seeds and outputs are described in its file. */
-#define EXP_FIELD_L_FACTOR 12.0  /* L = 12 d (SPEC §2) */
+ * d = exp_field_d(layout), L = exp_field_L(layout) (r2: 4 m on 36 m; r1: 5 m
+ * on 60 m), teacher at N = 48, gamma = 1; each command's seeds and outputs
+ * are described in its file. */
 
 /* The options of the E5/E6 commands; each command's table lists the ones it takes. */
 typedef struct {
     const char *out, *calibration, *sweep, *jitter_calibration;
+    const char *teacher, *layout; /* --teacher, --layout (NULL: defaults) */
     long stands_opt;  /* --stands, parsed */
     unsigned stands;  /* the same, set by exp_field_parse */
+    exp_reading rd;   /* set by exp_field_parse from --teacher/--layout */
 } exp_field_opts;
 
 #define EXP_OPT_OUT(o) {"out", OPT_STR, &(o).out, 0, 0, "output table (required)"}
@@ -103,6 +127,7 @@ typedef struct {
     unsigned nstands;
     int twins;          /* also grow the uncoupled twin of each stand */
     size_t failed;      /* out: stands that could not be built (hard-core "unbuildable") */
+    exp_reading rd;     /* teacher rule and layout (zero: teacher-2, r2) */
 } exp_field_job;
 
 /* Grow the stands of j (and their uncoupled twins) and append their interior

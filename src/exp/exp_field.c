@@ -2,9 +2,12 @@
  * commands field-summary, field-calibrate, field-beta, field-heldout and
  * field-diagnose (E6, the anisotropy commands, is exp_aniso.c).
  *
- * Field stands: the controlled lattice at d = 5.0 m (DESIGN_FIELD_SPACING_M),
- * L = 12 d, canonical jitter (anisotropy.gate canonical_jitter); teacher at
- * N = 48, gamma = 1. Seeds: seed_derive(<seed experiment>, 5.0, stand,
+ * Field stands (--layout, exp_common.h): r2 (default, SPEC §7 E5 revision 2)
+ * the controlled lattice at d = 4 m on L = 36 m (9 x 9 stems, interior trees
+ * >= 2 d from the edge, ~25 per stand: the paper's 731 trees in 28 stands);
+ * r1 (revision 1) d = 5 m on L = 60 m; canonical jitter (anisotropy.gate
+ * canonical_jitter); teacher (--teacher, default teacher-2) at N = 48,
+ * gamma = 1. Seeds: seed_derive(<seed experiment>, d, stand,
  * "stems"/"crowns") with one seed-experiment string per role, so that
  * calibration and held-out stands are disjoint by construction (and disjoint
  * from E6's "anisotropy/..." stands):
@@ -75,14 +78,14 @@ int cmd_field_summary(int argc, char **argv)
 static void meta_calibration(tsv_writer *w, void *ctx)
 {
     (void)ctx;
-    tsv_writer_meta(w, "what", "E5 calibration: median over interior trees (pooled over the calibration stands) of the tree-mean cardinal clearance, per die-back beta; lattice d = 5 m, L = 60 m");
+    tsv_writer_meta(w, "what", "E5 calibration: median over interior trees (pooled over the calibration stands) of the tree-mean cardinal clearance, per die-back beta; lattice (layout in the layout line)");
     tsv_writer_meta(w, "rule", "beta_field = linear interpolation of the curve to gates/field.gate calibration_target_m, rounded to the grid step (fs_beta_field)");
 }
 
 int cmd_field_calibrate(int argc, char **argv)
 {
     exp_field_opts o = {0};
-    const opt_spec spec[] = {EXP_OPT_OUT(o)};
+    const opt_spec spec[] = {EXP_OPT_OUT(o), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout)};
     const opts_cmd oc = {"field-calibrate", "--out DIR/calibration.tsv",
                          "E5 calibration (SPEC §7): grow the calibration stands (gates/field.gate calibration_seeds)\n"
                          "at every beta of dieback_grid, record the median tree-mean clearance per beta, and print\n"
@@ -93,6 +96,7 @@ int cmd_field_calibrate(int argc, char **argv)
     if (rc) return opts_exit_code(rc);
     prov p;
     prov_begin(&p, "field", argc, argv);
+    exp_reading_prov(&o.rd, &p);
     double lo, hi, step, seeds, a;
     cs_status st = gate_read_value(PATHS_GATE("field"), "dieback_grid", 0, &lo);
     if (!st) st = gate_read_value(PATHS_GATE("field"), "dieback_grid", 1, &hi);
@@ -107,11 +111,11 @@ int cmd_field_calibrate(int argc, char **argv)
     double worst = 0;
     for (size_t k = 0; k < nb && !st; k++) {
         double beta = fs_round_step(lo + (double)k * step, step);
-        jobs[k] = (exp_field_job){"field/calibration", STAND_LATTICE, a, beta, beta, (unsigned)seeds, 0, 0};
+        jobs[k] = (exp_field_job){"field/calibration", STAND_LATTICE, a, beta, beta, (unsigned)seeds, 0, 0, o.rd};
         st = exp_field_run_job(&jobs[k], &acc, &worst);
         if (!st && (k % 7 == 0 || k + 1 == nb)) fprintf(stderr, "field-calibrate: beta %.2f done (%zu/%zu)\n", beta, k + 1, nb);
     }
-    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/calibration\", 5.0, s, stems|crowns), s = 0..%u at every beta", (unsigned)seeds - 1);
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/calibration\", %g, s, stems|crowns), s = 0..%u at every beta", exp_field_d(o.rd.layout), (unsigned)seeds - 1);
     p.worst_overlap_m = worst;
     if (!st) st = exp_field_write(o.out, &p, &acc, jobs, nb, meta_calibration, NULL);
     fs_trees_free(&acc);
@@ -142,7 +146,7 @@ int cmd_field_beta(int argc, char **argv)
 int cmd_field_heldout(int argc, char **argv)
 {
     exp_field_opts o = {.stands_opt = 28};
-    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands (default 28)")};
+    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands (default 28)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout)};
     const opts_cmd oc = {"field-heldout", "--calibration DIR/calibration.tsv --out DIR/heldout.tsv [--stands N]",
                          "E5 held-out (SPEC §7): N stands (default 28) on seeds disjoint from the calibration, grown at\n"
                          "beta_field coupled and as the uncoupled twin: tree-mean median, spread, elongation, anisotropy.\n"
@@ -154,17 +158,18 @@ int cmd_field_heldout(int argc, char **argv)
     if ((rc = exp_need_beta("field-heldout", &o, &c))) return rc;
     prov p;
     prov_begin(&p, "field", argc, argv);
+    exp_reading_prov(&o.rd, &p);
     double a;
     cs_status st = exp_canonical_jitter(&a);
     if (st) return exp_fail("field-heldout", st);
-    exp_field_job j = {"field/heldout", STAND_LATTICE, a, c.value, c.value, o.stands, 1, 0};
+    exp_field_job j = {"field/heldout", STAND_LATTICE, a, c.value, c.value, o.stands, 1, 0, o.rd};
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
     st = exp_field_run_job(&j, &acc, &worst);
-    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/heldout\", 5.0, s, stems|crowns), s = 0..%u; uncoupled twin = same stand", o.stands - 1);
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/heldout\", %g, s, stems|crowns), s = 0..%u; uncoupled twin = same stand", exp_field_d(o.rd.layout), o.stands - 1);
     p.worst_overlap_m = worst;
-    exp_meta_ctx m = {c.value, a, "E5 held-out: controlled lattice d = 5 m, L = 60 m, canonical jitter, teacher at beta_field; coupled stands and their uncoupled twins (same stems and crown draws)"};
+    exp_meta_ctx m = {c.value, a, "E5 held-out: controlled lattice (layout in the layout line), canonical jitter, teacher at beta_field; coupled stands and their uncoupled twins (same stems and crown draws)"};
     if (!st) st = exp_field_write(o.out, &p, &acc, &j, 1, exp_meta_generic, &m);
     if (!st) {
         fs_summary s;
@@ -183,7 +188,7 @@ int cmd_field_heldout(int argc, char **argv)
 int cmd_field_diagnose(int argc, char **argv)
 {
     exp_field_opts o = {.stands_opt = 12};
-    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_STANDS(o, "stands of the perfect lattice (default 12)")};
+    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_STANDS(o, "stands of the perfect lattice (default 12)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout)};
     const opts_cmd oc = {"field-diagnose", "--calibration DIR/calibration.tsv [--stands N]",
                          "Print diagnostics for the E5/E6 verdicts: elongation of the open-grown crown targets\n"
                          "(by lobe count k), the reach of beta over the calibration grid (elongation, anisotropy),\n"
@@ -194,7 +199,7 @@ int cmd_field_diagnose(int argc, char **argv)
     if (rc) return opts_exit_code(rc);
     fs_calibration c;
     if ((rc = exp_need_beta("field-diagnose", &o, &c))) return rc;
-    double d = DESIGN_FIELD_SPACING_M, L = EXP_FIELD_L_FACTOR * d, a;
+    double d = exp_field_d(o.rd.layout), L = exp_field_L(o.rd.layout), a;
     cs_status st = exp_canonical_jitter(&a);
     if (st) return exp_fail("field-diagnose", st);
     /* 1. open-grown target elongation on the E5 held-out stands' draws */
@@ -235,7 +240,7 @@ int cmd_field_diagnose(int argc, char **argv)
     /* 3. a perfect lattice at beta_field */
     fs_trees acc;
     fs_trees_init(&acc);
-    exp_field_job j = {"field/diagnose", STAND_LATTICE, 0.0, 0.0, c.value, o.stands, 0, 0};
+    exp_field_job j = {"field/diagnose", STAND_LATTICE, 0.0, 0.0, c.value, o.stands, 0, 0, o.rd};
     double worst = 0;
     st = exp_field_run_job(&j, &acc, &worst);
     fs_summary sm;

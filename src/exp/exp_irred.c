@@ -32,7 +32,7 @@
 typedef struct { size_t judged, responded, sectors; double abs_sum, step_sum; int stands; } perturb_acc;
 
 /* One stand at resolution nres: baseline and perturbed growth, accumulated. */
-static cs_status perturb_stand(const stand *sd, double beta, int nres, double hfac, double tol, int njudge,
+static cs_status perturb_stand(const stand *sd, const exp_reading *rd, double beta, int nres, double hfac, double tol, int njudge,
                                perturb_acc *acc, double *worst)
 {
     size_t n = sd->s->n;
@@ -40,6 +40,7 @@ static cs_status perturb_stand(const stand *sd, double beta, int nres, double hf
     cs_status st = (!ra || !rb || !h2) ? cs_err(CS_ENOMEM, "experiments: out of memory") : CS_OK;
     teacher_params p;
     teacher_params_default(&p);
+    p.one_sided = rd->one_sided;
     p.beta = beta;
     p.nres = nres;
     teacher_info ia;
@@ -121,6 +122,7 @@ cs_status exp_irred_perturb(const exp_opts *o, double beta)
 {
     prov pv;
     prov_begin(&pv, "irreducibility", o->argc, o->argv);
+    exp_reading_prov(&o->rd, &pv);
     irred_cfg c;
     cs_status st = irred_cfg_load(&c);
     if (st) return st;
@@ -131,7 +133,7 @@ cs_status exp_irred_perturb(const exp_opts *o, double beta)
         for (int k = 0; k < o->stands && !st; k++) {
             stand *sd = NULL;
             st = irred_stand(&sd, c.ds[a], k);
-            if (!st) st = perturb_stand(sd, beta, 48, c.hfac, c.tol, c.njudge, &acc[a], &worst);
+            if (!st) st = perturb_stand(sd, &o->rd, beta, 48, c.hfac, c.tol, c.njudge, &acc[a], &worst);
             stand_free(sd);
         }
         if (!st) fprintf(stderr, "irreducibility perturb (%s): d=%.1f responded %zu/%zu\n", o->tag, c.ds[a],
@@ -161,6 +163,7 @@ cs_status exp_irred_refine(const exp_opts *o, double beta)
 {
     prov pv;
     prov_begin(&pv, "irreducibility", o->argc, o->argv);
+    exp_reading_prov(&o->rd, &pv);
     irred_cfg c;
     cs_status st = irred_cfg_load(&c);
     if (st) return st;
@@ -173,7 +176,7 @@ cs_status exp_irred_refine(const exp_opts *o, double beta)
             for (int k = 0; k < o->stands && !st; k++) {
                 stand *sd = NULL;
                 st = irred_stand(&sd, c.ds[a], k);
-                if (!st) st = perturb_stand(sd, beta, (int)c.levels[l], c.hfac, c.tol, c.njudge, &acc[l][a], &worst);
+                if (!st) st = perturb_stand(sd, &o->rd, beta, (int)c.levels[l], c.hfac, c.tol, c.njudge, &acc[l][a], &worst);
                 stand_free(sd);
                 if (!st && k == o->stands - 1)
                     fprintf(stderr, "irreducibility refine (%s): %3.0f%% (N=%.0f d=%.1f done, %.1f s)\n", o->tag,
@@ -246,6 +249,7 @@ cs_status exp_irred_reduction(const exp_opts *o, double beta)
 {
     prov pv;
     prov_begin(&pv, "irreducibility", o->argc, o->argv);
+    exp_reading_prov(&o->rd, &pv);
     irred_cfg c;
     cs_status st = irred_cfg_load(&c);
     if (st) return st;
@@ -261,6 +265,7 @@ cs_status exp_irred_reduction(const exp_opts *o, double beta)
             double *r = malloc(sd->s->n * NS * sizeof *r);
             teacher_params p;
             teacher_params_default(&p);
+            p.one_sided = o->rd.one_sided;
             p.beta = beta;
             teacher_info inf;
             st = r ? stand_grow(sd, &p, NULL, r, &inf, &worst) : cs_err(CS_ENOMEM, "experiments: out of memory");

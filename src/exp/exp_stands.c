@@ -26,6 +26,7 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
 {
     prov pv;
     prov_begin(&pv, experiment, o->argc, o->argv);
+    exp_reading_prov(&o->rd, &pv);
     tsv_writer *w = NULL;
     char path[512];
     cs_status st = exp_open_out(o, experiment, "figure_crowns.tsv", &w, path, sizeof path);
@@ -44,6 +45,7 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
             if (!r) { st = cs_err(CS_ENOMEM, "experiments: out of memory"); break; }
             teacher_params p;
             teacher_params_default(&p);
+            p.one_sided = o->rd.one_sided;
             if (b < nrows) p.beta = betas[b];
             else p.coupled = 0;
             st = stand_grow(sds[a], &p, NULL, r, NULL, &worst);
@@ -84,6 +86,7 @@ static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size
 {
     prov pv;
     prov_begin(&pv, "pointcloud", o->argc, o->argv);
+    exp_reading_prov(&o->rd, &pv);
     typedef struct { size_t trees; double contact, ovl_c, ovl_u, k1_c, k1_u; } pc_row;
     pc_row rows[8];
     double worst = 0.0;
@@ -98,6 +101,7 @@ static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size
         if (!rc || !ru || !fz) st = cs_err(CS_ENOMEM, "experiments: out of memory");
         teacher_params p;
         teacher_params_default(&p);
+            p.one_sided = o->rd.one_sided;
         p.beta = beta;
         p.frozen_out = fz;
         if (!st) st = stand_grow(sd, &p, NULL, rc, NULL, &worst);

@@ -48,6 +48,9 @@ $(RESULTS)/mechanism/ablation.tsv: $(TEACHER_DEPS) | $(CLI)
 	$(CLI) run mechanism-ablation --stands $(TEACHER_STANDS) --out $(RESULTS)
 $(RESULTS)/mechanism/figure_crowns.tsv: $(TEACHER_DEPS) | $(CLI)
 	$(CLI) run fig-mechanism --out $(RESULTS)
+# the Mech* macros on the figure stand: written by the fig-mechanism unit
+$(RESULTS)/mechanism/figure_stats.tsv: $(RESULTS)/mechanism/figure_crowns.tsv
+	@test -f $@
 $(RESULTS)/irreducibility/perturb_train.tsv: $(TEACHER_DEPS) | $(CLI)
 	$(CLI) run irreducibility-perturb --stands $(TEACHER_STANDS) --out $(RESULTS)
 $(RESULTS)/irreducibility/refine_train.tsv: $(TEACHER_DEPS) | $(CLI)
@@ -108,3 +111,47 @@ REPRODUCE_UNITS += $(IRRED_FIELD_UNITS)
 $(RESULTS)/comparison/patch.tsv: $(RESULTS)/main/run_s01_joint.tsv $(RESULTS)/main/run_s01_indep.tsv | $(CLI)
 	$(CLI) comp-run --joint $(B)/ckpt/$(SCALE)/main_s01_joint.ckpt --indep $(B)/ckpt/$(SCALE)/main_s01_indep.ckpt --out $(RESULTS)
 REPRODUCE_UNITS += $(RESULTS)/comparison/patch.tsv
+
+# ---- E0 readings (SPEC §7 E0; src/claims/readings.c) -----------------------------
+# The cheap experiments under each reading of the paper, by the same units with
+# switches (never copied files): run <teacher>-<layout> in $(RESULTS)/readings/<run>/
+# (t1 = teacher-1, t2 = teacher-2; r1 = 5 m on 60 m, r2 = 4 m on 36 m), then
+# readings/summary.tsv (quantity x reading, beside the paper's values).
+# Stand counts as in the adopted run (smoke: the smoke counts).
+READINGS_DIR := $(RESULTS)/readings
+READING_RUNS := t1-r1 t2-r1 t1-r2 t2-r2
+reading_teacher = $(if $(filter t1-%,$(1)),teacher-1,teacher-2)
+reading_layout = $(if $(filter %-r1,$(1)),r1,r2)
+define READING_UNITS
+$(READINGS_DIR)/$(1)/mechanism/sweep.tsv: $$(TEACHER_DEPS) | $$(CLI)
+	$$(CLI) run mechanism-sweep --teacher $(call reading_teacher,$(1)) --stands $$(TEACHER_STANDS) --out $(READINGS_DIR)/$(1)
+$(READINGS_DIR)/$(1)/mechanism/ablation.tsv: $$(TEACHER_DEPS) | $$(CLI)
+	$$(CLI) run mechanism-ablation --teacher $(call reading_teacher,$(1)) --stands $$(TEACHER_STANDS) --out $(READINGS_DIR)/$(1)
+$(READINGS_DIR)/$(1)/mechanism/figure_crowns.tsv: $$(TEACHER_DEPS) | $$(CLI)
+	$$(CLI) run fig-mechanism --teacher $(call reading_teacher,$(1)) --out $(READINGS_DIR)/$(1)
+$(READINGS_DIR)/$(1)/pointcloud/figure_crowns.tsv: $$(TEACHER_DEPS) | $$(CLI)
+	$$(CLI) run fig-pointcloud --teacher $(call reading_teacher,$(1)) --out $(READINGS_DIR)/$(1)
+$(READINGS_DIR)/$(1)/field/calibration.tsv: | $$(CLI)
+	$$(CLI) field-calibrate --teacher $(call reading_teacher,$(1)) --layout $(call reading_layout,$(1)) --out $$@
+$(READINGS_DIR)/$(1)/field/heldout.tsv: $(READINGS_DIR)/$(1)/field/calibration.tsv | $$(CLI)
+	$$(CLI) field-heldout --teacher $(call reading_teacher,$(1)) --layout $(call reading_layout,$(1)) --calibration $$< --stands $$(FIELD_STANDS) --out $$@
+$(READINGS_DIR)/$(1)/anisotropy/lattice.tsv: $(READINGS_DIR)/$(1)/field/calibration.tsv | $$(CLI)
+	$$(CLI) aniso-lattice --teacher $(call reading_teacher,$(1)) --layout $(call reading_layout,$(1)) --calibration $$< --stands $$(FIELD_STANDS) --out $$@
+$(READINGS_DIR)/$(1)/anisotropy/hardcore.tsv: $(READINGS_DIR)/$(1)/field/calibration.tsv | $$(CLI)
+	$$(CLI) aniso-hardcore --teacher $(call reading_teacher,$(1)) --layout $(call reading_layout,$(1)) --calibration $$< --stands $$(ANISO_SWEEP_STANDS) --out $$@
+$(READINGS_DIR)/$(1)/anisotropy/jitter.tsv: $(READINGS_DIR)/$(1)/field/calibration.tsv | $$(CLI)
+	$$(CLI) aniso-jitter --teacher $(call reading_teacher,$(1)) --layout $(call reading_layout,$(1)) --calibration $$< --stands $$(ANISO_SWEEP_STANDS) --out $$@
+$(READINGS_DIR)/$(1)/anisotropy/jitter_calibration.tsv: $(READINGS_DIR)/$(1)/anisotropy/jitter.tsv | $$(CLI)
+	$$(CLI) aniso-jitter-calibrate --sweep $$< --out $$@
+$(READINGS_DIR)/$(1)/anisotropy/heldout.tsv: $(READINGS_DIR)/$(1)/field/calibration.tsv $(READINGS_DIR)/$(1)/anisotropy/jitter_calibration.tsv | $$(CLI)
+	$$(CLI) aniso-heldout --teacher $(call reading_teacher,$(1)) --layout $(call reading_layout,$(1)) --calibration $(READINGS_DIR)/$(1)/field/calibration.tsv --jitter-calibration $(READINGS_DIR)/$(1)/anisotropy/jitter_calibration.tsv --stands $$(FIELD_STANDS) --out $$@
+READING_TARGETS += $(addprefix $(READINGS_DIR)/$(1)/,mechanism/sweep.tsv mechanism/ablation.tsv mechanism/figure_crowns.tsv \
+  pointcloud/figure_crowns.tsv field/calibration.tsv field/heldout.tsv anisotropy/lattice.tsv anisotropy/hardcore.tsv \
+  anisotropy/jitter_calibration.tsv anisotropy/heldout.tsv)
+endef
+$(foreach r,$(READING_RUNS),$(eval $(call READING_UNITS,$(r))))
+$(READINGS_DIR)/summary.tsv: $(READING_TARGETS) audit/claims.tsv | $(CLI)
+	$(CLI) readings-summary --dir $(READINGS_DIR) --out $@
+.PHONY: readings
+readings: $(READINGS_DIR)/summary.tsv
+REPRODUCE_UNITS += $(READINGS_DIR)/summary.tsv

@@ -14,7 +14,7 @@ void fs_trees_init(fs_trees *t) { memset(t, 0, sizeof *t); }
 
 void fs_trees_free(fs_trees *t)
 {
-    free(t->coupled); free(t->level); free(t->stand); free(t->tree); free(t->gap); free(t->elong);
+    free(t->coupled); free(t->level); free(t->stand); free(t->tree); free(t->gap); free(t->elong); free(t->elong_card);
     memset(t, 0, sizeof *t);
 }
 
@@ -35,12 +35,15 @@ static cs_status fs_reserve(fs_trees *t, size_t want)
     if (g) t->gap = g;
     double *e = realloc(t->elong, cap * sizeof *e);
     if (e) t->elong = e;
-    if (!c || !l || !s || !tr || !g || !e) return cs_err(CS_ENOMEM, "fieldsim: out of memory");
+    double *ec = realloc(t->elong_card, cap * sizeof *ec);
+    if (ec) t->elong_card = ec;
+    if (!c || !l || !s || !tr || !g || !e || !ec) return cs_err(CS_ENOMEM, "fieldsim: out of memory");
     t->cap = cap;
     return CS_OK;
 }
 
-cs_status fs_trees_push(fs_trees *t, int coupled, double level, unsigned stand, unsigned tree, const double gap[4], double elong)
+cs_status fs_trees_push(fs_trees *t, int coupled, double level, unsigned stand, unsigned tree, const double gap[4], double elong,
+                        double elong_card)
 {
     cs_status st = fs_reserve(t, t->n + 1);
     if (st) return st;
@@ -51,6 +54,7 @@ cs_status fs_trees_push(fs_trees *t, int coupled, double level, unsigned stand, 
     t->tree[k] = tree;
     memcpy(t->gap[k], gap, sizeof t->gap[k]);
     t->elong[k] = elong;
+    t->elong_card[k] = elong_card;
     return CS_OK;
 }
 
@@ -61,14 +65,15 @@ cs_status fs_group(const fs_trees *t, int coupled, double level, fs_summary *out
     for (size_t k = 0; k < t->n; k++) n += t->coupled[k] == coupled && t->level[k] == level;
     if (n == 0) return cs_err(CS_EINPUT, "fieldsim: no trees for arm %s, level %.17g", coupled ? "coupled" : "uncoupled", level);
     double (*g)[4] = malloc(n * sizeof *g);
-    double *e = malloc(n * sizeof *e);
+    double *e = malloc(n * sizeof *e), *ec = malloc(n * sizeof *ec);
     unsigned *st_ids = malloc(n * sizeof *st_ids);
-    if (!g || !e || !st_ids) { free(g); free(e); free(st_ids); return cs_err(CS_ENOMEM, "fieldsim: out of memory"); }
+    if (!g || !e || !ec || !st_ids) { free(g); free(e); free(ec); free(st_ids); return cs_err(CS_ENOMEM, "fieldsim: out of memory"); }
     size_t m = 0, ns = 0;
     for (size_t k = 0; k < t->n; k++) {
         if (t->coupled[k] != coupled || t->level[k] != level) continue;
         memcpy(g[m], t->gap[k], sizeof g[m]);
         e[m] = t->elong[k];
+        ec[m] = t->elong_card[k];
         int seen = 0;
         for (size_t q = 0; q < ns && !seen; q++) seen = st_ids[q] == t->stand[k];
         if (!seen) st_ids[ns++] = t->stand[k];
@@ -76,8 +81,9 @@ cs_status fs_group(const fs_trees *t, int coupled, double level, fs_summary *out
     }
     cs_status st = field_summarize((const double (*)[4])g, n, &out->f);
     if (!st) st = est_median(e, n, &out->elong_median);
+    if (!st) st = est_median(ec, n, &out->elong_card_median);
     out->stands = ns;
-    free(g); free(e); free(st_ids);
+    free(g); free(e); free(ec); free(st_ids);
     return st;
 }
 
@@ -91,6 +97,7 @@ void fs_trees_write(tsv_writer *w, const fs_trees *t)
         tsv_writer_long(w, (long)t->tree[k]);
         for (int c = 0; c < 4; c++) tsv_writer_dbl(w, t->gap[k][c]);
         tsv_writer_dbl(w, t->elong[k]);
+        tsv_writer_dbl(w, t->elong_card[k]);
         tsv_writer_endrow(w);
     }
 }
@@ -114,7 +121,7 @@ cs_status fs_trees_read(const char *path, fs_trees *out)
     static const char *gcol[4] = {"gap_e", "gap_n", "gap_w", "gap_s"};
     for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
         int coupled;
-        double level, g[4], e;
+        double level, g[4], e, ec;
         long s, i;
         if ((st = fs_arm(t, r, &coupled))) break;
         if ((st = tsv_double(t, r, "level", &level))) break;
@@ -122,8 +129,9 @@ cs_status fs_trees_read(const char *path, fs_trees *out)
         if ((st = tsv_long(t, r, "tree", &i))) break;
         for (int c = 0; c < 4 && !st; c++) st = tsv_double(t, r, gcol[c], &g[c]);
         if (!st) st = tsv_double(t, r, "elong", &e);
+        if (!st) st = tsv_double(t, r, "elong_card", &ec);
         if (!st && (s < 0 || i < 0)) st = cs_err(CS_EINPUT, "%s:%d: field 'stand'/'tree': negative", path, tsv_line(t, r));
-        if (!st) st = fs_trees_push(out, coupled, level, (unsigned)s, (unsigned)i, g, e);
+        if (!st) st = fs_trees_push(out, coupled, level, (unsigned)s, (unsigned)i, g, e, ec);
     }
     tsv_free(t);
     if (st) fs_trees_free(out);
@@ -144,6 +152,7 @@ void fs_summary_write_row(tsv_writer *w, int coupled, double level, double beta,
     tsv_writer_long(w, (long)s->f.aniso_trees);
     tsv_writer_long(w, (long)s->f.aniso_excluded);
     tsv_writer_dbl(w, s->f.trees ? s->elong_median : NAN);
+    tsv_writer_dbl(w, s->f.trees ? s->elong_card_median : NAN);
     tsv_writer_endrow(w);
 }
 
@@ -193,6 +202,7 @@ cs_status fs_load_checked(const char *summary_path, tsv **sum, fs_trees *trees)
         if (!st) st = fs_same(*sum, r, "aniso_trees", (double)s.f.aniso_trees);
         if (!st) st = fs_same(*sum, r, "aniso_excluded", (double)s.f.aniso_excluded);
         if (!st) st = fs_same(*sum, r, "elong_median", s.elong_median);
+        if (!st) st = fs_same(*sum, r, "elong_card_median", s.elong_card_median);
     }
     if (st) { tsv_free(*sum); *sum = NULL; fs_trees_free(trees); }
     return st;

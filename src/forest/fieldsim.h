@@ -19,20 +19,23 @@ typedef struct {
     double *level;
     unsigned *stand, *tree;
     double (*gap)[4];   /* E, N, W, S, m */
-    double *elong;
+    double *elong;      /* all-axis elongation (SPEC §5, revision 2) */
+    double *elong_card; /* cardinal elongation (revision 1; the readings, SPEC §7 E0) */
 } fs_trees;
 
 void fs_trees_init(fs_trees *t);
 void fs_trees_free(fs_trees *t);
 
 /* Append one tree: tags (coupled, level, stand, tree), cardinal gaps
- * (E, N, W, S, m) and crown elongation. */
+ * (E, N, W, S, m) and crown elongation, all-axis and cardinal (both readings
+ * from the same crowns). */
 cs_status fs_trees_push(fs_trees *t, int coupled, double level, unsigned stand, unsigned tree,
-                        const double gap[4], double elong);
+                        const double gap[4], double elong, double elong_card);
 
 typedef struct {
     field_summary f;      /* trees, tree-mean median, spread, anisotropy median (+ excluded) */
-    double elong_median;  /* median crown elongation over the group's trees */
+    double elong_median;  /* median crown elongation (all-axis) over the group's trees */
+    double elong_card_median; /* the same, cardinal reading (revision 1) */
     size_t stands;        /* distinct stand indices present */
 } fs_summary;
 
@@ -40,12 +43,12 @@ typedef struct {
 cs_status fs_group(const fs_trees *t, int coupled, double level, fs_summary *out);
 
 /* Per-tree table: columns arm level stand tree gap_e gap_n gap_w gap_s elong. */
-#define FS_TREE_COLUMNS "arm\tlevel\tstand\ttree\tgap_e\tgap_n\tgap_w\tgap_s\telong"
+#define FS_TREE_COLUMNS "arm\tlevel\tstand\ttree\tgap_e\tgap_n\tgap_w\tgap_s\telong\telong_card"
 void fs_trees_write(tsv_writer *w, const fs_trees *t);
 cs_status fs_trees_read(const char *path, fs_trees *out);
 
 /* Summary table: one row per group. */
-#define FS_SUMMARY_COLUMNS "arm\tlevel\tbeta\tstands\tstands_failed\ttrees\ttree_mean_median\tspread\taniso_median\taniso_trees\taniso_excluded\telong_median"
+#define FS_SUMMARY_COLUMNS "arm\tlevel\tbeta\tstands\tstands_failed\ttrees\ttree_mean_median\tspread\taniso_median\taniso_trees\taniso_excluded\telong_median\telong_card_median"
 void fs_summary_write_row(tsv_writer *w, int coupled, double level, double beta, size_t stands_failed, const fs_summary *s);
 
 /* "dir/X.tsv" -> "dir/X_trees.tsv". */

@@ -1,0 +1,35 @@
+# data: frozen/readings/summary.tsv
+# Figure readings (SPEC §7 E0; issue 13): every quantity of the readings table
+# under each reading, as our value over the reference paper's value (1 = the
+# paper's number; shaded: within 10 % and 25 %). Readings: rev1 = revision 1
+# (teacher-1, 5 m on 60 m, cardinal elongation, Mech* on the lattice); t2-r1 =
+# teacher-2 only; t2-r1-axes = + all-axis elongation and Mech* on the figure
+# stand; t1-r2 = revision 2 with teacher-1; rev2 = revision 2 (adopted).
+# Rows of summary.tsv are quantity-major, five readings each (readings.c).
+# Reads only frozen files. Run from the repository root: gnuplot figures/readings.gp
+nr = 5
+nq = real(system("awk -F'\t' '!/^#/ && $1!=\"quantity\"{n++} END{print n/5}' frozen/readings/summary.tsv"))
+do for [fmt in "png pdf"] {
+  if (fmt eq "png") { set terminal pngcairo size 1000,760 font "Sans,12"; set output "figures/readings.png" } \
+  else { set terminal pdfcairo size 8in,6.1in font "Sans,11"; set output "figures/readings.pdf" }
+  set datafile separator "\t"
+  set key autotitle columnhead
+  set key inside right bottom vertical box opaque font "Sans,11" width -2
+  set title "E0 readings: each number relative to the reference paper's value"
+  set xlabel "our value / paper's value"
+  set xrange [0.2:2.2]
+  set yrange [-nq+0.4:0.6]
+  set ytics scale 0 font "Sans,11"
+  set grid xtics lc rgb "#cccccc"
+  set object 1 rect from 0.75, graph 0 to 1.25, graph 1 fc rgb "#2ca02c" fs solid 0.10 noborder behind
+  set object 2 rect from 0.90, graph 0 to 1.10, graph 1 fc rgb "#2ca02c" fs solid 0.20 noborder behind
+  set arrow 1 from 1, graph 0 to 1, graph 1 nohead lw 1.5 lc rgb "#1a6b1a"
+  yq(r) = -floor(r / nr)
+  off(k) = 0.3 * (k - 2) / 2.0
+  plot "frozen/readings/summary.tsv" using (strcol(2) eq "rev1" ? 1 + $5 : NaN):(yq($0) + off(0)) with points pt 4 ps 1.5 lw 2 lc rgb "#7f7f7f" title "rev1 (revision 1)", \
+       "" using (strcol(2) eq "t2-r1" ? 1 + $5 : NaN):(yq($0) + off(1)) with points pt 6 ps 1.5 lw 2 lc rgb "#ff7f0e" title "teacher-2 only", \
+       "" using (strcol(2) eq "t2-r1-axes" ? 1 + $5 : NaN):(yq($0) + off(2)) with points pt 8 ps 1.5 lw 2 lc rgb "#9467bd" title "+ all-axis, figure stand", \
+       "" using (strcol(2) eq "t1-r2" ? 1 + $5 : NaN):(yq($0) + off(3)) with points pt 12 ps 1.5 lw 2 lc rgb "#1f77b4" title "rev2 with teacher-1", \
+       "" using (strcol(2) eq "rev2" ? 1 + $5 : NaN):(yq($0) + off(4)):ytic(strcol(2) eq "rev2" ? strcol(1) : "") with points pt 7 ps 1.6 lc rgb "#d62728" title "rev2 (adopted)"
+  unset output
+}

@@ -1,0 +1,56 @@
+/* readings: the E0 readings table (SPEC §7 E0; issue 13). Where the
+ * reference paper's text allows more than one reading and revision 1 chose
+ * differently, the cheap experiments are run under each reading (the same
+ * experiment units, switched by --teacher and --layout, never copied files)
+ * into <dir>/<run>/..., and this module computes one row per (quantity,
+ * reading) with the registry's own computing function (claims.h) on that
+ * run's tables, beside the paper's value (audit/claims.tsv reference column).
+ *
+ * Runs (directories under <dir>): t1-r1, t2-r1, t1-r2, t2-r2 (teacher-1|2,
+ * layout r1|r2). Readings (rows): a run plus two choices that need no rerun,
+ * read from the same tables: the elongation (cardinal, revision 1, or all
+ * axes, paper §5.3 "the ratio of the longest to shortest crown axis") and
+ * the stand the Mech* numbers are measured on (the lattice ablation,
+ * revision 1, or the figure stand, paper: "measured on the stand shown").
+ * The claim test recomputes the frozen summary from the frozen run tables. */
+#ifndef READINGS_H
+#define READINGS_H
+#include "claims.h"
+#include "cs.h"
+#include <stddef.h>
+
+typedef struct {
+    const char *name;      /* e.g. "rev1" */
+    const char *run;       /* directory under <dir> */
+    int elong_all_axes;    /* 1: all-axis elongation; 0: cardinal (revision 1) */
+    int figure_stand;      /* 1: Mech* on mechanism/figure_stats.tsv; 0: mechanism/ablation.tsv */
+    const char *what;
+} readings_def;
+
+typedef struct {
+    char quantity[64], reading[32], source[512];
+    double value, paper, rel_diff; /* rel_diff = (value - paper) / |paper| (NaN when paper is 0 or absent) */
+} readings_row;
+
+/* The readings and the quantities, in table order. */
+const readings_def *readings_list(size_t *n);
+const char *const *readings_quantities(size_t *n);
+/* The runs the readings need (distinct run directories). */
+const char *const *readings_runs(size_t *n);
+
+/* Compute every row from <dir>/<run>/... with the claims of registry c.
+ * rows must hold readings_count() entries. */
+size_t readings_count(void);
+cs_status readings_compute(const claims *c, const char *dir, readings_row *rows);
+/* Write the summary table (provenance block from prov is the caller's: the
+ * header lines given are written first). */
+cs_status readings_write(const char *path, const char *dir, const readings_row *rows, size_t n);
+/* Check a frozen summary against freshly computed rows: every value, paper
+ * value and relative difference bit for bit; CS_EINPUT naming file, line, field. */
+cs_status readings_check(const char *path, const readings_row *rows, size_t n);
+/* paper/readings.tex (generated; see readings.c). */
+cs_status readings_write_tex(const char *path, const readings_row *rows, size_t n);
+/* "N of M within 10 % / 25 %" counts over the rows of one reading. */
+void readings_within(const readings_row *rows, size_t n, const char *reading, size_t *m, size_t *in10, size_t *in25);
+
+#endif

@@ -1,0 +1,120 @@
+/* Claim tests of issue 13 (SPEC §7 E0, E1 revision 2):
+ *  - the Mech* macros come from the hard-core figure stand: the frozen
+ *    figure_stats.tsv is regrown from its seeds (hard-core c = 0.5, 3.5 m,
+ *    L = 36 m) and the claim's value equals the regrown stand's statistic
+ *    exactly, while the gate is judged on the lattice ablation;
+ *  - the E0 readings table: frozen/readings/summary.tsv is recomputed from
+ *    the frozen run tables with the registry's computing functions
+ *    (readings_compute) and must agree bit for bit; a changed value is
+ *    caught naming file, line and field. */
+#include "testutil.h"
+#include "claims.h"
+#include "estimator.h"
+#include "exp_common.h"
+#include "paths.h"
+#include "readings.h"
+#include "stand_grow.h"
+#include "tsv.h"
+
+static void test_figure_stand_macros_come_from_the_hard_core_stand(void **s)
+{
+    (void)s;
+    claims c;
+    assert_int_equal(claims_load(PATHS_CLAIMS, &c), CS_OK);
+    const claim_row *row = claims_find(&c, "MechOn");
+    assert_non_null(row);
+    assert_string_equal(row->source, "frozen/mechanism/figure_stats.tsv");
+    claim_result r;
+    claims_eval(row, &r);
+    assert_int_equal(r.status, VERDICT_PASS);
+    /* the stand shown: hard-core, c = EXP_FIG_C, d = 3.5 m, L = 36 m, seed "fig/mechanism" */
+    stand *sd;
+    assert_int_equal(stand_alloc(&sd, STAND_HARDCORE, 3.5, EXP_FIG_L, EXP_FIG_C, "fig/mechanism", 0), CS_OK);
+    double *rr = malloc(sd->s->n * CROWN_NSEC * sizeof *rr);
+    teacher_params p;
+    teacher_params_default(&p);
+    assert_int_equal(stand_grow(sd, &p, NULL, rr, NULL, NULL), CS_OK);
+    double k1 = exp_stand_k1(sd, rr);
+    free(rr);
+    stand_free(sd);
+    printf("MechOn: observed %.17g, regrown figure stand %.17g\n", r.value, k1);
+    ASSERT_EXACT(r.value, k1);
+    /* the gate is judged on the lattice ablation, whose value differs */
+    tsv *t;
+    assert_int_equal(tsv_read("frozen/mechanism/ablation.tsv", &t), CS_OK);
+    long lr = tsv_find(t, "arm", "both_on");
+    assert_true(lr >= 0);
+    double lat;
+    assert_int_equal(tsv_double(t, (size_t)lr, "k1_m", &lat), CS_OK);
+    tsv_free(t);
+    printf("MechOn: lattice %.17g; gate detail: %s\n", lat, r.gate_detail);
+    assert_true(lat != k1);
+    assert_non_null(strstr(r.gate_detail, "judged on the lattice"));
+    assert_non_null(strstr(r.where, "figure stand"));
+    claims_free(&c);
+}
+
+static void test_readings_summary_recomputes_from_the_run_tables(void **s)
+{
+    (void)s;
+    claims c;
+    assert_int_equal(claims_load(PATHS_CLAIMS, &c), CS_OK);
+    size_t n = readings_count();
+    readings_row *rows = calloc(n, sizeof *rows);
+    assert_int_equal(readings_compute(&c, "frozen/readings", rows), CS_OK);
+    cs_status st = readings_check("frozen/readings/summary.tsv", rows, n);
+    if (st) printf("%s\n", cs_errmsg());
+    assert_int_equal(st, CS_OK);
+    /* revision 2 is the adopted reading: its Elong equals the claim's */
+    const claim_row *row = claims_find(&c, "Elong");
+    claim_result r;
+    claims_eval(row, &r);
+    for (size_t i = 0; i < n; i++)
+        if (!strcmp(rows[i].quantity, "Elong") && !strcmp(rows[i].reading, "rev2")) {
+            printf("Elong rev2: observed %.17g, claim %.17g\n", rows[i].value, r.value);
+            ASSERT_EXACT(rows[i].value, r.value);
+        }
+    /* a changed value is named */
+    rows[3].value += 1e-9;
+    st = readings_check("frozen/readings/summary.tsv", rows, n);
+    assert_int_equal(st, CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "summary.tsv:"));
+    assert_non_null(strstr(cs_errmsg(), "'value'"));
+    free(rows);
+    claims_free(&c);
+}
+
+static void test_reading_switches_parse_strictly(void **s)
+{
+    (void)s;
+    exp_reading r;
+    assert_int_equal(exp_reading_parse(NULL, NULL, &r), CS_OK);
+    assert_int_equal(r.one_sided, 0);
+    assert_int_equal(r.layout, EXP_LAYOUT_R2);
+    assert_int_equal(exp_reading_parse("teacher-1", "r1", &r), CS_OK);
+    assert_int_equal(r.one_sided, 1);
+    assert_int_equal(r.layout, EXP_LAYOUT_R1);
+    ASSERT_EXACT(exp_field_d(EXP_LAYOUT_R2), 4.0);
+    ASSERT_EXACT(exp_field_L(EXP_LAYOUT_R2), 36.0);
+    ASSERT_EXACT(exp_field_d(EXP_LAYOUT_R1), 5.0);
+    ASSERT_EXACT(exp_field_L(EXP_LAYOUT_R1), 60.0);
+    assert_int_equal(exp_reading_parse("teacher-3", NULL, &r), CS_EINPUT);
+    assert_int_equal(exp_reading_parse(NULL, "r3", &r), CS_EINPUT);
+    /* the provenance names the reading that ran */
+    prov p;
+    char *argv[] = {"x"};
+    prov_begin(&p, "test", 1, argv);
+    exp_reading one = {1, EXP_LAYOUT_R1};
+    exp_reading_prov(&one, &p);
+    assert_string_equal(p.teacher_version, "teacher-1");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_figure_stand_macros_come_from_the_hard_core_stand),
+        cmocka_unit_test(test_readings_summary_recomputes_from_the_run_tables),
+        cmocka_unit_test(test_reading_switches_parse_strictly),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
