@@ -340,9 +340,13 @@ status() {
                 state=unknown; n_unk=$((n_unk + 1)); detail="job $id; no queue to ask"
             else
                 st=$(ended_state "$id")
-                state=failed; n_fail=$((n_fail + 1))
-                if [ -f "$log" ]; then detail="job $id ended without an exit status${st:+ ($st)}: cancelled, killed or out of time; log $log"
-                else detail="job $id never started${st:+ ($st)}: cancelled, or a unit it needs failed"; fi
+                if [ -f "$log" ]; then
+                    state=failed; n_fail=$((n_fail + 1))
+                    detail="job $id ended without an exit status${st:+ ($st)}: cancelled, killed or out of time; log $log"
+                else
+                    state=missing; n_miss=$((n_miss + 1))
+                    detail="job $id never started${st:+ ($st)}: cancelled, or a unit it needs failed"
+                fi
             fi
         else
             state=missing; n_miss=$((n_miss + 1))
