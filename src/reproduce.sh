@@ -48,6 +48,7 @@ read -r -a TOP <<< "${REPRODUCE_UNITS:-}"
 read -r -a VARS <<< "${REPRODUCE_VARS:-SCALE=$SCALE}"
 [ "${#TOP[@]}" -gt 0 ] || die "no unit registered (REPRODUCE_UNITS is empty)"
 REPO=$(pwd -P)
+SELF=$(realpath "$0")  # submitted as the batch script of every job (its `job` mode)
 case $STATE in /*) ;; *) STATE=$REPO/$STATE ;; esac
 SL=$STATE/slurm
 mkdir -p "$STATE"
@@ -264,7 +265,7 @@ run_slurm() {
     local -a extra=()
     read -r -a extra <<< "${SLURM_ARGS:-}"
     local -A JOBFOR=() NEW=()
-    local u r id st why deps p log out ndone=0 nkept=0 nsub=0 script="$REPO/src/reproduce.sh"
+    local u r id st why deps p log out ndone=0 nkept=0 nsub=0
     for u in "${ORDER[@]}"; do
         r=$(rel "$u")
         if [ -n "${UPTODATE[$u]}" ]; then ndone=$((ndone + 1)); continue; fi
@@ -290,7 +291,7 @@ run_slurm() {
         [ -n "$deps" ] && dep_arg=("--dependency=afterok$deps" "--kill-on-invalid-dep=yes")
         if ! out=$(sbatch --parsable -J "crownshy:${r%.tsv}" -D "$REPO" -o "$log" -n 1 -c 1 \
                      "${dep_arg[@]}" "${extra[@]}" \
-                     "$script" job "$SL/rc" "$MAKE_BIN" -C "$REPO" --no-print-directory "${VARS[@]}" "$u" 2>&1); then
+                     "$SELF" job "$SL/rc" "$MAKE_BIN" -C "$REPO" --no-print-directory "${VARS[@]}" "$u" 2>&1); then
             die "sbatch failed for unit $r: $out"
         fi
         id=${out##*$'\n'}; id=${id%%;*}
