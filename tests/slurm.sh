@@ -262,6 +262,14 @@ if [ "${resub[*]}" = "${expect[*]}" ]; then
 else
     bad "the re-invocation resubmitted: ${resub[*]}; expected: ${expect[*]} (log $T/slurm-2.log)"
 fi
+# at once again, while those jobs are queued or running: nothing is submitted twice
+make --no-print-directory reproduce ENGINE=slurm "${SLURM[@]}" > "$T/slurm-2b.log" 2>&1 || true
+kept=$(grep -c '^reproduce: kept ' "$T/slurm-2b.log" || true)
+if [ -z "$(submitted "$T/slurm-2b.log")" ] && grep -q ', 0 submitted$' "$T/slurm-2b.log"; then
+    ok "re-invoking while they are queued or running submits nothing (kept $kept live jobs)"
+else
+    bad "re-invoking while jobs are live submitted: $(submitted "$T/slurm-2b.log" | tr '\n' ' ')(log $T/slurm-2b.log)"
+fi
 wait_drained 600 || fatal "resubmitted jobs still queued after 10 min"
 t_slurm2=$((SECONDS - t0))
 relog=$(awk -F'\t' -v u="$cancelled" '$1 == u {l = $3} END {print l}' "$JOBS")
