@@ -134,10 +134,33 @@ endif
 REPRODUCE_UNITS :=
 -include src/exp/experiments.mk
 
+# ==== reproduce engines (issue 16) ==========================================
+# make reproduce [ENGINE=local|slurm] [SCALE=smoke] [SLURM_ARGS='sbatch options']
+# make reproduce-status    per unit: done, queued, running, failed (with its log), missing
+# make reproduce-graph     each unit and the units it needs
+# src/exp/reproduce.sh reads the unit graph back from make (`make -pn` on REPRODUCE_UNITS),
+# so the pipeline stays defined once, above. ENGINE=local runs make on the units with a
+# progress line (units done of total, ETA from recorded wall times); ENGINE=slurm
+# submits one job per unit not up to date, each running `make <unit>` like a local run,
+# with --dependency=afterok on the jobs making its inputs. Bookkeeping (job ids, logs,
+# wall times) in $(B)/reproduce/<results dir name>/.
+ENGINE ?= local
+SLURM_ARGS ?=
+REPRODUCE_SH := src/exp/reproduce.sh
+REPRODUCE_ENV = REPRODUCE_RESULTS='$(RESULTS)' REPRODUCE_UNITS='$(strip $(REPRODUCE_UNITS))' \
+  REPRODUCE_STATE='$(B)/reproduce/$(notdir $(RESULTS))' REPRODUCE_CLI='$(CLI)' SCALE='$(SCALE)' \
+  REPRODUCE_VARS='SCALE=$(SCALE)$(if $(filter command line,$(origin B)), B=$(B))$(if $(filter command line,$(origin RESULTS)), RESULTS=$(RESULTS))' \
+  SLURM_ARGS='$(SLURM_ARGS)' MAKE='$(MAKE)'
+.PHONY: reproduce-status reproduce-graph
 reproduce: deps
 	@$(MAKE) --no-print-directory $(CLI)
 	@if [ -z "$(strip $(REPRODUCE_UNITS))" ]; then echo "reproduce: no experiment registered yet"; \
-	 else $(MAKE) --no-print-directory $(REPRODUCE_UNITS) && echo "reproduce: $(words $(REPRODUCE_UNITS)) units up to date in $(RESULTS)"; fi
+	 else $(REPRODUCE_ENV) bash $(REPRODUCE_SH) $(ENGINE); fi
+reproduce-status:
+	@$(REPRODUCE_ENV) bash $(REPRODUCE_SH) status
+reproduce-graph:
+	@$(REPRODUCE_ENV) bash $(REPRODUCE_SH) graph
+# ==== end of reproduce engines ==============================================
 
 # Copy finished full-scale results into frozen/, record their hashes and
 # regenerate paper/numbers.tex. Smoke results are never frozen.
