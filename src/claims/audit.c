@@ -16,38 +16,6 @@
 #include "audit_data.h"
 #include "audit_paper.h"
 
-void checklist_add(checklist *cl, verdict v, const char *name, const char *fmt, ...)
-{
-    if (cl->n == cl->cap) {
-        size_t nc = cl->cap ? 2 * cl->cap : 64;
-        check_item *ni = realloc(cl->items, nc * sizeof *ni);
-        if (!ni) return;
-        cl->items = ni;
-        cl->cap = nc;
-    }
-    check_item *it = &cl->items[cl->n++];
-    it->v = v;
-    snprintf(it->name, sizeof it->name, "%s", name);
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(it->msg, sizeof it->msg, fmt, ap);
-    va_end(ap);
-}
-
-void checklist_free(checklist *cl)
-{
-    free(cl->items);
-    memset(cl, 0, sizeof *cl);
-}
-
-void checklist_print(const checklist *cl, size_t count[3])
-{
-    for (size_t i = 0; i < cl->n; i++) {
-        printf("  %-7s %-28s %s\n", verdict_name(cl->items[i].v), cl->items[i].name, cl->items[i].msg);
-        count[cl->items[i].v]++;
-    }
-}
-
 static int file_exists(const char *p) { struct stat sb; return stat(p, &sb) == 0; }
 
 /* Claims whose source is `path` or whose gate names `gatefile`, comma-joined. */
@@ -263,10 +231,13 @@ static void check_pins(const claims *c, checklist *cl)
             } else if (!strcmp(key, "claim_row_sha256")) {
                 snprintf(affected, sizeof affected, "%s", strchr(path, ':') ? strchr(path, ':') + 1 : path);
             } else if (!strcmp(key, "gate_map_sha256")) {
+                /* the claims whose judging gate moved (map vs registry), else every mapped one */
                 size_t off = 0, cnt = 0;
                 affected[0] = '\0';
-                for (size_t i = 0; i < c->n && off < sizeof affected - 40; i++)
-                    if (c->rows[i].gate_map_line) off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
+                for (int pass = 0; pass < 2 && !cnt; pass++)
+                    for (size_t i = 0; i < c->n && off < sizeof affected - 40; i++)
+                        if (pass ? c->rows[i].gate_map_line != 0 : strcmp(c->rows[i].gate, c->rows[i].gate_reg) != 0)
+                            off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
                 if (!cnt) snprintf(affected, sizeof affected, "every gated claim");
             } else if (!strcmp(key, "registry_sha256") || !strcmp(key, "aggregates_sha256")) {
                 snprintf(affected, sizeof affected, "every claim (%s)", path);
@@ -366,8 +337,16 @@ static void check_frozen(const claims *c, checklist *cl, paths_list *frozen_file
         if (!paths_is_hidden_or_tmp(every.p[i]) && reg) continue;
         int sealed = 0;
         for (size_t j = 0; j < listed.n && !sealed; j++) sealed = !strcmp(listed.p[j], every.p[i]);
-        checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s: a %s file in %s/%s is not a frozen result (a half-written or hand-placed file): remove it",
-                      every.p[i], reg ? "hidden or temporary" : "non-regular", PATHS_FROZEN_DIR, sealed ? " (sealed in " PATHS_FROZEN_HASHES " by hand)" : "");
+        /* the table it shadows: "x.tsv.tmp.1.2" and ".x.tsv" name x.tsv's claims */
+        char shadow[1024], affected[600];
+        const char *b = strrchr(every.p[i], '/');
+        b = b ? b + 1 : every.p[i];
+        snprintf(shadow, sizeof shadow, "%.*s%s", (int)(b - every.p[i]), every.p[i], b + (b[0] == '.'));
+        char *tmp = strstr(shadow + (b - every.p[i]), ".tmp");
+        if (tmp) *tmp = '\0';
+        claims_of(c, shadow, NULL, affected, sizeof affected);
+        checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s: a %s file in %s/%s is not a frozen result (a half-written or hand-placed file): remove it; it shadows %s; claims affected: %s",
+                      every.p[i], reg ? "hidden or temporary" : "non-regular", PATHS_FROZEN_DIR, sealed ? " (sealed in " PATHS_FROZEN_HASHES " by hand)" : "", shadow, affected);
         bad++;
     }
     paths_list_free(&every);
@@ -495,15 +474,6 @@ static void check_registry(const claims *c, checklist *cl)
         }
     if (!file_exists("tests/test_claims.c")) { checklist_add(cl, VERDICT_FAIL, "registry", "tests/test_claims.c missing: claims have no tests"); bad++; }
     if (!bad) checklist_add(cl, VERDICT_PASS, "registry", "%zu claims, each with a computing function name and a test; no orphan function", c->n);
-}
-
-/* LaTeX's own capitalised commands: not claim macros. */
-static const char *latex_upper[] = {"LaTeX", "TeX", "Large", "LARGE", "Huge", "HUGE", "Roman", "Alph", "Ref", "S", "P", "L", "O", "AA", "AE", "OE", "Delta", "Gamma", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Upsilon", "Phi", "Psi", "Omega", "Bigl", "Bigr", "Big", "Biggl", "Biggr", "bibliographystyle", "IfFileExists", NULL};
-
-int audit_latex_upper(const char *name)
-{
-    for (int i = 0; latex_upper[i]; i++) if (!strcmp(latex_upper[i], name)) return 1;
-    return 0;
 }
 
 void audit_numbers(const claims *c, const claim_result *res, checklist *cl)

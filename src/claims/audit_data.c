@@ -13,7 +13,6 @@
  *   filter      "col=template;col=template" selecting the per-run rows, or "-"
  * Sums run in file order, so a mean is compared bit for bit with the
  * aggregate (the pipeline's own order). */
-#include "audit.h"
 #include "audit_data.h"
 #include "tsv.h"
 #include <fnmatch.h>

@@ -2,7 +2,9 @@
  * to claims, and the git ledger of pinned files (SPEC §9 rev. 2). */
 #ifndef AUDIT_DATA_H
 #define AUDIT_DATA_H
-#include "audit.h"
+#include "checklist.h"
+#include "claims.h"
+#include "paths.h"
 #include <stdio.h>
 
 typedef struct {

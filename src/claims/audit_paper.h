@@ -3,7 +3,9 @@
  * too) use claim macros only. */
 #ifndef AUDIT_PAPER_H
 #define AUDIT_PAPER_H
-#include "audit.h"
+#include "checklist.h"
+#include "claims.h"
+#include "paths.h"
 
 /* Is path one of the generated paper files (numbers, comparison, readings)? */
 int paper_is_generated(const char *path);
@@ -16,7 +18,5 @@ void audit_generated(const claims *c, const claim_result *res, checklist *cl, in
 /* Every non-generated .tex under paper/: claim macros registered, none
  * (re)defined, no measured number typed in any rounding, no exemption comment. */
 void audit_paper_text(const claims *c, const claim_result *res, checklist *cl);
-/* LaTeX's capitalised commands that are not claim macros. */
-int audit_latex_upper(const char *name);
 
 #endif
