@@ -1,6 +1,7 @@
 /* paths: see paths.h. */
 #include "paths.h"
 #include <dirent.h>
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -79,4 +80,13 @@ int paths_is_hidden_or_tmp(const char *path)
     const char *b = strrchr(path, '/');
     b = b ? b + 1 : path;
     return b[0] == '.' || strstr(b, ".tmp") != NULL;
+}
+
+cs_status paths_input_file(const char *path)
+{
+    struct stat sb;
+    if (stat(path, &sb) != 0) return cs_err(CS_EINPUT, "%s: cannot open: %s", path, strerror(errno));
+    if (S_ISDIR(sb.st_mode)) return cs_err(CS_EINPUT, "%s: is a directory, not an input file", path);
+    if (!S_ISREG(sb.st_mode)) return cs_err(CS_EINPUT, "%s: not a regular file", path);
+    return CS_OK;
 }

@@ -57,6 +57,9 @@ cs_status paths_list_every(const char *dir, int recursive, paths_list *out);
 /* 1 when the last component starts with '.' or contains ".tmp". */
 int paths_is_hidden_or_tmp(const char *path);
 void paths_list_free(paths_list *l);
+/* An input file must exist and be a regular file: CS_EINPUT naming it
+ * ("is a directory", "cannot open: ...") instead of a later odd error. */
+cs_status paths_input_file(const char *path);
 /* Append a copy of s (unsorted). */
 cs_status paths_list_add(paths_list *l, const char *s);
 

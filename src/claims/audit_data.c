@@ -291,7 +291,7 @@ void audit_ledger(FILE *o)
         snprintf(cmd, sizeof cmd, "git status --porcelain -- '%s' 2>/dev/null | head -c 2", path);
         int uncommitted = !run_line(cmd, dirty, sizeof dirty);
         if (!strcmp(n_commits, "0") && !uncommitted) continue;
-        char last[160] = "";
+        char last[700] = "";
         snprintf(cmd, sizeof cmd, "git log -1 --format='%%h %%ad %%s' --date=short %s..HEAD -- '%s' 2>/dev/null | cut -c1-110", base, path);
         run_line(cmd, last, sizeof last);
         fprintf(o, "  %-34s %s commit(s) since %s%s%s%s\n", path, n_commits, base, uncommitted ? ", uncommitted changes" : "",

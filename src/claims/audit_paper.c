@@ -171,27 +171,12 @@ static int rounds_to(double x, int dec, int sig, int neg, double v)
     return ((v < 0) == neg) || sig >= 3;
 }
 
-void audit_paper_text(const claims *c, const claim_result *res, checklist *cl)
+size_t paper_scan_file(const char *path, const claims *c, const double *vals, const char *const *who, size_t nv, checklist *cl, size_t *used)
 {
-    paths_list tex;
-    paths_list_files(PATHS_PAPER_DIR, ".tex", 1, &tex);
-    size_t bad = 0, used = 0, files = 0;
-    /* the measured values a number in the text must not round */
-    double *vals = calloc(2 * (c->n ? c->n : 1), sizeof *vals);
-    const char **who = calloc(2 * (c->n ? c->n : 1), sizeof *who);
-    size_t nv = 0;
-    for (size_t r = 0; vals && who && r < c->n; r++) {
-        if (strcmp(c->rows[r].kind, "measured") && strcmp(c->rows[r].kind, "needs-data")) continue;
-        char *end;
-        double ref = strtod(c->rows[r].reference, &end);
-        if (res[r].status == VERDICT_PASS && isfinite(res[r].value)) { vals[nv] = res[r].value; who[nv++] = c->rows[r].macro; }
-        if (end != c->rows[r].reference && !*end && isfinite(ref)) { vals[nv] = ref; who[nv++] = c->rows[r].macro; }
-    }
-    for (size_t i = 0; i < tex.n; i++) {
-        if (paper_is_generated(tex.p[i])) continue; /* compared with a fresh generation instead */
-        FILE *f = fopen(tex.p[i], "r");
-        if (!f) { checklist_add(cl, VERDICT_FAIL, "paper text", "%s: cannot read", tex.p[i]); bad++; continue; }
-        files++;
+    FILE *f = fopen(path, "r");
+    if (!f) { checklist_add(cl, VERDICT_FAIL, "paper text", "%s: cannot read", path); return 1; }
+    size_t bad = 0;
+    {
         char line[8192];
         int lineno = 0;
         while (fgets(line, sizeof line, f)) {
@@ -201,7 +186,7 @@ void audit_paper_text(const claims *c, const claim_result *res, checklist *cl)
                 if (pct == line || pct[-1] != '\\') {
                     if (exemption_comment(pct + 1)) {
                         checklist_add(cl, VERDICT_FAIL, "paper self-exemption", "%s:%d: comment '%.80s' asks for an exemption from the audit: none is honoured; remove it",
-                                      tex.p[i], lineno, pct + 1);
+                                      path, lineno, pct + 1);
                         bad++;
                     }
                     *pct = '\0';
@@ -225,14 +210,14 @@ void audit_paper_text(const claims *c, const claim_result *res, checklist *cl)
                 /* \newcommand{\Claim}, \renewcommand*\Claim, \def\Claim, \let\Claim ... */
                 if (row && is_defining(lastcmd)) {
                     checklist_add(cl, VERDICT_FAIL, "paper macro redefined", "%s:%d: \\%s defines the claim macro \\%s in the text (only numbers.tex defines it); claim: %s",
-                                  tex.p[i], lineno, lastcmd, name, row->macro);
+                                  path, lineno, lastcmd, name, row->macro);
                     bad++;
                 }
                 if (isupper((unsigned char)name[0]) && !audit_latex_upper(name)) {
                     if (!row) {
-                        checklist_add(cl, VERDICT_FAIL, "paper macros", "%s:%d: \\%s has no row in %s", tex.p[i], lineno, name, PATHS_CLAIMS);
+                        checklist_add(cl, VERDICT_FAIL, "paper macros", "%s:%d: \\%s has no row in %s", path, lineno, name, PATHS_CLAIMS);
                         bad++;
-                    } else used++;
+                    } else (*used)++;
                 }
                 /* remember the command just before a possible macro name */
                 snprintf(cmdbuf, sizeof cmdbuf, "%s", name);
@@ -258,7 +243,7 @@ void audit_paper_text(const claims *c, const claim_result *res, checklist *cl)
                     for (size_t q = 0; q < nv; q++)
                         if (rounds_to(x, dec, sig, neg, vals[q])) {
                             checklist_add(cl, VERDICT_FAIL, "hand-typed numbers", "%s:%d: '%.*s' typed by hand rounds the measured value %.6g; use \\%s; claim: %s",
-                                          tex.p[i], lineno, (int)len, s, vals[q], who[q], who[q]);
+                                          path, lineno, (int)len, s, vals[q], who[q], who[q]);
                             bad++;
                             break;
                         }
@@ -267,6 +252,30 @@ void audit_paper_text(const claims *c, const claim_result *res, checklist *cl)
             }
         }
         fclose(f);
+    }
+    return bad;
+}
+
+void audit_paper_text(const claims *c, const claim_result *res, checklist *cl)
+{
+    paths_list tex;
+    paths_list_files(PATHS_PAPER_DIR, ".tex", 1, &tex);
+    size_t bad = 0, used = 0, files = 0;
+    /* the measured values a number in the text must not round */
+    double *vals = calloc(2 * (c->n ? c->n : 1), sizeof *vals);
+    const char **who = calloc(2 * (c->n ? c->n : 1), sizeof *who);
+    size_t nv = 0;
+    for (size_t r = 0; vals && who && r < c->n; r++) {
+        if (strcmp(c->rows[r].kind, "measured") && strcmp(c->rows[r].kind, "needs-data")) continue;
+        char *end;
+        double ref = strtod(c->rows[r].reference, &end);
+        if (res[r].status == VERDICT_PASS && isfinite(res[r].value)) { vals[nv] = res[r].value; who[nv++] = c->rows[r].macro; }
+        if (end != c->rows[r].reference && !*end && isfinite(ref)) { vals[nv] = ref; who[nv++] = c->rows[r].macro; }
+    }
+    for (size_t i = 0; i < tex.n; i++) {
+        if (paper_is_generated(tex.p[i])) continue; /* compared with a fresh generation instead */
+        files++;
+        bad += paper_scan_file(tex.p[i], c, vals, (const char *const *)who, nv, cl, &used);
     }
     free(vals);
     free(who);

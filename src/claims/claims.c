@@ -240,6 +240,12 @@ void claims_eval(const claim_row *row, claim_result *res)
         snprintf(res->why, sizeof res->why, "%s", cs_errmsg());
         return;
     }
+    if (res->status == VERDICT_PASS && strcmp(row->format, "text") && !isfinite(res->value)) {
+        /* never print inf or nan into numbers.tex: an input out of range */
+        res->status = VERDICT_FAIL;
+        snprintf(res->why, sizeof res->why, "%.400s: the computed value is not finite (%g): an input out of range", res->where, res->value);
+        return;
+    }
     if (res->status == VERDICT_PASS && !res->text[0])
         claim_set_value(row, res, res->value);
 }

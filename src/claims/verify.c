@@ -118,9 +118,9 @@ void verify_figures(checklist *cl, int install, const claims *c)
     }
     for (size_t i = 0; i < gps.n; i++) {
         const char *script = gps.p[i], *base = script + strlen(PATHS_FIGURES_DIR) + 1;
-        char item[96], stem[96], png[256], feeds[1200] = "";
+        char item[128], stem[96], png[256], feeds[1200] = "";
         snprintf(stem, sizeof stem, "%.*s", (int)(strlen(base) - 3), base);
-        snprintf(item, sizeof item, "figure %s", stem);
+        snprintf(item, sizeof item, "figure %.90s", stem);
         /* "# data: path" lines declare the inputs (registered: a missing one is a failure) */
         FILE *f = fopen(script, "r");
         char line[1024], missing[1100] = "";
