@@ -68,6 +68,7 @@ cs_status train_alloc(train **out, const model_cfg *cfg, const patch_set *data, 
                       o->warmup, o->lr_final);
     train *t = calloc(1, sizeof *t);
     if (!t) return cs_err(CS_ENOMEM, "train: out of memory");
+    t->loss = NAN; /* no step taken yet (a run resumed at its last step): never a loss of 0 */
     t->o = *o;
     t->data = data;
     t->data_hash = data_fingerprint(data);
