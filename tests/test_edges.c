@@ -80,6 +80,9 @@ static void test_directory_as_input_is_input_error(void **s)
     assert_non_null(strstr(out, "is a directory"));
     assert_int_equal(tu_run_cli("", "gates frozen", out, sizeof out), 3);
     assert_non_null(strstr(out, "is a directory"));
+    assert_int_equal(tu_run_cli("", "sample --ckpt frozen", out, sizeof out), 3);
+    assert_non_null(strstr(out, "frozen: is a directory"));
+    assert_null(strstr(out, "out of memory"));
 }
 
 static void test_utf8_bom_is_handled(void **s)
