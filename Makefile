@@ -209,20 +209,21 @@ paper: $(CLI)
 	@cd paper && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && echo "paper: wrote paper/main.pdf"
 
 # ---- fuzzing (issues 7, 15): libFuzzer on the parsers, FUZZ_SECONDS each ---------
-# Needs clang with libFuzzer (Debian: clang, libclang-rt-14-dev). Seeds: the
+# Needs clang with libFuzzer (Debian: clang, libclang-rt-14-dev); built with -DNN_NO_CLONES
+# (clang refuses nn.c's AVX-512 clones; the parsers do not need them). Seeds: the
 # committed frozen tables, gates, numbers.tex and a fresh smoke checkpoint.
 # A crash leaves its input in build/fuzz/<target>/crash-*; copy it into
 # tests/data/fuzz/ and add a regression case to tests/test_fuzz_regress.c.
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := tsv gate ckpt numbers gatemap aggr paper
 FUZZ_CC := clang
-FUZZ_FLAGS := -g -O1 -fsanitize=fuzzer,address,undefined $(addprefix -Isrc/,$(STAGES)) -Itests/fuzz -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
+FUZZ_FLAGS := -g -O1 -fsanitize=fuzzer,address,undefined -DNN_NO_CLONES $(addprefix -Isrc/,$(STAGES)) -Itests/fuzz -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
 $(B)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(LIB_SRC) $(LIB_HDR) tests/fuzz/fuzz_common.h
 	@mkdir -p $(dir $@)
 	$(FUZZ_CC) $(FUZZ_FLAGS) $< $(LIB_SRC) $(LDLIBS) -o $@
 fuzz: $(addprefix $(B)/fuzz/fuzz_,$(FUZZ_TARGETS))
 	@command -v $(FUZZ_CC) >/dev/null || { echo "fuzz: clang not installed (apt-get install clang libclang-rt-14-dev)" >&2; exit 1; }
-	@for t in $(FUZZ_TARGETS); do mkdir -p $(B)/fuzz/$$t/corpus; done
+	@for t in tsv gate ckpt numbers gatemap aggr paper; do mkdir -p $(B)/fuzz/$$t/corpus; done
 	@cp frozen/*/*.tsv audit/claims.tsv $(B)/fuzz/tsv/corpus/ 2>/dev/null; cp gates/*.gate $(B)/fuzz/gate/corpus/
 	@cp paper/numbers.tex $(B)/fuzz/numbers/corpus/
 	@cp audit/gate_map.tsv $(B)/fuzz/gatemap/corpus/; cp audit/aggregates.tsv $(B)/fuzz/aggr/corpus/; cp paper/*.tex $(B)/fuzz/paper/corpus/
