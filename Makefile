@@ -34,7 +34,7 @@ TESTS := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_SRC))
 ASAN_TESTS := $(patsubst tests/%.c,$(B)/asan/tests/%,$(TEST_SRC))
 CLI := $(B)/crownshy
 
-.PHONY: all deps check check-fast verify bench reproduce freeze figures paper deps-paper audit numbers trace fuzz clean
+.PHONY: all deps check check-fast verify verify-deep bench reproduce freeze figures paper deps-paper audit numbers trace fuzz clean
 .DELETE_ON_ERROR:
 
 all: $(CLI) $(TESTS)
@@ -97,9 +97,26 @@ check-fast: deps
 	@bash tests/run.sh $(TESTS) tests/layout.sh
 
 # ---- verification (the reviewer's job) --------------------------------------
+# Tier 1 (SPEC §9 rev. 2): exit 0 when the package is consistent (a failing
+# preregistered gate is a finding, reported "not reproduced"); STRICT=1 also
+# fails on a failing gate.
 verify: deps
 	@$(MAKE) --no-print-directory $(CLI)
-	@$(CLI) verify
+	@$(CLI) verify $(if $(STRICT),--strict)
+
+# Tier 2 (SPEC §9 rev. 2): rerun every teacher experiment unit into build/deep/
+# and compare with frozen/ bit for bit (data rows), with progress; the model
+# part (redraw samples from the frozen weights) runs when `crownshy main-redraw`
+# exists (issue 14). Every teacher unit of src/exp/experiments.mk: E1, E2 at
+# beta_train and beta_field, the teacher figure data, E5, E6 and the E0 readings.
+DEEP := $(B)/deep
+DEEP_UNITS = $(foreach u,$(MECH_UNITS) $(RESULTS)/mechanism/figure_stats.tsv $(IRRED_UNITS) $(TEACHER_FIG_UNITS) \
+  $(FIELD_CAL) $(RESULTS)/field/heldout.tsv $(addprefix $(RESULTS)/anisotropy/,lattice.tsv hardcore.tsv jitter.tsv jitter_calibration.tsv heldout.tsv) \
+  $(IRRED_FIELD_UNITS) $(READINGS_DIR)/summary.tsv,$(patsubst $(RESULTS)/%,$(DEEP)/%,$(u)))
+.PHONY: verify-deep
+verify-deep: deps
+	@$(MAKE) --no-print-directory $(CLI)
+	@DEEP='$(DEEP)' JOBS=2 CLI='$(CLI)' MAKE='$(MAKE)' DEEP_UNITS='$(DEEP_UNITS)' bash src/exp/verify_deep.sh
 
 audit: deps
 	@$(MAKE) --no-print-directory $(CLI)
@@ -169,7 +186,7 @@ freeze: deps
 	@if [ "$(SCALE)" = smoke ]; then echo "freeze: smoke results are never frozen" >&2; exit 2; fi
 	@if [ -d $(B)/results ]; then \
 	  for d in $(B)/results/*/; do [ -d "$$d" ] || continue; e=$$(basename $$d); mkdir -p frozen/$$e; \
-	    (cd $$d && find . -name '*.tsv' ! -name '*.tmp' ! -path './*/*/figure_crowns*' ! -path './*/*/figure_poly*' -exec cp --parents {} $(CURDIR)/frozen/$$e/ \;) ; done; fi
+	    (cd $$d && find . -name '*.tsv' ! -name '*.tmp*' ! -name '.*' ! -path './*/*/figure_crowns*' ! -path './*/*/figure_poly*' -exec cp --parents {} $(CURDIR)/frozen/$$e/ \;) ; done; fi
 	@# the readings keep their run folders; their figure tables are not part of the readings table
 	@if [ -f frozen/readings/summary.tsv ]; then $(CLI) readings-summary --dir frozen/readings --out frozen/readings/summary.tsv >/dev/null; fi
 	@$(CLI) hash-frozen
@@ -181,9 +198,9 @@ trace: $(CLI)
 # ---- the write-up -------------------------------------------------------------
 deps-paper:
 	@if command -v pdflatex >/dev/null; then exit 0; fi; \
-	if [ "$$(id -u)" = 0 ]; then DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends \
+	if [ "$$(id -u)" = 0 ]; then export DEBIAN_FRONTEND=noninteractive; apt-get update -q >/dev/null && apt-get install -y -q --no-install-recommends \
 	  texlive-latex-base texlive-latex-recommended texlive-latex-extra texlive-fonts-recommended >/dev/null; \
-	else echo "deps-paper: run: sudo apt-get install -y texlive-latex-base texlive-latex-recommended texlive-latex-extra texlive-fonts-recommended" >&2; exit 1; fi
+	else echo "deps-paper: run: sudo apt-get update && sudo apt-get install -y texlive-latex-base texlive-latex-recommended texlive-latex-extra texlive-fonts-recommended" >&2; exit 1; fi
 
 paper: $(CLI)
 	@$(CLI) figures >/dev/null || { echo "paper: a figure failed to draw (make figures)" >&2; exit 1; }
@@ -191,23 +208,25 @@ paper: $(CLI)
 	@if ! command -v pdflatex >/dev/null; then echo "paper: pdflatex not installed; run make deps-paper (Debian texlive packages)" >&2; exit 1; fi
 	@cd paper && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && echo "paper: wrote paper/main.pdf"
 
-# ---- fuzzing (issue 7): libFuzzer on the four parsers, FUZZ_SECONDS each ------
-# Needs clang with libFuzzer (Debian: clang, libclang-rt-14-dev). Seeds: the
+# ---- fuzzing (issues 7, 15): libFuzzer on the parsers, FUZZ_SECONDS each ---------
+# Needs clang with libFuzzer (Debian: clang, libclang-rt-14-dev); built with -DNN_NO_CLONES
+# (clang refuses nn.c's AVX-512 clones; the parsers do not need them). Seeds: the
 # committed frozen tables, gates, numbers.tex and a fresh smoke checkpoint.
 # A crash leaves its input in build/fuzz/<target>/crash-*; copy it into
 # tests/data/fuzz/ and add a regression case to tests/test_fuzz_regress.c.
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS := tsv gate ckpt numbers
+FUZZ_TARGETS := tsv gate ckpt numbers gatemap aggr paper
 FUZZ_CC := clang
-FUZZ_FLAGS := -g -O1 -fsanitize=fuzzer,address,undefined $(addprefix -Isrc/,$(STAGES)) -Itests/fuzz -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
+FUZZ_FLAGS := -g -O1 -fsanitize=fuzzer,address,undefined -DNN_NO_CLONES $(addprefix -Isrc/,$(STAGES)) -Itests/fuzz -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
 $(B)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(LIB_SRC) $(LIB_HDR) tests/fuzz/fuzz_common.h
 	@mkdir -p $(dir $@)
 	$(FUZZ_CC) $(FUZZ_FLAGS) $< $(LIB_SRC) $(LDLIBS) -o $@
 fuzz: $(addprefix $(B)/fuzz/fuzz_,$(FUZZ_TARGETS))
 	@command -v $(FUZZ_CC) >/dev/null || { echo "fuzz: clang not installed (apt-get install clang libclang-rt-14-dev)" >&2; exit 1; }
-	@for t in $(FUZZ_TARGETS); do mkdir -p $(B)/fuzz/$$t/corpus; done
+	@for t in tsv gate ckpt numbers gatemap aggr paper; do mkdir -p $(B)/fuzz/$$t/corpus; done
 	@cp frozen/*/*.tsv audit/claims.tsv $(B)/fuzz/tsv/corpus/ 2>/dev/null; cp gates/*.gate $(B)/fuzz/gate/corpus/
 	@cp paper/numbers.tex $(B)/fuzz/numbers/corpus/
+	@cp audit/gate_map.tsv $(B)/fuzz/gatemap/corpus/; cp audit/aggregates.tsv $(B)/fuzz/aggr/corpus/; cp paper/*.tex $(B)/fuzz/paper/corpus/
 	@ls $(B)/ckpt/smoke/*.ckpt >/dev/null 2>&1 && cp $(B)/ckpt/smoke/*.ckpt $(B)/fuzz/ckpt/corpus/ || true
 	@for t in $(FUZZ_TARGETS); do \
 	  echo "fuzz: $$t for $(FUZZ_SECONDS) s"; \

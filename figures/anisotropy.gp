@@ -20,9 +20,10 @@ ho_v = col("frozen/anisotropy/heldout.tsv", "coupled", 9)
 # lowest sweep median: when it is above the field median, a* cannot be bracketed
 swmin = real(system("awk -F'\t' '$1==\"coupled\" && (m==\"\" || $9<m){m=$9} END{print m}' frozen/anisotropy/jitter.tsv"))
 
+if (!exists("outdir")) outdir = 'figures'
 do for [fmt in "png pdf"] {
-  if (fmt eq "png") { set terminal pngcairo size 1200,500 font "Sans,11"; set output "figures/anisotropy.png" } \
-  else { set terminal pdfcairo size 12in,5in font "Sans,11"; set output "figures/anisotropy.pdf" }
+  if (fmt eq "png") { set terminal pngcairo size 1200,500 font "Sans,11"; set output outdir.'/anisotropy.png' } \
+  else { set terminal pdfcairo size 12in,5in font "Sans,11"; set output outdir.'/anisotropy.pdf' }
   set datafile separator "\t"
   set multiplot layout 1,2
   set yrange [1.0:*]

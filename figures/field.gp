@@ -22,9 +22,10 @@ el_u = col("frozen/field/heldout.tsv", "uncoupled", 12)
 ntrees = col("frozen/field/heldout.tsv", "coupled", 6)
 nst = col("frozen/field/heldout.tsv", "coupled", 4)
 
+if (!exists("outdir")) outdir = 'figures'
 do for [fmt in "png pdf"] {
-  if (fmt eq "png") { set terminal pngcairo size 1500,480 font "Sans,11"; set output "figures/field.png" } \
-  else { set terminal pdfcairo size 15in,4.8in font "Sans,11"; set output "figures/field.pdf" }
+  if (fmt eq "png") { set terminal pngcairo size 1500,480 font "Sans,11"; set output outdir.'/field.png' } \
+  else { set terminal pdfcairo size 15in,4.8in font "Sans,11"; set output outdir.'/field.pdf' }
   set datafile separator "\t"
   set multiplot layout 1,3
   # ---- left: calibration

@@ -9,9 +9,10 @@
 # Reads only frozen files. Run from the repository root: gnuplot figures/readings.gp
 nr = 5
 nq = real(system("awk -F'\t' '!/^#/ && $1!=\"quantity\"{n++} END{print n/5}' frozen/readings/summary.tsv"))
+if (!exists("outdir")) outdir = 'figures'
 do for [fmt in "png pdf"] {
-  if (fmt eq "png") { set terminal pngcairo size 1000,760 font "Sans,12"; set output "figures/readings.png" } \
-  else { set terminal pdfcairo size 8in,6.1in font "Sans,11"; set output "figures/readings.pdf" }
+  if (fmt eq "png") { set terminal pngcairo size 1000,760 font "Sans,12"; set output outdir.'/readings.png' } \
+  else { set terminal pdfcairo size 8in,6.1in font "Sans,11"; set output outdir.'/readings.pdf' }
   set datafile separator "\t"
   set key autotitle columnhead
   set key inside right bottom vertical box opaque font "Sans,11" width -2

@@ -99,7 +99,9 @@ static void test_tampered_numbers_value_is_named(void **s)
     numbers_free(&nt);
 }
 
-static void test_pending_claim_shown_as_value_is_inconsistent(void **s)
+/* A registered frozen file that is missing is a failure, never PENDING
+ * (issue 15: deleting a failing experiment's files must not hide it). */
+static void test_missing_registered_source_fails(void **s)
 {
     (void)s;
     const char *dir = tu_tmpdir("nt_pending");
@@ -111,7 +113,9 @@ static void test_pending_claim_shown_as_value_is_inconsistent(void **s)
     claim_row row = {.macro = "MainRel", .kind = "measured", .source = "frozen/main/none.tsv", .function = "claim_design_main_seeds", .gate = "-", .format = "%.1f"};
     claim_result r;
     claims_eval(&row, &r);
-    assert_int_equal(r.status, VERDICT_PENDING);
+    assert_int_equal(r.status, VERDICT_FAIL);
+    assert_non_null(strstr(r.why, "registered frozen file missing"));
+    assert_non_null(strstr(r.why, "frozen/main/none.tsv"));
     char msg[1200];
     assert_int_equal(verify_consistent(&row, &r, &nt, msg, sizeof msg), VERDICT_FAIL);
     numbers_free(&nt);
@@ -179,7 +183,7 @@ int main(void)
         cmocka_unit_test(test_design_claim_reads_gate_value),
         cmocka_unit_test(test_unimplemented_function_is_pending_with_reason),
         cmocka_unit_test(test_tampered_numbers_value_is_named),
-        cmocka_unit_test(test_pending_claim_shown_as_value_is_inconsistent),
+        cmocka_unit_test(test_missing_registered_source_fails),
         cmocka_unit_test(test_truncated_numbers_tex_is_input_error),
         cmocka_unit_test(test_gate_failure_is_consistent_but_fails_verify),
         cmocka_unit_test(test_negative_zero_prints_unsigned),

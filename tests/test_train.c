@@ -294,6 +294,29 @@ static void write_ckpt(const char *name, char *path, size_t n, train **t, patch_
     assert_int_equal(train_run(*t, 2, path, 0, NULL), CS_OK);
 }
 
+/* Issue 15: a unit killed between its last checkpoint and its table resumes
+ * at the last step and takes none; it must not report a final loss of 0. */
+static void test_resumed_at_last_step_reports_no_loss(void **s)
+{
+    (void)s;
+    char path[600];
+    train *t, *r;
+    patch_set *d;
+    write_ckpt("resume_end", path, sizeof path, &t, &d); /* 2 steps, checkpoint at step 2 */
+    assert_false(isnan(t->loss));
+    model_cfg c = small_cfg(1);
+    train_opts o = small_opts(4);
+    assert_int_equal(train_alloc(&r, &c, d, &o), CS_OK);
+    assert_true(isnan(r->loss));
+    assert_int_equal(train_load(r, path), CS_OK);
+    assert_int_equal(r->step, 2);
+    assert_int_equal(train_run(r, 2, path, 1, NULL), CS_OK); /* nothing left to do */
+    if (!isnan(r->loss)) fail_msg("a run resumed at its last step reports loss %.17g, not 'none' (NaN)", r->loss);
+    train_free(r);
+    train_free(t);
+    patch_set_free(d);
+}
+
 static long file_size(const char *p) { struct stat st; return stat(p, &st) == 0 ? (long)st.st_size : -1; }
 
 static void test_truncated_checkpoint_is_rejected(void **s)
@@ -437,6 +460,7 @@ int main(void)
         cmocka_unit_test(test_kill_and_resume_is_bit_identical_joint),
         cmocka_unit_test(test_kill_and_resume_is_bit_identical_independent),
         cmocka_unit_test(test_truncated_checkpoint_is_rejected),
+        cmocka_unit_test(test_resumed_at_last_step_reports_no_loss),
         cmocka_unit_test(test_tampered_checkpoint_is_rejected),
         cmocka_unit_test(test_foreign_missing_and_mismatched_checkpoints_are_rejected),
         cmocka_unit_test(test_model_loads_from_checkpoint),

@@ -1,6 +1,7 @@
 /* afile: atomic file writes (see afile.h). */
 #include "afile.h"
 #include <errno.h>
+#include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -34,10 +35,15 @@ cs_status afile_open(afile *a, const char *path)
     cs_status st = afile_mkdir_parents(path);
     if (st) return st;
     a->path = strdup(path);
-    a->tmp = malloc(strlen(path) + 5);
+    a->tmp = malloc(strlen(path) + 48);
     if (!a->path || !a->tmp) { release(a); return cs_err(CS_ENOMEM, "%s: out of memory", path); }
-    sprintf(a->tmp, "%s.tmp", path);
-    a->f = fopen(a->tmp, "w");
+    /* unique per process and call: two concurrent writers of one path (two
+     * audits, two verifies) never share a temp file; "x" refuses a leftover */
+    static unsigned long serial;
+    sprintf(a->tmp, "%s.tmp.%ld.%lu", path, (long)getpid(), ++serial);
+    int fd = open(a->tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
+    a->f = fd >= 0 ? fdopen(fd, "w") : NULL;
+    if (fd >= 0 && !a->f) { close(fd); unlink(a->tmp); }
     if (!a->f) {
         st = cs_err(CS_EIO, "%s: cannot write: %s", a->tmp, strerror(errno));
         release(a);

@@ -1,5 +1,5 @@
-/* afile: atomic file writes (SPEC §11). A file is written as "<path>.tmp"
- * and renamed over <path> only on commit, after flush and fsync, so a killed
+/* afile: atomic file writes (SPEC §11). A file is written as
+ * "<path>.tmp.<pid>.<n>" (unique, so concurrent writers never collide) and renamed over <path> only on commit, after flush and fsync, so a killed
  * run never leaves a half-written result that later counts as done. Used by
  * the TSV writer, numbers.tex / comparison.tex and audit/frozen.sha256. */
 #ifndef AFILE_H
@@ -15,7 +15,7 @@ typedef struct {
 
 /* Create the parent directories of `path` (mkdir -p of its directory part). */
 cs_status afile_mkdir_parents(const char *path);
-/* Parent directories, then "<path>.tmp" opened for writing. */
+/* Parent directories, then a unique "<path>.tmp.<pid>.<n>" opened for writing. */
 cs_status afile_open(afile *a, const char *path);
 /* Flush, fsync, close and rename into place; on any failure (a->err, a write
  * error on a->f, flush, sync, close or rename) the temp file is removed and

@@ -2,6 +2,7 @@
  * Strict on purpose: a gate file that does not parse completely is an input
  * error, never a silently partial threshold set. */
 #include "gate.h"
+#include "paths.h"
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -27,6 +28,8 @@ static const gate_entry *find(const gate *g, const char *key)
 cs_status gate_load(const char *path, gate **out)
 {
     *out = NULL;
+    cs_status ist = paths_input_file(path);
+    if (ist) return ist;
     FILE *f = fopen(path, "r");
     if (!f) return cs_err(CS_EINPUT, "%s: cannot open gate file: %s", path, strerror(errno));
     gate *g = calloc(1, sizeof *g);

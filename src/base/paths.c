@@ -1,6 +1,7 @@
 /* paths: see paths.h. */
 #include "paths.h"
 #include <dirent.h>
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -33,20 +34,21 @@ static int ends_with(const char *s, const char *suffix)
     return a >= b && !strcmp(s + a - b, suffix);
 }
 
-static cs_status walk(const char *dir, const char *suffix, int recursive, paths_list *out)
+static cs_status walk(const char *dir, const char *suffix, int recursive, int all, paths_list *out)
 {
     DIR *d = opendir(dir);
     if (!d) return CS_OK;
     cs_status st = CS_OK;
     struct dirent *e;
     while (!st && (e = readdir(d))) {
-        if (e->d_name[0] == '.' || strstr(e->d_name, ".tmp")) continue;
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
+        if (!all && (e->d_name[0] == '.' || strstr(e->d_name, ".tmp"))) continue;
         char p[1024];
         snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
         struct stat sb;
         if (stat(p, &sb) != 0) continue;
-        if (S_ISDIR(sb.st_mode)) { if (recursive) st = walk(p, suffix, recursive, out); }
-        else if (S_ISREG(sb.st_mode) && ends_with(e->d_name, suffix)) st = paths_list_add(out, p);
+        if (S_ISDIR(sb.st_mode)) { if (recursive) st = walk(p, suffix, recursive, all, out); }
+        else if ((S_ISREG(sb.st_mode) || all) && ends_with(e->d_name, suffix)) st = paths_list_add(out, p);
     }
     closedir(d);
     return st;
@@ -54,11 +56,37 @@ static cs_status walk(const char *dir, const char *suffix, int recursive, paths_
 
 static int cmp(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
-cs_status paths_list_files(const char *dir, const char *suffix, int recursive, paths_list *out)
+static cs_status list(const char *dir, const char *suffix, int recursive, int all, paths_list *out)
 {
     memset(out, 0, sizeof *out);
-    cs_status st = walk(dir, suffix ? suffix : "", recursive, out);
+    cs_status st = walk(dir, suffix ? suffix : "", recursive, all, out);
     if (st) { paths_list_free(out); return st; }
     if (out->n) qsort(out->p, out->n, sizeof *out->p, cmp);
+    return CS_OK;
+}
+
+cs_status paths_list_files(const char *dir, const char *suffix, int recursive, paths_list *out)
+{
+    return list(dir, suffix, recursive, 0, out);
+}
+
+cs_status paths_list_every(const char *dir, int recursive, paths_list *out)
+{
+    return list(dir, "", recursive, 1, out);
+}
+
+int paths_is_hidden_or_tmp(const char *path)
+{
+    const char *b = strrchr(path, '/');
+    b = b ? b + 1 : path;
+    return b[0] == '.' || strstr(b, ".tmp") != NULL;
+}
+
+cs_status paths_input_file(const char *path)
+{
+    struct stat sb;
+    if (stat(path, &sb) != 0) return cs_err(CS_EINPUT, "%s: cannot open: %s", path, strerror(errno));
+    if (S_ISDIR(sb.st_mode)) return cs_err(CS_EINPUT, "%s: is a directory, not an input file", path);
+    if (!S_ISREG(sb.st_mode)) return cs_err(CS_EINPUT, "%s: not a regular file", path);
     return CS_OK;
 }

@@ -18,6 +18,14 @@
 #define PATHS_PINS_SUPERSEDED "audit/pins_superseded.tsv"
 #define PATHS_FROZEN_HASHES "audit/frozen.sha256"
 #define PATHS_CLAIMS "audit/claims.tsv"
+/* Which claim each preregistered gate key judges (macro, gate): pinned with
+ * the gates (audit/pins.tsv), so dropping a verdict changes a pinned file;
+ * the registry's gate column must agree with it. */
+#define PATHS_GATE_MAP "audit/gate_map.tsv"
+/* Aggregate frozen tables and the per-run tables they are computed from. */
+#define PATHS_AGGREGATES "audit/aggregates.tsv"
+/* The claim-computing code, pinned file by file. */
+#define PATHS_CLAIMS_SRC_DIR "src/claims"
 #define PATHS_NUMBERS "paper/numbers.tex"
 #define PATHS_COMPARISON "paper/comparison.tex"
 #define PATHS_READINGS_TEX "paper/readings.tex"
@@ -42,7 +50,16 @@ typedef struct { char **p; size_t n, cap; } paths_list;
  * start with '.' or contain ".tmp" (atomic-write temporaries) are skipped.
  * A missing dir gives an empty list. CS_ENOMEM on allocation failure. */
 cs_status paths_list_files(const char *dir, const char *suffix, int recursive, paths_list *out);
+/* Every entry under dir (also dotfiles, "*.tmp*" names and non-regular
+ * entries): what the frozen-hash audit compares with its list, so nothing in
+ * frozen/ is invisible to it. */
+cs_status paths_list_every(const char *dir, int recursive, paths_list *out);
+/* 1 when the last component starts with '.' or contains ".tmp". */
+int paths_is_hidden_or_tmp(const char *path);
 void paths_list_free(paths_list *l);
+/* An input file must exist and be a regular file: CS_EINPUT naming it
+ * ("is a directory", "cannot open: ...") instead of a later odd error. */
+cs_status paths_input_file(const char *path);
 /* Append a copy of s (unsorted). */
 cs_status paths_list_add(paths_list *l, const char *s);
 

@@ -4,6 +4,7 @@
  * (round-trips exactly) and publishes the file by rename only on commit. */
 #include "tsv.h"
 #include "afile.h"
+#include "paths.h"
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -46,6 +47,8 @@ static size_t split_tabs(char *s, char **out, size_t max)
 cs_status tsv_read(const char *path, tsv **out)
 {
     *out = NULL;
+    cs_status ist = paths_input_file(path);
+    if (ist) return ist;
     FILE *f = fopen(path, "rb");
     if (!f) return cs_err(CS_EINPUT, "%s: cannot open: %s", path, strerror(errno));
     if (fseek(f, 0, SEEK_END) != 0) { fclose(f); return cs_err(CS_EINPUT, "%s: cannot seek", path); }
@@ -74,6 +77,8 @@ cs_status tsv_read(const char *path, tsv **out)
     if (!t->mkey || !t->mval || !t->lines) { tsv_free(t); return cs_err(CS_ENOMEM, "%s: out of memory", path); }
 
     char *p = t->buf;
+    /* a UTF-8 byte-order mark (spreadsheet exports) is not part of the first field */
+    if (sz >= 3 && !memcmp(p, "\xef\xbb\xbf", 3)) p += 3;
     int lineno = 0;
     size_t row = 0;
     while (*p) {

@@ -3,6 +3,7 @@
 #include "audit.h"
 #include "afile.h"
 #include "prov.h"
+#include "sha256.h"
 #include "tsv.h"
 #include <dirent.h>
 #include <errno.h>
@@ -12,38 +13,8 @@
 #include <string.h>
 #include <sys/stat.h>
 #include "paths.h"
-
-void checklist_add(checklist *cl, verdict v, const char *name, const char *fmt, ...)
-{
-    if (cl->n == cl->cap) {
-        size_t nc = cl->cap ? 2 * cl->cap : 64;
-        check_item *ni = realloc(cl->items, nc * sizeof *ni);
-        if (!ni) return;
-        cl->items = ni;
-        cl->cap = nc;
-    }
-    check_item *it = &cl->items[cl->n++];
-    it->v = v;
-    snprintf(it->name, sizeof it->name, "%s", name);
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(it->msg, sizeof it->msg, fmt, ap);
-    va_end(ap);
-}
-
-void checklist_free(checklist *cl)
-{
-    free(cl->items);
-    memset(cl, 0, sizeof *cl);
-}
-
-void checklist_print(const checklist *cl, size_t count[3])
-{
-    for (size_t i = 0; i < cl->n; i++) {
-        printf("  %-7s %-28s %s\n", verdict_name(cl->items[i].v), cl->items[i].name, cl->items[i].msg);
-        count[cl->items[i].v]++;
-    }
-}
+#include "audit_data.h"
+#include "audit_paper.h"
 
 static int file_exists(const char *p) { struct stat sb; return stat(p, &sb) == 0; }
 
@@ -58,39 +29,97 @@ static void claims_of(const claims *c, const char *path, const char *gatefile, c
         if (!hit) continue;
         off += (size_t)snprintf(buf + off, n - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
     }
-    if (!cnt) snprintf(buf, n, "(no claim)");
+    if (!cnt && path) audit_feeds(c, path, buf, n);
+    else if (!cnt) snprintf(buf, n, "(no claim)");
 }
 
 /* ---- pins ---- */
+#define MAXPINS 256
 typedef struct { char key[64], value[80], path[256]; } pin;
 
+static void add_pin(pin *p, size_t *k, const char *key, const char *path, const char *value)
+{
+    if (*k >= MAXPINS) return;
+    snprintf(p[*k].key, sizeof p[*k].key, "%s", key);
+    snprintf(p[*k].path, sizeof p[*k].path, "%s", path);
+    snprintf(p[*k].value, sizeof p[*k].value, "%s", value);
+    (*k)++;
+}
+
+static void add_file_pin(pin *p, size_t *k, const char *key, const char *path)
+{
+    char hex[65];
+    add_pin(p, k, key, path, file_exists(path) && !prov_sha256_file(path, hex) ? hex : "absent");
+}
+
+/* One pin per registry row (path "audit/claims.tsv:Macro"): an edited row names its claim. */
+static void registry_row_pins(pin *p, size_t *k)
+{
+    FILE *f = fopen(PATHS_CLAIMS, "r");
+    char line[4096];
+    int header = 0;
+    while (f && fgets(line, sizeof line, f)) {
+        if (line[0] == '#') continue;
+        if (!header++) continue;
+        char macro[64], path[160], hex[65];
+        if (sscanf(line, "%63[^\t\n]", macro) != 1) continue;
+        snprintf(path, sizeof path, "%s:%s", PATHS_CLAIMS, macro);
+        sha256_hex(line, strlen(line), hex);
+        add_pin(p, k, "claim_row_sha256", path, hex);
+    }
+    if (f) fclose(f);
+}
+
+/* Every pin of the instrument as it is now; *n entries (at most MAXPINS). */
 static void current_pins(pin *p, size_t *n)
 {
     size_t k = 0;
-    snprintf(p[k].key, sizeof p[k].key, "teacher_version");
-    if (prov_teacher_version(p[k].value, sizeof p[k].value)) snprintf(p[k].value, sizeof p[k].value, "absent");
-    snprintf(p[k].path, sizeof p[k].path, "%s", PATHS_TEACHER_HDR);
-    k++;
-    const char *srcs[][2] = {{"teacher_sha256", PATHS_TEACHER_SRC}, {"estimator_sha256", PATHS_ESTIMATOR_SRC}};
-    for (int i = 0; i < 2; i++, k++) {
-        snprintf(p[k].key, sizeof p[k].key, "%s", srcs[i][0]);
-        snprintf(p[k].path, sizeof p[k].path, "%s", srcs[i][1]);
-        if (!file_exists(srcs[i][1]) || prov_sha256_file(srcs[i][1], p[k].value))
-            snprintf(p[k].value, sizeof p[k].value, "absent");
-    }
-    snprintf(p[k].key, sizeof p[k].key, "gates_sha256");
-    snprintf(p[k].path, sizeof p[k].path, PATHS_GATES_DIR);
-    if (prov_gates_sha256(PATHS_GATES_DIR, p[k].value)) snprintf(p[k].value, sizeof p[k].value, "absent");
-    k++;
+    char v[80];
+    if (prov_teacher_version(v, sizeof v)) snprintf(v, sizeof v, "absent");
+    add_pin(p, &k, "teacher_version", PATHS_TEACHER_HDR, v);
+    add_file_pin(p, &k, "teacher_sha256", PATHS_TEACHER_SRC);
+    add_file_pin(p, &k, "estimator_sha256", PATHS_ESTIMATOR_SRC);
+    char hex[65];
+    add_pin(p, &k, "gates_sha256", PATHS_GATES_DIR, prov_gates_sha256(PATHS_GATES_DIR, hex) ? "absent" : hex);
     paths_list g = {0};
-    paths_list_files(PATHS_GATES_DIR, "", 1, &g);
-    for (size_t i = 0; i < g.n && k < 62; i++, k++) {
-        snprintf(p[k].key, sizeof p[k].key, "gate_sha256");
-        snprintf(p[k].path, sizeof p[k].path, "%s", g.p[i]);
-        if (prov_sha256_file(g.p[i], p[k].value)) snprintf(p[k].value, sizeof p[k].value, "absent");
-    }
+    paths_list_every(PATHS_GATES_DIR, 1, &g);
+    for (size_t i = 0; i < g.n; i++) add_file_pin(p, &k, "gate_sha256", g.p[i]);
     paths_list_free(&g);
+    /* pinned with the gates: which claim each gate judges */
+    add_file_pin(p, &k, "gate_map_sha256", PATHS_GATE_MAP);
+    /* the claim-computing code and the registry: an edit changes a verdict's inputs */
+    paths_list cc = {0};
+    paths_list_files(PATHS_CLAIMS_SRC_DIR, ".c", 0, &cc);
+    for (size_t i = 0; i < cc.n; i++) add_file_pin(p, &k, "claim_code_sha256", cc.p[i]);
+    paths_list_free(&cc);
+    add_file_pin(p, &k, "registry_sha256", PATHS_CLAIMS);
+    registry_row_pins(p, &k);
+    add_file_pin(p, &k, "aggregates_sha256", PATHS_AGGREGATES);
     *n = k;
+}
+
+/* Claims computed by a function defined in the claim-code file `path`. */
+static void claims_of_code(const claims *c, const char *path, char *buf, size_t n)
+{
+    FILE *f = fopen(path, "r");
+    char *text = NULL;
+    size_t len = 0;
+    if (f) {
+        fseek(f, 0, SEEK_END);
+        long sz = ftell(f);
+        rewind(f);
+        if (sz > 0 && (text = malloc((size_t)sz + 1))) { len = fread(text, 1, (size_t)sz, f); text[len] = '\0'; }
+        fclose(f);
+    }
+    size_t off = 0, cnt = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; text && i < c->n && off < n; i++) {
+        char def[96];
+        snprintf(def, sizeof def, "cs_status %s(", c->rows[i].function);
+        if (strstr(text, def)) off += (size_t)snprintf(buf + off, n - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
+    }
+    free(text);
+    if (!cnt) snprintf(buf, n, "every claim (shared claim code)");
 }
 
 /* The instrument pins that name a reading (not the gates: a gate is never
@@ -118,12 +147,12 @@ static cs_status supersede(const pin *cur, size_t n)
     if (tsv_read(PATHS_PINS, &old)) return CS_OK; /* first pinning: nothing superseded */
     tsv_read(PATHS_PINS_SUPERSEDED, &sup);        /* absent: none yet */
     size_t add = 0;
-    const char *newv[64] = {0};
+    const char *newv[MAXPINS] = {0};
     for (size_t r = 0; r < tsv_nrows(old); r++) {
         const char *key = tsv_str(old, r, "key"), *val = tsv_str(old, r, "value");
         if (!key || !val || !reading_key(key)) continue;
         for (size_t i = 0; i < n; i++)
-            if (!strcmp(cur[i].key, key) && strcmp(cur[i].value, val) && !superseded_line(sup, key, val)) { newv[r < 64 ? r : 63] = val; add++; }
+            if (!strcmp(cur[i].key, key) && strcmp(cur[i].value, val) && !superseded_line(sup, key, val)) { newv[r < MAXPINS ? r : MAXPINS - 1] = val; add++; }
     }
     cs_status st = CS_OK;
     if (add) {
@@ -140,7 +169,7 @@ static cs_status supersede(const pin *cur, size_t n)
                 for (int k = 0; k < 4; k++) tsv_writer_str(w, c[k] ? c[k] : "-");
                 tsv_writer_endrow(w);
             }
-            for (size_t r = 0; r < tsv_nrows(old) && r < 64; r++) {
+            for (size_t r = 0; r < tsv_nrows(old) && r < MAXPINS; r++) {
                 if (!newv[r]) continue;
                 tsv_writer_str(w, tsv_str(old, r, "key")); tsv_writer_str(w, newv[r]);
                 tsv_writer_str(w, tsv_str(old, r, "path")); tsv_writer_str(w, commit);
@@ -156,7 +185,7 @@ static cs_status supersede(const pin *cur, size_t n)
 
 cs_status audit_pin(void)
 {
-    pin p[64];
+    static pin p[MAXPINS];
     size_t n;
     current_pins(p, &n);
     cs_status st = supersede(p, n);
@@ -164,7 +193,7 @@ cs_status audit_pin(void)
     tsv_writer *w;
     st = tsv_writer_open(&w, PATHS_PINS);
     if (st) return st;
-    tsv_writer_meta(w, "what", "pins of the instrument: teacher version and source hash, estimator source hash, gate hashes");
+    tsv_writer_meta(w, "what", "pins of the instrument: teacher version and source hash, estimator source hash, gate hashes and the claim-to-gate map; the claim code, the registry (whole and per row) and the aggregate map");
     tsv_writer_meta(w, "regenerate", "crownshy pin (deliberate: afterwards frozen/ must be regenerated with make reproduce freeze)");
     tsv_writer_columns(w, "key\tvalue\tpath");
     for (size_t i = 0; i < n; i++) {
@@ -181,7 +210,7 @@ static void check_pins(const claims *c, checklist *cl)
         checklist_add(cl, VERDICT_FAIL, "pins", "%s", cs_errmsg());
         return;
     }
-    pin cur[64];
+    static pin cur[MAXPINS];
     size_t n;
     current_pins(cur, &n);
     for (size_t r = 0; r < tsv_nrows(t); r++) {
@@ -197,6 +226,21 @@ static void check_pins(const claims *c, checklist *cl)
             if (!strcmp(key, "gate_sha256")) {
                 const char *base = strrchr(path, '/');
                 claims_of(c, NULL, base ? base + 1 : path, affected, sizeof affected);
+            } else if (!strcmp(key, "claim_code_sha256")) {
+                claims_of_code(c, path, affected, sizeof affected);
+            } else if (!strcmp(key, "claim_row_sha256")) {
+                snprintf(affected, sizeof affected, "%s", strchr(path, ':') ? strchr(path, ':') + 1 : path);
+            } else if (!strcmp(key, "gate_map_sha256")) {
+                /* the claims whose judging gate moved (map vs registry), else every mapped one */
+                size_t off = 0, cnt = 0;
+                affected[0] = '\0';
+                for (int pass = 0; pass < 2 && !cnt; pass++)
+                    for (size_t i = 0; i < c->n && off < sizeof affected - 40; i++)
+                        if (pass ? c->rows[i].gate_map_line != 0 : strcmp(c->rows[i].gate, c->rows[i].gate_reg) != 0)
+                            off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
+                if (!cnt) snprintf(affected, sizeof affected, "every gated claim");
+            } else if (!strcmp(key, "registry_sha256") || !strcmp(key, "aggregates_sha256")) {
+                snprintf(affected, sizeof affected, "every claim (%s)", path);
             } else if (!strcmp(key, "estimator_sha256") || !strcmp(key, "teacher_sha256") || !strcmp(key, "teacher_version")) {
                 size_t off = 0, cnt = 0;
                 affected[0] = '\0';
@@ -221,8 +265,17 @@ static void check_pins(const claims *c, checklist *cl)
 cs_status audit_hash_frozen(void)
 {
     paths_list l;
-    cs_status st = paths_list_files(PATHS_FROZEN_DIR, "", 1, &l);
+    cs_status st = paths_list_every(PATHS_FROZEN_DIR, 1, &l);
     if (st) return st;
+    /* a temporary or hidden file is never sealed as a result */
+    for (size_t i = 0; i < l.n; i++) {
+        struct stat sb;
+        if (paths_is_hidden_or_tmp(l.p[i]) || stat(l.p[i], &sb) != 0 || !S_ISREG(sb.st_mode)) {
+            st = cs_err(CS_EINPUT, "%s: a hidden, temporary or non-regular file in %s/ is not a frozen result: remove it before sealing", l.p[i], PATHS_FROZEN_DIR);
+            paths_list_free(&l);
+            return st;
+        }
+    }
     afile a;
     st = afile_open(&a, PATHS_FROZEN_HASHES);
     if (st) { paths_list_free(&l); return st; }
@@ -275,13 +328,35 @@ static void check_frozen(const claims *c, checklist *cl, paths_list *frozen_file
         for (size_t j = 0; j < listed.n && !found; j++) found = !strcmp(listed.p[j], frozen_files->p[i]);
         if (!found) { checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s is not listed in %s (frozen by hand? run make freeze)", frozen_files->p[i], PATHS_FROZEN_HASHES); bad++; }
     }
+    /* nothing in frozen/ is invisible: dotfiles, "*.tmp*" names, other entries */
+    paths_list every = {0};
+    paths_list_every(PATHS_FROZEN_DIR, 1, &every);
+    for (size_t i = 0; i < every.n; i++) {
+        struct stat sb;
+        int reg = stat(every.p[i], &sb) == 0 && S_ISREG(sb.st_mode);
+        if (!paths_is_hidden_or_tmp(every.p[i]) && reg) continue;
+        int sealed = 0;
+        for (size_t j = 0; j < listed.n && !sealed; j++) sealed = !strcmp(listed.p[j], every.p[i]);
+        /* the table it shadows: "x.tsv.tmp.1.2" and ".x.tsv" name x.tsv's claims */
+        char shadow[1024], affected[600];
+        const char *b = strrchr(every.p[i], '/');
+        b = b ? b + 1 : every.p[i];
+        snprintf(shadow, sizeof shadow, "%.*s%s", (int)(b - every.p[i]), every.p[i], b + (b[0] == '.'));
+        char *tmp = strstr(shadow + (b - every.p[i]), ".tmp");
+        if (tmp) *tmp = '\0';
+        claims_of(c, shadow, NULL, affected, sizeof affected);
+        checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s: a %s file in %s/%s is not a frozen result (a half-written or hand-placed file): remove it; it shadows %s; claims affected: %s",
+                      every.p[i], reg ? "hidden or temporary" : "non-regular", PATHS_FROZEN_DIR, sealed ? " (sealed in " PATHS_FROZEN_HASHES " by hand)" : "", shadow, affected);
+        bad++;
+    }
+    paths_list_free(&every);
     paths_list_free(&listed);
     if (!bad) checklist_add(cl, VERDICT_PASS, "frozen hashes", "%zu frozen files match %s", ok, PATHS_FROZEN_HASHES);
 }
 
 static void check_provenance(const claims *c, checklist *cl, const paths_list *frozen_files)
 {
-    pin cur[64];
+    static pin cur[MAXPINS];
     size_t n;
     current_pins(cur, &n);
     tsv *sup = NULL;
@@ -296,7 +371,18 @@ static void check_provenance(const claims *c, checklist *cl, const paths_list *f
         tsv *t;
         if (tsv_read(p, &t)) { checklist_add(cl, VERDICT_FAIL, "provenance", "%s", cs_errmsg()); bad++; continue; }
         const char *keys[] = {"teacher_version", "teacher_sha256", "estimator_sha256", "gates_sha256"};
-        if (tsv_meta(t, "experiment") && tsv_meta(t, "teacher_version")) {
+        const char *status = tsv_meta(t, "status");
+        if (!(tsv_meta(t, "experiment") && tsv_meta(t, "teacher_version"))) {
+            /* provenance is required: only a table of published figures (not
+             * measured here, with its citation) may lack the run's provenance */
+            if (!(status && !strncmp(status, "PUBLISHED FIGURES", 17) && tsv_meta(t, "citation"))) {
+                char affected[600];
+                claims_of(c, p, NULL, affected, sizeof affected);
+                checklist_add(cl, VERDICT_FAIL, "provenance", "%s: no provenance ('# experiment:' and '# teacher_version:' lines; or '# status: PUBLISHED FIGURES' with '# citation:'): stripped or made by hand; claims affected: %s",
+                              p, affected);
+                bad++;
+            }
+        } else {
             checked++;
             char old[512] = "";
             size_t off = 0;
@@ -378,107 +464,21 @@ static void check_registry(const claims *c, checklist *cl)
             bad++;
         }
     }
+    /* which claims each gate judges is fixed by the pinned map, not the registry */
+    for (size_t r = 0; r < c->n; r++)
+        if (strcmp(c->rows[r].gate_reg, c->rows[r].gate)) {
+            checklist_add(cl, VERDICT_FAIL, "registry gate column", "%s:%d: the gate column of %s says '%s' but the pinned %s%s%.0d says '%s' (the map decides which claim a gate judges); claim: %s",
+                          PATHS_CLAIMS, c->rows[r].line, c->rows[r].macro, c->rows[r].gate_reg, PATHS_GATE_MAP,
+                          c->rows[r].gate_map_line ? ":" : "", c->rows[r].gate_map_line, c->rows[r].gate, c->rows[r].macro);
+            bad++;
+        }
     if (!file_exists("tests/test_claims.c")) { checklist_add(cl, VERDICT_FAIL, "registry", "tests/test_claims.c missing: claims have no tests"); bad++; }
     if (!bad) checklist_add(cl, VERDICT_PASS, "registry", "%zu claims, each with a computing function name and a test; no orphan function", c->n);
 }
 
-/* Macros used in the paper text must be claims (or their Gate verdicts). */
-static const char *latex_upper[] = {"LaTeX", "TeX", "Large", "LARGE", "Huge", "HUGE", "Roman", "Alph", "Ref", "S", "P", "L", "O", "AA", "AE", "OE", "Delta", "Gamma", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Upsilon", "Phi", "Psi", "Omega", "Bigl", "Bigr", "Big", "Biggl", "Biggr", "bibliographystyle", "IfFileExists", NULL};
-
-static int is_latex_upper(const char *name)
-{
-    for (int i = 0; latex_upper[i]; i++) if (!strcmp(latex_upper[i], name)) return 1;
-    return 0;
-}
-
-static void check_paper(const claims *c, const claim_result *res, checklist *cl)
-{
-    paths_list tex, all;
-    paths_list_files(PATHS_PAPER_DIR, ".tex", 0, &all);
-    memset(&tex, 0, sizeof tex);
-    for (size_t i = 0; i < all.n; i++)
-        if (strcmp(all.p[i], PATHS_NUMBERS)) paths_list_add(&tex, all.p[i]);
-    paths_list_free(&all);
-    size_t bad = 0, used = 0;
-    for (size_t i = 0; i < tex.n; i++) {
-        FILE *f = fopen(tex.p[i], "r");
-        if (!f) continue;
-        char line[4096];
-        int lineno = 0, in_generated = 0;
-        /* generated files (first line says GENERATED) are checked against a fresh generation instead */
-        if (fgets(line, sizeof line, f) && strstr(line, "GENERATED")) { fclose(f); continue; }
-        rewind(f);
-        while (fgets(line, sizeof line, f)) {
-            lineno++;
-            if (strstr(line, "%%BEGIN-GENERATED")) in_generated = 1;
-            if (strstr(line, "%%END-GENERATED")) { in_generated = 0; continue; }
-            if (in_generated) continue;
-            char *pct = line;
-            while ((pct = strchr(pct, '%'))) {
-                if (pct == line || pct[-1] != '\\') { *pct = '\0'; break; }
-                pct++;
-            }
-            for (char *s = line; (s = strchr(s, '\\')); s++) {
-                char name[80];
-                int k = 0;
-                while (k < 79 && ((s[1 + k] >= 'A' && s[1 + k] <= 'Z') || (s[1 + k] >= 'a' && s[1 + k] <= 'z'))) { name[k] = s[1 + k]; k++; }
-                name[k] = '\0';
-                if (!k || !(name[0] >= 'A' && name[0] <= 'Z') || is_latex_upper(name)) continue;
-                char base[80];
-                snprintf(base, sizeof base, "%s", name);
-                size_t bl = strlen(base);
-                if (bl > 4 && !strcmp(base + bl - 4, "Gate")) base[bl - 4] = '\0';
-                if (!claims_find(c, base)) {
-                    checklist_add(cl, VERDICT_FAIL, "paper macros", "%s:%d: \\%s has no row in %s", tex.p[i], lineno, name, PATHS_CLAIMS);
-                    bad++;
-                } else used++;
-            }
-            /* A measured value typed by hand: the literal text of a measured
-             * claim (ours or the reference paper's) appearing in the prose. */
-            for (size_t r = 0; r < c->n; r++) {
-                if (strcmp(c->rows[r].kind, "measured") && strcmp(c->rows[r].kind, "needs-data")) continue;
-                const char *cands[2] = {res[r].status == VERDICT_PASS ? res[r].text : NULL, c->rows[r].reference};
-                for (int q = 0; q < 2; q++) {
-                    const char *v = cands[q];
-                    if (!v || strlen(v) < 4 || !strchr(v, '.')) continue; /* short integers are too common to police */
-                    const char *hit = strstr(line, v[0] == '+' ? v + 1 : v);
-                    if (hit) {
-                        checklist_add(cl, VERDICT_FAIL, "hand-typed numbers", "%s:%d: '%s' typed by hand; use \\%s", tex.p[i], lineno, v, c->rows[r].macro);
-                        bad++;
-                    }
-                }
-            }
-        }
-        fclose(f);
-    }
-    if (!bad) checklist_add(cl, VERDICT_PASS, "paper macros", "%zu paper files: %zu claim-macro uses, all registered; no measured number typed by hand", tex.n, used);
-    paths_list_free(&tex);
-}
-
 void audit_numbers(const claims *c, const claim_result *res, checklist *cl)
 {
-    const char *fresh = "build/numbers.fresh.tex";
-    if (claims_write_numbers(fresh, c, res)) { checklist_add(cl, VERDICT_FAIL, "numbers.tex", "%s", cs_errmsg()); return; }
-    FILE *a = fopen(fresh, "r"), *b = fopen(PATHS_NUMBERS, "r");
-    if (!b) {
-        checklist_add(cl, VERDICT_FAIL, "numbers.tex", "%s missing (generate it with crownshy numbers)", PATHS_NUMBERS);
-        if (a) fclose(a);
-        return;
-    }
-    char la[1024], lb[1024];
-    int lineno = 0, diff = 0;
-    for (;;) {
-        char *ra = a ? fgets(la, sizeof la, a) : NULL, *rb = fgets(lb, sizeof lb, b);
-        lineno++;
-        if (!ra && !rb) break;
-        if (!ra || !rb || strcmp(la, lb)) { diff = lineno; break; }
-    }
-    if (a) fclose(a);
-    fclose(b);
-    if (diff) {
-        lb[strcspn(lb, "\n")] = '\0';
-        checklist_add(cl, VERDICT_FAIL, "numbers.tex", "%s:%d differs from a fresh generation ('%s'): edited by hand or stale", PATHS_NUMBERS, diff, lb);
-    } else checklist_add(cl, VERDICT_PASS, "numbers.tex", "%s equals a fresh generation from frozen/", PATHS_NUMBERS);
+    audit_generated(c, res, cl, 1);
 }
 
 cs_status audit_run(const claims *c, const claim_result *res, checklist *out)
@@ -488,8 +488,9 @@ cs_status audit_run(const claims *c, const claim_result *res, checklist *out)
     check_frozen(c, out, &frozen_files);
     check_provenance(c, out, &frozen_files);
     paths_list_free(&frozen_files);
+    audit_aggregates(c, out);
     check_registry(c, out);
-    audit_numbers(c, res, out);
-    check_paper(c, res, out);
+    audit_generated(c, res, out, 0);
+    audit_paper_text(c, res, out);
     return CS_OK;
 }

@@ -11,17 +11,7 @@
 #include "claims.h"
 #include "paths.h"
 
-typedef struct { verdict v; char name[96]; char msg[1024]; } check_item;
-typedef struct { check_item *items; size_t n, cap; } checklist;
-
-void checklist_add(checklist *cl, verdict v, const char *name, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
-void checklist_free(checklist *cl);
-/* Print every item as "  VERDICT  name  message" (the layout of crownshy
- * verify, audit and figures) and add its verdict to count[v] (indexed by
- * verdict: PASS, FAIL, PENDING). */
-void checklist_print(const checklist *cl, size_t count[3]);
-
+#include "checklist.h"
 
 /* Run every audit check; `res` are the evaluated claims (same order as c). */
 cs_status audit_run(const claims *c, const claim_result *res, checklist *out);

@@ -42,6 +42,13 @@ void claims_free(claims *c)
     c->n = 0;
 }
 
+static int gate_ref_ok(const char *g)
+{
+    if (!strcmp(g, "-")) return 1;
+    const char *colon = strchr(g, ':');
+    return colon && colon - g >= 6 && !strncmp(colon - 5, ".gate", 5) && colon[1] && !strchr(colon + 1, ':');
+}
+
 static cs_status copy_field(const tsv *t, size_t r, const char *col, char *dst, size_t n)
 {
     const char *s = tsv_str(t, r, col);
@@ -84,13 +91,11 @@ cs_status claims_load(const char *path, claims *out)
             st = cs_err(CS_EINPUT, "%s:%d: field 'kind': unknown kind '%s' (measured, design, field, needs-data)", path, w->line, w->kind);
             break;
         }
-        if (strcmp(w->gate, "-")) {
-            const char *colon = strchr(w->gate, ':');
-            if (!colon || colon - w->gate < 6 || strncmp(colon - 5, ".gate", 5) || !colon[1]) {
-                st = cs_err(CS_EINPUT, "%s:%d: field 'gate': '%s' is not 'file.gate:key'", path, w->line, w->gate);
-                break;
-            }
+        if (!gate_ref_ok(w->gate)) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'gate': '%s' is not 'file.gate:key'", path, w->line, w->gate);
+            break;
         }
+        strcpy(w->gate_reg, w->gate);
         if (strcmp(w->format, "text") && (w->format[0] != '%' || strchr(w->format + 1, '%'))) {
             st = cs_err(CS_EINPUT, "%s:%d: field 'format': '%s' is not one printf conversion or 'text'", path, w->line, w->format);
             break;
@@ -105,7 +110,34 @@ cs_status claims_load(const char *path, claims *out)
     if (st) { free(rows); return st; }
     out->rows = rows;
     out->n = n;
+    if (!strcmp(path, PATHS_CLAIMS) && (st = claims_apply_gate_map(out, PATHS_GATE_MAP))) { claims_free(out); return st; }
     return CS_OK;
+}
+
+cs_status claims_apply_gate_map(claims *c, const char *map_path)
+{
+    tsv *t;
+    cs_status st = tsv_read(map_path, &t);
+    if (st) return st;
+    if (tsv_col(t, "macro") < 0 || tsv_col(t, "gate") < 0) {
+        st = cs_err(CS_EINPUT, "%s: header must name the columns 'macro' and 'gate'", map_path);
+        tsv_free(t);
+        return st;
+    }
+    for (size_t i = 0; i < c->n; i++) { strcpy(c->rows[i].gate, "-"); c->rows[i].gate_map_line = 0; }
+    for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+        const char *m = tsv_str(t, r, "macro"), *g = tsv_str(t, r, "gate");
+        int line = tsv_line(t, r);
+        claim_row *row = NULL;
+        for (size_t i = 0; i < c->n && !row; i++) if (!strcmp(c->rows[i].macro, m)) row = &c->rows[i];
+        if (!row) st = cs_err(CS_EINPUT, "%s:%d: field 'macro': '%s' is not a claim of the registry", map_path, line, m);
+        else if (row->gate_map_line) st = cs_err(CS_EINPUT, "%s:%d: field 'macro': %s is mapped twice (line %d)", map_path, line, m, row->gate_map_line);
+        else if (!strcmp(g, "-") || !gate_ref_ok(g) || strlen(g) >= sizeof row->gate)
+            st = cs_err(CS_EINPUT, "%s:%d: field 'gate': '%s' is not 'file.gate:key'", map_path, line, g);
+        else { strcpy(row->gate, g); row->gate_map_line = line; }
+    }
+    tsv_free(t);
+    return st;
 }
 
 const claim_row *claims_find(const claims *c, const char *macro)
@@ -189,7 +221,15 @@ void claims_eval(const claim_row *row, claim_result *res)
     if (!strncmp(row->source, "frozen/", 7)) {
         struct stat sb;
         if (stat(row->source, &sb) != 0) {
-            claim_pending(res, "%s absent: experiment not yet run and frozen", row->source);
+            /* a registered file is never optional: deleting it (and
+             * re-sealing) must not turn a verdict into PENDING */
+            res->status = VERDICT_FAIL;
+            snprintf(res->why, sizeof res->why, "%s: registered frozen file missing (the registry names it; run the experiment and make freeze)", row->source);
+            return;
+        }
+        if (!S_ISREG(sb.st_mode)) {
+            res->status = VERDICT_FAIL;
+            snprintf(res->why, sizeof res->why, "%s: not a regular file", row->source);
             return;
         }
     }
@@ -198,6 +238,12 @@ void claims_eval(const claim_row *row, claim_result *res)
     if (st) {
         res->status = VERDICT_FAIL;
         snprintf(res->why, sizeof res->why, "%s", cs_errmsg());
+        return;
+    }
+    if (res->status == VERDICT_PASS && strcmp(row->format, "text") && !isfinite(res->value)) {
+        /* never print inf or nan into numbers.tex: an input out of range */
+        res->status = VERDICT_FAIL;
+        snprintf(res->why, sizeof res->why, "%.400s: the computed value is not finite (%g): an input out of range", res->where, res->value);
         return;
     }
     if (res->status == VERDICT_PASS && !res->text[0])

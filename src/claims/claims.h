@@ -13,6 +13,11 @@
 typedef struct {
     char macro[64], kind[16], source[256], function[64], gate[128], test[160], section[16], format[16], reference[64];
     int line; /* line in audit/claims.tsv */
+    /* The registry's own gate column. `gate` is what audit/gate_map.tsv (pinned
+     * with the gates) says when the registry is PATHS_CLAIMS; the audit fails
+     * when the two differ. gate_map_line: line of the map row, 0 if none. */
+    char gate_reg[128];
+    int gate_map_line;
 } claim_row;
 
 typedef struct {
@@ -29,8 +34,13 @@ typedef cs_status (*claim_fn)(const claim_row *row, claim_result *res);
 
 typedef struct { claim_row *rows; size_t n; } claims;
 
-/* Load and validate the registry (unique macros, known kinds, gate refs "file.gate:key"). */
+/* Load and validate the registry (unique macros, known kinds, gate refs "file.gate:key").
+ * For PATHS_CLAIMS the gate of every row comes from PATHS_GATE_MAP (see claims_apply_gate_map). */
 cs_status claims_load(const char *path, claims *out);
+/* Set every row's gate from a claim-to-gate map (TSV: macro, gate): a row the
+ * map does not name has no gate. CS_EINPUT naming file, line and field for a
+ * malformed map, an unknown or duplicate macro, or a gate not "file.gate:key". */
+cs_status claims_apply_gate_map(claims *c, const char *map_path);
 void claims_free(claims *c);
 const claim_row *claims_find(const claims *c, const char *macro);
 /* The computing function named in a row, or NULL. */

@@ -5,6 +5,10 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <errno.h>
+#include <unistd.h>
+#include "afile.h"
+#include "audit_data.h"
 
 cs_status verify_eval_all(const claims *c, claim_result **out)
 {
@@ -66,35 +70,109 @@ static int has_gnuplot(void)
     return system("command -v gnuplot >/dev/null 2>&1") == 0;
 }
 
-void verify_figures(checklist *cl)
+/* Byte-compare two files: 0 equal, 1 differ, -1 a is unreadable, -2 b is. */
+static int same_bytes(const char *a, const char *b)
+{
+    FILE *fa = fopen(a, "rb"), *fb = fopen(b, "rb");
+    int r = !fa ? -1 : !fb ? -2 : 0;
+    char ba[65536], bb[65536];
+    while (!r) {
+        size_t na = fread(ba, 1, sizeof ba, fa), nb = fread(bb, 1, sizeof bb, fb);
+        if (na != nb || memcmp(ba, bb, na)) r = 1;
+        else if (na == 0) break;
+    }
+    if (fa) fclose(fa);
+    if (fb) fclose(fb);
+    return r;
+}
+
+/* Copy src over dst atomically (temp beside dst, then rename). */
+static cs_status install_file(const char *src, const char *dst)
+{
+    afile a;
+    cs_status st = afile_open(&a, dst);
+    if (st) return st;
+    FILE *f = fopen(src, "rb");
+    if (!f) { afile_abort(&a); return cs_err(CS_EIO, "%s: cannot read", src); }
+    char buf[65536];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, f)) > 0) if (fwrite(buf, 1, n, a.f) != n) a.err = 1;
+    fclose(f);
+    return afile_commit(&a);
+}
+
+void verify_figures(checklist *cl, int install, const claims *c)
 {
     paths_list gps;
     if (paths_list_files(PATHS_FIGURES_DIR, ".gp", 0, &gps)) { checklist_add(cl, VERDICT_FAIL, "figures", "%s", cs_errmsg()); return; }
-    size_t n = gps.n;
     int gp = has_gnuplot();
-    for (size_t i = 0; i < n; i++) {
+    /* every figure is drawn into build/ first: verify compares the redraw
+     * with the committed PNG and never writes into figures/; `crownshy
+     * figures` installs a redraw only when its script succeeded */
+    char outdir[128];
+    snprintf(outdir, sizeof outdir, "build/figures.%ld", (long)getpid());
+    if (afile_mkdir_parents(outdir) || (mkdir(outdir, 0777) && errno != EEXIST)) {
+        checklist_add(cl, VERDICT_FAIL, "figures", "%s: cannot create: %s", outdir, strerror(errno));
+        paths_list_free(&gps);
+        return;
+    }
+    for (size_t i = 0; i < gps.n; i++) {
         const char *script = gps.p[i], *base = script + strlen(PATHS_FIGURES_DIR) + 1;
-        char item[96];
-        snprintf(item, sizeof item, "figure %.*s", (int)(strlen(base) - 3), base);
-        /* "# data: path" lines declare the inputs; a figure whose data are not frozen yet is pending */
+        char item[128], stem[96], png[256], feeds[1200] = "";
+        snprintf(stem, sizeof stem, "%.*s", (int)(strlen(base) - 3), base);
+        snprintf(item, sizeof item, "figure %.90s", stem);
+        /* "# data: path" lines declare the inputs (registered: a missing one is a failure) */
         FILE *f = fopen(script, "r");
         char line[1024], missing[1100] = "";
+        size_t fo = 0;
         while (f && fgets(line, sizeof line, f)) {
+            char *o = strstr(line, "set output outdir.'/");
+            if (o && strstr(o, ".png'")) snprintf(stem, sizeof stem, "%.*s", (int)(strstr(o, ".png'") - o - 20), o + 20);
             if (strncmp(line, "# data: ", 8)) continue;
             line[strcspn(line, "\n")] = '\0';
             struct stat sb;
             if (stat(line + 8, &sb) != 0 && !missing[0]) snprintf(missing, sizeof missing, "%s", line + 8);
+            char one[600];
+            if (c) audit_feeds(c, line + 8, one, sizeof one);
+            if (c && strcmp(one, "(no claim)") && fo < sizeof feeds - 2 && !strstr(feeds, one))
+                fo += (size_t)snprintf(feeds + fo, sizeof feeds - fo, "%s%s", fo ? "; " : "", one);
         }
         if (f) fclose(f);
-        if (missing[0]) { checklist_add(cl, VERDICT_PENDING, item, "needs %s (not frozen yet)", missing); continue; }
+        if (!feeds[0]) snprintf(feeds, sizeof feeds, "(no claim)");
+        snprintf(png, sizeof png, "%s/%s.png", PATHS_FIGURES_DIR, stem);
+        if (missing[0]) { checklist_add(cl, VERDICT_FAIL, item, "%s needs %s, which is missing (a registered input); claims: %s", script, missing, feeds); continue; }
         if (!gp) { checklist_add(cl, VERDICT_FAIL, item, "gnuplot not installed (make deps)"); continue; }
         char cmd[1400];
-        snprintf(cmd, sizeof cmd, "gnuplot '%s' > build/gnuplot-%s.log 2>&1", script, base);
-        int rc = system(cmd);
-        if (rc != 0) checklist_add(cl, VERDICT_FAIL, item, "gnuplot %s failed (see build/gnuplot-%s.log)", script, base);
-        else checklist_add(cl, VERDICT_PASS, item, "redrawn by gnuplot %s", script);
+        snprintf(cmd, sizeof cmd, "gnuplot -e \"outdir='%s'\" '%s' > %s/%s.log 2>&1", outdir, script, outdir, base);
+        if (system(cmd) != 0) { checklist_add(cl, VERDICT_FAIL, item, "gnuplot %s failed (see %s/%s.log); claims: %s", script, outdir, base, feeds); continue; }
+        char drawn[300];
+        snprintf(drawn, sizeof drawn, "%s/%s.png", outdir, stem);
+        if (install) {
+            cs_status st = install_file(drawn, png);
+            char pdf[300], pdfdst[300];
+            snprintf(pdf, sizeof pdf, "%s/%s.pdf", outdir, stem);
+            snprintf(pdfdst, sizeof pdfdst, "%s/%s.pdf", PATHS_FIGURES_DIR, stem);
+            struct stat sb;
+            if (!st && stat(pdf, &sb) == 0) st = install_file(pdf, pdfdst);
+            if (st) checklist_add(cl, VERDICT_FAIL, item, "%s", cs_errmsg());
+            else checklist_add(cl, VERDICT_PASS, item, "redrawn by gnuplot %s into %s", script, png);
+            continue;
+        }
+        int d = same_bytes(drawn, png);
+        if (d == 0) checklist_add(cl, VERDICT_PASS, item, "%s redrawn by %s into %s: byte-identical", png, script, outdir);
+        else if (d == -1) checklist_add(cl, VERDICT_FAIL, item, "%s drew no %s (see %s/%s.log); claims: %s", script, drawn, outdir, base, feeds);
+        else if (d == -2) checklist_add(cl, VERDICT_FAIL, item, "%s is missing (the committed figure; make figures draws it); claims: %s", png, feeds);
+        else checklist_add(cl, VERDICT_FAIL, item, "%s differs from its redraw by %s from frozen/ (%s): the figure or its script was changed; claims: %s", png, script, drawn, feeds);
     }
     paths_list_free(&gps);
+    /* keep the redraws only when something failed (to look at) */
+    int failed = 0;
+    for (size_t i = 0; i < cl->n; i++) failed |= cl->items[i].v == VERDICT_FAIL;
+    if (!failed) {
+        char cmd[200];
+        snprintf(cmd, sizeof cmd, "rm -rf '%s'", outdir);
+        if (system(cmd) != 0) { /* a leftover folder under build/ is harmless */ }
+    }
 }
 
 cs_status verify_run(const verify_opts *o)
@@ -109,46 +187,73 @@ cs_status verify_run(const verify_opts *o)
     char nterr[512];
     snprintf(nterr, sizeof nterr, "%s", have_nt ? "" : cs_errmsg());
 
-    size_t count[3] = {0}; /* by verdict: PASS, FAIL, PENDING */
+    size_t count[3] = {0}; /* consistency checks by verdict: PASS, FAIL, PENDING */
     checklist cl = {0};
     audit_run(&c, res, &cl);
-    printf("== audit (pins, frozen hashes, provenance, registry, paper)\n");
+    printf("== audit (pins, frozen hashes and provenance, aggregates, registry and gate map, generated and written paper)\n");
     checklist_print(&cl, count);
     checklist_free(&cl);
 
-    printf("\n== claims (recomputed from frozen/ and compared with paper/numbers.tex)\n");
+    printf("\n== claims (recomputed from frozen/ and compared with paper/numbers.tex; a failing gate is a finding: NOTREP)\n");
     printf("  %-7s %-19s %-12s %-10s %-8s %s\n", "status", "macro", "value", "kind", "gate", "source / reason");
     if (!have_nt) { printf("  FAIL    paper/numbers.tex unreadable: %s\n", nterr); count[VERDICT_FAIL]++; }
+    size_t rep = 0, notrep = 0, gpend = 0;
+    char notrep_list[1024] = "";
     for (size_t i = 0; i < c.n; i++) {
         char msg[1200];
-        verdict v = verify_claim(&c.rows[i], &res[i], have_nt ? &nt : NULL, msg, sizeof msg);
+        verdict v = verify_consistent(&c.rows[i], &res[i], have_nt ? &nt : NULL, msg, sizeof msg);
+        int gated = strcmp(c.rows[i].gate, "-") != 0;
+        const char *label = verdict_name(v);
+        if (gated && v != VERDICT_FAIL) {
+            if (res[i].gate == VERDICT_PASS) rep++;
+            else if (res[i].gate == VERDICT_FAIL) {
+                notrep++;
+                size_t l = strlen(notrep_list);
+                snprintf(notrep_list + l, sizeof notrep_list - l, "%s%s", l ? ", " : "", c.rows[i].macro);
+                /* consistent: the write-up states this very verdict */
+                label = "NOTREP";
+                snprintf(msg, sizeof msg, "%s = %s does not reproduce: fails its preregistered gate %s: %s (%s); numbers.tex states FAIL",
+                         c.rows[i].macro, res[i].text, c.rows[i].gate, res[i].gate_detail, c.rows[i].source);
+            } else gpend++;
+        }
         const char *val = res[i].status == VERDICT_PASS ? res[i].text : "-";
-        const char *g = strcmp(c.rows[i].gate, "-") ? verdict_name(res[i].gate) : "-";
+        const char *g = gated ? verdict_name(res[i].gate) : "-";
         double ref, rel;
         char dist[96] = "";
         if (claims_rel_diff(&c.rows[i], &res[i], &ref, &rel))
             snprintf(dist, sizeof dist, " [paper %s: %+.1f %%]", c.rows[i].reference, 100.0 * rel);
-        printf("  %-7s %-19s %-12s %-10s %-8s %s%s\n", verdict_name(v), c.rows[i].macro, val, c.rows[i].kind, g, msg, dist);
+        printf("  %-7s %-19s %-12s %-10s %-8s %s%s\n", label, c.rows[i].macro, val, c.rows[i].kind, g, msg, dist);
         count[v]++;
     }
 
     if (!o->no_figures) {
         checklist fl = {0};
-        verify_figures(&fl);
-        printf("\n== figures (gnuplot)\n");
+        verify_figures(&fl, 0, &c);
+        printf("\n== figures (redrawn by gnuplot into build/ and byte-compared with the committed PNGs)\n");
         if (!fl.n) printf("  (no figure scripts yet)\n");
         checklist_print(&fl, count);
         checklist_free(&fl);
     }
-    printf("\n%zu pending (experiment not yet run and frozen, or input data missing: reason above; never counted as passed)\n", count[VERDICT_PENDING]);
+    printf("\n== ledger (pinned files changed after the commit that added the preregistered gates)\n");
+    audit_ledger(stdout);
+
     size_t m, a10, a25;
     claims_within(&c, res, &m, &a10, &a25);
+    printf("\n%zu pending (input data missing on this machine: reason above; never counted as passed)\n", count[VERDICT_PENDING]);
     printf("%zu of %zu measured numbers within 10 %% / %zu within 25 %% of the reference paper (distance, not a verdict)\n", a10, m, a25);
-    printf("%zu passed, %zu failed\n", count[VERDICT_PASS], count[VERDICT_FAIL]);
+    printf("reference paper's gated claims: %zu reproduced, %zu not reproduced%s%s%s, %zu pending\n", rep, notrep,
+           notrep ? " (" : "", notrep_list, notrep ? ")" : "", gpend);
+    if (count[VERDICT_FAIL])
+        printf("package: INCONSISTENT: %zu check(s) failed: a number, verdict, table, figure or sentence does not follow from frozen/ and the pinned code\n", count[VERDICT_FAIL]);
+    else
+        printf("package: consistent: every number, verdict, table, figure and sentence follows from frozen/ and the pinned code\n");
+    int strict_fail = o->strict && notrep;
+    if (strict_fail) printf("--strict: %zu preregistered gate(s) not reproduced\n", notrep);
+    printf("%zu passed, %zu failed\n", count[VERDICT_PASS], count[VERDICT_FAIL] + (strict_fail ? notrep : 0));
     if (have_nt) numbers_free(&nt);
     free(res);
     claims_free(&c);
-    return count[VERDICT_FAIL] ? CS_EFAIL : CS_OK;
+    return count[VERDICT_FAIL] || strict_fail ? CS_EFAIL : CS_OK;
 }
 
 cs_status verify_trace(const char *macro)

@@ -6,10 +6,13 @@
 #include "cs.h"
 #include "audit.h"
 
-typedef struct { int quiet; int no_figures; } verify_opts;
+/* strict: a failing preregistered gate (a finding) also fails verify. */
+typedef struct { int quiet; int no_figures; int strict; } verify_opts;
 
-/* Returns CS_OK when nothing failed, CS_EFAIL when any item failed,
- * another status on a broken installation (registry unreadable). */
+/* SPEC §9 rev. 2: CS_OK when every number, verdict, table, figure and
+ * sentence follows from frozen/ and the pinned code (a failing gate is a
+ * finding, "not reproduced"); CS_EFAIL on any inconsistency, or with strict
+ * on any failing gate; another status on a broken installation. */
 cs_status verify_run(const verify_opts *o);
 /* Evaluate every claim (res has c->n entries, caller frees). */
 cs_status verify_eval_all(const claims *c, claim_result **res);
@@ -18,8 +21,11 @@ cs_status verify_eval_all(const claims *c, claim_result **res);
 verdict verify_consistent(const claim_row *row, const claim_result *res, const numbers_tex *nt, char *msg, size_t n);
 /* verify_consistent, and FAIL when the claim's gate fails. */
 verdict verify_claim(const claim_row *row, const claim_result *res, const numbers_tex *nt, char *msg, size_t n);
-/* Redraw every figures/ *.gp whose data exist. */
-void verify_figures(checklist *cl);
+/* Redraw every figures/ *.gp into build/figures.<pid>/; compare each PNG
+ * byte for byte with the committed one (install = 0: never writes into
+ * figures/), or install the redraws into figures/ (install = 1, only for a
+ * script that succeeded). c (may be NULL) names the claims a figure feeds. */
+void verify_figures(checklist *cl, int install, const claims *c);
 /* Print value, frozen file, function, gate and test of one macro. */
 cs_status verify_trace(const char *macro);
 

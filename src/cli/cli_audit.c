@@ -11,6 +11,8 @@
 #include <sys/stat.h>
 #include "tsv.h"
 #include "verify.h"
+#include "audit_paper.h"
+#include <unistd.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,12 +26,17 @@ static int die(cs_status st)
 int cli_cmd_verify(int argc, char **argv)
 {
     verify_opts o = {0};
-    const opt_spec spec[] = {{"no-figures", OPT_FLAG, &o.no_figures, 0, 0, "skip redrawing the figures"}};
-    const opts_cmd oc = {"verify", "[--no-figures]",
-                        "Audit pins and frozen hashes, recompute every claim of audit/claims.tsv from frozen/,\n"
-                        "compare with paper/numbers.tex, judge every gate, redraw every figure, and print\n"
-                        "'N passed, N failed'. Exit 1 if anything failed; pending claims are listed, not passed.",
-                        spec, 1, 0, 0};
+    const opt_spec spec[] = {{"no-figures", OPT_FLAG, &o.no_figures, 0, 0, "skip redrawing the figures"},
+                             {"strict", OPT_FLAG, &o.strict, 0, 0, "also fail when a preregistered gate fails (a finding)"}};
+    const opts_cmd oc = {"verify", "[--no-figures] [--strict]",
+                        "Audit pins, frozen hashes, provenance and aggregates, recompute every claim of\n"
+                        "audit/claims.tsv from frozen/, compare with the generated paper files, check the\n"
+                        "paper text, judge every gate, redraw every figure into build/ and byte-compare it with\n"
+                        "the committed PNG, and print the package's consistency and the reference paper's gated\n"
+                        "claims (reproduced, not reproduced, pending). A failing gate is a finding, not an error.\n"
+                        "Exit 0: consistent (gate failures allowed); 1: any inconsistency (with --strict also any\n"
+                        "failing gate); 2: usage; 3: registry or gate map unreadable; 4: environment (I/O, memory).",
+                        spec, 2, 0, 0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     cs_status st = verify_run(&o);
@@ -41,7 +48,10 @@ int cli_cmd_numbers(int argc, char **argv)
 {
     int check = 0;
     const opt_spec spec[] = {{"check", OPT_FLAG, &check, 0, 0, "only compare paper/numbers.tex with a fresh generation"}};
-    const opts_cmd oc = {"numbers", "[--check]", "Regenerate paper/numbers.tex and paper/comparison.tex from frozen/ (atomic).", spec, 1, 0, 0};
+    const opts_cmd oc = {"numbers", "[--check]", "Regenerate paper/numbers.tex, paper/comparison.tex and paper/readings.tex from frozen/:\n"
+                        "all three are generated into build/ first and moved into paper/ only when every claim\n"
+                        "was computed (exit 3 naming the claim and its input otherwise, writing nothing).\n"
+                        "--check: compare the three with a fresh generation (exit 1 naming the first differing line).", spec, 1, 0, 0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     claims c;
@@ -51,7 +61,7 @@ int cli_cmd_numbers(int argc, char **argv)
     if ((st = verify_eval_all(&c, &res))) { claims_free(&c); return die(st); }
     if (check) {
         checklist cl = {0};
-        audit_numbers(&c, res, &cl);
+        audit_generated(&c, res, &cl, 0);
         int bad = 0;
         for (size_t i = 0; i < cl.n; i++) {
             printf("%s %s\n", verdict_name(cl.items[i].v), cl.items[i].msg);
@@ -62,21 +72,33 @@ int cli_cmd_numbers(int argc, char **argv)
         claims_free(&c);
         return bad ? 1 : 0;
     }
-    st = claims_write_numbers(PATHS_NUMBERS, &c, res);
-    if (!st) st = claims_write_comparison(PATHS_COMPARISON, &c, res);
-    /* the E0 readings table, recomputed from frozen/readings/ and checked against its summary */
-    struct stat sb;
-    if (!st && stat(PATHS_READINGS_SUMMARY, &sb) == 0) {
-        size_t nr = readings_count();
-        readings_row *rows = calloc(nr, sizeof *rows);
-        st = rows ? readings_compute(&c, PATHS_READINGS_DIR, rows) : cs_err(CS_ENOMEM, "out of memory");
-        if (!st) st = readings_check(PATHS_READINGS_SUMMARY, rows, nr);
-        if (!st) st = readings_write_tex(PATHS_READINGS_TEX, rows, nr);
-        free(rows);
+    /* bad input (a claim that cannot be computed: a malformed FIELD_TABLE or
+     * CHM, a damaged frozen table): say so and write nothing into paper/ */
+    size_t nbad = 0;
+    for (size_t i = 0; i < c.n; i++)
+        if (res[i].status == VERDICT_FAIL) { fprintf(stderr, "crownshy numbers: %s: %s\n", c.rows[i].macro, res[i].why); nbad++; }
+    if (nbad) {
+        fprintf(stderr, "crownshy numbers: %zu claim(s) cannot be computed from their input; nothing written into %s/\n", nbad, PATHS_PAPER_DIR);
+        free(res);
+        claims_free(&c);
+        return 3;
     }
+    /* generate all three into build/, then move them into paper/ */
+    char dir[128];
+    snprintf(dir, sizeof dir, "build/numbers.%ld", (long)getpid());
+    int readings = 0;
+    st = paper_generate(&c, res, dir, &readings);
+    const char *names[] = {"numbers.tex", "comparison.tex", "readings.tex"}, *dst[] = {PATHS_NUMBERS, PATHS_COMPARISON, PATHS_READINGS_TEX};
+    for (int i = 0; i < 3; i++) {
+        char p[256];
+        snprintf(p, sizeof p, "%s/%s", dir, names[i]);
+        if (!st && (i < 2 || readings) && rename(p, dst[i]) != 0) st = cs_err(CS_EIO, "%s: cannot move to %s", p, dst[i]);
+        unlink(p);
+    }
+    rmdir(dir);
     size_t pend = 0;
     for (size_t i = 0; i < c.n; i++) pend += res[i].status != VERDICT_PASS;
-    if (!st) printf("wrote %s: %zu claims (%zu pending)\n", PATHS_NUMBERS, c.n, pend);
+    if (!st) printf("wrote %s, %s%s: %zu claims (%zu pending)\n", PATHS_NUMBERS, PATHS_COMPARISON, readings ? ", " PATHS_READINGS_TEX : "", c.n, pend);
     free(res);
     claims_free(&c);
     return st ? die(st) : 0;
@@ -197,12 +219,16 @@ int cli_cmd_check_tsv(int argc, char **argv)
 
 int cli_cmd_figures(int argc, char **argv)
 {
-    const opts_cmd oc = {"figures", "", "Redraw every figure (figures/ *.gp, gnuplot) whose frozen data exist; the same step as\n"
-                  "in crownshy verify. Exit 1 if a script fails.", NULL, 0, 0, 0};
+    const opts_cmd oc = {"figures", "", "Redraw every figure (figures/ *.gp, gnuplot) from frozen/ into build/, and install a\n"
+                  "redraw into figures/ only when its script succeeded (verify only compares). Exit 1 if a\n"
+                  "script fails or its data are missing.", NULL, 0, 0, 0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
+    claims c;
+    int have_c = claims_load(PATHS_CLAIMS, &c) == CS_OK;
     checklist cl = {0};
-    verify_figures(&cl);
+    verify_figures(&cl, 1, have_c ? &c : NULL);
+    if (have_c) claims_free(&c);
     size_t count[3] = {0};
     checklist_print(&cl, count);
     checklist_free(&cl);

@@ -34,6 +34,23 @@ const char *field_table_env(void)
     return p && p[0] ? p : NULL;
 }
 
+/* qsort context (the loader is not reentrant across threads; the CLI is single-threaded) */
+static const char **sort_ids;
+static const size_t *sort_first;
+
+static int by_id_then_row(const void *a, const void *b)
+{
+    size_t x = *(const size_t *)a, y = *(const size_t *)b;
+    int c = strcmp(sort_ids[x], sort_ids[y]);
+    return c ? c : (x > y) - (x < y);
+}
+
+static int by_first_row(const void *a, const void *b)
+{
+    size_t x = sort_first[*(const size_t *)a], y = sort_first[*(const size_t *)b];
+    return (x > y) - (x < y);
+}
+
 cs_status field_table_load(const char *path, field_table *out)
 {
     memset(out, 0, sizeof *out);
@@ -53,23 +70,62 @@ cs_status field_table_load(const char *path, field_table *out)
     out->id = calloc(nr, sizeof *out->id);
     out->gap = malloc(nr * sizeof *out->gap);
     int (*seen)[4] = calloc(nr, sizeof *seen); /* line of each tree's direction, 0 = not yet */
-    if (!out->id || !out->gap || !seen) { free(seen); tsv_free(t); field_table_free(out); return cs_err(CS_ENOMEM, "%s: out of memory", path); }
+    size_t *tree_of = malloc(nr * sizeof *tree_of), *ord = malloc(nr * sizeof *ord);
+    const char **ids = malloc(nr * sizeof *ids);
+    if (!out->id || !out->gap || !seen || !tree_of || !ord || !ids) {
+        free(seen); free(tree_of); free(ord); free(ids); tsv_free(t); field_table_free(out);
+        return cs_err(CS_ENOMEM, "%s: out of memory", path);
+    }
+    /* validate every row, then group rows by tree id in O(n log n): sort the
+     * row indices by (id, row) and number the trees in order of first appearance */
+    for (size_t r = 0; r < nr && !st; r++) {
+        int line = tsv_line(t, r);
+        const char *id = tsv_str(t, r, "tree");
+        if (!id[0]) { st = cs_err(CS_EINPUT, "%s:%d: field 'tree': empty", path, line); break; }
+        if (strlen(id) >= sizeof out->id[0]) { st = cs_err(CS_EINPUT, "%s:%d: field 'tree': longer than 63 characters", path, line); break; }
+        ord[r] = r;
+        ids[r] = id;
+    }
+    if (!st) {
+        sort_ids = ids;
+        qsort(ord, nr, sizeof *ord, by_id_then_row);
+        /* first row of each group gets a provisional index; trees are then
+         * numbered by the row of their first appearance (the file's order) */
+        size_t *first = malloc(nr * sizeof *first), ng = 0;
+        if (!first) st = cs_err(CS_ENOMEM, "%s: out of memory", path);
+        for (size_t k = 0; !st && k < nr; k++) {
+            if (k == 0 || strcmp(ids[ord[k]], ids[ord[k - 1]])) first[ng++] = ord[k];
+            tree_of[ord[k]] = ng - 1;
+        }
+        if (!st) {
+            /* rank groups by first row: first[] sorted ascending gives the order */
+            size_t *rank = malloc(ng * sizeof *rank), *gorder = malloc(ng * sizeof *gorder);
+            if (!rank || !gorder) st = cs_err(CS_ENOMEM, "%s: out of memory", path);
+            for (size_t g = 0; !st && g < ng; g++) gorder[g] = g;
+            if (!st) { sort_first = first; qsort(gorder, ng, sizeof *gorder, by_first_row); }
+            for (size_t g = 0; !st && g < ng; g++) rank[gorder[g]] = g;
+            for (size_t r = 0; !st && r < nr; r++) tree_of[r] = rank[tree_of[r]];
+            for (size_t g = 0; !st && g < ng; g++) {
+                strcpy(out->id[g], ids[first[gorder[g]]]);
+                for (int q = 0; q < 4; q++) out->gap[g][q] = NAN;
+            }
+            if (!st) out->n = ng;
+            free(rank); free(gorder);
+        }
+        free(first);
+    }
     for (size_t r = 0; r < nr && !st; r++) {
         int line = tsv_line(t, r);
         const char *id = tsv_str(t, r, "tree"), *dir = tsv_str(t, r, "direction");
-        if (!id[0]) { st = cs_err(CS_EINPUT, "%s:%d: field 'tree': empty", path, line); break; }
-        if (strlen(id) >= sizeof out->id[0]) { st = cs_err(CS_EINPUT, "%s:%d: field 'tree': longer than 63 characters", path, line); break; }
         int c = field_direction(dir);
         if (c < 0) { st = cs_err(CS_EINPUT, "%s:%d: field 'direction': '%s' is not E/N/W/S (or east/north/west/south)", path, line, dir); break; }
         double g;
         if ((st = tsv_double(t, r, "clearance_m", &g))) break;
-        size_t i = 0;
-        while (i < out->n && strcmp(out->id[i], id)) i++;
-        if (i == out->n) {
-            strcpy(out->id[i], id);
-            for (int q = 0; q < 4; q++) out->gap[i][q] = NAN;
-            out->n++;
+        if (fabs(g) > FIELD_CLEARANCE_MAX_M) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'clearance_m': %g m is out of range (|clearance| <= %g m)", path, line, g, FIELD_CLEARANCE_MAX_M);
+            break;
         }
+        size_t i = tree_of[r];
         if (seen[i][c]) {
             st = cs_err(CS_EINPUT, "%s:%d: field 'direction': tree '%s' already has direction %s (line %d)", path, line, id, dir, seen[i][c]);
             break;
@@ -77,6 +133,9 @@ cs_status field_table_load(const char *path, field_table *out)
         seen[i][c] = line;
         out->gap[i][c] = g;
     }
+    free(tree_of);
+    free(ord);
+    free(ids);
     static const char *names[4] = {"E", "N", "W", "S"};
     for (size_t i = 0; i < out->n && !st; i++)
         for (int c = 0; c < 4 && !st; c++)

@@ -17,6 +17,9 @@
 #include "cs.h"
 #include <stddef.h>
 
+/* A clearance beyond this (metres) is a data error, not a measurement: the
+ * loader names file, line and field instead of letting 1e308 overflow later. */
+#define FIELD_CLEARANCE_MAX_M 1000.0
 #define FIELD_TABLE_ENV "FIELD_TABLE"
 #define FIELD_REFERENCE_PATH "frozen/field/reference.tsv"
 

@@ -1,6 +1,7 @@
 /* train: trainer, checkpoints and benchmark (see train.h; paper §4.2, Eq. 2;
  * SPEC §8, §10, §11). */
 #include "train.h"
+#include "paths.h"
 #include <errno.h>
 #include <gsl/gsl_randist.h>
 #include <math.h>
@@ -68,6 +69,7 @@ cs_status train_alloc(train **out, const model_cfg *cfg, const patch_set *data, 
                       o->warmup, o->lr_final);
     train *t = calloc(1, sizeof *t);
     if (!t) return cs_err(CS_ENOMEM, "train: out of memory");
+    t->loss = NAN; /* no step taken yet (a run resumed at its last step): never a loss of 0 */
     t->o = *o;
     t->data = data;
     t->data_hash = data_fingerprint(data);
@@ -283,6 +285,8 @@ cs_status train_save(const train *t, const char *path)
 static cs_status ckpt_read(const char *path, unsigned char **data, size_t *len, ckpt_head *h)
 {
     *data = NULL;
+    cs_status ist = paths_input_file(path); /* a directory is an input error, not "out of memory" */
+    if (ist) return ist;
     FILE *f = fopen(path, "rb");
     if (!f) return cs_err(CS_EINPUT, "%s: cannot open checkpoint: %s", path, strerror(errno));
     if (fseek(f, 0, SEEK_END) != 0) { fclose(f); return cs_err(CS_EINPUT, "%s: cannot seek", path); }

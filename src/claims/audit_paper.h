@@ -1,0 +1,26 @@
+/* audit_paper: the write-up against frozen/ (SPEC §9 rev. 2): generated
+ * files equal a fresh generation; the hand-written .tex files (subfolders
+ * too) use claim macros only. */
+#ifndef AUDIT_PAPER_H
+#define AUDIT_PAPER_H
+#include "checklist.h"
+#include "claims.h"
+#include "paths.h"
+
+/* Is path one of the generated paper files (numbers, comparison, readings)? */
+int paper_is_generated(const char *path);
+/* Write numbers.tex, comparison.tex and (when frozen/readings/summary.tsv
+ * exists; *readings = 1) readings.tex into dir. Errors name file and field. */
+cs_status paper_generate(const claims *c, const claim_result *res, const char *dir, int *readings);
+/* Each generated file equals a fresh generation (only numbers.tex when
+ * only_numbers), naming the first differing line and its claim. */
+void audit_generated(const claims *c, const claim_result *res, checklist *cl, int only_numbers);
+/* Every non-generated .tex under paper/: claim macros registered, none
+ * (re)defined, no measured number typed in any rounding, no exemption comment. */
+void audit_paper_text(const claims *c, const claim_result *res, checklist *cl);
+/* One hand-written file: FAIL items for unregistered, defined or hand-typed
+ * claims (vals/who: the nv measured values and their macros) and exemption
+ * comments; returns how many, adds claim-macro uses to *used. */
+size_t paper_scan_file(const char *path, const claims *c, const double *vals, const char *const *who, size_t nv, checklist *cl, size_t *used);
+
+#endif

@@ -1,0 +1,286 @@
+/* Behaviour at the edges (SPEC §11; issue 15): bad input never reaches
+ * paper/, non-finite values are named, directories and byte-order marks are
+ * clear input errors or handled, the field table loads in O(n log n),
+ * concurrent atomic writers never share a temp file, the gate map and the
+ * aggregate map parse strictly, per-tree tables name the claims they feed.
+ * CLI cases run build/crownshy in a scratch copy (build/test-tmp/edges_*). */
+#include "testutil.h"
+#include "afile.h"
+#include "audit_data.h"
+#include "claims.h"
+#include "field.h"
+#include <time.h>
+#include <unistd.h>
+
+static char out[65536];
+
+/* A scratch copy of the repository's inputs with build/crownshy linked in. */
+static const char *scratch(const char *name)
+{
+    const char *dir = tu_tmpdir(name);
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd, "tar cf - src gates frozen audit paper figures | (cd '%s' && tar xf -) && mkdir -p '%s/build' && ln -s \"$PWD/build/crownshy\" '%s/build/crownshy'",
+             dir, dir, dir);
+    if (system(cmd) != 0) fail_msg("cannot copy the repository into %s", dir);
+    return dir;
+}
+
+static int run_in(const char *dir, const char *env, const char *args)
+{
+    char pre[2600];
+    snprintf(pre, sizeof pre, "cd '%s' && env -u FIELD_TABLE -u CHM %s ", dir, env);
+    return tu_run_cli(pre, args, out, sizeof out);
+}
+
+/* paper/ of the scratch copy is byte-identical to the repository's, and holds no temp file */
+static void assert_paper_untouched(const char *dir)
+{
+    char cmd[1200];
+    snprintf(cmd, sizeof cmd, "diff -r paper '%s/paper' >/dev/null", dir);
+    if (system(cmd) != 0) fail_msg("%s/paper differs from paper/ after a command with bad input", dir);
+}
+
+static void test_numbers_bad_field_table_writes_nothing(void **s)
+{
+    (void)s;
+    const char *dir = scratch("edges_numbers_field");
+    char env[1200], p[1100];
+    snprintf(p, sizeof p, "%s/bad.tsv", dir);
+    tu_write(p, "tree\tdirection\tclearance_m\nx\tE\tabc\n");
+    snprintf(env, sizeof env, "FIELD_TABLE=bad.tsv");
+    assert_int_equal(run_in(dir, env, "numbers"), 3);
+    assert_non_null(strstr(out, "bad.tsv:2: field 'clearance_m'"));
+    assert_non_null(strstr(out, "nothing written"));
+    assert_paper_untouched(dir);
+}
+
+static void test_numbers_chm_1e300_never_writes_inf(void **s)
+{
+    (void)s;
+    const char *dir = scratch("edges_numbers_chm");
+    char p[1100];
+    snprintf(p, sizeof p, "%s/chm.asc", dir);
+    tu_write(p, "ncols 1e300\nnrows 1e300\nxllcorner 0\nyllcorner 0\ncellsize 1e300\nNODATA_value -9999\n1 2\n");
+    assert_int_equal(run_in(dir, "CHM=chm.asc", "numbers"), 3);
+    assert_non_null(strstr(out, "RealChmSpan"));
+    assert_non_null(strstr(out, "not finite"));
+    assert_paper_untouched(dir);
+    /* a directory given as the CHM is an input error too, and writes nothing */
+    assert_int_equal(run_in(dir, "CHM=frozen", "numbers"), 3);
+    assert_paper_untouched(dir);
+}
+
+static void test_directory_as_input_is_input_error(void **s)
+{
+    (void)s;
+    assert_int_equal(tu_run_cli("env -u FIELD_TABLE ", "field-summary frozen", out, sizeof out), 3);
+    assert_non_null(strstr(out, "frozen: is a directory"));
+    assert_null(strstr(out, "out of memory"));
+    assert_int_equal(tu_run_cli("", "check-tsv frozen/main", out, sizeof out), 3);
+    assert_non_null(strstr(out, "is a directory"));
+    assert_int_equal(tu_run_cli("", "gates frozen", out, sizeof out), 3);
+    assert_non_null(strstr(out, "is a directory"));
+    assert_int_equal(tu_run_cli("", "sample --ckpt frozen", out, sizeof out), 3);
+    assert_non_null(strstr(out, "frozen: is a directory"));
+    assert_null(strstr(out, "out of memory"));
+}
+
+static void test_utf8_bom_is_handled(void **s)
+{
+    (void)s;
+    char p[600], a[700];
+    snprintf(p, sizeof p, "%s/bom.tsv", tu_tmpdir("edges_bom"));
+    tu_write(p, "\xef\xbb\xbftree\tdirection\tclearance_m\nx\tE\t0.5\nx\tN\t0.5\nx\tW\t0.5\nx\tS\t0.5\n");
+    snprintf(a, sizeof a, "field-summary %s", p);
+    assert_int_equal(tu_run_cli("env -u FIELD_TABLE ", a, out, sizeof out), 0);
+    assert_non_null(strstr(out, "trees\t1"));
+}
+
+static void test_huge_value_names_file_line_field(void **s)
+{
+    (void)s;
+    char p[600], a[700];
+    snprintf(p, sizeof p, "%s/huge.tsv", tu_tmpdir("edges_huge"));
+    tu_write(p, "tree\tdirection\tclearance_m\nx\tE\t0.5\nx\tN\t1e308\nx\tW\t0.5\nx\tS\t0.5\n");
+    snprintf(a, sizeof a, "field-summary %s", p);
+    assert_int_equal(tu_run_cli("env -u FIELD_TABLE ", a, out, sizeof out), 3);
+    assert_non_null(strstr(out, "huge.tsv:3: field 'clearance_m'"));
+}
+
+/* Not a timing test (SPEC §10): a guard against the quadratic loader, which
+ * took minutes on 10^6 rows; the O(n log n) one takes well under a second. */
+static void test_field_table_million_rows_loads(void **s)
+{
+    (void)s;
+    char p[600];
+    snprintf(p, sizeof p, "%s/big.tsv", tu_tmpdir("edges_big"));
+    FILE *f = fopen(p, "w");
+    assert_non_null(f);
+    fputs("tree\tdirection\tclearance_m\n", f);
+    const char *dirs = "ENWS";
+    for (int d = 0; d < 4; d++)       /* directions interleaved across the file */
+        for (int i = 0; i < 250000; i++) fprintf(f, "t%06d\t%c\t%d.25\n", (i * 7919) % 250000, dirs[d], i % 3);
+    fclose(f);
+    clock_t t0 = clock();
+    field_table ft;
+    assert_int_equal(field_table_load(p, &ft), CS_OK);
+    double secs = (double)(clock() - t0) / CLOCKS_PER_SEC;
+    assert_int_equal(ft.n, 250000);
+    /* trees in order of first appearance, each with its four directions */
+    assert_string_equal(ft.id[0], "t000000");
+    assert_string_equal(ft.id[1], "t007919");
+    for (size_t i = 0; i < ft.n; i++)
+        for (int c = 0; c < 4; c++) if (!isfinite(ft.gap[i][c])) fail_msg("tree %s lacks direction %d", ft.id[i], c);
+    field_table_free(&ft);
+    if (secs > 60) fail_msg("10^6 rows took %.1f s: quadratic again?", secs);
+}
+
+static void test_field_table_duplicate_still_named(void **s)
+{
+    (void)s;
+    char p[600];
+    snprintf(p, sizeof p, "%s/dup.tsv", tu_tmpdir("edges_dup"));
+    tu_write(p, "tree\tdirection\tclearance_m\nb\tE\t1\na\tE\t1\nb\tE\t2\n");
+    field_table ft;
+    assert_int_equal(field_table_load(p, &ft), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "dup.tsv:4: field 'direction': tree 'b' already has direction E (line 2)"));
+}
+
+static void test_concurrent_atomic_writers_do_not_collide(void **s)
+{
+    (void)s;
+    char p[600];
+    snprintf(p, sizeof p, "%s/x.txt", tu_tmpdir("edges_afile"));
+    afile a, b;
+    assert_int_equal(afile_open(&a, p), CS_OK);
+    assert_int_equal(afile_open(&b, p), CS_OK);
+    assert_string_not_equal(a.tmp, b.tmp);
+    fputs("first\n", a.f);
+    fputs("second\n", b.f);
+    assert_int_equal(afile_commit(&a), CS_OK);
+    assert_int_equal(afile_commit(&b), CS_OK);
+    FILE *f = fopen(p, "r");
+    char line[64] = "";
+    assert_non_null(f);
+    assert_non_null(fgets(line, sizeof line, f));
+    fclose(f);
+    assert_string_equal(line, "second\n");
+}
+
+static void test_gate_map_parses_strictly(void **s)
+{
+    (void)s;
+    const char *dir = tu_tmpdir("edges_gatemap");
+    char p[600];
+    snprintf(p, sizeof p, "%s/map.tsv", dir);
+    claims c;
+    assert_int_equal(claims_load("audit/claims.tsv", &c), CS_OK);
+    const char *bad[][2] = {{"macro\tgate\nNoSuchClaim\tmain.gate:seeds\n", "map.tsv:2: field 'macro'"},
+                            {"macro\tgate\nMainRel\tmain.gate:seeds\nMainRel\tmain.gate:seeds\n", "map.tsv:3: field 'macro'"},
+                            {"macro\tgate\nMainRel\tmain:seeds\n", "map.tsv:2: field 'gate'"},
+                            {"macro\tgate\nMainRel\t-\n", "map.tsv:2: field 'gate'"},
+                            {"name\tgate\nMainRel\tmain.gate:x\n", "'macro' and 'gate'"}};
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        tu_write(p, bad[i][0]);
+        assert_int_equal(claims_apply_gate_map(&c, p), CS_EINPUT);
+        if (!strstr(cs_errmsg(), bad[i][1])) fail_msg("case %zu: '%s' lacks '%s'", i, cs_errmsg(), bad[i][1]);
+    }
+    /* the map decides: a claim it does not name has no gate */
+    tu_write(p, "macro\tgate\nMainRel\tmain.gate:rel_improvement_min\n");
+    assert_int_equal(claims_apply_gate_map(&c, p), CS_OK);
+    assert_string_equal(claims_find(&c, "MainRel")->gate, "main.gate:rel_improvement_min");
+    assert_string_equal(claims_find(&c, "MainGeomRatio")->gate, "-");
+    assert_string_equal(claims_find(&c, "MainGeomRatio")->gate_reg, "main.gate:shuffle_ratio_min");
+    claims_free(&c);
+}
+
+static void test_aggregate_map_parses_strictly(void **s)
+{
+    (void)s;
+    char p[600];
+    snprintf(p, sizeof p, "%s/agg.tsv", tu_tmpdir("edges_agg"));
+    const char *hdr = "aggregate\tvalue\treduce\tparts\tpart_value\tfilter\n";
+    const char *bad[][2] = {{"frozen/a.tsv\tx\tmedian\tfrozen/b.tsv\ty\t-\n", "field 'reduce'"},
+                            {"frozen/a.tsv\tx\tmean\tfrozen/b_{s.tsv\ty\t-\n", "field 'parts'"},
+                            {"frozen/a.tsv\tx\tmean\tfrozen/b_{s:2}.tsv\ty\t-\n", "field 'parts'"},
+                            {"/etc/a.tsv\tx\tmean\tfrozen/b.tsv\ty\t-\n", "under frozen/"},
+                            {"frozen/a.tsv\tx\tmean\tfrozen/b.tsv\t-\t-\n", "needs a part_value"},
+                            {"frozen/a.tsv\tx\tmean\tfrozen/b.tsv\ty\tnoequals\n", "field 'filter'"}};
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        char text[512];
+        snprintf(text, sizeof text, "%s%s", hdr, bad[i][0]);
+        tu_write(p, text);
+        aggr_spec *a;
+        size_t n;
+        assert_int_equal(aggr_load(p, &a, &n), CS_EINPUT);
+        if (!strstr(cs_errmsg(), bad[i][1])) fail_msg("case %zu: '%s' lacks '%s'", i, cs_errmsg(), bad[i][1]);
+    }
+}
+
+static void test_per_tree_tables_name_their_claims(void **s)
+{
+    (void)s;
+    claims c;
+    assert_int_equal(claims_load("audit/claims.tsv", &c), CS_OK);
+    char buf[600];
+    audit_feeds(&c, "frozen/field/heldout_trees.tsv", buf, sizeof buf);
+    assert_non_null(strstr(buf, "Elong"));
+    assert_non_null(strstr(buf, "via frozen/field/heldout.tsv"));
+    audit_feeds(&c, "frozen/main/run_s03_indep.tsv", buf, sizeof buf);
+    assert_non_null(strstr(buf, "MainRel"));
+    audit_feeds(&c, "frozen/readings/t1-r1/field/heldout_trees.tsv", buf, sizeof buf);
+    assert_non_null(strstr(buf, "readings"));
+    claims_free(&c);
+}
+
+static void test_verify_documents_exit_codes(void **s)
+{
+    (void)s;
+    assert_int_equal(tu_run_cli("", "verify --help", out, sizeof out), 0);
+    assert_non_null(strstr(out, "--strict"));
+    for (int k = 0; k <= 4; k++) {
+        char code[8];
+        snprintf(code, sizeof code, "%d:", k);
+        if (!strstr(out, code)) fail_msg("verify --help does not document exit %d", k);
+    }
+    assert_int_equal(tu_run_cli("", "verify --bogus", out, sizeof out), 2);
+}
+
+static void test_deps_paper_updates_apt_first(void **s)
+{
+    (void)s;
+    FILE *f = fopen("Makefile", "r");
+    assert_non_null(f);
+    char line[1024];
+    int in = 0, update = 0, install = 0;
+    while (fgets(line, sizeof line, f)) {
+        if (!strncmp(line, "deps-paper:", 11)) in = 1;
+        else if (in && line[0] != '\t' && line[0] != ' ') in = 0;
+        if (!in) continue;
+        if (strstr(line, "apt-get update") && !install) update = 1;
+        if (strstr(line, "apt-get install") && !strstr(line, "echo")) install = 1;
+    }
+    fclose(f);
+    assert_true(install);
+    assert_true(update);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_numbers_bad_field_table_writes_nothing),
+        cmocka_unit_test(test_numbers_chm_1e300_never_writes_inf),
+        cmocka_unit_test(test_directory_as_input_is_input_error),
+        cmocka_unit_test(test_utf8_bom_is_handled),
+        cmocka_unit_test(test_huge_value_names_file_line_field),
+        cmocka_unit_test(test_field_table_million_rows_loads),
+        cmocka_unit_test(test_field_table_duplicate_still_named),
+        cmocka_unit_test(test_concurrent_atomic_writers_do_not_collide),
+        cmocka_unit_test(test_gate_map_parses_strictly),
+        cmocka_unit_test(test_aggregate_map_parses_strictly),
+        cmocka_unit_test(test_per_tree_tables_name_their_claims),
+        cmocka_unit_test(test_verify_documents_exit_codes),
+        cmocka_unit_test(test_deps_paper_updates_apt_first),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
