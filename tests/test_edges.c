@@ -9,7 +9,6 @@
 #include "audit_data.h"
 #include "claims.h"
 #include "field.h"
-#include <time.h>
 #include <unistd.h>
 
 static char out[65536];
@@ -107,8 +106,8 @@ static void test_huge_value_names_file_line_field(void **s)
     assert_non_null(strstr(out, "huge.tsv:3: field 'clearance_m'"));
 }
 
-/* Not a timing test (SPEC §10): a guard against the quadratic loader, which
- * took minutes on 10^6 rows; the O(n log n) one takes well under a second. */
+/* 10^6 rows load correctly (the quadratic loader took minutes on them; the
+ * O(n log n) one, 0.45 s here, is timed by hand, never by a test: SPEC §10). */
 static void test_field_table_million_rows_loads(void **s)
 {
     (void)s;
@@ -121,10 +120,8 @@ static void test_field_table_million_rows_loads(void **s)
     for (int d = 0; d < 4; d++)       /* directions interleaved across the file */
         for (int i = 0; i < 250000; i++) fprintf(f, "t%06d\t%c\t%d.25\n", (i * 7919) % 250000, dirs[d], i % 3);
     fclose(f);
-    clock_t t0 = clock();
     field_table ft;
     assert_int_equal(field_table_load(p, &ft), CS_OK);
-    double secs = (double)(clock() - t0) / CLOCKS_PER_SEC;
     assert_int_equal(ft.n, 250000);
     /* trees in order of first appearance, each with its four directions */
     assert_string_equal(ft.id[0], "t000000");
@@ -132,7 +129,6 @@ static void test_field_table_million_rows_loads(void **s)
     for (size_t i = 0; i < ft.n; i++)
         for (int c = 0; c < 4; c++) if (!isfinite(ft.gap[i][c])) fail_msg("tree %s lacks direction %d", ft.id[i], c);
     field_table_free(&ft);
-    if (secs > 60) fail_msg("10^6 rows took %.1f s: quadratic again?", secs);
 }
 
 static void test_field_table_duplicate_still_named(void **s)
