@@ -201,7 +201,7 @@ static void check_pins(const claims *c, checklist *cl)
                 size_t off = 0, cnt = 0;
                 affected[0] = '\0';
                 for (size_t i = 0; i < c->n && off < sizeof affected - 40; i++)
-                    if (!strcmp(c->rows[i].kind, "measured")) off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
+                    if (!strcmp(c->rows[i].kind, "measured") || !strcmp(c->rows[i].kind, "probe")) off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
                 if (!cnt) snprintf(affected, sizeof affected, "every measured claim");
             } else snprintf(affected, sizeof affected, "(gates as a whole)");
             checklist_add(cl, VERDICT_FAIL, name, "%s changed: %s is %.16s…, pinned %.16s… (%s:%d); claims affected: %s",
@@ -436,7 +436,7 @@ static void check_paper(const claims *c, const claim_result *res, checklist *cl)
             /* A measured value typed by hand: the literal text of a measured
              * claim (ours or the reference paper's) appearing in the prose. */
             for (size_t r = 0; r < c->n; r++) {
-                if (strcmp(c->rows[r].kind, "measured") && strcmp(c->rows[r].kind, "needs-data")) continue;
+                if (strcmp(c->rows[r].kind, "measured") && strcmp(c->rows[r].kind, "needs-data") && strcmp(c->rows[r].kind, "probe")) continue;
                 const char *cands[2] = {res[r].status == VERDICT_PASS ? res[r].text : NULL, c->rows[r].reference};
                 for (int q = 0; q < 2; q++) {
                     const char *v = cands[q];
