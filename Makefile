@@ -179,14 +179,14 @@ reproduce-graph:
 	@$(REPRODUCE_ENV) bash $(REPRODUCE_SH) graph
 # ==== end of reproduce engines ==============================================
 
-# Copy finished full-scale results into frozen/, record their hashes and
-# regenerate paper/numbers.tex. Smoke results are never frozen.
+# Copy finished full-scale results (tables, and the E3/E4 weights files) into
+# frozen/, record their hashes and regenerate paper/numbers.tex. Smoke results are never frozen.
 freeze: deps
 	@$(MAKE) --no-print-directory $(CLI)
 	@if [ "$(SCALE)" = smoke ]; then echo "freeze: smoke results are never frozen" >&2; exit 2; fi
 	@if [ -d $(B)/results ]; then \
 	  for d in $(B)/results/*/; do [ -d "$$d" ] || continue; e=$$(basename $$d); mkdir -p frozen/$$e; \
-	    (cd $$d && find . -name '*.tsv' ! -name '*.tmp*' ! -name '.*' ! -path './*/*/figure_crowns*' ! -path './*/*/figure_poly*' -exec cp --parents {} $(CURDIR)/frozen/$$e/ \;) ; done; fi
+	    (cd $$d && find . \( -name '*.tsv' -o -name 'weights_*.ckpt' \) ! -name '*.tmp*' ! -name '.*' ! -path './*/*/figure_crowns*' ! -path './*/*/figure_poly*' -exec cp --parents {} $(CURDIR)/frozen/$$e/ \;) ; done; fi
 	@# the readings keep their run folders; their figure tables are not part of the readings table
 	@if [ -f frozen/readings/summary.tsv ]; then $(CLI) readings-summary --dir frozen/readings --out frozen/readings/summary.tsv >/dev/null; fi
 	@$(CLI) hash-frozen

@@ -1,6 +1,8 @@
 # main.gp — Fig. main (reference paper §5.1-5.2): left, the error of every
 # seed of both arms on the unseen spacings (W1 of focal nearest-neighbour
-# clearances, mean over 4.0/5.0/6.0 m) with the direction-blind level; right,
+# clearances, mean over 4.0/5.0/6.0 m) with the direction-blind level, and the
+# joint arm under the shuffled-geometry probe (preregistered) and the rotation
+# probe (added after the first verdict, shifted left for legibility); right,
 # the relative advantage of the joint arm (median over seeds) at the
 # extrapolation spacings with the preregistered 20 % line.
 # Usage: gnuplot figures/main.gp   (dir='build/results' to draw unfrozen data)
@@ -28,17 +30,19 @@ do for [term = 1:2] {
   PS = (term == 1) ? 1.4 : 0.5
   set multiplot layout 1,2
   # the right panel's settings must not leak into the left one on the second pass
-  set offsets 0, 0, 0, 0
   unset style fill
-  set key bottom right opaque box
+  set key inside top left horizontal maxrows 3 opaque box
   set xlabel "seed"
   set xrange [0.5:S_max + 0.5]
   set ylabel "W1 error on unseen spacings (m)"
   set xtics 1
   set yrange [0:*]
+  set offsets 0, 0, graph 0.4, 0   # room for the key above the points
   set title "joint vs independent, matched capacity"
   plot runs using ((strcol(2) eq "indep" && strcol(3) eq "generated") ? $1 : NaN):4 with points pt 5 ps PS lc rgb '#b2182b' title "independent", \
        runs using ((strcol(2) eq "joint" && strcol(3) eq "generated") ? $1 : NaN):4 with points pt 7 ps PS lc rgb '#2166ac' title "joint", \
+       runs using ((strcol(2) eq "joint" && strcol(3) eq "shuffled") ? $1 : NaN):4 with points pt 6 ps PS lc rgb '#2166ac' title "joint, shuffled", \
+       runs using ((strcol(2) eq "joint" && strcol(3) eq "rotated") ? $1 - 0.2 : NaN):4 with points pt 8 ps PS lc rgb '#4dac26' title "joint, rotated (added)", \
        BLIND_mean with lines dt 3 lw 2 lc rgb '#333333' title "direction-blind"
   set title "outside the training range"
   set xlabel "stem spacing (m)"
@@ -48,7 +52,7 @@ do for [term = 1:2] {
   lo = rel3 < rel7 ? rel3 : rel7
   set yrange [(lo < 0 ? lo - 5 : 0):*]
   set offsets 0, 0, 5, 0
-  set key top right box
+  set key inside top right box
   set style fill solid 0.8 border -1
   set boxwidth 0.5
   plot '+' using (0):(rel3) every ::0::0 with boxes lc rgb '#2166ac' notitle, \

@@ -295,7 +295,8 @@ if diff <(cd "$RL" && find . -type f ! -name '*.tmp' | sort) <(cd "$RS" && find 
     nf=0 nd=0 first=""
     while IFS= read -r f; do
         nf=$((nf + 1))
-        if ! cmp -s <(grep -v '^#' "$RL/$f") <(grep -v '^#' "$RS/$f"); then
+        # the E3/E4 weights files are binary: byte for byte
+        if case "$f" in *.ckpt) ! cmp -s "$RL/$f" "$RS/$f";; *) ! cmp -s <(grep -v '^#' "$RL/$f") <(grep -v '^#' "$RS/$f");; esac; then
             nd=$((nd + 1)); [ -n "$first" ] || first=$f
         fi
     done < <(cd "$RL" && find . -type f ! -name '*.tmp' | sort)

@@ -29,6 +29,7 @@ static const cmd_case CMDS[] = {
     {"main-run", "", {{"seed", "0"}, {"epochs", "0"}, {"train-stands", "10001"}, {"pair", "2"}}},
     {"main-baselines", "", {{0}}},
     {"main-summary", "", {{"seeds", "65"}}},
+    {"main-redraw", "", {{"seed", "0"}}},
     {"comp-run", "", {{0}}},
     {"bench-teacher", "", {{"reps", "0"}}},
     {"readings-summary", "", {{0}}},

@@ -48,6 +48,20 @@ static void test_registry_rejects_bad_gate_reference(void **s)
     assert_non_null(strstr(cs_errmsg(), "'gate'"));
 }
 
+/* A probe row (issue 14) is measured but never gated. */
+static void test_registry_rejects_gated_probe_row(void **s)
+{
+    (void)s;
+    const char *p = registry("reg_probe", "MainRotJoint\tprobe\tfrozen/main/runs.tsv\tclaim_main_probe\tmain.gate:shuffle_ratio_min\tt\t5.1\t%.3f\t-\n");
+    claims c;
+    assert_int_equal(claims_load(p, &c), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "'gate'"));
+    assert_non_null(strstr(cs_errmsg(), "probe"));
+    p = registry("reg_probe_ok", "MainRotJoint\tprobe\tfrozen/main/runs.tsv\tclaim_main_probe\t-\tt\t5.1\t%.3f\t-\n");
+    assert_int_equal(claims_load(p, &c), CS_OK);
+    claims_free(&c);
+}
+
 static void test_registry_rejects_truncated_row(void **s)
 {
     (void)s;
@@ -179,6 +193,7 @@ int main(void)
         cmocka_unit_test(test_registry_rejects_unknown_kind),
         cmocka_unit_test(test_registry_rejects_duplicate_macro),
         cmocka_unit_test(test_registry_rejects_bad_gate_reference),
+        cmocka_unit_test(test_registry_rejects_gated_probe_row),
         cmocka_unit_test(test_registry_rejects_truncated_row),
         cmocka_unit_test(test_design_claim_reads_gate_value),
         cmocka_unit_test(test_unimplemented_function_is_pending_with_reason),

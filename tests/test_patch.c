@@ -257,6 +257,70 @@ static void test_shuffled_geometry_permutes_positions_only(void **s)
     patch_set_free(ps);
 }
 
+/* Rotation probe: positions and bearings turn about the focal stem; a
+ * patch turned by alpha reads like a patch built from turned stems. */
+static void test_rotation_turns_positions_and_bearings(void **s)
+{
+    (void)s;
+    patch_set *ps;
+    build_set(&ps, 10, 2);
+    size_t nf = (size_t)ps->n * 24 * PATCH_NFEAT;
+    float *f = malloc(sizeof(float) * nf);
+    memcpy(f, ps->feat, sizeof(float) * nf);
+    double al[2] = {patch_rotation_angle(0), patch_rotation_angle(5)};
+    ASSERT_NEAR(al[0], M_PI / 4, 1e-15);
+    ASSERT_NEAR(al[1], 6 * M_PI / 4, 1e-15);
+    ASSERT_NEAR(patch_rotation_angle(7), M_PI / 4, 1e-15);
+    patch_rotate_positions(f, ps->n, al);
+    for (int k = 0; k < ps->n; k++)
+        for (int i = 0; i < 24; i++) {
+            const float *a = f + (k * 24 + i) * PATCH_NFEAT, *b = ps->feat + (k * 24 + i) * PATCH_NFEAT;
+            double x = b[0], y = b[1], c = cos(al[k]), sn = sin(al[k]);
+            ASSERT_NEAR(a[0], c * x - sn * y, 1e-6);
+            ASSERT_NEAR(a[1], sn * x + c * y, 1e-6);
+            ASSERT_EXACT(a[PATCH_FEAT_RBAR], b[PATCH_FEAT_RBAR]);
+            ASSERT_EXACT(a[11], b[11]);
+            if (i == 0) { for (int q = 3; q < 11; q++) ASSERT_EXACT(a[q], 0.f); continue; }
+            double phi = atan2(y, x) + al[k];
+            for (int h = 1; h <= 4; h++) {
+                ASSERT_NEAR(a[1 + 2 * h], cos(h * phi), 1e-5);
+                ASSERT_NEAR(a[2 + 2 * h], sin(h * phi), 1e-5);
+            }
+        }
+    free(f);
+    patch_set_free(ps);
+}
+
+static void test_crown_rotation_shifts_sectors(void **s)
+{
+    (void)s;
+    double r[24], o[24], back[24];
+    for (int i = 0; i < 24; i++) r[i] = 1.0 + 0.1 * i;
+    patch_rotate_crown(r, 3, o);
+    for (int i = 0; i < 24; i++) ASSERT_EXACT(o[(i + 3) % 24], r[i]);
+    /* r'(theta) = r(theta - 45 deg) */
+    ASSERT_NEAR(patch_radius_at(o, 0.3 + M_PI / 4), patch_radius_at(r, 0.3), 1e-12);
+    patch_rotate_crown(o, -3, back);
+    for (int i = 0; i < 24; i++) ASSERT_EXACT(back[i], r[i]);
+}
+
+static void test_shuffle_perm_is_the_probe_permutation(void **s)
+{
+    (void)s;
+    patch_set *ps;
+    build_set(&ps, 10, 1);
+    float f[24 * PATCH_NFEAT];
+    memcpy(f, ps->feat, sizeof f);
+    gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937), *h = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(g, 9); gsl_rng_set(h, 9);
+    patch_shuffle_positions(f, 1, g);
+    int perm[24];
+    patch_shuffle_perm(h, perm);
+    for (int i = 0; i < 24; i++) ASSERT_EXACT(f[i * PATCH_NFEAT], ps->feat[perm[i] * PATCH_NFEAT]);
+    gsl_rng_free(g); gsl_rng_free(h);
+    patch_set_free(ps);
+}
+
 static void test_direction_blind_is_circular_mean(void **s)
 {
     (void)s;
@@ -281,6 +345,9 @@ int main(void)
         cmocka_unit_test(test_check_rejects_a_disagreeing_estimator),
         cmocka_unit_test(test_shuffled_geometry_permutes_positions_only),
         cmocka_unit_test(test_direction_blind_is_circular_mean),
+        cmocka_unit_test(test_rotation_turns_positions_and_bearings),
+        cmocka_unit_test(test_crown_rotation_shifts_sectors),
+        cmocka_unit_test(test_shuffle_perm_is_the_probe_permutation),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

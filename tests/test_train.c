@@ -431,6 +431,51 @@ static void test_pair_model_loads_with_its_z_scores(void **s)
     train_free(t); patch_set_free(d);
 }
 
+/* Weights files: the model, its z-scores and scale only, sealed; a tampered
+ * or truncated file is refused. */
+static void test_weights_file_round_trips_and_is_sealed(void **s)
+{
+    (void)s;
+    patch_set *d = toy_set(20, 1, 6);
+    model_cfg c = small_cfg2(1, 1);
+    train_opts o = small_opts(4);
+    const char *dir = tu_tmpdir("weights_file");
+    char path[600], bad[640];
+    snprintf(path, sizeof path, "%s/w.ckpt", dir);
+    train *t;
+    assert_int_equal(train_alloc(&t, &c, d, &o), CS_OK);
+    assert_int_equal(train_run(t, 2, NULL, 0, NULL), CS_OK);
+    assert_int_equal(train_save_weights(t, path), CS_OK);
+    model *m;
+    double scale = 0;
+    assert_int_equal(train_load_model(path, &m, 3, &scale), CS_OK);
+    ASSERT_EXACT(scale, d->scale);
+    assert_int_equal(m->cfg.pair, 1);
+    assert_int_equal(m->cfg.joint, 1);
+    assert_memory_equal(m->norm, t->m->norm, sizeof(float) * t->m->nnorm);
+    assert_memory_equal(m->params, t->m->params, sizeof(float) * m->nparams);
+    model_free(m);
+    /* one flipped byte in the parameters, then a truncated copy */
+    FILE *f = fopen(path, "rb");
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    rewind(f);
+    unsigned char *b = malloc((size_t)n);
+    assert_int_equal(fread(b, 1, (size_t)n, f), (size_t)n);
+    fclose(f);
+    snprintf(bad, sizeof bad, "%s/bad.ckpt", dir);
+    b[n / 2] ^= 1;
+    f = fopen(bad, "wb"); fwrite(b, 1, (size_t)n, f); fclose(f);
+    assert_int_equal(train_load_model(bad, &m, 3, NULL), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "checksum"));
+    b[n / 2] ^= 1;
+    f = fopen(bad, "wb"); fwrite(b, 1, (size_t)n - 9, f); fclose(f);
+    assert_int_equal(train_load_model(bad, &m, 3, NULL), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "truncated"));
+    free(b);
+    train_free(t); patch_set_free(d);
+}
+
 static void test_model_loads_from_checkpoint(void **s)
 {
     (void)s;
@@ -469,6 +514,7 @@ int main(void)
         cmocka_unit_test(test_pair_kill_and_resume_is_bit_identical_independent),
         cmocka_unit_test(test_version_1_checkpoint_is_refused_clearly),
         cmocka_unit_test(test_pair_model_loads_with_its_z_scores),
+        cmocka_unit_test(test_weights_file_round_trips_and_is_sealed),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

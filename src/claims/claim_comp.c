@@ -25,7 +25,8 @@ static cs_status source_value(const claim_row *row, claim_result *res, const cha
 
 cs_status claim_comp_overlap(const claim_row *row, claim_result *res)
 {
-    return source_value(row, res, !strcmp(row->macro, "CompGenOverlap") ? "joint" : "indep", "overlapping");
+    const char *s = !strcmp(row->macro, "CompGenOverlap") ? "joint" : !strcmp(row->macro, "CompTeachOverlap") ? "teacher" : "indep";
+    return source_value(row, res, s, "overlapping");
 }
 
 cs_status claim_comp_k(const claim_row *row, claim_result *res)

@@ -15,14 +15,35 @@
 
 #define MAXSEED 64
 
-typedef struct { int n; double joint[MAXSEED], indep[MAXSEED], shuffled[MAXSEED]; } main_runs;
+/* Per seed: k = 0 joint generated, 1 indep generated, 2 joint shuffled (the
+ * three the gates judge, required), then the probes added after the first
+ * verdict (issue 14): 3 indep shuffled, 4 joint rotated, 5 indep rotated
+ * (present for every seed or for none). */
+#define NK 6
+typedef struct { int n; double v[NK][MAXSEED]; int has[NK]; } main_runs;
+
+static int run_kind(const char *arm, const char *probe)
+{
+    int a = !strcmp(arm, "joint") ? 0 : !strcmp(arm, "indep") ? 1 : -1;
+    int q = !strcmp(probe, "generated") ? 0 : !strcmp(probe, "shuffled") ? 1 : !strcmp(probe, "rotated") ? 2 : -1;
+    if (a < 0 || q < 0) return -1;
+    static const int k[3][2] = {{0, 1}, {2, 3}, {4, 5}};
+    return k[q][a];
+}
+
+static const char *kind_name(int k)
+{
+    static const char *n[NK] = {"joint", "indep", "shuffled", "indep shuffled", "joint rotated", "indep rotated"};
+    return n[k];
+}
 
 static cs_status read_runs(const char *path, main_runs *r, claim_result *res)
 {
     tsv *t;
+    memset(r, 0, sizeof *r);
     cs_status st = tsv_read(path, &t);
     if (st) return st;
-    int seen[MAXSEED][3] = {{0}};
+    int seen[MAXSEED][NK] = {{0}};
     int maxs = 0;
     for (size_t i = 0; i < tsv_nrows(t) && !st; i++) {
         long s;
@@ -30,16 +51,16 @@ static cs_status read_runs(const char *path, main_runs *r, claim_result *res)
         if ((st = tsv_long(t, i, "seed", &s)) || (st = tsv_double(t, i, "error", &e))) break;
         const char *arm = tsv_str(t, i, "arm"), *probe = tsv_str(t, i, "probe");
         if (s < 1 || s > MAXSEED || !arm || !probe) { st = cs_err(CS_EINPUT, "%s:%d: field 'seed': out of range or arm/probe missing", path, tsv_line(t, i)); break; }
-        int k = !strcmp(arm, "joint") && !strcmp(probe, "generated") ? 0 : !strcmp(arm, "indep") && !strcmp(probe, "generated") ? 1
-              : !strcmp(arm, "joint") && !strcmp(probe, "shuffled") ? 2 : -1;
+        int k = run_kind(arm, probe);
         if (k < 0) { st = cs_err(CS_EINPUT, "%s:%d: field 'arm'/'probe': unexpected '%s'/'%s'", path, tsv_line(t, i), arm, probe); break; }
         if (seen[s - 1][k]++) { st = cs_err(CS_EINPUT, "%s:%d: field 'seed': seed %ld %s/%s appears twice", path, tsv_line(t, i), s, arm, probe); break; }
-        (k == 0 ? r->joint : k == 1 ? r->indep : r->shuffled)[s - 1] = e;
+        r->v[k][s - 1] = e;
+        r->has[k] = 1;
         if (s > maxs) maxs = (int)s;
     }
     for (int s = 0; s < maxs && !st; s++)
-        for (int k = 0; k < 3; k++)
-            if (!seen[s][k]) { st = cs_err(CS_EINPUT, "%s: seed %d lacks its %s row", path, s + 1, k == 0 ? "joint" : k == 1 ? "indep" : "shuffled"); break; }
+        for (int k = 0; k < NK; k++)
+            if ((k < 3 || r->has[k]) && !seen[s][k]) { st = cs_err(CS_EINPUT, "%s: seed %d lacks its %s row", path, s + 1, kind_name(k)); break; }
     double want;
     if (!st && !(st = gate_read_value(PATHS_GATE("main"), "seeds", 0, &want)) && maxs != (int)want)
         st = cs_err(CS_EINPUT, "%s: %d seeds, gates/main.gate requires %g", path, maxs, want);
@@ -86,7 +107,7 @@ cs_status claim_main_median(const claim_row *row, claim_result *res)
     main_runs r;
     cs_status st = read_runs(row->source, &r, res);
     if (st) return st;
-    claim_set_value(row, res, med(strcmp(row->macro, "MainJoint") ? r.indep : r.joint, r.n));
+    claim_set_value(row, res, med(strcmp(row->macro, "MainJoint") ? r.v[1] : r.v[0], r.n));
     return CS_OK;
 }
 
@@ -95,7 +116,7 @@ cs_status claim_main_range(const claim_row *row, claim_result *res)
     main_runs r;
     cs_status st = read_runs(row->source, &r, res);
     if (st) return st;
-    const double *x = !strncmp(row->macro, "MainJoint", 9) ? r.joint : r.indep;
+    const double *x = !strncmp(row->macro, "MainJoint", 9) ? r.v[0] : r.v[1];
     int hi = strstr(row->macro, "Hi") != NULL;
     claim_set_value(row, res, hi ? stats_max(x, (size_t)r.n) : stats_min(x, (size_t)r.n));
     return CS_OK;
@@ -106,7 +127,7 @@ cs_status claim_main_rel(const claim_row *row, claim_result *res)
     main_runs r;
     cs_status st = read_runs(row->source, &r, res);
     if (st) return st;
-    double mj = med(r.joint, r.n), mi = med(r.indep, r.n);
+    double mj = med(r.v[0], r.n), mi = med(r.v[1], r.n);
     double rel = (mi - mj) / mi;
     claim_set_value(row, res, 100.0 * rel);
     claim_judge(row, res, GATE_GE, rel);
@@ -119,7 +140,7 @@ cs_status claim_main_p(const claim_row *row, claim_result *res)
     cs_status st = read_runs(row->source, &r, res);
     if (st) return st;
     double p;
-    if ((st = stats_wilcoxon_exact(r.indep, r.joint, (size_t)r.n, &p, NULL, NULL))) return st;
+    if ((st = stats_wilcoxon_exact(r.v[1], r.v[0], (size_t)r.n, &p, NULL, NULL))) return st;
     claim_set_value(row, res, p);
     claim_judge(row, res, GATE_LT, p);
     return CS_OK;
@@ -130,7 +151,7 @@ cs_status claim_main_geom_ratio(const claim_row *row, claim_result *res)
     main_runs r;
     cs_status st = read_runs(row->source, &r, res);
     if (st) return st;
-    double ratio = med(r.shuffled, r.n) / med(r.joint, r.n);
+    double ratio = med(r.v[2], r.n) / med(r.v[0], r.n);
     claim_set_value(row, res, ratio);
     claim_judge(row, res, GATE_GE, ratio);
     return CS_OK;
@@ -155,11 +176,47 @@ cs_status claim_main_iso(const claim_row *row, claim_result *res)
     main_runs r;
     claim_result tmp = *res;
     if (read_runs("frozen/main/runs.tsv", &r, &tmp) == CS_OK)
-        claim_judge(row, res, GATE_LE, med(r.joint, r.n) / v);
+        claim_judge(row, res, GATE_LE, med(r.v[0], r.n) / v);
     else {
         res->gate = VERDICT_PENDING;
         snprintf(res->gate_detail, sizeof res->gate_detail, "needs frozen/main/runs.tsv: %s", cs_errmsg());
     }
+    return CS_OK;
+}
+
+/* The probes added after the first verdict (issue 14; kind "probe", never
+ * gated): medians over seeds of each arm's error under the shuffled and the
+ * rotation probe, and their ratios to the arm's own error (median of the
+ * probe error / median of the error, as MainGeomRatio). */
+cs_status claim_main_probe(const claim_row *row, claim_result *res)
+{
+    main_runs r;
+    cs_status st = read_runs(row->source, &r, res);
+    if (st) return st;
+    static const struct { const char *macro; int k, ratio_of; } map[] = {
+        {"MainShufJoint", 2, -1}, {"MainShufIndep", 3, -1}, {"MainGeomRatioIndep", 3, 1},
+        {"MainRotJoint", 4, -1}, {"MainRotIndep", 5, -1}, {"MainRotRatio", 4, 0}, {"MainRotRatioIndep", 5, 1},
+    };
+    for (size_t i = 0; i < sizeof map / sizeof *map; i++) {
+        if (strcmp(row->macro, map[i].macro)) continue;
+        if (!r.has[map[i].k]) return cs_err(CS_EINPUT, "%s: no %s rows (runs made before the probes of issue 14)", row->source, kind_name(map[i].k));
+        double v = med(r.v[map[i].k], r.n);
+        if (map[i].ratio_of >= 0) v /= med(r.v[map[i].ratio_of], r.n);
+        claim_set_value(row, res, v);
+        return CS_OK;
+    }
+    return cs_err(CS_EINPUT, "claim_main_probe: no probe named %s", row->macro);
+}
+
+/* The teacher's own crowns under a probe: mean over the unseen spacings of
+ * W1(teacher under the probe, teacher) from baselines.tsv. */
+cs_status claim_main_teach_probe(const claim_row *row, claim_result *res)
+{
+    double v;
+    const char *col = strstr(row->macro, "Rot") ? "teacher_rotated_w1" : "teacher_shuffled_w1";
+    cs_status st = read_baseline(col, "unseen", 0, &v, res->where, sizeof res->where);
+    if (st) return st;
+    claim_set_value(row, res, v);
     return CS_OK;
 }
 

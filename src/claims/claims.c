@@ -87,8 +87,14 @@ cs_status claims_load(const char *path, claims *out)
                 break;
             }
         if (st) break;
-        if (strcmp(w->kind, "measured") && strcmp(w->kind, "design") && strcmp(w->kind, "field") && strcmp(w->kind, "needs-data")) {
-            st = cs_err(CS_EINPUT, "%s:%d: field 'kind': unknown kind '%s' (measured, design, field, needs-data)", path, w->line, w->kind);
+        if (strcmp(w->kind, "measured") && strcmp(w->kind, "design") && strcmp(w->kind, "field") && strcmp(w->kind, "needs-data") &&
+            strcmp(w->kind, "probe")) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'kind': unknown kind '%s' (measured, design, field, needs-data, probe)", path, w->line, w->kind);
+            break;
+        }
+        /* probe: measured like a claim, added after the first verdict, never gated */
+        if (!strcmp(w->kind, "probe") && strcmp(w->gate, "-")) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'gate': a probe row is never gated ('-'), not '%s'", path, w->line, w->gate);
             break;
         }
         if (!gate_ref_ok(w->gate)) {
@@ -360,6 +366,7 @@ cs_status claims_write_comparison(const char *path, const claims *c, const claim
         const char *g = strcmp(c->rows[i].gate, "-") ? verdict_name(res[i].gate) : "--";
         const char *agree = res[i].status != VERDICT_PASS ? "not computed"
                           : !strcmp(c->rows[i].kind, "design") || !strcmp(c->rows[i].kind, "field") ? "fixed input"
+                          : !strcmp(c->rows[i].reference, "-") ? "not in the paper"
                           : !strcmp(res[i].text, c->rows[i].reference) ? "same value" : "differs";
         double rv, rel;
         char rd[32] = "--";

@@ -61,6 +61,12 @@ void claim_judge(const claim_row *row, claim_result *res, gate_op op, double obs
 cs_status claim_mech_train_row(const claim_row *row, claim_result *res, double beta);
 /* Load gates/<file> named in the row's gate column (or `file` if given). */
 cs_status claim_gate_load(const char *file, gate **g);
+/* Every W1 of ROOT/main/run_s<NN>_<arm>.tsv (NN = 1..maxseed, where present)
+ * and of ROOT/main/baselines.tsv (if present) recomputed with est_w1 from the
+ * samples files beside them and compared bit for bit (src/claims/claim_samples.c).
+ * *nchecked counts the W1 checked; on a difference CS_EINVARIANT and msg names
+ * the table, line, spacing and probe. */
+cs_status claim_main_samples_check(const char *root, int maxseed, char *msg, size_t mn, int *nchecked);
 
 /* numbers.tex */
 #define CLAIMS_PENDING_FMT "\\pending{%s}"

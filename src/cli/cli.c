@@ -35,6 +35,7 @@ static const cli_cmd cli_cmds[] = {
     {"main-run", exp_main_cmd_run, "E3/E4: one (seed, arm) training + evaluation unit"},
     {"main-baselines", exp_main_cmd_baselines, "E3/E4: direction-blind baseline and noise floor"},
     {"main-summary", exp_main_cmd_summary, "E3/E4: gather runs into frozen tables"},
+    {"main-redraw", exp_main_cmd_redraw, "E3/E4: draw a unit's clearance samples again from its frozen weights"},
     {"comp-run", exp_comp_cmd_run, "E7: comparison patch (teacher, joint, independent) and dart probe"},
     {"readings-summary", cli_cmd_readings_summary, "E0: the readings table from the runs under --dir (SPEC §7 E0)"},
     {"bench-teacher", cli_cmd_bench_teacher, "teacher ms per 144-tree stand at N = 48 and 384"},

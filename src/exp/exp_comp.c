@@ -69,8 +69,8 @@ int exp_comp_cmd_run(int argc, char **argv)
 {
     const char *cj = NULL, *ci = NULL, *dir = NULL;
     const opt_spec spec[] = {
-        {"joint", OPT_STR, &cj, 0, 0, "joint-arm checkpoint CKPT of E3 seed 1 (required)"},
-        {"indep", OPT_STR, &ci, 0, 0, "independent-arm checkpoint CKPT of E3 seed 1 (required)"},
+        {"joint", OPT_STR, &cj, 0, 0, "joint-arm weights (or checkpoint) CKPT of E3 seed 1 (required)"},
+        {"indep", OPT_STR, &ci, 0, 0, "independent-arm weights (or checkpoint) CKPT of E3 seed 1 (required)"},
         {"out", OPT_STR, &dir, 0, 0, "results root DIR (required)"},
     };
     const opts_cmd c = {"comp-run", "--joint CKPT --indep CKPT --out DIR",
@@ -92,6 +92,7 @@ int exp_comp_cmd_run(int argc, char **argv)
     if (!st) st = train_load_model(ci, &mi, 64, &si);
     if (!st && (!mj->cfg.joint || mi->cfg.joint)) st = cs_err(CS_EINPUT, "%s must be a joint-arm and %s an independent-arm checkpoint", cj, ci);
     if (!st && sj != si) st = cs_err(CS_EINPUT, "%s and %s were trained with different deviation scales", cj, ci);
+    if (!st && mj->cfg.pair != mi->cfg.pair) st = cs_err(CS_EINPUT, "%s and %s are different models (pair %d vs %d)", cj, ci, mj->cfg.pair, mi->cfg.pair);
     if (st) { fprintf(stderr, "crownshy: %s\n", cs_errmsg()); model_free(mj); model_free(mi); return cs_exit_code(st); }
 
     /* ---- the comparison patch ---- */
@@ -177,7 +178,8 @@ int exp_comp_cmd_run(int argc, char **argv)
         tsv_writer *w;
         if ((st = tsv_writer_open(&w, path))) break;
         if ((st = prov_write(w, &pv))) { tsv_writer_abort(w); break; }
-        tsv_writer_meta(w, "models", "joint %s, independent %s (E3 seed 1)", cj, ci);
+        tsv_writer_meta(w, "models", "joint %s, independent %s (E3 seed 1; %s)", cj, ci,
+                        mj->cfg.pair ? "pair-aware model, SPEC §8 revision 2" : "revision-1 model");
         if (file == 0) {
             tsv_writer_meta(w, "statistic", "median over the %d patch trees of the clearance toward the nearest patch tree; overlap = trees with a negative clearance toward any patch tree", PATCH_T);
             tsv_writer_columns(w, "source\tspacing_m\ttrees\tmedian_nn_clearance_m\toverlapping");

@@ -1,54 +1,36 @@
 /* exp_main: E3 main experiment and E4 extrapolation (reference paper
- * §4.3-§5.2; SPEC §7 E3/E4, §8). See exp_main.h for the data plan.
+ * §4.3-§5.2; SPEC §7 E3/E4, §8). See exp_main.h for the data plan and
+ * mainset.h for the data, the generation and the probes.
  * The error of a run at one spacing is W1 (est_w1, the pinned estimator)
  * between the focal nearest-neighbour clearances of generated patches and of
  * the teacher's patches at that spacing; the run's error is the mean over the
  * unseen spacings. Clearances on patches come from the batched estimator
  * (patch_focal_clearances), checked against est_clearance to 1e-6 m before
- * every run (paper §4.3); a mismatch aborts the run. */
+ * every run (paper §4.3); a mismatch aborts the run. Each unit also writes the
+ * clearance samples behind every W1 and its final weights; main-redraw draws
+ * the samples again from the weights alone. */
 #include "exp_main.h"
 #include "afile.h"
 #include "estimator.h"
-#include "gate.h"
-#include "paths.h"
+#include "mainset.h"
 #include "model.h"
 #include "opts.h"
 #include "patch.h"
+#include "paths.h"
 #include "prov.h"
 #include "seed.h"
-#include "stand.h"
+#include "sha256.h"
 #include "stats.h"
-#include "stand_grow.h"
+#include "gate.h"
 #include "train.h"
 #include "tsv.h"
-#include <gsl/gsl_randist.h>
-#include <gsl/gsl_rng.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
-#define MAXSP 8
-
-typedef struct {
-    double beta, jitter, tol;
-    double train_d[MAXSP], unseen_d[MAXSP], extrap_d[MAXSP];
-    size_t ntrain, nunseen, nextrap;
-} main_design;
-
-static cs_status design_get(main_design *d)
-{
-    cs_status st;
-    if ((st = gate_read_value(PATHS_GATE("mechanism"), "dieback_train", 0, &d->beta))) return st;
-    if ((st = gate_read_value(PATHS_GATE("anisotropy"), "canonical_jitter", 0, &d->jitter))) return st;
-    if ((st = gate_read_value(PATHS_GATE("main"), "estimator_agreement_tol_m", 0, &d->tol))) return st;
-    if ((st = gate_read_values(PATHS_GATE("main"), "train_spacings_m", d->train_d, MAXSP, &d->ntrain))) return st;
-    if ((st = gate_read_values(PATHS_GATE("main"), "unseen_spacings_m", d->unseen_d, MAXSP, &d->nunseen))) return st;
-    if ((st = gate_read_values(PATHS_GATE("extrapolation"), "spacings_m", d->extrap_d, MAXSP, &d->nextrap))) return st;
-    return CS_OK;
-}
+#define MAXSP MAINSET_MAXSP
 
 cs_status exp_main_plan_get(const char *scale, exp_main_plan *p)
 {
@@ -62,7 +44,7 @@ cs_status exp_main_plan_get(const char *scale, exp_main_plan *p)
     p->lr = 2e-3;
     if (!strcmp(scale, "full")) {
         p->scale = "full";
-        p->train_stands = 8;   /* x 4 spacings x ~64 interior stems = ~2048 patches */
+        p->train_stands = EXP_MAIN_TRAIN_STANDS; /* x 4 spacings x ~64 interior stems */
         p->eval_stands = 16;   /* ~1024 teacher clearances per eval spacing */
         p->gen_patches = 256;
         p->epochs = (int)epochs;
@@ -77,97 +59,6 @@ cs_status exp_main_plan_get(const char *scale, exp_main_plan *p)
     return CS_OK;
 }
 
-/* Teacher stand k of experiment `exp` at spacing d; every interior stem
- * becomes one patch in ps. stand_count (may be NULL) gets the patches added. */
-static cs_status add_stand_patches(const main_design *ds, const char *exp, double d, unsigned k,
-                                   patch_set *ps, int *added, double *worst)
-{
-    stand *sd;
-    cs_status st = stand_alloc(&sd, STAND_LATTICE, d, 12.0 * d, ds->jitter, exp, k);
-    if (st) return st;
-    size_t n = sd->s->n;
-    double *r = malloc(n * CROWN_NSEC * sizeof *r);
-    if (!r) { stand_free(sd); return cs_err(CS_ENOMEM, "out of memory"); }
-    teacher_params tp;
-    teacher_params_default(&tp);
-    tp.beta = ds->beta;
-    st = stand_grow(sd, &tp, NULL, r, NULL, worst);
-    patch_stand pst;
-    if (!st) st = patch_stand_init(&pst, (int)n, sd->s->x, sd->s->y, r, sd->h, d);
-    int cnt = 0;
-    for (size_t i = 0; i < n && !st; i++) {
-        if (!stems_interior(sd->s, i)) continue;
-        patch p;
-        st = patch_build(&pst, (int)i, &p);
-        if (!st) st = patch_set_add(ps, &p);
-        cnt++;
-    }
-    if (added) *added = cnt;
-    free(r);
-    stand_free(sd);
-    return st;
-}
-
-typedef struct {
-    double d;
-    patch_set *ps;
-    int nstands;
-    int *per_stand; /* patches contributed by each stand, in order */
-    double *teach;  /* focal NN clearance of every patch (teacher crowns) */
-} eval_set;
-
-static void eval_free(eval_set *e)
-{
-    if (e->ps) patch_set_free(e->ps);
-    free(e->per_stand);
-    free(e->teach);
-    memset(e, 0, sizeof *e);
-}
-
-/* Focal NN clearances of patches [k0, k0+b) of ps with standardised
- * deviations x (b*T*P); rbuf holds b*T*P radii. */
-static cs_status focal_nn(const patch_set *ps, int k0, int b, const float *x, double *rbuf, double *out)
-{
-    for (int k = 0; k < b; k++)
-        patch_set_radii(ps, k0 + k, x + (size_t)k * PATCH_T * PATCH_P, rbuf + (size_t)k * PATCH_T * PATCH_P);
-    return patch_focal_clearances(ps->px + (size_t)k0 * PATCH_T, ps->py + (size_t)k0 * PATCH_T, rbuf, b, 1, out);
-}
-
-static cs_status eval_build(const main_design *ds, const exp_main_plan *pl, double d, double scale,
-                            eval_set *e, double *worst, double *maxdiff)
-{
-    memset(e, 0, sizeof *e);
-    e->d = d;
-    e->nstands = pl->eval_stands;
-    cs_status st = patch_set_alloc(&e->ps, pl->eval_stands * 100);
-    if (st) return st;
-    e->per_stand = calloc((size_t)pl->eval_stands, sizeof *e->per_stand);
-    if (!e->per_stand) return cs_err(CS_ENOMEM, "out of memory");
-    for (int k = 0; k < pl->eval_stands && !st; k++)
-        st = add_stand_patches(ds, "main-eval", d, (unsigned)k, e->ps, &e->per_stand[k], worst);
-    if (!st) st = patch_set_standardise(e->ps, scale);
-    if (st) return st;
-    int n = e->ps->n;
-    e->teach = malloc((size_t)n * sizeof *e->teach);
-    double *rbuf = malloc((size_t)64 * PATCH_T * PATCH_P * sizeof *rbuf);
-    if (!e->teach || !rbuf) { free(rbuf); return cs_err(CS_ENOMEM, "out of memory"); }
-    for (int k0 = 0; k0 < n && !st; k0 += 64) {
-        int b = n - k0 < 64 ? n - k0 : 64;
-        st = focal_nn(e->ps, k0, b, e->ps->x1 + (size_t)k0 * PATCH_T * PATCH_P, rbuf, e->teach + k0);
-        /* The instrument guard of paper §4.3: the batched estimator must agree
-         * with the canonical one on every pair of the first batch. */
-        if (!st && k0 == 0) {
-            double md;
-            st = patch_clearance_check(est_clearance, e->ps->px, e->ps->py, rbuf, b, &md);
-            if (!st && md > *maxdiff) *maxdiff = md;
-            if (!st && md > ds->tol)
-                st = cs_err(CS_EINVARIANT, "batched estimator differs from est_clearance by %.3g m > %.3g m at d = %.1f", md, ds->tol, d);
-        }
-    }
-    free(rbuf);
-    return st;
-}
-
 static int file_exists(const char *p)
 {
     struct stat sb;
@@ -180,56 +71,136 @@ static int fail_with(cs_status st)
     return cs_exit_code(st);
 }
 
-static cs_status build_train(const main_design *ds, const exp_main_plan *pl, patch_set **out, double *worst)
+static cs_status file_sha256(const char *path, char hex[65])
 {
-    cs_status st = patch_set_alloc(out, (int)ds->ntrain * pl->train_stands * 100);
-    for (size_t s = 0; s < ds->ntrain && !st; s++)
-        for (int k = 0; k < pl->train_stands && !st; k++)
-            st = add_stand_patches(ds, "main-train", ds->train_d[s], (unsigned)k, *out, NULL, worst);
+    FILE *f = fopen(path, "rb");
+    if (!f) return cs_err(CS_EIO, "%s: cannot open to hash", path);
+    sha256_ctx c;
+    sha256_init(&c);
+    unsigned char b[65536];
+    size_t n;
+    while ((n = fread(b, 1, sizeof b, f)) > 0) sha256_update(&c, b, n);
+    int bad = ferror(f);
+    fclose(f);
+    if (bad) return cs_err(CS_EIO, "%s: read error while hashing", path);
+    uint8_t d[32];
+    sha256_final(&c, d);
+    sha256_tohex(d, hex);
+    return CS_OK;
+}
+
+static const char *base_name(const char *p)
+{
+    const char *s = strrchr(p, '/');
+    return s ? s + 1 : p;
+}
+
+/* One W1 of a run: spacing, probe, the generated clearances behind it, and
+ * (on the generated row of a spacing) the teacher's. */
+typedef struct {
+    double d, w1;
+    int unseen, ng, nt;
+    mainset_probe probe;
+    double *gen, *teach;
+} run_row;
+
+static void rows_free(run_row *rows, size_t n)
+{
+    for (size_t i = 0; i < n; i++) { free(rows[i].gen); free(rows[i].teach); }
+}
+
+/* Probes a unit runs: the pair model (revision 2) every probe on both arms;
+ * the revision-1 model as it did (joint: shuffled; independent: none). */
+static int unit_nprobe(int pair, int joint)
+{
+    return pair ? MAINSET_NPROBE : joint ? 2 : 1;
+}
+
+/* Every evaluation spacing x probe of one model: the rows of a run table and
+ * the samples behind them. main-run and main-redraw both come through here. */
+static cs_status evaluate(model *m, int Bmax, const mainset_design *ds, const exp_main_plan *pl, double scale,
+                          unsigned seed, const char *arm, int nprobe, run_row *rows, size_t *nrows,
+                          double *worst, double *maxdiff)
+{
+    cs_status st = CS_OK;
+    *nrows = 0;
+    for (size_t si = 0; si < ds->nunseen + ds->nextrap && !st; si++) {
+        int unseen;
+        double d = mainset_eval_spacing(ds, si, &unseen);
+        mainset_eval e;
+        st = mainset_eval_build(ds, pl->eval_stands, d, scale, &e, worst, maxdiff);
+        for (int probe = 0; probe < nprobe && !st; probe++) {
+            run_row *r = &rows[(*nrows)++];
+            memset(r, 0, sizeof *r);
+            r->d = d; r->unseen = unseen; r->probe = (mainset_probe)probe; r->nt = e.ps->n;
+            r->gen = malloc((size_t)pl->gen_patches * sizeof *r->gen);
+            if (!probe) r->teach = malloc((size_t)e.ps->n * sizeof *r->teach);
+            if (!r->gen || (!probe && !r->teach)) { st = cs_err(CS_ENOMEM, "out of memory"); break; }
+            if (!probe) memcpy(r->teach, e.teach, (size_t)e.ps->n * sizeof *r->teach);
+            st = mainset_generate(m, Bmax, &e, pl->gen_patches, pl->euler, seed, r->probe, r->gen, &r->ng);
+            if (!st) st = est_w1(r->gen, (size_t)r->ng, e.teach, (size_t)e.ps->n, &r->w1);
+            if (!st) fprintf(stderr, "main-run s%u %s: d = %.1f %s W1 = %.4f m\n", seed, arm, d, mainset_probe_name(r->probe), r->w1);
+        }
+        mainset_eval_free(&e);
+    }
     return st;
 }
 
-/* Generate pl->gen_patches (or fewer) patches of e with model m; shuffle != 0
- * permutes the position features among the tokens of each patch (the
- * shuffled-geometry probe), evaluation keeps the true positions. */
-static cs_status generate(model *m, int Bmax, const exp_main_plan *pl, const eval_set *e, unsigned seed,
-                          int shuffle, double *gen, int *ngen)
+/* The samples behind every W1 of a run (README "Frozen samples and weights"):
+ * per spacing the teacher's focal NN clearances (which = teacher, probe =
+ * none), then the generated ones under each probe (which = generated). */
+static cs_status samples_write(const char *path, prov *pv, unsigned seed, const char *arm,
+                               const run_row *rows, size_t n)
 {
-    int G = e->ps->n < pl->gen_patches ? e->ps->n : pl->gen_patches;
-    double *r = malloc((size_t)G * PATCH_T * PATCH_P * sizeof *r);
-    gsl_rng *noise = gsl_rng_alloc(gsl_rng_mt19937), *perm = gsl_rng_alloc(gsl_rng_mt19937);
-    cs_status st = r && noise && perm ? CS_OK : cs_err(CS_ENOMEM, "out of memory");
-    if (!st) {
-        gsl_rng_set(noise, (unsigned long)seed_derive(shuffle ? "main-model-shuffled" : "main-model", e->d, seed, "sample"));
-        gsl_rng_set(perm, (unsigned long)seed_derive("main-model", e->d, seed, "shuffle"));
-        st = model_sample_radii(m, Bmax, e->ps, G, pl->euler, noise, shuffle ? perm : NULL, r);
+    tsv_writer *w;
+    cs_status st = tsv_writer_open(&w, path);
+    if (st) return st;
+    if ((st = prov_write(w, pv))) { tsv_writer_abort(w); return st; }
+    tsv_writer_meta(w, "what", "focal nearest-neighbour clearances (m) behind every W1 of run_s%02u_%s.tsv: W1(spacing, probe) = est_w1(generated values of that spacing and probe, teacher values of that spacing), values in drawing order", seed, arm);
+    tsv_writer_columns(w, "spacing\tsplit\tprobe\twhich\tvalue");
+    for (size_t i = 0; i < n; i++) {
+        const run_row *r = &rows[i];
+        const char *split = r->unseen ? "unseen" : "extrap";
+        for (int k = 0; r->teach && k < r->nt; k++) {
+            tsv_writer_dbl(w, r->d); tsv_writer_str(w, split); tsv_writer_str(w, "none"); tsv_writer_str(w, "teacher");
+            tsv_writer_dbl(w, r->teach[k]); tsv_writer_endrow(w);
+        }
+        for (int k = 0; k < r->ng; k++) {
+            tsv_writer_dbl(w, r->d); tsv_writer_str(w, split); tsv_writer_str(w, mainset_probe_name(r->probe));
+            tsv_writer_str(w, "generated"); tsv_writer_dbl(w, r->gen[k]); tsv_writer_endrow(w);
+        }
     }
-    if (!st) st = patch_focal_clearances(e->ps->px, e->ps->py, r, G, 1, gen);
-    *ngen = G;
-    free(r);
-    if (noise) gsl_rng_free(noise);
-    if (perm) gsl_rng_free(perm);
-    return st;
+    return tsv_writer_commit(w);
+}
+
+static const char *seeds_text(char *buf, size_t n, unsigned seed)
+{
+    snprintf(buf, n, "stands seed_derive(main-train|main-eval, d, k, stems|crowns); model seed_derive(main-model, 0, %u, init|batch|noise); "
+             "sampling seed_derive(main-model[-shuffled|-rotated], d, %u, sample), permutation seed_derive(main-model, d, %u, shuffle)", seed, seed, seed);
+    return buf;
 }
 
 int exp_main_cmd_run(int argc, char **argv)
 {
-    long seedl = 0, epochs = 0, train_stands = 0, pairl = 0;
-    const char *arm = NULL, *out = NULL, *scale = "full", *ckpt = NULL;
+    long seedl = 0, epochs = 0, train_stands = 0, pairl = 1;
+    const char *arm = NULL, *out = NULL, *scale = "full", *ckpt = NULL, *samples = NULL, *weights = NULL;
     const opt_spec spec[] = {
         {"seed", OPT_LONG, &seedl, 1, 4294967295.0, "model seed (required; zero-padded 01 is 1)"},
         {"arm", OPT_STR, &arm, 0, 0, "joint or indep (required)"},
         {"out", OPT_STR, &out, 0, 0, "output table FILE.tsv (required)"},
         {"scale", OPT_STR, &scale, 0, 0, "full or smoke (default full)"},
         {"ckpt", OPT_STR, &ckpt, 0, 0, "checkpoint FILE, resumed from when it exists (default none)"},
+        {"samples", OPT_STR, &samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
+        {"weights", OPT_STR, &weights, 0, 0, "also write the final weights to FILE (weights format, README; default none)"},
         {"epochs", OPT_LONG, &epochs, 1, 1000000, "exploration override of the plan's epochs (default: the plan's)"},
         {"train-stands", OPT_LONG, &train_stands, 1, 10000, "exploration override of the plan's stands per training spacing (default: the plan's)"},
-        {"pair", OPT_LONG, &pairl, 0, 1, "1: the pair-aware model of SPEC §8 revision 2; both arms then run the shuffled probe (default 0)"},
+        {"pair", OPT_LONG, &pairl, 0, 1, "1: the pair-aware model of SPEC §8 revision 2, every probe on both arms; 0: the revision-1 model (default 1)"},
     };
-    const opts_cmd c = {"main-run", "--seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--ckpt FILE]",
+    const opts_cmd c = {"main-run", "--seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--ckpt FILE] [--samples FILE.tsv] [--weights FILE]",
                         "One (seed, arm) unit of E3/E4: build teacher data, train the flow model (resuming from\n"
                         "--ckpt if it exists), evaluate W1 of focal nearest-neighbour clearances at the unseen and\n"
-                        "extrapolation spacings (joint arm: also the shuffled-geometry probe), write FILE.tsv.",
+                        "extrapolation spacings, as generated and under the shuffled-geometry and rotation probes,\n"
+                        "write FILE.tsv (and the samples and weights behind it).",
                         spec, sizeof spec / sizeof *spec, 0, 0};
     int rc = opts_parse(&c, argc, argv, NULL, NULL);
     if (rc) return opts_exit_code(rc);
@@ -242,21 +213,19 @@ int exp_main_cmd_run(int argc, char **argv)
     int joint = !strcmp(arm, "joint");
     prov pv;
     prov_begin(&pv, "main", argc, argv);
-    main_design ds;
+    mainset_design ds;
     exp_main_plan pl;
-    cs_status st = design_get(&ds);
+    cs_status st = mainset_design_get(&ds);
     if (!st) st = exp_main_plan_get(scale, &pl);
     if (st) return fail_with(st);
     /* exploration overrides (recorded in the provenance command line) */
     if (epochs) pl.epochs = (int)epochs;
     if (train_stands) pl.train_stands = (int)train_stands;
     if (pl.epochs < 1) { opts_usage_error("main-run", "the plan's epochs must be >= 1"); return 2; }
-    /* --pair 1: the revision-2 model (SPEC §8 "Pair awareness"); both arms then
-     * also run the shuffled-geometry probe (the independent arm as its control) */
     const int pair = (int)pairl;
     double worst = 0.0, maxdiff = 0.0;
     patch_set *tr = NULL;
-    if ((st = build_train(&ds, &pl, &tr, &worst))) return fail_with(st);
+    if ((st = mainset_train_build(&ds, pl.train_stands, &tr, &worst))) return fail_with(st);
     double data_scale = patch_set_rms(tr);
     if ((st = patch_set_standardise(tr, data_scale))) { patch_set_free(tr); return fail_with(st); }
 
@@ -287,39 +256,21 @@ int exp_main_cmd_run(int argc, char **argv)
     long every = o.steps / 50 > 0 ? o.steps / 50 : 1;
     st = train_run(t, o.steps, ckpt, ckpt ? every : 0, stderr);
     double final_loss = t->loss;
+    char wsha[65] = "", ssha[65] = "", sbuf[256];
+    if (!st && weights && !(st = afile_mkdir_parents(weights)) && !(st = train_save_weights(t, weights)))
+        st = file_sha256(weights, wsha);
     if (st) { train_free(t); patch_set_free(tr); return fail_with(st); }
 
-    typedef struct { double d, w1; int unseen, probe, ng, nt; } row_t;
-    size_t nall = ds.nunseen + ds.nextrap;
-    row_t rows[2 * 2 * MAXSP];
+    run_row rows[MAINSET_NPROBE * 2 * MAXSP];
     size_t nrows = 0;
-    double *gen = malloc((size_t)pl.gen_patches * sizeof *gen);
-    if (!gen) st = cs_err(CS_ENOMEM, "out of memory");
-    for (size_t si = 0; si < nall && !st; si++) {
-        double d = si < ds.nunseen ? ds.unseen_d[si] : ds.extrap_d[si - ds.nunseen];
-        eval_set e;
-        st = eval_build(&ds, &pl, d, data_scale, &e, &worst, &maxdiff);
-        for (int probe = 0; probe < (joint || pair ? 2 : 1) && !st; probe++) {
-            int ng = 0;
-            double w1 = 0;
-            st = generate(t->m, t->B, &pl, &e, seed, probe, gen, &ng);
-            if (!st) st = est_w1(gen, (size_t)ng, e.teach, (size_t)e.ps->n, &w1);
-            if (st) break;
-            rows[nrows++] = (row_t){d, w1, si < ds.nunseen, probe, ng, e.ps->n};
-            fprintf(stderr, "main-run s%u %s: d = %.1f %s W1 = %.4f m\n", seed, arm, d, probe ? "shuffled" : "generated", w1);
-        }
-        eval_free(&e);
-    }
-    free(gen);
+    st = evaluate(t->m, t->B, &ds, &pl, data_scale, seed, arm, unit_nprobe(pair, joint), rows, &nrows, &worst, &maxdiff);
+    snprintf(pv.seeds, sizeof pv.seeds, "%s", seeds_text(sbuf, sizeof sbuf, seed));
+    pv.worst_overlap_m = worst;
+    if (!st && samples && !(st = afile_mkdir_parents(samples)) && !(st = samples_write(samples, &pv, seed, arm, rows, nrows)))
+        st = file_sha256(samples, ssha);
     tsv_writer *w = NULL;
     if (!st) st = tsv_writer_open(&w, out);
-    if (!st) {
-        snprintf(pv.seeds, sizeof pv.seeds,
-                 "stands seed_derive(main-train|main-eval, d, k, stems|crowns); model seed_derive(main-model, 0, %u, init|batch|noise); sampling seed_derive(main-model[-shuffled], d, %u, sample)",
-                 seed, seed);
-        pv.worst_overlap_m = worst;
-        st = prov_write(w, &pv);
-    }
+    if (!st) st = prov_write(w, &pv);
     if (!st) {
         tsv_writer_meta(w, "scale", "%s", pl.scale);
         if (cfg.pair)
@@ -328,18 +279,21 @@ int exp_main_cmd_run(int argc, char **argv)
         else
             tsv_writer_meta(w, "model", "T %d P %d width %d blocks %d heads %d mlp %d joint %d params %zu",
                             cfg.T, cfg.P, cfg.C, cfg.L, cfg.H, cfg.F, cfg.joint, model_nparams(&cfg));
-        tsv_writer_meta(w, "training", "%d patches, batch %d, %d epochs = %ld steps, lr %g, final loss %.6g, deviation scale %.17g m",
-                        tr->n, o.batch, pl.epochs, o.steps, o.lr, final_loss, data_scale);
-        tsv_writer_meta(w, "eval", "%d teacher stands per spacing, up to %d generated patches, %d Euler steps",
-                        pl.eval_stands, pl.gen_patches, pl.euler);
+        tsv_writer_meta(w, "training", "%d patches (%d stands per training spacing), batch %d, %d epochs = %ld steps, lr %g, final loss %.17g, deviation scale %.17g m",
+                        tr->n, pl.train_stands, o.batch, pl.epochs, o.steps, o.lr, final_loss, data_scale);
+        tsv_writer_meta(w, "eval", "%d teacher stands per spacing, up to %d generated patches, %d Euler steps; probes: shuffled (preregistered gate)%s",
+                        pl.eval_stands, pl.gen_patches, pl.euler,
+                        pair ? ", rotated by (1 + g mod 7) x 45 deg about the focal stem (added after the first verdict)" : "");
         tsv_writer_meta(w, "estimator_check", "max |batched - est_clearance| = %.3g m (tolerance %.3g m)", maxdiff, ds.tol);
+        if (samples) tsv_writer_meta(w, "samples", "%s sha256 %s", base_name(samples), ssha);
+        if (weights) tsv_writer_meta(w, "weights", "%s sha256 %s (weights format 1, README)", base_name(weights), wsha);
         tsv_writer_columns(w, "seed\tarm\tspacing\tsplit\tprobe\tw1\tn_gen\tn_teacher");
         for (size_t i = 0; i < nrows; i++) {
             tsv_writer_long(w, (long)seed);
             tsv_writer_str(w, arm);
             tsv_writer_dbl(w, rows[i].d);
             tsv_writer_str(w, rows[i].unseen ? "unseen" : "extrap");
-            tsv_writer_str(w, rows[i].probe ? "shuffled" : "generated");
+            tsv_writer_str(w, mainset_probe_name(rows[i].probe));
             tsv_writer_dbl(w, rows[i].w1);
             tsv_writer_long(w, rows[i].ng);
             tsv_writer_long(w, rows[i].nt);
@@ -349,22 +303,74 @@ int exp_main_cmd_run(int argc, char **argv)
         w = NULL;
     }
     if (w) tsv_writer_abort(w);
+    rows_free(rows, nrows);
     train_free(t);
     patch_set_free(tr);
     if (st) return fail_with(st);
     return 0;
 }
 
+/* Redraw the samples of one unit from its frozen weights alone (SPEC §9
+ * verify-deep): the same evaluation sets, seeds and sampler as main-run. */
+int exp_main_cmd_redraw(int argc, char **argv)
+{
+    long seedl = 0;
+    const char *arm = NULL, *out = NULL, *scale = "full", *weights = NULL;
+    const opt_spec spec[] = {
+        {"weights", OPT_STR, &weights, 0, 0, "weights FILE written by main-run --weights (or its checkpoint) (required)"},
+        {"seed", OPT_LONG, &seedl, 1, 4294967295.0, "model seed of the unit (required)"},
+        {"arm", OPT_STR, &arm, 0, 0, "joint or indep (required; must match the weights)"},
+        {"out", OPT_STR, &out, 0, 0, "output samples FILE.tsv (required)"},
+        {"scale", OPT_STR, &scale, 0, 0, "full or smoke (default full)"},
+    };
+    const opts_cmd c = {"main-redraw", "--weights FILE --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke]",
+                        "Draw the clearance samples of one E3/E4 unit again from its weights, without training:\n"
+                        "the data rows of FILE.tsv equal those of the unit's samples_s<seed>_<arm>.tsv bit for bit.",
+                        spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = opts_parse(&c, argc, argv, NULL, NULL);
+    if (rc) return opts_exit_code(rc);
+    if (!weights) { opts_usage_error("main-redraw", "--weights is required"); return 2; }
+    if (!seedl) { opts_usage_error("main-redraw", "--seed is required"); return 2; }
+    if (!arm) { opts_usage_error("main-redraw", "--arm is required"); return 2; }
+    if (strcmp(arm, "joint") && strcmp(arm, "indep")) { opts_usage_error("main-redraw", "--arm: must be joint or indep, not '%s'", arm); return 2; }
+    if (!out) { opts_usage_error("main-redraw", "--out is required"); return 2; }
+    if (strcmp(scale, "full") && strcmp(scale, "smoke")) { opts_usage_error("main-redraw", "--scale: must be full or smoke, not '%s'", scale); return 2; }
+    unsigned seed = (unsigned)seedl;
+    prov pv;
+    prov_begin(&pv, "main", argc, argv);
+    mainset_design ds;
+    exp_main_plan pl;
+    model *m = NULL;
+    double scl = 0, worst = 0, maxdiff = 0;
+    cs_status st = mainset_design_get(&ds);
+    if (!st) st = exp_main_plan_get(scale, &pl);
+    if (!st) st = train_load_model(weights, &m, pl.batch, &scl);
+    if (!st && m->cfg.joint != !strcmp(arm, "joint")) st = cs_err(CS_EINPUT, "%s: weights of the %s arm, not %s", weights, m->cfg.joint ? "joint" : "indep", arm);
+    run_row rows[MAINSET_NPROBE * 2 * MAXSP];
+    size_t nrows = 0;
+    char sbuf[256];
+    if (!st) st = evaluate(m, pl.batch, &ds, &pl, scl, seed, arm, unit_nprobe(m->cfg.pair, m->cfg.joint), rows, &nrows, &worst, &maxdiff);
+    snprintf(pv.seeds, sizeof pv.seeds, "%s", seeds_text(sbuf, sizeof sbuf, seed));
+    pv.worst_overlap_m = worst;
+    if (!st) st = afile_mkdir_parents(out);
+    if (!st) st = samples_write(out, &pv, seed, arm, rows, nrows);
+    rows_free(rows, nrows);
+    model_free(m);
+    return st ? fail_with(st) : 0;
+}
+
 int exp_main_cmd_baselines(int argc, char **argv)
 {
-    const char *out = NULL, *scale = "full";
+    const char *out = NULL, *scale = "full", *samples = NULL;
     const opt_spec spec[] = {
         {"out", OPT_STR, &out, 0, 0, "output table FILE.tsv (required)"},
         {"scale", OPT_STR, &scale, 0, 0, "full or smoke (default full)"},
+        {"samples", OPT_STR, &samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
     };
-    const opts_cmd c = {"main-baselines", "--out FILE.tsv [--scale full|smoke]",
-                        "Direction-blind baseline (every crown replaced by its circular mean) and split-half\n"
-                        "noise floor of the teacher, as W1 of focal nearest-neighbour clearances per eval spacing.",
+    const opts_cmd c = {"main-baselines", "--out FILE.tsv [--scale full|smoke] [--samples FILE.tsv]",
+                        "Direction-blind baseline (every crown replaced by its circular mean), split-half noise floor\n"
+                        "of the teacher, and the teacher's own crowns under the shuffled-geometry and rotation probes\n"
+                        "(added after the first verdict), as W1 of focal nearest-neighbour clearances per eval spacing.",
                         spec, sizeof spec / sizeof *spec, 0, 0};
     int rc = opts_parse(&c, argc, argv, NULL, NULL);
     if (rc) return opts_exit_code(rc);
@@ -372,62 +378,90 @@ int exp_main_cmd_baselines(int argc, char **argv)
     if (strcmp(scale, "full") && strcmp(scale, "smoke")) { opts_usage_error("main-baselines", "--scale: must be full or smoke, not '%s'", scale); return 2; }
     prov pv;
     prov_begin(&pv, "main", argc, argv);
-    main_design ds;
+    mainset_design ds;
     exp_main_plan pl;
-    cs_status st = design_get(&ds);
+    cs_status st = mainset_design_get(&ds);
     if (!st) st = exp_main_plan_get(scale, &pl);
     if (st) return fail_with(st);
     double worst = 0.0, maxdiff = 0.0;
     size_t nall = ds.nunseen + ds.nextrap;
-    double blind[2 * MAXSP], noise[2 * MAXSP], dd[2 * MAXSP];
-    int nt[2 * MAXSP];
+    /* per spacing: 0 teacher, 1 teacher shuffled, 2 teacher rotated, 3 direction-blind */
+    double blind[2 * MAXSP], noise[2 * MAXSP], tshuf[2 * MAXSP], trot[2 * MAXSP], dd[2 * MAXSP];
+    double *smp[2 * MAXSP][4] = {{0}};
+    int nt[2 * MAXSP] = {0}, half[2 * MAXSP] = {0}, uns[2 * MAXSP] = {0};
     for (size_t si = 0; si < nall && !st; si++) {
-        double d = si < ds.nunseen ? ds.unseen_d[si] : ds.extrap_d[si - ds.nunseen];
-        eval_set e;
-        st = eval_build(&ds, &pl, d, 1.0, &e, &worst, &maxdiff);
+        dd[si] = mainset_eval_spacing(&ds, si, &uns[si]);
+        mainset_eval e;
+        st = mainset_eval_build(&ds, pl.eval_stands, dd[si], 1.0, &e, &worst, &maxdiff);
         int n = st ? 0 : e.ps->n;
-        double *b = malloc((size_t)(n ? n : 1) * sizeof *b);
-        float *zero = calloc((size_t)64 * PATCH_T * PATCH_P, sizeof *zero);
-        double *rbuf = malloc((size_t)64 * PATCH_T * PATCH_P * sizeof *rbuf);
-        if (!st && (!b || !zero || !rbuf)) st = cs_err(CS_ENOMEM, "out of memory");
-        for (int k0 = 0; k0 < n && !st; k0 += 64) {
-            int bb = n - k0 < 64 ? n - k0 : 64;
-            st = focal_nn(e.ps, k0, bb, zero, rbuf, b + k0);
-        }
-        if (!st) st = est_w1(b, (size_t)n, e.teach, (size_t)n, &blind[si]);
-        int half = 0;
-        for (int k = 0; k < e.nstands / 2 && !st; k++) half += e.per_stand[k];
-        if (!st && (half == 0 || half == n)) st = cs_err(CS_EINPUT, "noise floor needs at least 2 eval stands");
-        if (!st) st = est_w1(e.teach, (size_t)half, e.teach + half, (size_t)(n - half), &noise[si]);
-        dd[si] = d;
+        for (int q = 0; q < 4 && !st; q++)
+            if (!(smp[si][q] = malloc((size_t)(n ? n : 1) * sizeof **smp))) st = cs_err(CS_ENOMEM, "out of memory");
+        if (!st) st = mainset_teacher_probe(&e, MAINSET_GENERATED, smp[si][0]);
+        if (!st) st = mainset_teacher_probe(&e, MAINSET_SHUFFLED, smp[si][1]);
+        if (!st) st = mainset_teacher_probe(&e, MAINSET_ROTATED, smp[si][2]);
+        if (!st) st = mainset_blind(&e, smp[si][3]);
+        if (!st) st = est_w1(smp[si][3], (size_t)n, e.teach, (size_t)n, &blind[si]);
+        if (!st) st = est_w1(smp[si][1], (size_t)n, e.teach, (size_t)n, &tshuf[si]);
+        if (!st) st = est_w1(smp[si][2], (size_t)n, e.teach, (size_t)n, &trot[si]);
+        for (int k = 0; k < e.nstands / 2 && !st; k++) half[si] += e.per_stand[k];
+        if (!st && (half[si] == 0 || half[si] == n)) st = cs_err(CS_EINPUT, "noise floor needs at least 2 eval stands");
+        if (!st) st = est_w1(e.teach, (size_t)half[si], e.teach + half[si], (size_t)(n - half[si]), &noise[si]);
         nt[si] = n;
-        free(b); free(zero); free(rbuf);
-        eval_free(&e);
+        mainset_eval_free(&e);
     }
+    snprintf(pv.seeds, sizeof pv.seeds, "stands seed_derive(main-eval, d, k, stems|crowns), k < %d; teacher permutation seed_derive(main-teacher, d, 0, shuffle)", pl.eval_stands);
+    pv.worst_overlap_m = worst;
+    char ssha[65] = "";
     tsv_writer *w = NULL;
-    if (!st) st = tsv_writer_open(&w, out);
-    if (!st) {
-        snprintf(pv.seeds, sizeof pv.seeds, "stands seed_derive(main-eval, d, k, stems|crowns), k < %d", pl.eval_stands);
-        pv.worst_overlap_m = worst;
-        st = prov_write(w, &pv);
+    if (!st && samples) {
+        static const char *probe[4] = {"none", "shuffled", "rotated", "none"}, *which[4] = {"teacher", "teacher", "teacher", "blind"};
+        if (!(st = afile_mkdir_parents(samples))) st = tsv_writer_open(&w, samples);
+        if (!st && (st = prov_write(w, &pv))) { tsv_writer_abort(w); w = NULL; }
+        if (!st) {
+            tsv_writer_meta(w, "what", "focal nearest-neighbour clearances (m) behind every W1 of baselines.tsv: which = teacher (probe none: the teacher's crowns; "
+                            "shuffled, rotated: the teacher's crowns under the probe) or blind (circular crowns); each W1 = est_w1(values, teacher none values); "
+                            "noise floor = est_w1(first n_half teacher none values, the rest)");
+            tsv_writer_columns(w, "spacing\tsplit\tprobe\twhich\tvalue");
+            for (size_t si = 0; si < nall; si++)
+                for (int q = 0; q < 4; q++)
+                    for (int k = 0; k < nt[si]; k++) {
+                        tsv_writer_dbl(w, dd[si]); tsv_writer_str(w, uns[si] ? "unseen" : "extrap");
+                        tsv_writer_str(w, probe[q]); tsv_writer_str(w, which[q]); tsv_writer_dbl(w, smp[si][q][k]);
+                        tsv_writer_endrow(w);
+                    }
+            st = tsv_writer_commit(w);
+            w = NULL;
+        }
+        if (!st) st = file_sha256(samples, ssha);
     }
+    if (!st) st = tsv_writer_open(&w, out);
+    if (!st) st = prov_write(w, &pv);
     if (!st) {
         tsv_writer_meta(w, "scale", "%s", pl.scale);
-        tsv_writer_meta(w, "noise_floor", "W1 between the teacher clearances of the first and second half of the eval stands");
-        tsv_writer_meta(w, "direction_blind", "W1 between clearances with every crown replaced by its circular mean and the teacher's");
-        tsv_writer_columns(w, "spacing\tsplit\tdirection_blind_w1\tnoise_floor_w1\tn_teacher");
+        tsv_writer_meta(w, "noise_floor", "W1 between the teacher clearances of the first n_half (first half of the eval stands) and the rest");
+        tsv_writer_meta(w, "direction_blind", "W1 between clearances with every crown replaced by its circular mean and the teacher's (a rotation leaves it unchanged)");
+        tsv_writer_meta(w, "teacher_probes", "added after the first verdict: W1 between the teacher's own crowns under the shuffled-geometry probe "
+                        "(token i given the deviation profile of the stem whose position it was given) or the rotation probe (crowns turned by "
+                        "(1 + g mod 7) x 45 deg), evaluated at the true positions, and the teacher's: the most a perfect generator degrades");
+        if (samples) tsv_writer_meta(w, "samples", "%s sha256 %s", base_name(samples), ssha);
+        tsv_writer_columns(w, "spacing\tsplit\tdirection_blind_w1\tnoise_floor_w1\tteacher_shuffled_w1\tteacher_rotated_w1\tn_teacher\tn_half");
         for (size_t si = 0; si < nall; si++) {
             tsv_writer_dbl(w, dd[si]);
-            tsv_writer_str(w, si < ds.nunseen ? "unseen" : "extrap");
+            tsv_writer_str(w, uns[si] ? "unseen" : "extrap");
             tsv_writer_dbl(w, blind[si]);
             tsv_writer_dbl(w, noise[si]);
+            tsv_writer_dbl(w, tshuf[si]);
+            tsv_writer_dbl(w, trot[si]);
             tsv_writer_long(w, nt[si]);
+            tsv_writer_long(w, half[si]);
             tsv_writer_endrow(w);
         }
         st = tsv_writer_commit(w);
         w = NULL;
     }
     if (w) tsv_writer_abort(w);
+    for (size_t si = 0; si < nall; si++)
+        for (int q = 0; q < 4; q++) free(smp[si][q]);
     return st ? fail_with(st) : 0;
 }
 
@@ -453,7 +487,7 @@ int exp_main_cmd_summary(int argc, char **argv)
     prov pv;
     prov_begin(&pv, "main", argc, argv);
     const char *arms[2] = {"joint", "indep"};
-    typedef struct { double unseen, shuffled, ex[MAXSP], exd[MAXSP]; int nex; } runres;
+    typedef struct { double probe[MAINSET_NPROBE], ex[MAXSP], exd[MAXSP]; int np[MAINSET_NPROBE], nex; } runres;
     runres *rr = calloc((size_t)nseeds * 2, sizeof *rr);
     double worst = 0.0;
     cs_status st = rr ? CS_OK : cs_err(CS_ENOMEM, "out of memory");
@@ -464,8 +498,6 @@ int exp_main_cmd_summary(int argc, char **argv)
             tsv *t;
             if ((st = tsv_read(p, &t))) break;
             runres *r = &rr[(s - 1) * 2 + a];
-            double su = 0, ss = 0;
-            int nu = 0, nsh = 0;
             const char *wo = tsv_meta(t, "worst_overlap_m");
             if (wo && atof(wo) > worst) worst = atof(wo);
             for (size_t i = 0; i < tsv_nrows(t) && !st; i++) {
@@ -473,13 +505,17 @@ int exp_main_cmd_summary(int argc, char **argv)
                 if ((st = tsv_double(t, i, "w1", &w1)) || (st = tsv_double(t, i, "spacing", &d))) break;
                 const char *split = tsv_str(t, i, "split"), *probe = tsv_str(t, i, "probe");
                 if (!split || !probe) { st = cs_err(CS_EINPUT, "%s:%d: field 'split'/'probe' missing", p, tsv_line(t, i)); break; }
-                if (!strcmp(split, "unseen") && !strcmp(probe, "generated")) { su += w1; nu++; }
-                else if (!strcmp(split, "unseen") && !strcmp(probe, "shuffled")) { ss += w1; nsh++; }
-                else if (!strcmp(split, "extrap") && !strcmp(probe, "generated") && r->nex < MAXSP) { r->ex[r->nex] = w1; r->exd[r->nex] = d; r->nex++; }
+                int q = 0;
+                while (q < MAINSET_NPROBE && strcmp(probe, mainset_probe_name((mainset_probe)q))) q++;
+                if (q == MAINSET_NPROBE) { st = cs_err(CS_EINPUT, "%s:%d: field 'probe': unknown '%s'", p, tsv_line(t, i), probe); break; }
+                if (!strcmp(split, "unseen")) { r->probe[q] += w1; r->np[q]++; }
+                else if (!strcmp(split, "extrap") && q == MAINSET_GENERATED && r->nex < MAXSP) { r->ex[r->nex] = w1; r->exd[r->nex] = d; r->nex++; }
             }
-            if (!st && nu == 0) st = cs_err(CS_EINPUT, "%s: no unseen-spacing rows", p);
-            if (!st && a == 0 && nsh != nu) st = cs_err(CS_EINPUT, "%s: joint run lacks the shuffled probe at some unseen spacing", p);
-            if (!st) { r->unseen = su / nu; r->shuffled = nsh ? ss / nsh : NAN; }
+            if (!st && r->np[0] == 0) st = cs_err(CS_EINPUT, "%s: no unseen-spacing rows", p);
+            if (!st && a == 0 && r->np[MAINSET_SHUFFLED] != r->np[0]) st = cs_err(CS_EINPUT, "%s: joint run lacks the shuffled probe at some unseen spacing", p);
+            for (int q = 1; q < MAINSET_NPROBE && !st; q++)
+                if (r->np[q] && r->np[q] != r->np[0]) st = cs_err(CS_EINPUT, "%s: the %s probe misses some unseen spacing", p, mainset_probe_name((mainset_probe)q));
+            for (int q = 0; q < MAINSET_NPROBE && !st; q++) r->probe[q] = r->np[q] ? r->probe[q] / r->np[q] : NAN;
             tsv_free(t);
         }
     for (int pass = 0; pass < 2 && !st; pass++) {
@@ -492,7 +528,7 @@ int exp_main_cmd_summary(int argc, char **argv)
         pv.worst_overlap_m = worst;
         if ((st = prov_write(w, &pv))) { tsv_writer_abort(w); break; }
         tsv_writer_meta(w, "error", pass ? "W1 (m) of focal nearest-neighbour clearances at each extrapolation spacing"
-                                         : "mean over the unseen spacings of W1 (m) of focal nearest-neighbour clearances; shuffled = joint model with positions permuted within patches");
+                                         : "mean over the unseen spacings of W1 (m) of focal nearest-neighbour clearances; probe shuffled = positions permuted within patches (preregistered), rotated = patch geometry turned about the focal stem (added after the first verdict), both evaluated at the true positions");
         tsv_writer_columns(w, pass ? "seed\tarm\tspacing\tw1" : "seed\tarm\tprobe\terror");
         for (int s = 1; s <= nseeds; s++)
             for (int a = 0; a < 2; a++) {
@@ -503,10 +539,10 @@ int exp_main_cmd_summary(int argc, char **argv)
                         tsv_writer_endrow(w);
                     }
                 } else {
-                    tsv_writer_long(w, s); tsv_writer_str(w, arms[a]); tsv_writer_str(w, "generated"); tsv_writer_dbl(w, r->unseen);
-                    tsv_writer_endrow(w);
-                    if (a == 0) {
-                        tsv_writer_long(w, s); tsv_writer_str(w, arms[a]); tsv_writer_str(w, "shuffled"); tsv_writer_dbl(w, r->shuffled);
+                    for (int q = 0; q < MAINSET_NPROBE; q++) {
+                        if (!r->np[q]) continue;
+                        tsv_writer_long(w, s); tsv_writer_str(w, arms[a]); tsv_writer_str(w, mainset_probe_name((mainset_probe)q));
+                        tsv_writer_dbl(w, r->probe[q]);
                         tsv_writer_endrow(w);
                     }
                 }

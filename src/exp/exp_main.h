@@ -3,7 +3,9 @@
  * data, train the flow model (joint or independent arm), generate eval
  * patches at the unseen (4.0, 5.0, 6.0 m) and extrapolation (3.0, 7.5 m)
  * spacings, and measure W1 between generated and teacher focal nearest-
- * neighbour clearances; the joint arm is also probed with shuffled geometry.
+ * neighbour clearances; both arms are also probed with shuffled geometry (the
+ * preregistered probe) and rotated geometry (added after the first verdict),
+ * and each unit writes the clearance samples behind its W1 and its weights.
  * A baselines unit measures the direction-blind baseline and the split-half
  * noise floor; a summary unit gathers the runs into the frozen tables.
  *
@@ -20,6 +22,10 @@
 #include "model.h"
 #include "patch.h"
 #include <gsl/gsl_rng.h>
+
+/* Stands per training spacing at full scale (issue 14: chosen so that E3+E4
+ * fit the 60 min budget on 2 cores; measured, README "Budgets"). */
+#define EXP_MAIN_TRAIN_STANDS 12
 
 typedef struct {
     const char *scale;     /* "full" or "smoke" */
@@ -39,5 +45,6 @@ cs_status exp_main_plan_get(const char *scale, exp_main_plan *p);
 int exp_main_cmd_run(int argc, char **argv);
 int exp_main_cmd_baselines(int argc, char **argv);
 int exp_main_cmd_summary(int argc, char **argv);
+int exp_main_cmd_redraw(int argc, char **argv);
 
 #endif

@@ -5,6 +5,9 @@
 # ---- E3 main experiment + E4 extrapolation (src/exp/exp_main.c) ------------------
 # One unit per (seed, arm); checkpoints in build/ckpt/<scale>/ make a killed
 # unit resume bit-identically. `make -j2 reproduce` runs two units at a time.
+# Each unit also writes the samples behind its W1 (samples_s<seed>_<arm>.tsv)
+# and its final weights (weights_s<seed>_<arm>.ckpt, README "Frozen samples
+# and weights"); `crownshy main-redraw` draws the samples again from them.
 ifeq ($(SCALE),smoke)
 MAIN_NSEEDS := 2
 else
@@ -15,12 +18,14 @@ MAIN_RUNS := $(foreach s,$(MAIN_SEED_LIST),$(RESULTS)/main/run_s$(s)_joint.tsv $
 
 $(RESULTS)/main/run_s%_joint.tsv: | $(CLI)
 	@mkdir -p $(B)/ckpt/$(SCALE)
-	$(CLI) main-run --seed $* --arm joint --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/main_s$*_joint.ckpt --out $@
+	$(CLI) main-run --seed $* --arm joint --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/main_s$*_joint.ckpt \
+	  --samples $(RESULTS)/main/samples_s$*_joint.tsv --weights $(RESULTS)/main/weights_s$*_joint.ckpt --out $@
 $(RESULTS)/main/run_s%_indep.tsv: | $(CLI)
 	@mkdir -p $(B)/ckpt/$(SCALE)
-	$(CLI) main-run --seed $* --arm indep --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/main_s$*_indep.ckpt --out $@
+	$(CLI) main-run --seed $* --arm indep --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/main_s$*_indep.ckpt \
+	  --samples $(RESULTS)/main/samples_s$*_indep.tsv --weights $(RESULTS)/main/weights_s$*_indep.ckpt --out $@
 $(RESULTS)/main/baselines.tsv: | $(CLI)
-	$(CLI) main-baselines --scale $(SCALE) --out $@
+	$(CLI) main-baselines --scale $(SCALE) --samples $(RESULTS)/main/samples_baselines.tsv --out $@
 $(RESULTS)/main/runs.tsv: $(MAIN_RUNS) $(RESULTS)/main/baselines.tsv | $(CLI)
 	$(CLI) main-summary --dir $(RESULTS) --seeds $(MAIN_NSEEDS)
 
@@ -109,7 +114,7 @@ REPRODUCE_UNITS += $(IRRED_FIELD_UNITS)
 
 # ---- E7 comparison patch and dart probe (src/exp/exp_comp.c): E3 seed-1 models ----
 $(RESULTS)/comparison/patch.tsv: $(RESULTS)/main/run_s01_joint.tsv $(RESULTS)/main/run_s01_indep.tsv | $(CLI)
-	$(CLI) comp-run --joint $(B)/ckpt/$(SCALE)/main_s01_joint.ckpt --indep $(B)/ckpt/$(SCALE)/main_s01_indep.ckpt --out $(RESULTS)
+	$(CLI) comp-run --joint $(RESULTS)/main/weights_s01_joint.ckpt --indep $(RESULTS)/main/weights_s01_indep.ckpt --out $(RESULTS)
 REPRODUCE_UNITS += $(RESULTS)/comparison/patch.tsv
 
 # ---- E0 readings (SPEC §7 E0; src/claims/readings.c) -----------------------------

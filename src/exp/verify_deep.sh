@@ -7,8 +7,7 @@
 # header and every row after the "# key: value" lines); provenance lines
 # (date, wall time, git commit, command paths) are expected to differ.
 # The model part: for each frozen weights file, `crownshy main-redraw` (issue 14)
-# redraws the generated samples and they are compared the same way; while that
-# command does not exist the model part is reported as pending.
+# redraws the unit's clearance samples and they are compared the same way.
 # Exit 0: every rerun table equals frozen/; 1: a difference or a failed unit.
 # Called from the Makefile with DEEP, JOBS, CLI, MAKE and DEEP_UNITS set.
 set -uo pipefail
@@ -67,31 +66,30 @@ echo "verify-deep: teacher part: $same tables bit-identical to frozen/, $differ 
 [ $((differ + missing)) -eq 0 ] || status=1
 
 # ---- the model part (issue 14): redraw samples from the frozen weights ----
-# HOOK: `crownshy main-redraw --weights W --out DIR` is added by the generator
-# re-run (issue 14). When present, every frozen weights file is redrawn into
-# $DEEP/model/ and compared like the teacher tables.
-if "$CLI" main-redraw --help >/dev/null 2>&1; then
-    mapfile -t weights < <(find frozen -name '*.weights' -o -name '*.ckpt' | sort)
-    if [ ${#weights[@]} -eq 0 ]; then
-        echo "verify-deep: model part pending: crownshy main-redraw exists but frozen/ holds no weights file yet"
-    fi
-    for w in "${weights[@]}"; do
-        out="$DEEP/model/$(dirname "${w#frozen/}")"
-        mkdir -p "$out"
-        echo "verify-deep: redrawing samples from $w"
-        if ! "$CLI" main-redraw --weights "$w" --out "$out" > "$out/redraw.log" 2>&1; then
-            echo "  FAIL    $w: crownshy main-redraw failed (see $out/redraw.log)"; status=1; continue
-        fi
-        while IFS= read -r f; do
-            fz="frozen/$(dirname "${w#frozen/}")/$(basename "$f")"
-            if [ ! -f "$fz" ]; then echo "  FAIL    $fz: redraw made $f but frozen/ has no such table"; status=1
-            elif ! cmp -s <(grep -v '^#' "$f") <(grep -v '^#' "$fz"); then echo "  FAIL    $fz: redrawn samples differ ($f)"; status=1
-            else echo "  PASS    $fz: redrawn samples bit-identical"; fi
-        done < <(find "$out" -name '*.tsv' | sort)
-    done
+# Every frozen/main/weights_sNN_ARM.ckpt is loaded by `crownshy main-redraw`,
+# which draws the unit's clearance samples again (no training) into
+# $DEEP/model/; each must equal frozen/main/samples_sNN_ARM.tsv (data rows).
+# Two redraws run at a time (about 40 s each on one core).
+mapfile -t weights < <(find frozen/main -name 'weights_s*_*.ckpt' 2>/dev/null | sort)
+if [ ${#weights[@]} -eq 0 ]; then
+    echo "verify-deep: model part pending: frozen/main holds no weights file"
 else
-    echo "verify-deep: model part pending: crownshy main-redraw (redraw generated samples from frozen weights, issue 14) is not in this build"
+    mkdir -p "$DEEP/model"
+    echo "verify-deep: redrawing the samples of ${#weights[@]} frozen models (2 at a time)"
+    redraw() {
+        local w=$1 b s a out
+        b=$(basename "$w" .ckpt); s=${b#weights_s}; s=${s%%_*}; a=${b##*_}
+        out="$DEEP/model/samples_s${s}_${a}.tsv"
+        if ! "$CLI" main-redraw --weights "$w" --seed "$((10#$s))" --arm "$a" --out "$out" > "$out.log" 2>&1; then
+            echo "  FAIL    $w: crownshy main-redraw failed (see $out.log)"; return 1; fi
+        local fz="frozen/main/samples_s${s}_${a}.tsv"
+        if [ ! -f "$fz" ]; then echo "  FAIL    $fz: missing beside $w"; return 1; fi
+        if ! cmp -s <(grep -v '^#' "$out") <(grep -v '^#' "$fz"); then echo "  FAIL    $fz: redrawn samples differ ($out)"; return 1; fi
+        echo "  PASS    $fz: redrawn from $w, bit-identical"
+    }
+    export -f redraw; export DEEP CLI
+    if ! printf '%s\n' "${weights[@]}" | xargs -P "$JOBS" -I{} bash -c 'redraw "$@"' _ {}; then status=1; fi
 fi
 echo "verify-deep: $((SECONDS - t0)) s in all"
-if [ $status -eq 0 ]; then echo "verify-deep: every rerun teacher table equals frozen/ bit for bit (data rows)"; fi
+if [ $status -eq 0 ]; then echo "verify-deep: every rerun teacher table and every redrawn model sample equals frozen/ bit for bit (data rows)"; fi
 exit $status

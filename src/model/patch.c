@@ -297,6 +297,12 @@ cs_status patch_set_add_toy(patch_set *s, int nstands, double d, unsigned long s
     return st;
 }
 
+void patch_shuffle_perm(gsl_rng *rng, int perm[PATCH_T])
+{
+    for (int i = 0; i < PATCH_T; i++) perm[i] = i;
+    gsl_ran_shuffle(rng, perm, PATCH_T, sizeof(int));
+}
+
 void patch_shuffle_positions(float *feat, int n, gsl_rng *rng)
 {
     int perm[PATCH_T];
@@ -304,8 +310,7 @@ void patch_shuffle_positions(float *feat, int n, gsl_rng *rng)
     for (int k = 0; k < n; k++) {
         float *f = feat + (size_t)k * PATCH_T * PATCH_NFEAT;
         memcpy(pos, f, sizeof pos);
-        for (int i = 0; i < PATCH_T; i++) perm[i] = i;
-        gsl_ran_shuffle(rng, perm, PATCH_T, sizeof(int));
+        patch_shuffle_perm(rng, perm);
         /* every positional feature moves with its position; rbar stays with its tree */
         for (int i = 0; i < PATCH_T; i++)
             for (int q = 0; q < PATCH_NFEAT; q++)
@@ -321,4 +326,36 @@ void patch_direction_blind(const double *r, int ncrowns, double *out)
         m /= PATCH_P;
         for (int s = 0; s < PATCH_P; s++) out[i * PATCH_P + s] = m;
     }
+}
+
+double patch_rotation_angle(int g)
+{
+    return (double)(1 + (g < 0 ? -g : g) % 7) * (M_PI / 4.0);
+}
+
+void patch_rotate_positions(float *feat, int n, const double *alpha)
+{
+    for (int k = 0; k < n; k++) {
+        const double c = cos(alpha[k]), s = sin(alpha[k]);
+        for (int i = 0; i < PATCH_T; i++) {
+            float *f = feat + ((size_t)k * PATCH_T + i) * PATCH_NFEAT;
+            const double x = f[0], y = f[1];
+            const double xr = c * x - s * y, yr = s * x + c * y;
+            f[0] = (float)xr;
+            f[1] = (float)yr;
+            if (f[11] > 0) { /* the focal stem (rho = 0) keeps its zero basis */
+                const double phi = atan2(yr, xr);
+                for (int h = 1; h <= 4; h++) {
+                    f[1 + 2 * h] = (float)cos(h * phi);
+                    f[2 + 2 * h] = (float)sin(h * phi);
+                }
+            }
+        }
+    }
+}
+
+void patch_rotate_crown(const double *r, int steps, double *out)
+{
+    int m = ((steps % PATCH_P) + PATCH_P) % PATCH_P;
+    for (int s = 0; s < PATCH_P; s++) out[s] = r[(s - m + PATCH_P) % PATCH_P];
 }

@@ -109,6 +109,22 @@ void patch_toy_stand(gsl_rng *rng, int side, double d, double *x, double *y, dou
  * feat[n*T*NFEAT] (uniform permutation from rng; rbar_i/d stays with its
  * token). Generation then sees wrong geometry; evaluate with the true positions. */
 void patch_shuffle_positions(float *feat, int n, gsl_rng *rng);
+/* The permutation patch_shuffle_positions draws for one patch (token i is
+ * given the position of token perm[i]); the same draws from rng. */
+void patch_shuffle_perm(gsl_rng *rng, int perm[PATCH_T]);
+/* Rotation probe (SPEC §8, added after the first verdict): patch g of an
+ * evaluation set is rotated about its focal stem by (1 + g mod 7) x 45 deg
+ * (rad), every angle a whole number of sectors. */
+double patch_rotation_angle(int g);
+/* Rotate the geometry of n patches in feat[n*T*NFEAT] about the focal stem,
+ * patch k by alpha[k] (rad): (x, y)/d and the polar Fourier basis turn; rbar/d
+ * and rho/d stay. Generation then sees turned geometry; evaluate with the
+ * true positions. */
+void patch_rotate_positions(float *feat, int n, const double *alpha);
+/* Crown r[P] turned counter-clockwise by `steps` sectors (15 deg each):
+ * out[s] = r[(s - steps) mod P]; out must not alias r. The teacher's side of
+ * the rotation probe. */
+void patch_rotate_crown(const double *r, int steps, double *out);
 /* Direction-blind baseline (SPEC §8): every crown of r[ncrowns*P] replaced by
  * its circular mean (all sectors equal to the mean radius); in place allowed. */
 void patch_direction_blind(const double *r, int ncrowns, double *out);

@@ -246,6 +246,8 @@ static size_t ckpt_body_size(const ckpt_head *h)
          + sizeof(float) * h->nnorm + 3 * sizeof(float) * h->nparams;
 }
 
+static cs_status write_sealed(buf *bb, const char *path);
+
 cs_status train_save(const train *t, const char *path)
 {
     ckpt_head h;
@@ -263,6 +265,14 @@ cs_status train_save(const train *t, const char *path)
     put(&b, t->m->params, sizeof(float) * h.nparams);
     put(&b, t->am, sizeof(float) * h.nparams);
     put(&b, t->av, sizeof(float) * h.nparams);
+    return write_sealed(&b, path);
+}
+
+/* Append the FNV-1a checksum to b, write it to "<path>.tmp", fsync and rename;
+ * frees b's bytes. */
+static cs_status write_sealed(buf *bb, const char *path)
+{
+    buf b = *bb;
     uint64_t sum = b.oom ? 0 : fnv1a(FNV0, b.p, b.n);
     PUTV(&b, sum);
     if (b.oom) { free(b.p); return cs_err(CS_ENOMEM, "%s: out of memory writing checkpoint", path); }
@@ -370,12 +380,92 @@ cs_status train_load(train *t, const char *path)
     return CS_OK;
 }
 
+/* ---- weights files (see train.h) ---------------------------------------------- */
+#define WGTS_MAGIC "CSHYWGTS"
+#define WGTS_VERSION 1u
+typedef struct {
+    int32_t cfg[11];
+    int32_t pad;
+    uint64_t nparams, nnorm;
+    double scale;
+} wgts_head;
+
+cs_status train_save_weights(const train *t, const char *path)
+{
+    wgts_head h;
+    memset(&h, 0, sizeof h);
+    const model_cfg *c = &t->m->cfg;
+    int32_t v[11] = {c->T, c->P, c->nfeat, c->ncond, c->ntime, c->C, c->L, c->H, c->F, c->joint, c->pair};
+    memcpy(h.cfg, v, sizeof v);
+    h.nparams = t->m->nparams; h.nnorm = t->m->nnorm; h.scale = t->data->scale;
+    buf b = {0};
+    uint32_t ver = WGTS_VERSION;
+    put(&b, WGTS_MAGIC, 8);
+    PUTV(&b, ver);
+    PUTV(&b, h);
+    put(&b, t->m->norm, sizeof(float) * h.nnorm);
+    put(&b, t->m->params, sizeof(float) * h.nparams);
+    return write_sealed(&b, path);
+}
+
+static cs_status slurp(const char *path, unsigned char **data, long *len)
+{
+    *data = NULL;
+    FILE *f = fopen(path, "rb");
+    if (!f) return cs_err(CS_EINPUT, "%s: cannot open: %s", path, strerror(errno));
+    long n = -1;
+    if (fseek(f, 0, SEEK_END) == 0) n = ftell(f);
+    rewind(f);
+    unsigned char *p = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    if (!p || fread(p, 1, (size_t)n, f) != (size_t)n) { free(p); fclose(f); return cs_err(CS_EINPUT, "%s: cannot read", path); }
+    fclose(f);
+    *data = p;
+    *len = n;
+    return CS_OK;
+}
+
+static cs_status weights_load(const char *path, model **out, int Bmax, double *scale)
+{
+    unsigned char *p = NULL;
+    long n = 0;
+    cs_status st = slurp(path, &p, &n);
+    if (st) return st;
+    wgts_head h;
+    uint32_t ver = 0;
+    const long hl = 8 + 4 + (long)sizeof h;
+    if (n < hl + 8) { free(p); return cs_err(CS_EINPUT, "%s: truncated weights file (%ld bytes)", path, n); }
+    memcpy(&ver, p + 8, 4);
+    if (ver != WGTS_VERSION) { free(p); return cs_err(CS_EINPUT, "%s: weights format version %u, expected %u", path, ver, WGTS_VERSION); }
+    memcpy(&h, p + 12, sizeof h);
+    if (h.nparams > ((uint64_t)1 << 30) || h.nnorm > (1u << 20)) { free(p); return cs_err(CS_EINPUT, "%s: corrupt weights header (implausible sizes)", path); }
+    long want = hl + (long)(sizeof(float) * (h.nnorm + h.nparams)) + 8;
+    if (n != want) { free(p); return cs_err(CS_EINPUT, "%s: %s weights file: %ld bytes, header declares %ld", path, n < want ? "truncated" : "oversized", n, want); }
+    uint64_t sum;
+    memcpy(&sum, p + n - 8, 8);
+    if (fnv1a(FNV0, p, (size_t)n - 8) != sum) { free(p); return cs_err(CS_EINPUT, "%s: weights checksum mismatch (corrupt or tampered)", path); }
+    model_cfg c = {h.cfg[0], h.cfg[1], h.cfg[2], h.cfg[3], h.cfg[4], h.cfg[5], h.cfg[6], h.cfg[7], h.cfg[8], h.cfg[9], h.cfg[10]};
+    model *m;
+    if ((st = model_alloc(&m, &c, Bmax))) { free(p); return cs_err(CS_EINPUT, "%s: weights model configuration unusable: %s", path, cs_errmsg()); }
+    if (m->nparams != h.nparams || m->nnorm != h.nnorm) { model_free(m); free(p); return cs_err(CS_EINPUT, "%s: parameter count mismatch", path); }
+    memcpy(m->norm, p + hl, sizeof(float) * h.nnorm);
+    memcpy(m->params, p + hl + sizeof(float) * h.nnorm, sizeof(float) * h.nparams);
+    if (scale) *scale = h.scale;
+    free(p);
+    *out = m;
+    return CS_OK;
+}
+
 cs_status train_load_model(const char *path, model **out, int Bmax, double *scale)
 {
     unsigned char *p;
     size_t len;
     ckpt_head h;
     *out = NULL;
+    {
+        FILE *f = fopen(path, "rb");
+        char mg[8] = {0};
+        if (f) { size_t got = fread(mg, 1, 8, f); fclose(f); if (got == 8 && !memcmp(mg, WGTS_MAGIC, 8)) return weights_load(path, out, Bmax, scale); }
+    }
     cs_status st = ckpt_read(path, &p, &len, &h);
     if (st) return st;
     model_cfg c = {h.cfg[0], h.cfg[1], h.cfg[2], h.cfg[3], h.cfg[4], h.cfg[5], h.cfg[6], h.cfg[7], h.cfg[8], h.cfg[9], h.cfg[10]};

@@ -77,8 +77,16 @@ cs_status train_eval_loss(train *t, const patch_set *data, int nbatch, unsigned 
 cs_status train_save(const train *t, const char *path);
 /* Restore state saved by train_save into t (same config, options and data). */
 cs_status train_load(train *t, const char *path);
-/* Write only the model (config + parameters + checksum) / read it back into a
- * freshly allocated model with that config (used by `crownshy sample`). */
+/* Weights file (format version 1; the frozen weights of E3/E4, README): magic
+ * "CSHYWGTS", uint32 version, int32 T P nfeat ncond ntime C L H F joint pair
+ * and an int32 pad, uint64 nparams and nnorm, double deviation scale, the
+ * feature z-scores (nnorm floats), the parameters (float, flat buffer of
+ * model.h) and a 64-bit FNV-1a checksum of everything before it; native
+ * little-endian x86-64 layout, written atomically. */
+cs_status train_save_weights(const train *t, const char *path);
+/* Read the model (and its deviation scale) of a checkpoint or a weights file
+ * (told apart by the magic) into a freshly allocated model with that config
+ * (used by `crownshy sample`, comp-run and main-redraw). */
 cs_status train_load_model(const char *path, model **out, int Bmax, double *scale);
 
 typedef struct {
