@@ -103,10 +103,10 @@ static void test_reading_switches_parse_strictly(void **s)
     /* the provenance names the reading that ran */
     prov p;
     char *argv[] = {"x"};
-    prov_begin(&p, "test", 1, argv);
     exp_reading one = {1, EXP_LAYOUT_R1};
-    exp_reading_prov(&one, &p);
+    exp_prov_begin(&p, "test", &one, 1, argv);
     assert_string_equal(p.teacher_version, "teacher-1");
+    assert_string_equal(p.experiment, "test");
 }
 
 int main(void)

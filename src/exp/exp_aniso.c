@@ -40,8 +40,7 @@ int cmd_aniso_lattice(int argc, char **argv)
     fs_calibration c;
     if ((rc = exp_need_beta("aniso-lattice", &o, &c))) return rc;
     prov p;
-    prov_begin(&p, "anisotropy", argc, argv);
-    exp_reading_prov(&o.rd, &p);
+    exp_prov_begin(&p, "anisotropy", &o.rd, argc, argv);
     double a;
     cs_status st = exp_canonical_jitter(&a);
     if (st) return exp_fail("aniso-lattice", st);
@@ -75,8 +74,7 @@ static int aniso_family(const char *cmd, const char *synopsis, const char *about
     fs_calibration c;
     if ((rc = exp_need_beta(cmd, &o, &c))) return rc;
     prov p;
-    prov_begin(&p, "anisotropy", argc, argv);
-    exp_reading_prov(&o.rd, &p);
+    exp_prov_begin(&p, "anisotropy", &o.rd, argc, argv);
     double lv[32];
     size_t nl;
     cs_status st = gate_read_values(PATHS_GATE("anisotropy"), key, lv, 32, &nl);
@@ -137,8 +135,7 @@ int cmd_aniso_jitter_calibrate(int argc, char **argv)
     if (rc) return opts_exit_code(rc);
     if (!o.sweep) { opts_usage_error("aniso-jitter-calibrate", "--sweep DIR/jitter.tsv is required"); return 2; }
     prov p;
-    prov_begin(&p, "anisotropy", argc, argv);
-    exp_reading_prov(&o.rd, &p);
+    exp_prov_begin(&p, "anisotropy", &o.rd, argc, argv);
     tsv *t;
     fs_trees tr;
     cs_status st = fs_load_checked(o.sweep, &t, &tr);
@@ -197,8 +194,7 @@ int cmd_aniso_heldout(int argc, char **argv)
     cs_status st = fs_jitter_star(o.jitter_calibration, &js);
     if (st) return exp_fail("aniso-heldout", st);
     prov p;
-    prov_begin(&p, "anisotropy", argc, argv);
-    exp_reading_prov(&o.rd, &p);
+    exp_prov_begin(&p, "anisotropy", &o.rd, argc, argv);
     exp_field_job j = {"anisotropy/heldout", STAND_LATTICE, js.value, js.value, c.value, o.stands, 0, 0, o.rd};
     fs_trees acc;
     fs_trees_init(&acc);

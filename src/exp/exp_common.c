@@ -147,8 +147,9 @@ static void exp_teacher_params(const exp_reading *r, teacher_params *p)
     p->one_sided = r ? r->one_sided : 0;
 }
 
-void exp_reading_prov(const exp_reading *r, prov *p)
+void exp_prov_begin(prov *p, const char *experiment, const exp_reading *r, int argc, char **argv)
 {
+    prov_begin(p, experiment, argc, argv);
     teacher_params tp;
     exp_teacher_params(r, &tp);
     snprintf(p->teacher_version, sizeof p->teacher_version, "%s", teacher_version(&tp));

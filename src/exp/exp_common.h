@@ -32,8 +32,9 @@ cs_status exp_reading_parse(const char *teacher, const char *layout, exp_reading
 /* A unit sets its teacher_params from the reading with
  * teacher_params_default(&p); p.one_sided = rd.one_sided; (exp_common.h does
  * not include the teacher, so the include depth stays within the layout's). */
-/* Copy the reading's teacher_version into the provenance. */
-void exp_reading_prov(const exp_reading *r, prov *p);
+/* prov_begin for a teacher unit, recording the reading's teacher_version
+ * (not the pinned default) so a revision-1 run says which teacher made it. */
+void exp_prov_begin(prov *p, const char *experiment, const exp_reading *r, int argc, char **argv);
 /* Field stands of a layout: spacing and footprint (design.h). */
 double exp_field_d(exp_layout l);
 double exp_field_L(exp_layout l);

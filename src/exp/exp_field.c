@@ -95,8 +95,7 @@ int cmd_field_calibrate(int argc, char **argv)
     int rc = exp_field_parse(&oc, argc, argv, &o);
     if (rc) return opts_exit_code(rc);
     prov p;
-    prov_begin(&p, "field", argc, argv);
-    exp_reading_prov(&o.rd, &p);
+    exp_prov_begin(&p, "field", &o.rd, argc, argv);
     double lo, hi, step, seeds, a;
     cs_status st = gate_read_value(PATHS_GATE("field"), "dieback_grid", 0, &lo);
     if (!st) st = gate_read_value(PATHS_GATE("field"), "dieback_grid", 1, &hi);
@@ -157,8 +156,7 @@ int cmd_field_heldout(int argc, char **argv)
     fs_calibration c;
     if ((rc = exp_need_beta("field-heldout", &o, &c))) return rc;
     prov p;
-    prov_begin(&p, "field", argc, argv);
-    exp_reading_prov(&o.rd, &p);
+    exp_prov_begin(&p, "field", &o.rd, argc, argv);
     double a;
     cs_status st = exp_canonical_jitter(&a);
     if (st) return exp_fail("field-heldout", st);

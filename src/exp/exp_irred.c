@@ -121,8 +121,7 @@ static cs_status irred_open(const exp_opts *o, const char *prefix, double beta, 
 cs_status exp_irred_perturb(const exp_opts *o, double beta)
 {
     prov pv;
-    prov_begin(&pv, "irreducibility", o->argc, o->argv);
-    exp_reading_prov(&o->rd, &pv);
+    exp_prov_begin(&pv, "irreducibility", &o->rd, o->argc, o->argv);
     irred_cfg c;
     cs_status st = irred_cfg_load(&c);
     if (st) return st;
@@ -162,8 +161,7 @@ cs_status exp_irred_perturb(const exp_opts *o, double beta)
 cs_status exp_irred_refine(const exp_opts *o, double beta)
 {
     prov pv;
-    prov_begin(&pv, "irreducibility", o->argc, o->argv);
-    exp_reading_prov(&o->rd, &pv);
+    exp_prov_begin(&pv, "irreducibility", &o->rd, o->argc, o->argv);
     irred_cfg c;
     cs_status st = irred_cfg_load(&c);
     if (st) return st;
@@ -248,8 +246,7 @@ static double territory(const stems *s, size_t i, double th)
 cs_status exp_irred_reduction(const exp_opts *o, double beta)
 {
     prov pv;
-    prov_begin(&pv, "irreducibility", o->argc, o->argv);
-    exp_reading_prov(&o->rd, &pv);
+    exp_prov_begin(&pv, "irreducibility", &o->rd, o->argc, o->argv);
     irred_cfg c;
     cs_status st = irred_cfg_load(&c);
     if (st) return st;

@@ -61,8 +61,7 @@ static cs_status run_cell(const exp_opts *o, const char *key, stand_kind kind, d
 cs_status exp_mechanism_sweep(const exp_opts *o)
 {
     prov pv;
-    prov_begin(&pv, "mechanism", o->argc, o->argv);
-    exp_reading_prov(&o->rd, &pv);
+    exp_prov_begin(&pv, "mechanism", &o->rd, o->argc, o->argv);
     double betas[16], ds[16], thr[4], btrain;
     size_t nb, nd;
     cs_status st = gate_read_values(PATHS_GATE("mechanism"), "dieback_sweep", betas, 16, &nb);
@@ -185,8 +184,7 @@ static cs_status stand_cell(const stand *sd, const double *r, cell_result *res)
 cs_status exp_mechanism_ablation(const exp_opts *o)
 {
     prov pv;
-    prov_begin(&pv, "mechanism", o->argc, o->argv);
-    exp_reading_prov(&o->rd, &pv);
+    exp_prov_begin(&pv, "mechanism", &o->rd, o->argc, o->argv);
     double d, beta[3];
     cs_status st = ablation_gate(&d, beta);
     if (st) return st;
@@ -215,8 +213,7 @@ cs_status exp_mechanism_ablation(const exp_opts *o)
 cs_status exp_mechanism_figure(const exp_opts *o)
 {
     prov pv;
-    prov_begin(&pv, "mechanism", o->argc, o->argv);
-    exp_reading_prov(&o->rd, &pv);
+    exp_prov_begin(&pv, "mechanism", &o->rd, o->argc, o->argv);
     double d, beta[3];
     cs_status st = ablation_gate(&d, beta);
     if (st) return st;

@@ -25,8 +25,7 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
                                  size_t nrows, int with_uncoupled)
 {
     prov pv;
-    prov_begin(&pv, experiment, o->argc, o->argv);
-    exp_reading_prov(&o->rd, &pv);
+    exp_prov_begin(&pv, experiment, &o->rd, o->argc, o->argv);
     tsv_writer *w = NULL;
     char path[512];
     cs_status st = exp_open_out(o, experiment, "figure_crowns.tsv", &w, path, sizeof path);
@@ -85,8 +84,7 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
 static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size_t nd, double beta)
 {
     prov pv;
-    prov_begin(&pv, "pointcloud", o->argc, o->argv);
-    exp_reading_prov(&o->rd, &pv);
+    exp_prov_begin(&pv, "pointcloud", &o->rd, o->argc, o->argv);
     typedef struct { size_t trees; double contact, ovl_c, ovl_u, k1_c, k1_u; } pc_row;
     pc_row rows[8];
     double worst = 0.0;
