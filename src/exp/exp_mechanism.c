@@ -27,6 +27,26 @@
 
 typedef struct { double k[3], cover, overlap; size_t trees; } cell_result;
 
+/* One grown stand's share of a cell: its interior trees' k = 1..3 clearances
+ * appended to g, its interior cover and its worst overlap. */
+static cs_status stand_stats(const stand *sd, const double *r, exp_dvec g[3], double *cov, double *w, size_t *trees)
+{
+    cs_status st = exp_stand_metrics(sd, r, g, cov, trees);
+    if (!st) st = teacher_worst_overlap(sd->s->x, sd->s->y, r, sd->s->n, w);
+    return st;
+}
+
+/* A cell's result from its pooled clearances (freed here) after status st. */
+static cs_status cell_close(exp_dvec g[3], double cover, double overlap, size_t trees, cs_status st, cell_result *res)
+{
+    for (int k = 0; k < 3 && !st; k++) st = est_median(g[k].v, g[k].n, &res->k[k]);
+    res->cover = cover;
+    res->overlap = overlap;
+    res->trees = trees;
+    for (int k = 0; k < 3; k++) free(g[k].v);
+    return st;
+}
+
 /* One (stem process, d, params) cell over o->stands stands of key `key`. */
 static cs_status run_cell(const exp_opts *o, const char *key, stand_kind kind, double d, double shape,
                           const teacher_params *p, cell_result *res, double *worst)
@@ -43,19 +63,13 @@ static cs_status run_cell(const exp_opts *o, const char *key, stand_kind kind, d
         if (!r) st = cs_err(CS_ENOMEM, "experiments: out of memory");
         if (!st) st = stand_grow(sd, p, NULL, r, NULL, worst);
         double cov = 0.0, w = 0.0;
-        if (!st) st = exp_stand_metrics(sd, r, g, &cov, &trees);
-        if (!st) st = teacher_worst_overlap(sd->s->x, sd->s->y, r, sd->s->n, &w);
+        if (!st) st = stand_stats(sd, r, g, &cov, &w, &trees);
         cov_sum += cov;
         if (w > ovl) ovl = w;
         free(r);
         stand_free(sd);
     }
-    for (int k = 0; k < 3 && !st; k++) st = est_median(g[k].v, g[k].n, &res->k[k]);
-    res->cover = cov_sum / (double)o->stands;
-    res->overlap = ovl;
-    res->trees = trees;
-    for (int k = 0; k < 3; k++) free(g[k].v);
-    return st;
+    return cell_close(g, cov_sum / (double)o->stands, ovl, trees, st, res);
 }
 
 cs_status exp_mechanism_sweep(const exp_opts *o)
@@ -171,14 +185,8 @@ static cs_status stand_cell(const stand *sd, const double *r, cell_result *res)
     exp_dvec g[3] = {{0}, {0}, {0}};
     double cov = 0.0, w = 0.0;
     size_t trees = 0;
-    cs_status st = exp_stand_metrics(sd, r, g, &cov, &trees);
-    if (!st) st = teacher_worst_overlap(sd->s->x, sd->s->y, r, sd->s->n, &w);
-    for (int k = 0; k < 3 && !st; k++) st = est_median(g[k].v, g[k].n, &res->k[k]);
-    res->cover = cov;
-    res->overlap = w;
-    res->trees = trees;
-    for (int k = 0; k < 3; k++) free(g[k].v);
-    return st;
+    cs_status st = stand_stats(sd, r, g, &cov, &w, &trees);
+    return cell_close(g, cov, w, trees, st, res);
 }
 
 cs_status exp_mechanism_ablation(const exp_opts *o)
