@@ -175,13 +175,20 @@ void verify_figures(checklist *cl, int install, const claims *c)
     }
 }
 
+cs_status verify_load_eval(claims *c, claim_result **res)
+{
+    cs_status st = claims_load(PATHS_CLAIMS, c);
+    if (st) return st;
+    if ((st = verify_eval_all(c, res))) claims_free(c);
+    return st;
+}
+
 cs_status verify_run(const verify_opts *o)
 {
     claims c;
-    cs_status st = claims_load(PATHS_CLAIMS, &c);
-    if (st) return st;
     claim_result *res;
-    if ((st = verify_eval_all(&c, &res))) { claims_free(&c); return st; }
+    cs_status st = verify_load_eval(&c, &res);
+    if (st) return st;
     numbers_tex nt;
     int have_nt = numbers_read(PATHS_NUMBERS, &nt) == CS_OK;
     char nterr[512];

@@ -16,6 +16,9 @@ typedef struct { int quiet; int no_figures; int strict; } verify_opts;
 cs_status verify_run(const verify_opts *o);
 /* Evaluate every claim (res has c->n entries, caller frees). */
 cs_status verify_eval_all(const claims *c, claim_result **res);
+/* Load the registry (PATHS_CLAIMS) and evaluate every claim; on success the
+ * caller frees *res and claims_free(c). */
+cs_status verify_load_eval(claims *c, claim_result **res);
 /* Is numbers.tex consistent with the recomputed claim (value and stated gate
  * verdict)? An honest gate failure is consistent. PENDING when not computable. */
 verdict verify_consistent(const claim_row *row, const claim_result *res, const numbers_tex *nt, char *msg, size_t n);

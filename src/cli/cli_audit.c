@@ -55,10 +55,9 @@ int cli_cmd_numbers(int argc, char **argv)
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     claims c;
-    cs_status st = claims_load(PATHS_CLAIMS, &c);
-    if (st) return die(st);
     claim_result *res;
-    if ((st = verify_eval_all(&c, &res))) { claims_free(&c); return die(st); }
+    cs_status st = verify_load_eval(&c, &res);
+    if (st) return die(st);
     if (check) {
         checklist cl = {0};
         audit_generated(&c, res, &cl, 0);
@@ -111,10 +110,9 @@ int cli_cmd_audit(int argc, char **argv)
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     claims c;
-    cs_status st = claims_load(PATHS_CLAIMS, &c);
-    if (st) return die(st);
     claim_result *res;
-    if ((st = verify_eval_all(&c, &res))) { claims_free(&c); return die(st); }
+    cs_status st = verify_load_eval(&c, &res);
+    if (st) return die(st);
     checklist cl = {0};
     audit_run(&c, res, &cl);
     size_t count[3] = {0};
