@@ -9,7 +9,7 @@
 
 SHELL := /bin/bash
 CC ?= cc
-# Determinism (SPEC §1): no FMA contraction, no fast-math, no -march=native.
+# Determinism (design.md §1): no FMA contraction, no fast-math, no -march=native.
 # -Wno-psabi: GCC notes that 32-byte vectors are passed differently since GCC
 # 4.6 for nn.c's always-inlined helpers, which never cross a call boundary; the
 # note ignores nn.c's pragma and would print on every build.
@@ -97,14 +97,14 @@ check-fast: deps
 	@bash tests/run.sh $(TESTS) tests/layout.sh
 
 # ---- verification (the reviewer's job) --------------------------------------
-# Tier 1 (SPEC §9 rev. 2): exit 0 when the package is consistent (a failing
+# Tier 1 (design.md §9 rev. 2): exit 0 when the package is consistent (a failing
 # preregistered gate is a finding, reported "not reproduced"); STRICT=1 also
 # fails on a failing gate.
 verify: deps
 	@$(MAKE) --no-print-directory $(CLI)
 	@$(CLI) verify $(if $(STRICT),--strict)
 
-# Tier 2 (SPEC §9 rev. 2): rerun every teacher experiment unit into build/deep/
+# Tier 2 (design.md §9 rev. 2): rerun every teacher experiment unit into build/deep/
 # and compare with frozen/ bit for bit (data rows), with progress; the model
 # part (redraw samples from the frozen weights) runs when `crownshy main-redraw`
 # exists (issue 14). Every teacher unit of src/exp/experiments.mk: E1, E2 at
@@ -126,7 +126,7 @@ figures: deps
 	@$(MAKE) --no-print-directory $(CLI)
 	@$(CLI) figures
 
-# Speed (SPEC §10), measured here and never by a timed test: teacher ms per
+# Speed (design.md §10), measured here and never by a timed test: teacher ms per
 # 144-tree stand at N = 48 and 384; trainer steps/s, model and same-run sgemm
 # GFLOP/s at the reference configuration, and their ratio.
 bench: deps

@@ -3,7 +3,7 @@
 # data: frozen/anisotropy/heldout.tsv
 # data: frozen/anisotropy/hardcore.tsv
 # data: frozen/field/reference.tsv
-# Figure anisotropy (reference paper Fig. fig:anisotropy, §5.4; SPEC §7 E6, §12).
+# Figure anisotropy (reference paper Fig. fig:anisotropy, §5.4; design.md §7 E6, §12).
 # Left: median per-tree anisotropy (widest / narrowest cardinal gap) against
 # stem jitter amplitude a: circles = calibration sweep, square = the controlled
 # lattice (canonical a), star = held-out stands at the calibrated a*; shaded =

@@ -1,7 +1,7 @@
 # data: frozen/field/calibration.tsv
 # data: frozen/field/heldout.tsv
 # data: frozen/field/reference.tsv
-# Figure field (reference paper Fig. fig:field, §5.3; SPEC §7 E5, §12).
+# Figure field (reference paper Fig. fig:field, §5.3; design.md §7 E5, §12).
 # Left: E5 calibration curve (median tree-mean clearance vs die-back beta) with
 # the field target and the calibrated beta_field. Centre: held-out clearance
 # spread of the coupled stands and of the uncoupled twin; the field spread

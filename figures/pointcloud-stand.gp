@@ -1,4 +1,4 @@
-# pointcloud-stand.gp — Fig. pointcloud-stand (SPEC §7 E8), drawn top-down:
+# pointcloud-stand.gp — Fig. pointcloud-stand (design.md §7 E8), drawn top-down:
 # teacher canopies on hard-core stems (c = 0.5, L = 36 m) at 5, 4 and 3 m
 # (beta_train), and the uncoupled twin at 3 m (same stems and crown draws).
 # Stems are marked; each panel's caption gives the share of interior crowns

@@ -1,5 +1,5 @@
 # data: frozen/readings/summary.tsv
-# Figure readings (SPEC §7 E0; issue 13): every quantity of the readings table
+# Figure readings (design.md §7 E0; issue 13): every quantity of the readings table
 # under each reading, as our value over the reference paper's value (1 = the
 # paper's number; shaded: within 10 % and 25 %). Readings: rev1 = revision 1
 # (teacher-1, 5 m on 60 m, cardinal elongation, Mech* on the lattice); t2-r1 =

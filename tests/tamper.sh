@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Tamper tests (SPEC §9 rev. 2; issues 7 and 15): on a scratch copy of the
+# Tamper tests (design.md §9 rev. 2; issues 7 and 15): on a scratch copy of the
 # repository, make one class of edit per case; each must make `crownshy verify`
 # exit 1 with a FAIL line naming the culprit file and the claims it feeds.
 # The untampered copy must exit 0 (a failing preregistered gate is a finding,

@@ -1,4 +1,4 @@
-/* Tests of the CLI's exit codes and messages (SPEC §11): 0 ok, 2 usage,
+/* Tests of the CLI's exit codes and messages (design.md §11): 0 ok, 2 usage,
  * 3 bad input naming file, line and field. Runs build/crownshy. */
 #include "testutil.h"
 #include <sys/wait.h>

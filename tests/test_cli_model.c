@@ -1,4 +1,4 @@
-/* CLI tests of the model commands (train, sample, bench-model; SPEC §11):
+/* CLI tests of the model commands (train, sample, bench-model; design.md §11):
  * --help exits 0, usage errors exit 2, bad or missing checkpoints exit 3 with
  * a message naming the file, and a training process killed with SIGKILL
  * resumes from its checkpoint to the same final bytes as an uninterrupted run. */

@@ -1,4 +1,4 @@
-/* Behaviour at the edges (SPEC §11; issue 15): bad input never reaches
+/* Behaviour at the edges (design.md §11; issue 15): bad input never reaches
  * paper/, non-finite values are named, directories and byte-order marks are
  * clear input errors or handled, the field table loads in O(n log n),
  * concurrent atomic writers never share a temp file, the gate map and the
@@ -107,7 +107,7 @@ static void test_huge_value_names_file_line_field(void **s)
 }
 
 /* 10^6 rows load correctly (the quadratic loader took minutes on them; the
- * O(n log n) one, 0.45 s here, is timed by hand, never by a test: SPEC §10). */
+ * O(n log n) one, 0.45 s here, is timed by hand, never by a test: design.md §10). */
 static void test_field_table_million_rows_loads(void **s)
 {
     (void)s;

@@ -212,7 +212,7 @@ static void square(double *r, double hw, double alpha)
     }
 }
 
-/* Revision 2 (SPEC §5): elongation over the 12 axes r(theta_s) + r(theta_s + pi).
+/* Revision 2 (design.md §5): elongation over the 12 axes r(theta_s) + r(theta_s + pi).
  * For a square the shortest axis is the side-to-side width 2 hw and the longest
  * the diagonal 2 sqrt(2) hw. At 0, 15 and 30 degrees both directions fall on
  * sector centres (they are 15 degrees apart): the diagonal at 45, 60, 75

@@ -1,4 +1,4 @@
-/* Exit codes and messages of the E5/E6 commands (SPEC §11): --help 0,
+/* Exit codes and messages of the E5/E6 commands (design.md §11): --help 0,
  * usage errors 2, bad or missing input 3 naming file, line and field.
  * Runs build/crownshy; the fixture tests/data/field_synthetic.tsv is SYNTHETIC. */
 #include "testutil.h"

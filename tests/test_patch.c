@@ -200,7 +200,7 @@ static void test_check_passes_against_reference_and_focal_clearances_agree(void 
 }
 
 /* The canonical estimator (src/forest/estimator.c, pinned) and the batched copy agree
- * within 1e-6 m on every pair of toy patches (SPEC §5, paper §4.3). */
+ * within 1e-6 m on every pair of toy patches (design.md §5, paper §4.3). */
 static void test_batched_clearance_agrees_with_canonical_estimator(void **s)
 {
     (void)s;

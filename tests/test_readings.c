@@ -1,4 +1,4 @@
-/* Claim tests of issue 13 (SPEC §7 E0, E1 revision 2):
+/* Claim tests of issue 13 (design.md §7 E0, E1 revision 2):
  *  - the Mech* macros come from the hard-core figure stand: the frozen
  *    figure_stats.tsv is regrown from its seeds (hard-core c = 0.5, 3.5 m,
  *    L = 36 m) and the claim's value equals the regrown stand's statistic

@@ -1,4 +1,4 @@
-/* Tests for src/base/stats.c against hand-computed cases (SPEC §6). */
+/* Tests for src/base/stats.c against hand-computed cases (design.md §6). */
 #include "testutil.h"
 #include "stats.h"
 

@@ -1,4 +1,4 @@
-/* Tests for src/forest/teacher.c (SPEC §4): exact targets for a lone tree and for
+/* Tests for src/forest/teacher.c (design.md §4): exact targets for a lone tree and for
  * coupling off, no overlap over random stands at every spacing and die-back
  * of the sweeps, beta = 0 gaps within one step, bit-identical repeats, the
  * self-check itself, and the perturbation rule (order and vigour by height).
@@ -278,7 +278,7 @@ static void test_bad_parameters_are_rejected(void **st)
     assert_int_equal(teacher_grow(&s, &p, r, NULL), CS_EINPUT);
 }
 
-/* ---- teacher-2: mutual abrasion (SPEC §4, revision 2) -------------------------
+/* ---- teacher-2: mutual abrasion (design.md §4, revision 2) -------------------------
  * Two spikes meeting tip to tip: tree 0 has target 3 m in sector 0 (east) and
  * 0.5 m elsewhere, tree 1 (4 m east) 3 m in sector 12 (west), 0.5 m elsewhere.
  * Equal heights, so both step by Delta = 3/48 = 0.0625 m per round (exact)

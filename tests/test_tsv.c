@@ -1,5 +1,5 @@
 /* Tests for src/base/tsv.c: provenance, round-trip of doubles, and errors that
- * name file, line and field (SPEC §9, §11). */
+ * name file, line and field (design.md §9, §11). */
 #include "testutil.h"
 #include "tsv.h"
 

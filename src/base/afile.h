@@ -1,4 +1,4 @@
-/* afile: atomic file writes (SPEC §11). A file is written as
+/* afile: atomic file writes (design.md §11). A file is written as
  * "<path>.tmp.<pid>.<n>" (unique, so concurrent writers never collide) and renamed over <path> only on commit, after flush and fsync, so a killed
  * run never leaves a half-written result that later counts as done. Used by
  * the TSV writer, numbers.tex / comparison.tex and audit/frozen.sha256. */

@@ -1,6 +1,6 @@
 /* cs: status codes, the last-error message and a non-aborting GSL error handler.
  * The message buffer is per process (the library is single-threaded by design:
- * parallelism comes from make -j running one process per unit, SPEC §1). */
+ * parallelism comes from make -j running one process per unit, design.md §1). */
 #include "cs.h"
 #include <stdarg.h>
 #include <stdio.h>

@@ -1,6 +1,6 @@
 /* cs: status codes, the last-error message, and the GSL error handler.
  * Library code returns a cs_status and never exits; only the CLI maps a status
- * to a process exit code (SPEC §11: 0 ok, 1 gate/claim failed, 2 usage, 3 bad input). */
+ * to a process exit code (design.md §11: 0 ok, 1 gate/claim failed, 2 usage, 3 bad input). */
 #ifndef CS_H
 #define CS_H
 #include <stddef.h>
@@ -23,7 +23,7 @@ cs_status cs_err(cs_status st, const char *fmt, ...)
 /* The message recorded by the last cs_err (empty string if none). */
 const char *cs_errmsg(void);
 void cs_errclear(void);
-/* Process exit code for a status (SPEC §11). */
+/* Process exit code for a status (design.md §11). */
 int cs_exit_code(cs_status st);
 /* Install a GSL error handler that records the error instead of aborting. */
 void cs_gsl_install(void);

@@ -1,4 +1,4 @@
-/* gate: parser and judge for the preregistered thresholds (SPEC §7).
+/* gate: parser and judge for the preregistered thresholds (design.md §7).
  * Strict on purpose: a gate file that does not parse completely is an input
  * error, never a silently partial threshold set. */
 #include "gate.h"

@@ -1,4 +1,4 @@
-/* gate: preregistered thresholds (SPEC §7). A gate file holds lines
+/* gate: preregistered thresholds (design.md §7). A gate file holds lines
  * "key value [value…]" with "#" comments; every value must be a number.
  * The files in gates/ are byte-for-byte copies of ../shared/gates and are
  * never edited; their joint SHA-256 is pinned in audit/pins. */

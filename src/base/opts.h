@@ -1,4 +1,4 @@
-/* opts: the one option parser of every crownshy command (SPEC §11), built on
+/* opts: the one option parser of every crownshy command (design.md §11), built on
  * the C library's getopt_long. A command describes its options in a table;
  * the same table parses argv, checks every value strictly and prints --help.
  *  - numbers parse in full (strtol / strtod): an empty, unparsable,

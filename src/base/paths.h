@@ -1,4 +1,4 @@
-/* paths: the one place that knows where the package's files live (SPEC §0,
+/* paths: the one place that knows where the package's files live (design.md §0,
  * §9): the preregistered gates, the audit's pins and registry, the generated
  * paper files, and the pinned instrument sources. Every path is relative to
  * the repository root, the directory every command runs from. Also the one
@@ -35,7 +35,7 @@
 #define PATHS_FIGURES_DIR "figures"
 #define PATHS_FROZEN_DIR "frozen"
 
-/* The pinned instrument (SPEC §4, §5): its sources are hashed into every
+/* The pinned instrument (design.md §4, §5): its sources are hashed into every
  * frozen file's provenance and into audit/pins.tsv; the teacher header holds
  * the version string (#define TEACHER_VERSION). */
 #define PATHS_TEACHER_SRC "src/forest/teacher.c"

@@ -1,4 +1,4 @@
-/* prov: the provenance block of every frozen TSV (SPEC §9). Source hashes are
+/* prov: the provenance block of every frozen TSV (design.md §9). Source hashes are
  * computed from the files at run time (paths relative to the repository root,
  * the working directory of every make target). */
 #include "prov.h"

@@ -1,4 +1,4 @@
-/* prov: the provenance block every frozen TSV starts with (SPEC §9):
+/* prov: the provenance block every frozen TSV starts with (design.md §9):
  * experiment, command, teacher version (the reading that made the result),
  * teacher/estimator/gates SHA-256,
  * git commit, seeds, date, wall time, worst overlap. Hashes are computed from
@@ -32,7 +32,7 @@ cs_status prov_write(tsv_writer *w, prov *p);
  * (#define TEACHER_VERSION "..."); CS_EINPUT naming file and line if absent. */
 cs_status prov_teacher_version(char *out, size_t n);
 /* The revision-1 reading's string (#define TEACHER_VERSION_ONE_SIDED "..."),
- * which the readings (SPEC §7 E0) record under frozen/readings/. */
+ * which the readings (design.md §7 E0) record under frozen/readings/. */
 cs_status prov_teacher_version_one_sided(char *out, size_t n);
 /* SHA-256 of a file as 64 lowercase hex chars (+NUL). */
 cs_status prov_sha256_file(const char *path, char hex[65]);

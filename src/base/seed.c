@@ -1,4 +1,4 @@
-/* seed: FNV-1a + splitmix64 over a canonical key string (see seed.h, SPEC §1). */
+/* seed: FNV-1a + splitmix64 over a canonical key string (see seed.h, design.md §1). */
 #include "seed.h"
 #include <stdio.h>
 

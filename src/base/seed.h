@@ -1,5 +1,5 @@
 /* seed: the one documented pure function from (experiment, spacing, stand,
- * stream) to an RNG seed (SPEC §1). Everything random in the package is
+ * stream) to an RNG seed (design.md §1). Everything random in the package is
  * seeded through it, never from the clock or the environment.
  *
  * Definition (frozen; changing it changes every result):

@@ -1,5 +1,5 @@
 /* sha256: FIPS 180-4 SHA-256, used to pin the estimator source, the teacher
- * source, the gates and the frozen files (SPEC §9). Streaming interface. */
+ * source, the gates and the frozen files (design.md §9). Streaming interface. */
 #ifndef SHA256_H
 #define SHA256_H
 #include <stddef.h>

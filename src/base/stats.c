@@ -1,4 +1,4 @@
-/* stats: exact Wilcoxon signed-rank, Spearman rho, quantiles (SPEC §6).
+/* stats: exact Wilcoxon signed-rank, Spearman rho, quantiles (design.md §6).
  * The Wilcoxon null is enumerated exactly on doubled ranks (integers even with
  * average ranks for ties) by a subset-sum count: counts stay exact in double
  * up to 2^53, hence the n <= 60 limit. */

@@ -1,4 +1,4 @@
-/* tsv: frozen-result tables (SPEC §9, §11). Reader holds the whole file in one
+/* tsv: frozen-result tables (design.md §9, §11). Reader holds the whole file in one
  * buffer and points cells into it; every malformed input is a CS_EINPUT with a
  * message "file:line: field 'name': what". The writer prints doubles as %.17g
  * (round-trips exactly) and publishes the file by rename only on commit. */

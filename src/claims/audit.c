@@ -1,4 +1,4 @@
-/* audit: traceability checks (SPEC §9; issue 7). Messages always name the
+/* audit: traceability checks (design.md §9; issue 7). Messages always name the
  * file and the claims it feeds, so a tampered byte points at its culprit. */
 #include "audit.h"
 #include "afile.h"
@@ -392,7 +392,7 @@ static void check_provenance(const claims *c, checklist *cl, const paths_list *f
                 const char *want = NULL;
                 for (size_t j = 0; j < n; j++) if (!strcmp(cur[j].key, keys[k])) want = cur[j].value;
                 if (v && want && !strcmp(v, want)) continue;
-                /* The readings (SPEC §7 E0) run the pinned teacher under its
+                /* The readings (design.md §7 E0) run the pinned teacher under its
                  * revision-1 switch too: under frozen/readings/ the other
                  * reading's version string is expected, not a mismatch. */
                 char one[32] = "";

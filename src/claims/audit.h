@@ -1,4 +1,4 @@
-/* audit: the traceability checks (SPEC §9): source pins (estimator hash,
+/* audit: the traceability checks (design.md §9): source pins (estimator hash,
  * teacher version and hash, gate hashes), frozen-file hashes, frozen
  * provenance vs pins, registry completeness (every paper macro has a row,
  * every row a test and a function, no orphan function), numbers.tex equal

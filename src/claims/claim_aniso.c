@@ -1,5 +1,5 @@
 /* claim_aniso: computing functions for the E6 claims (reference paper §5.4;
- * SPEC §7 E6). Each reads its frozen summary, checks it against the per-tree
+ * design.md §7 E6). Each reads its frozen summary, checks it against the per-tree
  * table beside it (fs_load_checked), and recomputes with the library code the
  * experiment used (fs_group medians, stats_spearman, fs_jitter_star). */
 #include "claims.h"

@@ -1,5 +1,5 @@
 /* claim_field: computing functions for the E5 claims (reference paper §5.3;
- * SPEC §7 E5 and "Field reference data"). Each reads its frozen table (a
+ * design.md §7 E5 and "Field reference data"). Each reads its frozen table (a
  * summary is first checked against its per-tree table, fs_load_checked) and
  * recomputes the value with the library code the experiment used.
  * Field figures (FieldTrees, ElongLo, ...) come from frozen/field/reference.tsv

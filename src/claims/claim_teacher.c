@@ -30,7 +30,7 @@ static void where_row(claim_result *res, const tsv *t, size_t row, const char *c
 /* ---- E1 mechanism ---- */
 
 /* The Mech* macros are "measured on the stand shown" (paper Fig. mechanism
- * caption; SPEC §7 E1 revision 2): the row's source is the figure stand's
+ * caption; design.md §7 E1 revision 2): the row's source is the figure stand's
  * mechanism/figure_stats.tsv. The gate stays judged on the lattice ablation,
  * mechanism/ablation.tsv in the same folder; both values appear in the
  * verify line. A source named ablation.tsv (revision 1) is value and gate. */

@@ -1,4 +1,4 @@
-/* claims: registry, evaluation and numbers.tex (SPEC §9). */
+/* claims: registry, evaluation and numbers.tex (design.md §9). */
 #include "claims.h"
 #include "paths.h"
 #include "tsv.h"

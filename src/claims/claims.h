@@ -1,4 +1,4 @@
-/* claims: the claim registry (audit/claims.tsv) and its evaluation (SPEC §9).
+/* claims: the claim registry (audit/claims.tsv) and its evaluation (design.md §9).
  * Every macro of the paper has one row naming its kind, frozen source,
  * computing function, gate, test and paper section. A computing function
  * recomputes the value from frozen/ (or a gate file, for design constants)

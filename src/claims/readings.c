@@ -118,7 +118,7 @@ cs_status readings_write(const char *path, const char *dir, const readings_row *
     snprintf(p.seeds, sizeof p.seeds, "those of each run's tables under %s/<run>/", dir);
     p.worst_overlap_m = -1;
     if ((st = prov_write(w, &p))) { tsv_writer_abort(w); return st; }
-    tsv_writer_meta(w, "what", "E0 readings (SPEC §7 E0): each quantity under each reading, recomputed from the run tables by the registry's computing functions; paper = audit/claims.tsv reference; rel_diff = (value - paper) / |paper|; source relative to the readings folder");
+    tsv_writer_meta(w, "what", "E0 readings (design.md §7 E0): each quantity under each reading, recomputed from the run tables by the registry's computing functions; paper = audit/claims.tsv reference; rel_diff = (value - paper) / |paper|; source relative to the readings folder");
     for (size_t k = 0; k < NREAD; k++)
         tsv_writer_meta(w, READINGS[k].name, "run %s, elongation %s, Mech* on %s: %s", READINGS[k].run,
                         READINGS[k].elong_all_axes ? "all axes" : "cardinal", READINGS[k].figure_stand ? "the figure stand" : "the lattice",

@@ -1,4 +1,4 @@
-/* readings: the E0 readings table (SPEC §7 E0; issue 13). Where the
+/* readings: the E0 readings table (design.md §7 E0; issue 13). Where the
  * reference paper's text allows more than one reading and revision 1 chose
  * differently, the cheap experiments are run under each reading (the same
  * experiment units, switched by --teacher and --layout, never copied files)

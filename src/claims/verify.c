@@ -1,4 +1,4 @@
-/* verify: the `make verify` driver and `crownshy trace` (SPEC §9). */
+/* verify: the `make verify` driver and `crownshy trace` (design.md §9). */
 #include "verify.h"
 #include <stdio.h>
 #include <stdlib.h>

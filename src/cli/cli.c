@@ -1,4 +1,4 @@
-/* crownshy: the one command-line entry point (SPEC §11): the table of
+/* crownshy: the one command-line entry point (design.md §11): the table of
  * commands. Handlers live in cli_audit.c (reviewer and auditor), cli_model.c
  * (generator), cli_run.c (teacher units and bench) and with their experiment
  * (exp_main, exp_comp, exp_field, exp_aniso). Only the CLI decides how the
@@ -37,7 +37,7 @@ static const cli_cmd cli_cmds[] = {
     {"main-summary", exp_main_cmd_summary, "E3/E4: gather runs into frozen tables"},
     {"main-redraw", exp_main_cmd_redraw, "E3/E4: draw a unit's clearance samples again from its frozen weights"},
     {"comp-run", exp_comp_cmd_run, "E7: comparison patch (teacher, joint, independent) and dart probe"},
-    {"readings-summary", cli_cmd_readings_summary, "E0: the readings table from the runs under --dir (SPEC §7 E0)"},
+    {"readings-summary", cli_cmd_readings_summary, "E0: the readings table from the runs under --dir (design.md §7 E0)"},
     {"bench-teacher", cli_cmd_bench_teacher, "teacher ms per 144-tree stand at N = 48 and 384"},
     {"run", cli_cmd_run, "run one experiment unit of E1/E2/figure data (crownshy run --help)"},
     {"gates", cli_cmd_gates, "parse and list the preregistered gate files"},
@@ -61,7 +61,7 @@ static const cli_cmd cli_cmds[] = {
     {"version", cli_cmd_version, "print the version"},
     {"train", cli_cmd_train, "train the flow-matching generator (toy stands for now)"},
     {"sample", cli_cmd_sample, "generate crowns with a trained checkpoint (100 Euler steps)"},
-    {"bench-model", cli_cmd_bench_model, "trainer steps/s, model and sgemm GFLOP/s (SPEC §10)"},
+    {"bench-model", cli_cmd_bench_model, "trainer steps/s, model and sgemm GFLOP/s (design.md §10)"},
 };
 #define NCMDS (sizeof cli_cmds / sizeof cli_cmds[0])
 

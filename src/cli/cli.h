@@ -1,4 +1,4 @@
-/* cli: the command handlers of `crownshy <command>` (SPEC §11). Each returns
+/* cli: the command handlers of `crownshy <command>` (design.md §11). Each returns
  * the process exit code: 0 ok, 1 a check failed, 2 usage error, 3 bad or
  * missing input, 4 environment (I/O, memory). Options are parsed by opts.h. */
 #ifndef CLI_H

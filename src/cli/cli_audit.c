@@ -1,4 +1,4 @@
-/* cli_audit: the reviewer's and auditor's commands (SPEC §9): verify,
+/* cli_audit: the reviewer's and auditor's commands (design.md §9): verify,
  * numbers, audit, trace, pin, hash-frozen, gates, check-tsv, figures. Only
  * the CLI decides how the process dies. */
 #include "cli.h"

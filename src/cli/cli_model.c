@@ -1,4 +1,4 @@
-/* cli_model: the model commands of the CLI (SPEC §8, §10): train and sample
+/* cli_model: the model commands of the CLI (design.md §8, §10): train and sample
  * on toy stands, and the trainer benchmark. Only the CLI decides how the
  * process dies. */
 #include "cli.h"
@@ -42,7 +42,7 @@ int cli_cmd_train(int argc, char **argv)
         {"depth", OPT_LONG, &depth, 1, 64, "transformer blocks (default 3)"},
         {"heads", OPT_LONG, &heads, 1, 64, "attention heads (default 4)"},
         {"mlp", OPT_LONG, &mlp, 1, 16384, "MLP width (default 256)"},
-        {"pair", OPT_LONG, &pair, 0, 1, "1: pair-aware model with standardised features (SPEC §8 revision 2; default 0)"},
+        {"pair", OPT_LONG, &pair, 0, 1, "1: pair-aware model with standardised features (design.md §8 revision 2; default 0)"},
         {"seed", OPT_LONG, &seed, 0, 4294967295.0, "run seed: init/batch/noise streams use 3s+1, 3s+2, 3s+3 (default 1)"},
         {"stands", OPT_LONG, &stands, 1, 100000, "toy training stands, 64 patches each (default 8)"},
         {"spacing", OPT_DOUBLE, &d, 0.1, 100, "toy stand spacing in m (default 4.5)"},
@@ -60,7 +60,7 @@ int cli_cmd_train(int argc, char **argv)
     if (st) { opts_usage_error("train", "%s", cs_errmsg()); return 2; }
     patch_set *ps;
     if ((st = toy_data(&ps, stands, d, 1000 + 1000 * (unsigned long)seed, 0))) return cli_fail("train", st);
-    /* SPEC §5 / paper §4.3: the batched clearance estimator must agree with
+    /* design.md §5 / paper §4.3: the batched clearance estimator must agree with
      * the canonical one before any training; abort on mismatch. */
     {
         int nchk = ps->n < 16 ? ps->n : 16;
@@ -156,7 +156,7 @@ int cli_cmd_bench_model(int argc, char **argv)
         {"steps", OPT_LONG, &steps, 1, 1e9, "training steps per repeat (default 20)"},
         {"batch", OPT_LONG, &batch, 1, 4096, "patches per step (default 64)"},
     };
-    const opts_cmd c = {"bench-model", "[options]", "Trainer steps/s at the reference configuration of SPEC §10 (set OPENBLAS_NUM_THREADS=1).",
+    const opts_cmd c = {"bench-model", "[options]", "Trainer steps/s at the reference configuration of design.md §10 (set OPENBLAS_NUM_THREADS=1).",
                         o, sizeof o / sizeof *o, 0, 0};
     int rc = opts_parse(&c, argc, argv, NULL, NULL);
     if (rc) return opts_exit_code(rc);
@@ -175,7 +175,7 @@ int cli_cmd_bench_model(int argc, char **argv)
     printf("gemm_path\t%s\n", gemm_isa_name());
     printf("model_to_sgemm_ratio\t%.3f\n", r.ratio);
     printf("goals: >= 55 steps/s, ratio >= 0.60: %s\n", r.steps_per_s >= 55 && r.ratio >= 0.6 ? "met" : "not met");
-    /* revision 2 (SPEC §10): the pair-aware model at the same configuration,
+    /* revision 2 (design.md §10): the pair-aware model at the same configuration,
      * in the same run; its rate against the same run's gemm_fma rate (the
      * fused product the model runs on) and sgemm rate */
     train_bench_result rp;

@@ -81,7 +81,7 @@ int cli_cmd_bench_teacher(int argc, char **argv)
     long reps = 10;
     const opt_spec spec[] = {{"reps", OPT_LONG, &reps, 1, 10000, "stands timed at N = 48 (a quarter of them at N = 384; default 10)"}};
     const opts_cmd c = {"bench-teacher", "[--reps N]",
-                        "Teacher ms per 144-tree controlled-lattice stand (d = 3.5 m, beta 0.06) at N = 48 and N = 384 (SPEC §10).",
+                        "Teacher ms per 144-tree controlled-lattice stand (d = 3.5 m, beta 0.06) at N = 48 and N = 384 (design.md §10).",
                         spec, 1, 0, 0};
     int r = opts_parse(&c, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
@@ -95,7 +95,7 @@ int cli_cmd_bench_teacher(int argc, char **argv)
     return 0;
 }
 
-/* E0 readings summary (SPEC §7 E0): one row per quantity and reading from
+/* E0 readings summary (design.md §7 E0): one row per quantity and reading from
  * the runs under --dir (readings.h), with the paper's value and the
  * relative difference; prints the within-10 %/25 % counts per reading. */
 int cli_cmd_readings_summary(int argc, char **argv)

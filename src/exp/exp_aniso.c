@@ -1,4 +1,4 @@
-/* exp_aniso: E6 anisotropy attribution (SPEC §7 E6; reference paper §5.4):
+/* exp_aniso: E6 anisotropy attribution (design.md §7 E6; reference paper §5.4):
  * the commands aniso-lattice, aniso-hardcore, aniso-jitter,
  * aniso-jitter-calibrate and aniso-heldout. Every E6 unit runs the teacher at
  * beta_field, read from the E5 calibration table (--calibration).
@@ -32,7 +32,7 @@ int cmd_aniso_lattice(int argc, char **argv)
     exp_field_opts o = {.stands_opt = 28};
     const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands (default 28)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout)};
     const opts_cmd oc = {"aniso-lattice", "--calibration DIR/calibration.tsv --out DIR/lattice.tsv [--stands N]",
-                         "E6 (SPEC §7): anisotropy on the controlled lattice (field layout, canonical jitter) at beta_field,\n"
+                         "E6 (design.md §7): anisotropy on the controlled lattice (field layout, canonical jitter) at beta_field,\n"
                          "N stands (default 28).",
                          spec, sizeof spec / sizeof *spec, 0, 0};
     int rc = exp_field_parse(&oc, argc, argv, &o);
@@ -104,7 +104,7 @@ static int aniso_family(const char *cmd, const char *synopsis, const char *about
 int cmd_aniso_hardcore(int argc, char **argv)
 {
     return aniso_family("aniso-hardcore", "--calibration DIR/calibration.tsv --out DIR/hardcore.tsv [--stands N]",
-                        "E6 hard-core family (SPEC §7): stems by random sequential addition with minimum distance c d,\n"
+                        "E6 hard-core family (design.md §7): stems by random sequential addition with minimum distance c d,\n"
                         "c in anisotropy.gate hardcore_levels, N stands per level (default 12), teacher at beta_field.\n"
                         "A level whose stands cannot be built is recorded (stands_failed, trees 0), not a crash.",
                         argc, argv, STAND_HARDCORE, "hardcore_levels", "anisotropy/hardcore",
@@ -114,7 +114,7 @@ int cmd_aniso_hardcore(int argc, char **argv)
 int cmd_aniso_jitter(int argc, char **argv)
 {
     return aniso_family("aniso-jitter", "--calibration DIR/calibration.tsv --out DIR/jitter.tsv [--stands N]",
-                        "E6 jitter family (SPEC §7): controlled lattice with per-axis jitter sd a d, a in\n"
+                        "E6 jitter family (design.md §7): controlled lattice with per-axis jitter sd a d, a in\n"
                         "anisotropy.gate jitter_levels, N stands per level (default 12), teacher at beta_field.",
                         argc, argv, STAND_LATTICE, "jitter_levels", "anisotropy/jitter",
                         "E6 jitter family: lattice (layout in the layout line), jitter sd a d (level = a), teacher at beta_field");
@@ -183,7 +183,7 @@ int cmd_aniso_heldout(int argc, char **argv)
     const opts_cmd oc = {"aniso-heldout",
                          "--calibration DIR/calibration.tsv --jitter-calibration DIR/jitter_calibration.tsv\n"
                          "                              --out DIR/heldout.tsv [--stands N]",
-                         "E6 held-out (SPEC §7): N stands (default 28) at jitter a* on seeds disjoint from the sweep,\n"
+                         "E6 held-out (design.md §7): N stands (default 28) at jitter a* on seeds disjoint from the sweep,\n"
                          "teacher at beta_field: anisotropy, elongation, spread; every stand must build.",
                          spec, sizeof spec / sizeof *spec, 0, 0};
     int rc = exp_field_parse(&oc, argc, argv, &o);

@@ -1,5 +1,5 @@
-/* exp_aniso: CLI commands of E6 (anisotropy attribution), SPEC §7; reference
- * paper §5.4. Each returns a process exit code (SPEC §11); the table in
+/* exp_aniso: CLI commands of E6 (anisotropy attribution), design.md §7; reference
+ * paper §5.4. Each returns a process exit code (design.md §11); the table in
  * src/cli/cli.c lists them. They run at beta_field from E5's calibration. */
 #ifndef EXP_ANISO_H
 #define EXP_ANISO_H

@@ -1,7 +1,7 @@
-/* exp_common: what the experiments' units share (SPEC §7, §9): the output
+/* exp_common: what the experiments' units share (design.md §7, §9): the output
  * path and atomic commit of a unit's table, the metadata lines every unit
  * writes, pooled interior-tree clearances and cover, the crown and outline
- * tables of the canopy figures (SPEC §12), and the field stands, options and
+ * tables of the canopy figures (design.md §12), and the field stands, options and
  * tables of E5 (exp_field.c, reference paper §5.3) and E6 (exp_aniso.c,
  * §5.4). Limits: no command lives here and no experiment's choices (seeds,
  * levels, stand counts) are made here; each experiment's file records its own. */
@@ -236,14 +236,14 @@ cs_status exp_field_write(const char *out, prov *p, const fs_trees *acc, const e
     cs_status st = tsv_writer_open(&w, tp);
     if (st) return st;
     if ((st = prov_write(w, p))) { tsv_writer_abort(w); return st; }
-    tsv_writer_meta(w, "what", "one row per interior tree (>= 2 d from the edge): cardinal gaps E N W S (m) and crown elongation, all-axis (elong, SPEC §5) and cardinal (elong_card, revision 1), canonical estimator");
+    tsv_writer_meta(w, "what", "one row per interior tree (>= 2 d from the edge): cardinal gaps E N W S (m) and crown elongation, all-axis (elong, design.md §5) and cardinal (elong_card, revision 1), canonical estimator");
     tsv_writer_meta(w, "summary", "%s", out);
     fs_trees_write(w, acc);
     if ((st = tsv_writer_commit(w))) return st;
     if ((st = tsv_writer_open(&w, out))) return st;
     if ((st = prov_write(w, p))) { tsv_writer_abort(w); return st; }
     tsv_writer_meta(w, "trees_table", "%s", tp);
-    if (nj) tsv_writer_meta(w, "layout", "%s: field stands d = %g m on L = %g m (SPEC §7 E5%s)", exp_layout_name(jobs[0].rd.layout),
+    if (nj) tsv_writer_meta(w, "layout", "%s: field stands d = %g m on L = %g m (design.md §7 E5%s)", exp_layout_name(jobs[0].rd.layout),
                             exp_field_d(jobs[0].rd.layout), exp_field_L(jobs[0].rd.layout),
                             jobs[0].rd.layout == EXP_LAYOUT_R1 ? ", revision 1 reading" : "");
     if (meta) meta(w, ctx);

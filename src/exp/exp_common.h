@@ -1,4 +1,4 @@
-/* exp_common: what the teacher experiments' units share (SPEC §7, §9, §12).
+/* exp_common: what the teacher experiments' units share (design.md §7, §9, §12).
  * A unit writes <out>/<experiment>/<file>.tsv atomically, starting with the
  * provenance block; the figure units also write the crowns and outlines the
  * gnuplot scripts read. Choices the spec leaves open, written down here and
@@ -20,10 +20,10 @@
 #include "tsv.h"
 #include <stddef.h>
 
-/* ---- readings (SPEC §7 E0): the teacher rule and the E5/E6 field layout ----
+/* ---- readings (design.md §7 E0): the teacher rule and the E5/E6 field layout ----
  * A reading is a runnable switch, never a copied file: --teacher teacher-1|
- * teacher-2 (default teacher-2, SPEC §4) on every teacher unit, --layout r1|r2
- * (default r2, SPEC §7 E5) on the field/anisotropy units. The provenance's
+ * teacher-2 (default teacher-2, design.md §4) on every teacher unit, --layout r1|r2
+ * (default r2, design.md §7 E5) on the field/anisotropy units. The provenance's
  * teacher_version names the reading that made the file. */
 typedef enum { EXP_LAYOUT_R2 = 0, EXP_LAYOUT_R1 = 1 } exp_layout;
 typedef struct { int one_sided; exp_layout layout; } exp_reading;
@@ -54,7 +54,7 @@ typedef struct {
 
 /* Stand counts used when --stands is not given (recorded in provenance). */
 #define EXP_STANDS_DEFAULT 8
-/* The canopy figures' stands (SPEC §2, §7 E1/E8/E9): hard-core, L = 36 m. */
+/* The canopy figures' stands (design.md §2, §7 E1/E8/E9): hard-core, L = 36 m. */
 #define EXP_FIG_L 36.0
 #define EXP_FIG_C 0.5
 

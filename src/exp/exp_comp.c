@@ -26,7 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define COMP_HARDCORE_C 0.5  /* the figures' hard-core level (SPEC §7 E8/E9) */
+#define COMP_HARDCORE_C 0.5  /* the figures' hard-core level (design.md §7 E8/E9) */
 #define COMP_DART_STANDS 4
 
 static cs_status grow(stand *sd, double beta, double *r)
@@ -179,7 +179,7 @@ int exp_comp_cmd_run(int argc, char **argv)
         if ((st = tsv_writer_open(&w, path))) break;
         if ((st = prov_write(w, &pv))) { tsv_writer_abort(w); break; }
         tsv_writer_meta(w, "models", "joint %s, independent %s (E3 seed 1; %s)", cj, ci,
-                        mj->cfg.pair ? "pair-aware model, SPEC §8 revision 2" : "revision-1 model");
+                        mj->cfg.pair ? "pair-aware model, design.md §8 revision 2" : "revision-1 model");
         if (file == 0) {
             tsv_writer_meta(w, "statistic", "median over the %d patch trees of the clearance toward the nearest patch tree; overlap = trees with a negative clearance toward any patch tree", PATCH_T);
             tsv_writer_columns(w, "source\tspacing_m\ttrees\tmedian_nn_clearance_m\toverlapping");

@@ -1,5 +1,5 @@
 /* exp_comp: E7, the generated-stand comparison (reference paper Fig. teaser
- * b-d and Limitations; SPEC §7 E7). One 24-tree patch at 5.0 m (unseen in
+ * b-d and Limitations; design.md §7 E7). One 24-tree patch at 5.0 m (unseen in
  * training): teacher crowns, the joint model's and the independent arm's
  * (seed 1 of E3, the matched-capacity "attention ablated" twin), each with
  * the median nearest-neighbour clearance over the patch trees and the count

@@ -1,8 +1,8 @@
-/* exp_field: E5 field validation (SPEC §7 E5; reference paper §5.3): the
+/* exp_field: E5 field validation (design.md §7 E5; reference paper §5.3): the
  * commands field-summary, field-calibrate, field-beta, field-heldout and
  * field-diagnose (E6, the anisotropy commands, is exp_aniso.c).
  *
- * Field stands (--layout, exp_common.h): r2 (default, SPEC §7 E5 revision 2)
+ * Field stands (--layout, exp_common.h): r2 (default, design.md §7 E5 revision 2)
  * the controlled lattice at d = 4 m on L = 36 m (9 x 9 stems, interior trees
  * >= 2 d from the edge, ~25 per stand: the paper's 731 trees in 28 stands);
  * r1 (revision 1) d = 5 m on L = 60 m; canonical jitter (anisotropy.gate
@@ -87,7 +87,7 @@ int cmd_field_calibrate(int argc, char **argv)
     exp_field_opts o = {0};
     const opt_spec spec[] = {EXP_OPT_OUT(o), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout)};
     const opts_cmd oc = {"field-calibrate", "--out DIR/calibration.tsv",
-                         "E5 calibration (SPEC §7): grow the calibration stands (gates/field.gate calibration_seeds)\n"
+                         "E5 calibration (design.md §7): grow the calibration stands (gates/field.gate calibration_seeds)\n"
                          "at every beta of dieback_grid, record the median tree-mean clearance per beta, and print\n"
                          "beta_field (interpolated to calibration_target_m, rounded to the grid). Also writes\n"
                          "DIR/calibration_trees.tsv.",
@@ -147,7 +147,7 @@ int cmd_field_heldout(int argc, char **argv)
     exp_field_opts o = {.stands_opt = 28};
     const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands (default 28)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout)};
     const opts_cmd oc = {"field-heldout", "--calibration DIR/calibration.tsv --out DIR/heldout.tsv [--stands N]",
-                         "E5 held-out (SPEC §7): N stands (default 28) on seeds disjoint from the calibration, grown at\n"
+                         "E5 held-out (design.md §7): N stands (default 28) on seeds disjoint from the calibration, grown at\n"
                          "beta_field coupled and as the uncoupled twin: tree-mean median, spread, elongation, anisotropy.\n"
                          "The spread ratios need the raw field table (FIELD_TABLE=path); without it they are pending.",
                          spec, sizeof spec / sizeof *spec, 0, 0};
@@ -182,7 +182,7 @@ int cmd_field_heldout(int argc, char **argv)
 /* -------------------------------------------------------- diagnosis ---- */
 
 /* Why the elongation and anisotropy gates fail (printed, not frozen): the
- * open-grown crown targets (SPEC §3) and the two knobs' reach. */
+ * open-grown crown targets (design.md §3) and the two knobs' reach. */
 int cmd_field_diagnose(int argc, char **argv)
 {
     exp_field_opts o = {.stands_opt = 12};

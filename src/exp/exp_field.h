@@ -1,5 +1,5 @@
-/* exp_field: CLI commands of E5 (field validation), SPEC §7; reference
- * paper §5.3. Each returns a process exit code (SPEC §11); the table in
+/* exp_field: CLI commands of E5 (field validation), design.md §7; reference
+ * paper §5.3. Each returns a process exit code (design.md §11); the table in
  * src/cli/cli.c lists them. E6 (anisotropy) is exp_aniso.h. */
 #ifndef EXP_FIELD_H
 #define EXP_FIELD_H

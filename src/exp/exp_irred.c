@@ -1,4 +1,4 @@
-/* exp_irred: E2 irreducibility (SPEC §7 E2; reference paper §3.3, Eq. 4),
+/* exp_irred: E2 irreducibility (design.md §7 E2; reference paper §3.3, Eq. 4),
  * writing frozen/irreducibility at one die-back (beta_train, or beta_field
  * with --tag field). Choices the spec leaves open:
  *  - focal tree: the interior stem nearest the footprint centre (stems_focal);

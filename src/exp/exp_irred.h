@@ -1,4 +1,4 @@
-/* exp_irred: E2 irreducibility units (SPEC §7 E2; reference paper §3.3),
+/* exp_irred: E2 irreducibility units (design.md §7 E2; reference paper §3.3),
  * writing <out>/irreducibility/<unit>_<o->tag>.tsv at die-back beta. */
 #ifndef EXP_IRRED_H
 #define EXP_IRRED_H

@@ -1,5 +1,5 @@
 /* exp_main: E3 main experiment and E4 extrapolation (reference paper
- * §4.3-§5.2; SPEC §7 E3/E4, §8). See exp_main.h for the data plan and
+ * §4.3-§5.2; design.md §7 E3/E4, §8). See exp_main.h for the data plan and
  * mainset.h for the data, the generation and the probes.
  * The error of a run at one spacing is W1 (est_w1, the pinned estimator)
  * between the focal nearest-neighbour clearances of generated patches and of
@@ -194,7 +194,7 @@ int exp_main_cmd_run(int argc, char **argv)
         {"weights", OPT_STR, &weights, 0, 0, "also write the final weights to FILE (weights format, README; default none)"},
         {"epochs", OPT_LONG, &epochs, 1, 1000000, "exploration override of the plan's epochs (default: the plan's)"},
         {"train-stands", OPT_LONG, &train_stands, 1, 10000, "exploration override of the plan's stands per training spacing (default: the plan's)"},
-        {"pair", OPT_LONG, &pairl, 0, 1, "1: the pair-aware model of SPEC §8 revision 2, every probe on both arms; 0: the revision-1 model (default 1)"},
+        {"pair", OPT_LONG, &pairl, 0, 1, "1: the pair-aware model of design.md §8 revision 2, every probe on both arms; 0: the revision-1 model (default 1)"},
     };
     const opts_cmd c = {"main-run", "--seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--ckpt FILE] [--samples FILE.tsv] [--weights FILE]",
                         "One (seed, arm) unit of E3/E4: build teacher data, train the flow model (resuming from\n"
@@ -310,7 +310,7 @@ int exp_main_cmd_run(int argc, char **argv)
     return 0;
 }
 
-/* Redraw the samples of one unit from its frozen weights alone (SPEC §9
+/* Redraw the samples of one unit from its frozen weights alone (design.md §9
  * verify-deep): the same evaluation sets, seeds and sampler as main-run. */
 int exp_main_cmd_redraw(int argc, char **argv)
 {

@@ -1,5 +1,5 @@
 /* exp_main: the main experiment E3 and extrapolation E4 (reference paper
- * §4.3-§5.2; SPEC §7 E3/E4, §8). One unit per (seed, arm): build the teacher
+ * §4.3-§5.2; design.md §7 E3/E4, §8). One unit per (seed, arm): build the teacher
  * data, train the flow model (joint or independent arm), generate eval
  * patches at the unseen (4.0, 5.0, 6.0 m) and extrapolation (3.0, 7.5 m)
  * spacings, and measure W1 between generated and teacher focal nearest-
@@ -9,7 +9,7 @@
  * A baselines unit measures the direction-blind baseline and the split-half
  * noise floor; a summary unit gathers the runs into the frozen tables.
  *
- * Data plan (ours; SPEC §8 leaves it open): teacher at beta_train (from
+ * Data plan (ours; design.md §8 leaves it open): teacher at beta_train (from
  * gates/mechanism.gate) on the controlled lattice (jitter from
  * gates/anisotropy.gate canonical_jitter), L = 12 d; every interior stem of a
  * stand is a focal stem. Seeds: seed_derive("main-train"|"main-eval", d, k, ·)
@@ -41,7 +41,7 @@ typedef struct {
 /* The plan for a scale ("full" or "smoke"); gate values read from gates/. */
 cs_status exp_main_plan_get(const char *scale, exp_main_plan *p);
 
-/* CLI entry points (return process exit codes; SPEC §11). */
+/* CLI entry points (return process exit codes; design.md §11). */
 int exp_main_cmd_run(int argc, char **argv);
 int exp_main_cmd_baselines(int argc, char **argv);
 int exp_main_cmd_summary(int argc, char **argv);

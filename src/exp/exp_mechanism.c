@@ -1,4 +1,4 @@
-/* exp_mechanism: E1 (SPEC §7 E1; reference paper §3.2), writing
+/* exp_mechanism: E1 (design.md §7 E1; reference paper §3.2), writing
  * frozen/mechanism: the beta x d sweep on the controlled lattice, the
  * ablation at 3.5 m (coupling off / abrasion off / both on) and the crowns of
  * the three figure panels (hard-core stand at 3.5 m, the same draws in all
@@ -9,7 +9,7 @@
  *                          spacing_m stands trees k1_m k2_m k3_m cover overlap_m
  *  mechanism/figure_stats.tsv  the ablation's columns, measured on the one
  *                          hard-core figure stand (the paper's "measured on the
- *                          stand shown": the Mech* macros, SPEC §7 E1 rev. 2);
+ *                          stand shown": the Mech* macros, design.md §7 E1 rev. 2);
  *                          the gate stays judged on ablation.tsv (lattice)
  *  mechanism/figure_crowns.tsv, figure_poly_<panel>_<d>.tsv (exp_common.h) */
 #include "exp_mechanism.h"

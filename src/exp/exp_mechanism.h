@@ -1,4 +1,4 @@
-/* exp_mechanism: E1 mechanism units (SPEC §7 E1; reference paper §3.2),
+/* exp_mechanism: E1 mechanism units (design.md §7 E1; reference paper §3.2),
  * writing <out>/mechanism/ (see exp_mechanism.c for the tables). */
 #ifndef EXP_MECHANISM_H
 #define EXP_MECHANISM_H

@@ -1,5 +1,5 @@
-/* exp_stands: the hard-core canopy stands of E8 (point cloud, SPEC §7 E8,
- * frozen/pointcloud) and E9 (hero, SPEC §7 E9, frozen/hero): L = 36 m,
+/* exp_stands: the hard-core canopy stands of E8 (point cloud, design.md §7 E8,
+ * frozen/pointcloud) and E9 (hero, design.md §7 E9, frozen/hero): L = 36 m,
  * one stand per spacing with its crown draws shared within a column.
  * Outputs: <exp>/figure_crowns.tsv and figure_poly_<panel>_<d>.tsv
  * (exp_common.h); pointcloud/stats.tsv: spacing_m trees contact_fraction

@@ -1,5 +1,5 @@
 /* exp_stands: the hard-core canopy stands of E8 (point cloud) and E9 (hero),
- * SPEC §7 E8/E9, writing <out>/pointcloud/ and <out>/hero/. */
+ * design.md §7 E8/E9, writing <out>/pointcloud/ and <out>/hero/. */
 #ifndef EXP_STANDS_H
 #define EXP_STANDS_H
 #include "exp_common.h"

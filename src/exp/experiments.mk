@@ -100,7 +100,7 @@ REPRODUCE_UNITS += $(FIELD_CAL) $(RESULTS)/field/heldout.tsv $(RESULTS)/anisotro
 .PHONY: field anisotropy
 field: $(FIELD_CAL) $(RESULTS)/field/heldout.tsv
 anisotropy: $(RESULTS)/anisotropy/lattice.tsv $(RESULTS)/anisotropy/hardcore.tsv $(RESULTS)/anisotropy/heldout.tsv
-# E2 irreducibility again at the field operating point (SPEC §7 E2 "at beta_train
+# E2 irreducibility again at the field operating point (design.md §7 E2 "at beta_train
 # and at beta_field (E5)"): beta_field is recomputed from the E5 calibration table.
 IRRED_FIELD_UNITS := $(RESULTS)/irreducibility/perturb_field.tsv $(RESULTS)/irreducibility/refine_field.tsv \
                      $(RESULTS)/irreducibility/reduction_field.tsv
@@ -117,7 +117,7 @@ $(RESULTS)/comparison/patch.tsv: $(RESULTS)/main/run_s01_joint.tsv $(RESULTS)/ma
 	$(CLI) comp-run --joint $(RESULTS)/main/weights_s01_joint.ckpt --indep $(RESULTS)/main/weights_s01_indep.ckpt --out $(RESULTS)
 REPRODUCE_UNITS += $(RESULTS)/comparison/patch.tsv
 
-# ---- E0 readings (SPEC §7 E0; src/claims/readings.c) -----------------------------
+# ---- E0 readings (design.md §7 E0; src/claims/readings.c) -----------------------------
 # The cheap experiments under each reading of the paper, by the same units with
 # switches (never copied files): run <teacher>-<layout> in $(RESULTS)/readings/<run>/
 # (t1 = teacher-1, t2 = teacher-2; r1 = 5 m on 60 m, r2 = 4 m on 36 m), then

@@ -1,4 +1,4 @@
-/* figdata: display data for the top-down canopy figures (SPEC §12): each
+/* figdata: display data for the top-down canopy figures (design.md §12): each
  * crown's outline at 4 points per sector (crown_radius_at) plus the closing
  * point, FIGDATA_ROWS rows per tree, trees in ascending height so that taller
  * crowns are drawn last (on top, as seen from above). Millimetre precision:

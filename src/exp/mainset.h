@@ -1,5 +1,5 @@
 /* mainset: the data and the probes of E3/E4 (src/exp/exp_main.c; reference
- * paper §4.3-§5.2; SPEC §7 E3/E4, §8). Teacher stands become patch sets
+ * paper §4.3-§5.2; design.md §7 E3/E4, §8). Teacher stands become patch sets
  * (training, and one evaluation set per spacing with the teacher's focal
  * nearest-neighbour clearances); a model generates the clearances of an
  * evaluation set, as is or under a probe:

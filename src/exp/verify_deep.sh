@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# verify_deep.sh: the second tier of verification (SPEC §9 rev. 2; issue 15),
+# verify_deep.sh: the second tier of verification (design.md §9 rev. 2; issue 15),
 # behind `make verify-deep`. Reruns every teacher experiment unit (E1, E2, the
 # teacher figure data, E5, E6 and the E0 readings) into $DEEP with make -j$JOBS,
 # printing progress (units done of total, elapsed, ETA), then compares every

@@ -1,4 +1,4 @@
-/* crown: interpolation rule and crown draws (SPEC §1, §3; paper Eq. 1). */
+/* crown: interpolation rule and crown draws (design.md §1, §3; paper Eq. 1). */
 #include "crown.h"
 #include <math.h>
 #include <gsl/gsl_randist.h>

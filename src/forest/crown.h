@@ -1,5 +1,5 @@
 /* crown: the 24-sector radial crown, its one interpolation rule, and the
- * per-tree crown draws (SPEC §1, §3; reference paper §3.1, Eq. 1).
+ * per-tree crown draws (design.md §1, §3; reference paper §3.1, Eq. 1).
  * Sector s is centred on bearing 2*pi*s/24, counter-clockwise from east (+x);
  * north (+y) is sector 6. Between sector centres the radius is linear in
  * angle (periodic). crown_radius_at implements that rule for the teacher,
@@ -23,7 +23,7 @@ double crown_radius_at(const double r[CROWN_NSEC], double theta);
 /* Bearing of sector s (radians). */
 double crown_theta(int s);
 
-/* One tree's draw (SPEC §3). */
+/* One tree's draw (design.md §3). */
 typedef struct {
     double h;    /* height, m: N(25, 4^2) truncated to [12, 38] by redraw */
     double R;    /* open-grown radius, m: 4 exp(0.15 z), z ~ N(0,1) */

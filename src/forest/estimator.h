@@ -1,4 +1,4 @@
-/* estimator: the canonical instrument (SPEC §5; reference paper §4.3,
+/* estimator: the canonical instrument (design.md §5; reference paper §4.3,
  * Eqs. 5 and 6; elongation paper §5.3). Every clearance, W1, cover and directional statistic of the
  * teacher experiments and the claims is computed here; src/forest/estimator.c
  * is pinned by SHA-256. The one other clearance code is the batched estimator
@@ -52,17 +52,17 @@ double est_tree_mean(const double gaps[4]);
  * caller counts it; 1 when *aniso was set. */
 int est_anisotropy(const double gaps[4], double *aniso);
 /* Elongation (paper §5.3, "the ratio of the longest to shortest crown axis";
- * SPEC §5, revision 2): max / min over the 12 axes r(theta_s) + r(theta_s + pi),
+ * design.md §5, revision 2): max / min over the 12 axes r(theta_s) + r(theta_s + pi),
  * s = 0..11. Axis length is piecewise linear between sector centres, so no
  * finer axis gives another value. A square crown reads sqrt(2) at any rotation
  * that puts sector centres on its diagonals and sides (every multiple of 15 deg). */
 double est_elongation(const double *ri);
-/* Revision-1 reading, kept for the readings table (SPEC §7 E0): longest /
+/* Revision-1 reading, kept for the readings table (design.md §7 E0): longest /
  * shortest of the two cardinal axes only, r(N)+r(S) and r(E)+r(W). A square
  * crown reads 1 at any rotation, so this reads ~1 on any lattice. */
 double est_elongation_cardinal(const double *ri);
 
-/* Directional summary of a set of trees (the field comparisons, SPEC §7 E5/E6):
+/* Directional summary of a set of trees (the field comparisons, design.md §7 E5/E6):
  * for every tree with use[i] != 0 (use NULL: all trees), its four cardinal
  * gaps. A tree lacking a neighbour in some cardinal cone is "incomplete" and
  * left out of every statistic (counted); a tree with a non-positive cardinal

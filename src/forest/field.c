@@ -1,4 +1,4 @@
-/* field: loader and summary of the field reference (SPEC §7; paper §5.3-5.4).
+/* field: loader and summary of the field reference (design.md §7; paper §5.3-5.4).
  * Limits: the raw table must already be in the documented three-column TSV
  * form (convert the Dryad file first); one measurement per tree and direction. */
 #include "field.h"

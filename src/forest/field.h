@@ -1,4 +1,4 @@
-/* field: the field reference (SPEC §7 "Field reference data"; reference paper
+/* field: the field reference (design.md §7 "Field reference data"; reference paper
  * §5.3, §5.4). Two inputs:
  *  - frozen/field/reference.tsv: the published figures the reference paper
  *    states for Markham & Fernandez Otarola 2020 (23 trees, 92 measurements,

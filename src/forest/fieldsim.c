@@ -1,4 +1,4 @@
-/* fieldsim: simulated field statistics per interior tree (SPEC §7 E5, E6;
+/* fieldsim: simulated field statistics per interior tree (design.md §7 E5, E6;
  * reference paper §5.3, §5.4). See fieldsim.h. */
 #include "fieldsim.h"
 #include "crown.h"

@@ -1,4 +1,4 @@
-/* fieldsim: the simulated side of the field comparisons (SPEC §7 E5, E6;
+/* fieldsim: the simulated side of the field comparisons (design.md §7 E5, E6;
  * reference paper §5.3, §5.4). A stand is grown by the teacher
  * (exp_field_grow_append, in the experiments); for each interior tree (>= 2 d from the edge) the canonical estimator gives the four
  * cardinal gaps and the crown elongation. Trees are kept individually
@@ -19,8 +19,8 @@ typedef struct {
     double *level;
     unsigned *stand, *tree;
     double (*gap)[4];   /* E, N, W, S, m */
-    double *elong;      /* all-axis elongation (SPEC §5, revision 2) */
-    double *elong_card; /* cardinal elongation (revision 1; the readings, SPEC §7 E0) */
+    double *elong;      /* all-axis elongation (design.md §5, revision 2) */
+    double *elong_card; /* cardinal elongation (revision 1; the readings, design.md §7 E0) */
 } fs_trees;
 
 void fs_trees_init(fs_trees *t);

@@ -1,4 +1,4 @@
-/* stand: stems + crown draws from derived seeds (SPEC §1-§3). */
+/* stand: stems + crown draws from derived seeds (design.md §1-§3). */
 #include "stand.h"
 #include "seed.h"
 #include <stdlib.h>

@@ -1,4 +1,4 @@
-/* stand: one simulated stand = stems (SPEC §2) + crown draws (SPEC §3), with
+/* stand: one simulated stand = stems (design.md §2) + crown draws (design.md §3), with
  * seeds from seed_derive(experiment, d, index, "stems" / "crowns"). Coupled
  * and uncoupled twins, perturbed copies and figure panels are made from the
  * same stand object, so they share stems and draws by construction. */

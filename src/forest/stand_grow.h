@@ -1,5 +1,5 @@
 /* stand_grow: the one way the experiments grow a stand with the teacher
- * (SPEC §4): a stand (stand.h) under teacher parameters, optionally with
+ * (design.md §4): a stand (stand.h) under teacher parameters, optionally with
  * modified heights (E2's perturbed tree), keeping the worst self-check
  * overlap of the run. Above both stand and teacher, so that neither imports
  * the other's caller. */
@@ -16,7 +16,7 @@
 cs_status stand_grow(const stand *sd, const teacher_params *p, const double *h, double *r,
                      teacher_info *info, double *worst);
 
-/* Bench (SPEC §10): CPU ms (one core) per 144-tree controlled-lattice stand at
+/* Bench (design.md §10): CPU ms (one core) per 144-tree controlled-lattice stand at
  * d = 3.5 m, beta 0.06 (the default teacher reading), for resolution nres,
  * averaged over `reps` stands; process CPU time, which stays comparable when
  * other jobs share the machine. */

@@ -1,4 +1,4 @@
-/* stems: jittered lattice and hard-core Poisson stem processes (SPEC §2). */
+/* stems: jittered lattice and hard-core Poisson stem processes (design.md §2). */
 #include "stems.h"
 #include "crown.h"
 #include "seed.h"

@@ -1,4 +1,4 @@
-/* stems: stem processes (SPEC §2; reference paper §3, §5.4).
+/* stems: stem processes (design.md §2; reference paper §3, §5.4).
  * - Jittered ("controlled") lattice: square lattice of spacing d, rotated by
  *   U[0, pi/2), phase U[0,1)^2 in lattice units, per-axis Gaussian jitter sd a*d.
  *   A lattice node belongs to the stand when its unjittered position lies in

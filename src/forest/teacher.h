@@ -1,4 +1,4 @@
-/* teacher: coupled crown growth with contact abrasion (SPEC §4; reference
+/* teacher: coupled crown growth with contact abrasion (design.md §4; reference
  * paper §3.1, Eqs. 1-3). Two readings of Eq. 3, chosen by
  * teacher_params.one_sided and named by teacher_version(): `teacher-2`
  * (default, SPEC revision 2, pinned by the audit) and `teacher-1` (revision 1).
@@ -22,7 +22,7 @@
  * contact, so a frozen sector can lose beta again. All crowns entered are
  * found against the same state before any die-back is applied.
  * teacher-1, one-sided: only i's sector dies back; j may regrow into the
- * space i gave up (kept runnable for the readings, SPEC §7 E0).
+ * space i gave up (kept runnable for the readings, design.md §7 E0).
  * Why j's die-back is safe for the self-check: it only lowers r_j,t, so j's
  * region shrinks (interpolation weights are >= 0): no clearance g falls and no
  * point enters j that was outside. j's changed sample points move inward along
@@ -58,7 +58,7 @@
 #include <stddef.h>
 
 #define TEACHER_VERSION "teacher-2"           /* the default reading, pinned by the audit */
-#define TEACHER_VERSION_ONE_SIDED "teacher-1" /* revision 1, kept for the readings (SPEC §7 E0) */
+#define TEACHER_VERSION_ONE_SIDED "teacher-1" /* revision 1, kept for the readings (design.md §7 E0) */
 #define TEACHER_SAMPLES_PER_SECTOR 8
 #define TEACHER_OVERLAP_MAX_M 1e-9
 

@@ -1,6 +1,6 @@
 /* adamw: Adam with decoupled weight decay (Loshchilov & Hutter) on flat float
  * buffers; decay applies to the first ndecay values only (the model puts its
- * weight matrices first, so gains and biases are not decayed). SPEC §8. */
+ * weight matrices first, so gains and biases are not decayed). design.md §8. */
 #ifndef ADAMW_H
 #define ADAMW_H
 #include <stddef.h>

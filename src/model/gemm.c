@@ -1,5 +1,5 @@
 /* gemm: fused multiply-add matrix product with ISA-independent results (see
- * gemm.h; SPEC §8, §10). The vector paths are the tile template in
+ * gemm.h; design.md §8, §10). The vector paths are the tile template in
  * gemm_tile.inc, instantiated for AVX-512F (16 lanes, tile 6 x 64) and
  * AVX2+FMA (8 lanes, tile 6 x 16: 12 accumulators fit 16 registers). */
 #include "gemm.h"

@@ -1,4 +1,4 @@
-/* gemm: the one matrix product of the model (SPEC §8, §10; paper §4.2).
+/* gemm: the one matrix product of the model (design.md §8, §10; paper §4.2).
  *
  *   C[i][j] = (accumulate ? C[i][j] : 0) + sum_k A(i, k) * B[k][j],
  *   A(i, k) = A[i * ars + k * aks]   (so A or A^T, any leading dimension),

@@ -1,5 +1,5 @@
 /* model: flow-matching set transformer (see model.h; paper §4.2, Eq. 2 and 6;
- * SPEC §8). The block is pre-LN: x += Proj(MHA(LN1 x)); x += FC2(GELU(FC1(LN2 x))).
+ * design.md §8). The block is pre-LN: x += Proj(MHA(LN1 x)); x += FC2(GELU(FC1(LN2 x))).
  * Time features: sin/cos of pi*2^k*t, k < ntime/2 (t in [0,1]). */
 #include "model.h"
 #include "patch.h"

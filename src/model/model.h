@@ -1,4 +1,4 @@
-/* model: the conditional flow-matching set transformer of paper §4.2 (SPEC §8).
+/* model: the conditional flow-matching set transformer of paper §4.2 (design.md §8).
  * A patch is T tokens (T = 24 trees). Token i's input is its noisy deviation
  * profile x_t,i (P = 24 values) and nfeat features ((p_i - p_focal)/d, rbar_i/d);
  * the patch's condition vector (ncond values) and sinusoidal features of the
@@ -33,7 +33,7 @@ typedef struct {
     int H;     /* heads (C % H == 0) */
     int F;     /* MLP width */
     int joint; /* 1: attention across the patch; 0: each token attends only to itself */
-    int pair;  /* 1: revision 2 (SPEC §8 "Pair awareness"): per-token features
+    int pair;  /* 1: revision 2 (design.md §8 "Pair awareness"): per-token features
                 * standardised with the model's z-scores (model_norm_fit) and
                 * pair-aware attention (src/pairattn.h) from features 0..2 =
                 * (x, y, rbar) / d; 0: the revision-1 model, unchanged */
@@ -76,7 +76,7 @@ typedef struct model {
     float *phi, *phit, **Phi; /* pair model: geometry of the pass, saved pair mixes */
 } model;
 
-/* The reference configuration of SPEC §10: T = P = 24, nfeat = PATCH_NFEAT, ntime = 16,
+/* The reference configuration of design.md §10: T = P = 24, nfeat = PATCH_NFEAT, ntime = 16,
  * width 64, 3 blocks, 4 heads, MLP 256, joint arm; ncond as given. */
 model_cfg model_cfg_reference(int ncond);
 /* CS_EINPUT with a message naming the offending field if cfg is unusable. */

@@ -7,7 +7,7 @@
  * in the same order, so their results are bit-identical - no -march=native,
  * no FMA contraction (-ffp-contract=off), no fast-math. Reductions use a fixed
  * lane order. The vector helpers are in nn_vec.h, attention in nn_attn.c.
- * Paper §4.2; SPEC §8, §10. */
+ * Paper §4.2; design.md §8, §10. */
 #include "nn.h"
 #include "nn_vec.h"
 #include "gemm.h"

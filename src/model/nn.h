@@ -1,4 +1,4 @@
-/* nn: layer kernels of the flow-matching set transformer (SPEC §8, paper §4.2):
+/* nn: layer kernels of the flow-matching set transformer (design.md §8, paper §4.2):
  * linear (gemm_fma), layer norm, GELU (tanh form), residual add, and
  * multi-head self-attention over groups of T tokens (one group = one patch)
  * with two masks: joint (every token sees the whole patch) and self (each token
@@ -118,7 +118,7 @@ void nn_expf(float *y, const float *x, size_t n);
 /* GFLOP/s of cblas_sgemm (blas = 1; NoTrans x Trans) or of gemm_fma (blas = 0;
  * the product nn_linear_forward runs) over all shapes M x N x K with N, K in
  * sizes[0..n), each run `reps` times, timed together; 0 on allocation
- * failure. For the benchmark of SPEC §10. */
+ * failure. For the benchmark of design.md §10. */
 double nn_product_gflops(int M, const int *sizes, int n, int reps, int blas);
 
 #endif

@@ -3,7 +3,7 @@
  * head shape (T = 24, hd = 16), and attention fused into its neighbouring
  * linear products. Compiled like nn.c (target clones, no FMA contraction, no
  * fast-math), with the same vector helpers (nn_vec.h), so every path gives
- * the same bits (test_nn_clones). Paper §4.2; SPEC §8, §10. */
+ * the same bits (test_nn_clones). Paper §4.2; design.md §8, §10. */
 #include "nn.h"
 #include "nn_vec.h"
 #include "gemm.h"

@@ -1,4 +1,4 @@
-/* pairattn: pair-aware multi-head attention (SPEC §8 "Pair awareness
+/* pairattn: pair-aware multi-head attention (design.md §8 "Pair awareness
  * (revision 2)"; paper §4.2). Every pair (i, j) of a patch has a geometry
  *
  *   g_ij = ((p_j - p_i)/d, |p_j - p_i|/d, (|p_j - p_i| - rbar_i - rbar_j)/d)

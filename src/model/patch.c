@@ -1,5 +1,5 @@
 /* patch: patch extraction, features, conditions, standardisation and the
- * batched clearance estimator (see patch.h; paper §4.1 and Eq. 5; SPEC §1, §5, §8).
+ * batched clearance estimator (see patch.h; paper §4.1 and Eq. 5; design.md §1, §5, §8).
  * Neighbour search is a full sort per focal stem: stands here have ~150 stems,
  * so O(n log n) per patch is cheaper than maintaining a grid. */
 #include "patch.h"

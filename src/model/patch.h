@@ -1,9 +1,9 @@
-/* patch: model inputs from a stand given as plain arrays (paper §4.1, SPEC §8):
+/* patch: model inputs from a stand given as plain arrays (paper §4.1, design.md §8):
  * the T = 24 stems nearest a focal stem (focal first, then by distance, ties by
  * index), per-token features ((p_i - p_focal)/d, rbar_i/d), the patch condition
  * vector, the deviation profile x_i = r_i - rbar_i (standardised by one global
  * scale fitted on training data), and a batched clearance estimator on patches
- * (paper Eq. 5; SPEC §1, §5) with a check against the canonical estimator.
+ * (paper Eq. 5; design.md §1, §5) with a check against the canonical estimator.
  * Sector s of a crown vector is centred on theta_s = 2 pi s / 24, counter-
  * clockwise from east; r(theta) is periodic linear interpolation in angle.
  * Independent of the teacher module: stands come in as arrays. The batched
@@ -22,7 +22,7 @@
  * relative position in a polar Fourier basis: cos k phi_i, sin k phi_i for
  * k = 1..4 (phi_i the bearing of stem i from the focal stem; 0 for the focal
  * itself) and rho_i / d. The basis is a fixed function of (p_i - p_f)/d, so a
- * token still carries only its own position and size (SPEC §8); it makes the
+ * token still carries only its own position and size (design.md §8); it makes the
  * map from a bearing to a crown profile linear, which the flow model
  * otherwise failed to learn within the E3 budget (see paper, Method). */
 #define PATCH_NFEAT 12
@@ -104,7 +104,7 @@ cs_status patch_clearance_check(patch_clearance_ref ref, const double *px, const
  * r(theta) = R (1 - 0.2 cos(theta - theta_nn)). x, y [side^2], r [side^2 * 24]. */
 void patch_toy_stand(gsl_rng *rng, int side, double d, double *x, double *y, double *r);
 
-/* Shuffled-geometry probe (SPEC §8): permute the position features
+/* Shuffled-geometry probe (design.md §8): permute the position features
  * ((x - x_f)/d, (y - y_f)/d) among the T tokens of each of n patches in
  * feat[n*T*NFEAT] (uniform permutation from rng; rbar_i/d stays with its
  * token). Generation then sees wrong geometry; evaluate with the true positions. */
@@ -112,7 +112,7 @@ void patch_shuffle_positions(float *feat, int n, gsl_rng *rng);
 /* The permutation patch_shuffle_positions draws for one patch (token i is
  * given the position of token perm[i]); the same draws from rng. */
 void patch_shuffle_perm(gsl_rng *rng, int perm[PATCH_T]);
-/* Rotation probe (SPEC §8, added after the first verdict): patch g of an
+/* Rotation probe (design.md §8, added after the first verdict): patch g of an
  * evaluation set is rotated about its focal stem by (1 + g mod 7) x 45 deg
  * (rad), every angle a whole number of sectors. */
 double patch_rotation_angle(int g);
@@ -125,7 +125,7 @@ void patch_rotate_positions(float *feat, int n, const double *alpha);
  * out[s] = r[(s - steps) mod P]; out must not alias r. The teacher's side of
  * the rotation probe. */
 void patch_rotate_crown(const double *r, int steps, double *out);
-/* Direction-blind baseline (SPEC §8): every crown of r[ncrowns*P] replaced by
+/* Direction-blind baseline (design.md §8): every crown of r[ncrowns*P] replaced by
  * its circular mean (all sectors equal to the mean radius); in place allowed. */
 void patch_direction_blind(const double *r, int ncrowns, double *out);
 

@@ -1,5 +1,5 @@
 /* train: trainer, checkpoints and benchmark (see train.h; paper §4.2, Eq. 2;
- * SPEC §8, §10, §11). */
+ * design.md §8, §10, §11). */
 #include "train.h"
 #include "paths.h"
 #include <errno.h>

@@ -1,7 +1,7 @@
-/* train: the flow-matching trainer (paper §4.2, Eq. 2; SPEC §8): batches of
+/* train: the flow-matching trainer (paper §4.2, Eq. 2; design.md §8): batches of
  * patches in an epoch-wise random order, AdamW with linear warm-up and cosine
  * decay, atomic checkpoints that resume bit-identically, progress lines, and
- * the trainer benchmark of SPEC §10.
+ * the trainer benchmark of design.md §10.
  *
  * Randomness: three explicitly seeded gsl_rng_mt19937 streams - init
  * (parameters), batch (epoch permutations), noise (t and x0 of Eq. 2) - never
@@ -96,7 +96,7 @@ typedef struct {
     int repeats;
 } train_bench_result;
 
-/* SPEC §10: median over `repeats` timed runs of `steps` training steps at
+/* design.md §10: median over `repeats` timed runs of `steps` training steps at
  * cfg and batch B on toy data, and cblas_sgemm GFLOP/s on the model's shapes
  * (M = B*T, N, K in {C, 3C, F}) measured in the same run (ratio = model /
  * sgemm), and gemm_fma's GFLOP/s on those shapes. */
