@@ -40,13 +40,14 @@ int cli_cmd_run(int argc, char **argv)
 {
     long stands = EXP_STANDS_DEFAULT;
     double beta = NAN;
-    const char *out = "build/results", *tag = "train", *teacher = NULL;
+    const char *out = "build/results", *tag = "train", *teacher = NULL, *vary = NULL;
     const opt_spec spec[] = {
         {"stands", OPT_LONG, &stands, 1, 10000, "stands per cell (default 8)"},
         {"out", OPT_STR, &out, 0, 0, "results root; each unit writes DIR/<experiment>/<file>.tsv (default build/results)"},
         {"beta", OPT_DOUBLE, &beta, 0, 0.999, "die-back for E2 and the hero's beta_field row (default: the gate's dieback_train; no beta_field row)"},
         {"tag", OPT_STR, &tag, 0, 0, "E2 output tag: train or field (default train; field needs --beta)"},
         EXP_OPT_TEACHER(teacher),
+        EXP_OPT_VARY(vary),
     };
     char about[2048];
     size_t off = (size_t)snprintf(about, sizeof about, "units:\n");
@@ -62,7 +63,7 @@ int cli_cmd_run(int argc, char **argv)
     if (!u) { opts_usage_error("run", "unknown unit '%s'", pos[0]); return 2; }
     if (strcmp(tag, "train") && strcmp(tag, "field")) { opts_usage_error("run", "--tag: must be train or field, not '%s'", tag); return 2; }
     exp_opts o = {.out = out, .stands = (int)stands, .beta = beta, .tag = tag, .argc = argc, .argv = argv};
-    if (exp_reading_parse(teacher, NULL, &o.rd)) { opts_usage_error("run", "%s", cs_errmsg()); return 2; }
+    if (exp_reading_parse(teacher, NULL, &o.rd) || exp_reading_vary(vary, &o.rd)) { opts_usage_error("run", "%s", cs_errmsg()); return 2; }
     cs_status st = CS_OK;
     if (u->kind == U_IRRED) {
         double b = beta;

@@ -30,7 +30,7 @@
 int cmd_aniso_lattice(int argc, char **argv)
 {
     exp_field_opts o = {.stands_opt = 28};
-    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands (default 28)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout)};
+    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands (default 28)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout), EXP_OPT_VARY(o.vary)};
     const opts_cmd oc = {"aniso-lattice", "--calibration DIR/calibration.tsv --out DIR/lattice.tsv [--stands N]",
                          "E6 (design.md §7): anisotropy on the controlled lattice (field layout, canonical jitter) at beta_field,\n"
                          "N stands (default 28).",
@@ -49,7 +49,7 @@ int cmd_aniso_lattice(int argc, char **argv)
     fs_trees_init(&acc);
     double worst = 0;
     st = exp_field_run_job(&j, &acc, &worst);
-    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"anisotropy/lattice\", %g, s, stems|crowns), s = 0..%u", exp_field_d(o.rd.layout), o.stands - 1);
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"anisotropy/lattice\", %g, s, stems|crowns), s = 0..%u", exp_field_d(&o.rd), o.stands - 1);
     p.worst_overlap_m = worst;
     exp_meta_ctx m = {c.value, a, "E6 lattice: controlled lattice (layout in the layout line), canonical jitter (level = a), teacher at beta_field"};
     if (!st) st = exp_field_write(o.out, &p, &acc, &j, 1, exp_meta_generic, &m);
@@ -67,7 +67,7 @@ static int aniso_family(const char *cmd, const char *synopsis, const char *about
                         stand_kind kind, const char *key, const char *seed_exp, const char *what)
 {
     exp_field_opts o = {.stands_opt = 12};
-    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands per level (default 12)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout)};
+    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands per level (default 12)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout), EXP_OPT_VARY(o.vary)};
     const opts_cmd oc = {cmd, synopsis, about, spec, sizeof spec / sizeof *spec, 0, 0};
     int rc = exp_field_parse(&oc, argc, argv, &o);
     if (rc) return opts_exit_code(rc);
@@ -93,7 +93,7 @@ static int aniso_family(const char *cmd, const char *synopsis, const char *about
                 fprintf(stderr, "%s: level %.2f: anisotropy median %.4f (%zu trees, %zu excluded; %zu stands failed)\n", cmd, lv[k], s.f.aniso_median, s.f.aniso_trees, s.f.aniso_excluded, jobs[k].failed);
         }
     }
-    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"%s\", %g, s, stems|crowns), s = 0..%u at every level", seed_exp, exp_field_d(o.rd.layout), o.stands - 1);
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"%s\", %g, s, stems|crowns), s = 0..%u at every level", seed_exp, exp_field_d(&o.rd), o.stands - 1);
     p.worst_overlap_m = worst;
     exp_meta_ctx m = {c.value, 0, what};
     if (!st) st = exp_field_write(o.out, &p, &acc, jobs, nl, exp_meta_generic, &m);
@@ -178,7 +178,7 @@ int cmd_aniso_heldout(int argc, char **argv)
         {"jitter-calibration", OPT_STR, &o.jitter_calibration, 0, 0, "E6 jitter calibration table DIR/jitter_calibration.tsv, gives a* (required)"},
         EXP_OPT_OUT(o),
         EXP_OPT_STANDS(o, "stands (default 28)"),
-        EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout),
+        EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout), EXP_OPT_VARY(o.vary),
     };
     const opts_cmd oc = {"aniso-heldout",
                          "--calibration DIR/calibration.tsv --jitter-calibration DIR/jitter_calibration.tsv\n"
@@ -200,7 +200,7 @@ int cmd_aniso_heldout(int argc, char **argv)
     fs_trees_init(&acc);
     double worst = 0;
     st = exp_field_run_job(&j, &acc, &worst);
-    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"anisotropy/heldout\", %g, s, stems|crowns), s = 0..%u", exp_field_d(o.rd.layout), o.stands - 1);
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"anisotropy/heldout\", %g, s, stems|crowns), s = 0..%u", exp_field_d(&o.rd), o.stands - 1);
     p.worst_overlap_m = worst;
     exp_meta_ctx m = {c.value, js.value, "E6 held-out at a*: lattice (layout in the layout line), jitter a* (level), teacher at beta_field"};
     if (!st) st = exp_field_write(o.out, &p, &acc, &j, 1, exp_meta_generic, &m);

@@ -13,6 +13,7 @@
 #include "gate.h"
 #include "paths.h"
 #include "stand_grow.h"
+#include "unstated.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -73,7 +74,8 @@ cs_status exp_finish(tsv_writer *w, prov *pv, const char *path)
 void exp_common_meta(tsv_writer *w, const exp_opts *o)
 {
     tsv_writer_meta(w, "stands_per_cell", "%d", o->stands);
-    tsv_writer_meta(w, "teacher_resolution", "N = 48 unless a column says otherwise; gamma = 1");
+    tsv_writer_meta(w, "teacher_resolution", "N = %d unless a column says otherwise; gamma = 1", exp_nres(&o->rd));
+    exp_variant_meta(w, &o->rd);
 }
 
 /* Crowns of one panel: one row per tree: panel, tree, x, y, h, interior, r0..r23. */
@@ -131,6 +133,7 @@ double exp_stand_k1(const stand *sd, const double *r)
 
 cs_status exp_reading_parse(const char *teacher, const char *layout, exp_reading *r)
 {
+    memset(r, 0, sizeof *r);
     r->one_sided = 0;
     r->layout = EXP_LAYOUT_R2;
     if (teacher && !strcmp(teacher, TEACHER_VERSION_ONE_SIDED)) r->one_sided = 1;
@@ -141,10 +144,67 @@ cs_status exp_reading_parse(const char *teacher, const char *layout, exp_reading
     return CS_OK;
 }
 
-static void exp_teacher_params(const exp_reading *r, teacher_params *p)
+/* One unstated choice set on v (unstated.h names; the design's values otherwise). */
+static cs_status variant_set(exp_variant *v, const char *name, double x)
 {
-    teacher_params_default(p);
-    p->one_sided = r ? r->one_sided : 0;
+    if (!strcmp(name, "crown_R")) v->crowns.R_scale = x;
+    else if (!strcmp(name, "crown_spread")) v->crowns.R_lnsd = x;
+    else if (!strcmp(name, "height_sd")) v->crowns.h_sd = x;
+    else if (!strcmp(name, "lobing")) v->crowns.a_max = x;
+    else if (!strcmp(name, "growth_N")) {
+        if (x != floor(x) || x < 4 || x > 4096) return cs_err(CS_EINPUT, "--vary growth_N: a whole number in [4, 4096], not %g", x);
+        v->nres = (int)x;
+    } else if (!strcmp(name, "start")) v->start_frac = x;
+    else if (!strcmp(name, "fig_hardcore")) v->fig_c = x;
+    else if (!strcmp(name, "field_d")) v->field_d = x;
+    else if (!strcmp(name, "field_L")) v->field_L = x;
+    else return cs_err(CS_EINPUT, "--vary: no unstated choice '%s'", name);
+    return CS_OK;
+}
+
+cs_status exp_reading_vary(const char *vary, exp_reading *r)
+{
+    if (!vary) return CS_OK;
+    const char *eq = strchr(vary, '=');
+    char name[32], *end;
+    if (!eq || eq == vary || (size_t)(eq - vary) >= sizeof name)
+        return cs_err(CS_EINPUT, "--vary: expected NAME=VALUE, not '%s'", vary);
+    snprintf(name, sizeof name, "%.*s", (int)(eq - vary), vary);
+    double x = strtod(eq + 1, &end);
+    if (end == eq + 1 || *end || !isfinite(x) || x <= 0.0) return cs_err(CS_EINPUT, "--vary %s: value must be a positive number, not '%s'", name, eq + 1);
+    const unstated_choice *c = unstated_find(name);
+    if (!c) return cs_err(CS_EINPUT, "--vary: no unstated choice '%s' (unstated.h)", name);
+    if (r->layout == EXP_LAYOUT_R1 && c->scope == UNSTATED_FIELD) return cs_err(CS_EINPUT, "--vary %s: varies the r2 field layout, not with --layout r1", name);
+    exp_variant *v = &r->var;
+    memset(v, 0, sizeof *v);
+    snprintf(v->name, sizeof v->name, "%s", name);
+    v->value = x;
+    crown_dist_default(&v->crowns);
+    v->nres = 48;
+    v->start_frac = 0.05;
+    v->fig_c = EXP_FIG_C;
+    v->field_d = DESIGN_FIELD_SPACING_M;
+    v->field_L = DESIGN_FIELD_L_M;
+    cs_status st = variant_set(v, name, x);
+    if (st) return st;
+    r->varied = 1;
+    return CS_OK;
+}
+
+static void exp_teacher_params(const exp_reading *r, teacher_params *p) { EXP_TEACHER_PARAMS(r, p); }
+
+cs_status exp_stand_alloc(const exp_reading *r, stand **out, stand_kind kind, double d, double L, double shape,
+                          const char *experiment, unsigned index)
+{
+    return stand_alloc_dist(out, kind, d, L, shape, experiment, index, r && r->varied ? &r->var.crowns : NULL);
+}
+
+double exp_fig_c(const exp_reading *r) { return r && r->varied ? r->var.fig_c : EXP_FIG_C; }
+int exp_nres(const exp_reading *r) { return r && r->varied ? r->var.nres : 48; }
+
+void exp_variant_meta(tsv_writer *w, const exp_reading *r)
+{
+    if (r && r->varied) tsv_writer_meta(w, "sensitivity", "%s = %.17g (design.md §7 E0; every other choice the design's)", r->var.name, r->var.value);
 }
 
 void exp_prov_begin(prov *p, const char *experiment, const exp_reading *r, int argc, char **argv)
@@ -155,8 +215,16 @@ void exp_prov_begin(prov *p, const char *experiment, const exp_reading *r, int a
     snprintf(p->teacher_version, sizeof p->teacher_version, "%s", teacher_version(&tp));
 }
 
-double exp_field_d(exp_layout l) { return l == EXP_LAYOUT_R1 ? DESIGN_FIELD_SPACING_R1_M : DESIGN_FIELD_SPACING_M; }
-double exp_field_L(exp_layout l) { return l == EXP_LAYOUT_R1 ? DESIGN_FIELD_L_R1_M : DESIGN_FIELD_L_M; }
+double exp_field_d(const exp_reading *r)
+{
+    if (r && r->varied) return r->var.field_d;
+    return r && r->layout == EXP_LAYOUT_R1 ? DESIGN_FIELD_SPACING_R1_M : DESIGN_FIELD_SPACING_M;
+}
+double exp_field_L(const exp_reading *r)
+{
+    if (r && r->varied) return r->var.field_L;
+    return r && r->layout == EXP_LAYOUT_R1 ? DESIGN_FIELD_L_R1_M : DESIGN_FIELD_L_M;
+}
 const char *exp_layout_name(exp_layout l) { return l == EXP_LAYOUT_R1 ? "r1" : "r2"; }
 
 cs_status exp_field_grow_append(const stand *sd, const exp_reading *rd, double beta, int coupled, double level,
@@ -199,7 +267,7 @@ int exp_field_parse(const opts_cmd *c, int argc, char **argv, exp_field_opts *o)
     int r = opts_parse(c, argc, argv, NULL, NULL);
     if (r) return r;
     o->stands = (unsigned)o->stands_opt;
-    if (exp_reading_parse(o->teacher, o->layout, &o->rd)) { opts_usage_error(c->cmd, "%s", cs_errmsg()); return OPTS_USAGE; }
+    if (exp_reading_parse(o->teacher, o->layout, &o->rd) || exp_reading_vary(o->vary, &o->rd)) { opts_usage_error(c->cmd, "%s", cs_errmsg()); return OPTS_USAGE; }
     for (size_t i = 0; i < c->nopts; i++)
         if (c->opts[i].dst == &o->out && !o->out) { opts_usage_error(c->cmd, "--out PATH is required"); return OPTS_USAGE; }
     return OPTS_OK;
@@ -207,11 +275,11 @@ int exp_field_parse(const opts_cmd *c, int argc, char **argv, exp_field_opts *o)
 
 cs_status exp_field_run_job(exp_field_job *j, fs_trees *acc, double *worst)
 {
-    double d = exp_field_d(j->rd.layout), L = exp_field_L(j->rd.layout);
+    double d = exp_field_d(&j->rd), L = exp_field_L(&j->rd);
     j->failed = 0;
     for (unsigned s = 0; s < j->nstands; s++) {
         stand *sd;
-        cs_status st = stand_alloc(&sd, j->kind, d, L, j->shape, j->seed_exp, s);
+        cs_status st = exp_stand_alloc(&j->rd, &sd, j->kind, d, L, j->shape, j->seed_exp, s);
         if (st == CS_EINPUT && j->kind == STAND_HARDCORE && strstr(cs_errmsg(), "unbuildable")) {
             /* A level the stem process cannot reach is a finding, not a crash. */
             j->failed++;
@@ -244,8 +312,9 @@ cs_status exp_field_write(const char *out, prov *p, const fs_trees *acc, const e
     if ((st = prov_write(w, p))) { tsv_writer_abort(w); return st; }
     tsv_writer_meta(w, "trees_table", "%s", tp);
     if (nj) tsv_writer_meta(w, "layout", "%s: field stands d = %g m on L = %g m (design.md §7 E5%s)", exp_layout_name(jobs[0].rd.layout),
-                            exp_field_d(jobs[0].rd.layout), exp_field_L(jobs[0].rd.layout),
+                            exp_field_d(&jobs[0].rd), exp_field_L(&jobs[0].rd),
                             jobs[0].rd.layout == EXP_LAYOUT_R1 ? ", revision 1 reading" : "");
+    if (nj) exp_variant_meta(w, &jobs[0].rd);
     if (meta) meta(w, ctx);
     tsv_writer_columns(w, FS_SUMMARY_COLUMNS);
     for (size_t k = 0; k < nj && !st; k++)

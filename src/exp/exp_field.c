@@ -85,7 +85,7 @@ static void meta_calibration(tsv_writer *w, void *ctx)
 int cmd_field_calibrate(int argc, char **argv)
 {
     exp_field_opts o = {0};
-    const opt_spec spec[] = {EXP_OPT_OUT(o), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout)};
+    const opt_spec spec[] = {EXP_OPT_OUT(o), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout), EXP_OPT_VARY(o.vary)};
     const opts_cmd oc = {"field-calibrate", "--out DIR/calibration.tsv",
                          "E5 calibration (design.md §7): grow the calibration stands (gates/field.gate calibration_seeds)\n"
                          "at every beta of dieback_grid, record the median tree-mean clearance per beta, and print\n"
@@ -114,7 +114,7 @@ int cmd_field_calibrate(int argc, char **argv)
         st = exp_field_run_job(&jobs[k], &acc, &worst);
         if (!st && (k % 7 == 0 || k + 1 == nb)) fprintf(stderr, "field-calibrate: beta %.2f done (%zu/%zu)\n", beta, k + 1, nb);
     }
-    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/calibration\", %g, s, stems|crowns), s = 0..%u at every beta", exp_field_d(o.rd.layout), (unsigned)seeds - 1);
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/calibration\", %g, s, stems|crowns), s = 0..%u at every beta", exp_field_d(&o.rd), (unsigned)seeds - 1);
     p.worst_overlap_m = worst;
     if (!st) st = exp_field_write(o.out, &p, &acc, jobs, nb, meta_calibration, NULL);
     fs_trees_free(&acc);
@@ -145,7 +145,7 @@ int cmd_field_beta(int argc, char **argv)
 int cmd_field_heldout(int argc, char **argv)
 {
     exp_field_opts o = {.stands_opt = 28};
-    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands (default 28)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout)};
+    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands (default 28)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout), EXP_OPT_VARY(o.vary)};
     const opts_cmd oc = {"field-heldout", "--calibration DIR/calibration.tsv --out DIR/heldout.tsv [--stands N]",
                          "E5 held-out (design.md §7): N stands (default 28) on seeds disjoint from the calibration, grown at\n"
                          "beta_field coupled and as the uncoupled twin: tree-mean median, spread, elongation, anisotropy.\n"
@@ -165,7 +165,7 @@ int cmd_field_heldout(int argc, char **argv)
     fs_trees_init(&acc);
     double worst = 0;
     st = exp_field_run_job(&j, &acc, &worst);
-    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/heldout\", %g, s, stems|crowns), s = 0..%u; uncoupled twin = same stand", exp_field_d(o.rd.layout), o.stands - 1);
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/heldout\", %g, s, stems|crowns), s = 0..%u; uncoupled twin = same stand", exp_field_d(&o.rd), o.stands - 1);
     p.worst_overlap_m = worst;
     exp_meta_ctx m = {c.value, a, "E5 held-out: controlled lattice (layout in the layout line), canonical jitter, teacher at beta_field; coupled stands and their uncoupled twins (same stems and crown draws)"};
     if (!st) st = exp_field_write(o.out, &p, &acc, &j, 1, exp_meta_generic, &m);
@@ -186,7 +186,7 @@ int cmd_field_heldout(int argc, char **argv)
 int cmd_field_diagnose(int argc, char **argv)
 {
     exp_field_opts o = {.stands_opt = 12};
-    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_STANDS(o, "stands of the perfect lattice (default 12)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout)};
+    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_STANDS(o, "stands of the perfect lattice (default 12)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout), EXP_OPT_VARY(o.vary)};
     const opts_cmd oc = {"field-diagnose", "--calibration DIR/calibration.tsv [--stands N]",
                          "Print diagnostics for the E5/E6 verdicts: elongation of the open-grown crown targets\n"
                          "(by lobe count k), the reach of beta over the calibration grid (elongation, anisotropy),\n"
@@ -197,7 +197,7 @@ int cmd_field_diagnose(int argc, char **argv)
     if (rc) return opts_exit_code(rc);
     fs_calibration c;
     if ((rc = exp_need_beta("field-diagnose", &o, &c))) return rc;
-    double d = exp_field_d(o.rd.layout), L = exp_field_L(o.rd.layout), a;
+    double d = exp_field_d(&o.rd), L = exp_field_L(&o.rd), a;
     cs_status st = exp_canonical_jitter(&a);
     if (st) return exp_fail("field-diagnose", st);
     /* 1. open-grown target elongation on the E5 held-out stands' draws */
@@ -206,7 +206,7 @@ int cmd_field_diagnose(int argc, char **argv)
     if ((st = gate_read_value(PATHS_GATE("field"), "elongation_band", 0, &lo))) return exp_fail("field-diagnose", st);
     for (unsigned s = 0; s < o.stands && !st; s++) {
         stand *sd;
-        if ((st = stand_alloc(&sd, STAND_LATTICE, d, L, a, "field/heldout", s))) break;
+        if ((st = exp_stand_alloc(&o.rd, &sd, STAND_LATTICE, d, L, a, "field/heldout", s))) break;
         for (size_t i = 0; i < sd->s->n; i++) {
             double e = est_elongation(sd->rstar + i * CROWN_NSEC);
             int k = sd->draw[i].k;

@@ -10,6 +10,7 @@
  * clearance samples behind every W1 and its final weights; main-redraw draws
  * the samples again from the weights alone. */
 #include "exp_main.h"
+#include "exp_common.h"
 #include "afile.h"
 #include "estimator.h"
 #include "mainset.h"
@@ -361,11 +362,12 @@ int exp_main_cmd_redraw(int argc, char **argv)
 
 int exp_main_cmd_baselines(int argc, char **argv)
 {
-    const char *out = NULL, *scale = "full", *samples = NULL;
+    const char *out = NULL, *scale = "full", *samples = NULL, *vary = NULL;
     const opt_spec spec[] = {
         {"out", OPT_STR, &out, 0, 0, "output table FILE.tsv (required)"},
         {"scale", OPT_STR, &scale, 0, 0, "full or smoke (default full)"},
         {"samples", OPT_STR, &samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
+        EXP_OPT_VARY(vary),
     };
     const opts_cmd c = {"main-baselines", "--out FILE.tsv [--scale full|smoke] [--samples FILE.tsv]",
                         "Direction-blind baseline (every crown replaced by its circular mean), split-half noise floor\n"
@@ -376,6 +378,8 @@ int exp_main_cmd_baselines(int argc, char **argv)
     if (rc) return opts_exit_code(rc);
     if (!out) { opts_usage_error("main-baselines", "--out is required"); return 2; }
     if (strcmp(scale, "full") && strcmp(scale, "smoke")) { opts_usage_error("main-baselines", "--scale: must be full or smoke, not '%s'", scale); return 2; }
+    exp_reading rd;
+    if (exp_reading_parse(NULL, NULL, &rd) || exp_reading_vary(vary, &rd)) { opts_usage_error("main-baselines", "%s", cs_errmsg()); return 2; }
     prov pv;
     prov_begin(&pv, "main", argc, argv);
     mainset_design ds;
@@ -383,6 +387,7 @@ int exp_main_cmd_baselines(int argc, char **argv)
     cs_status st = mainset_design_get(&ds);
     if (!st) st = exp_main_plan_get(scale, &pl);
     if (st) return fail_with(st);
+    if (rd.varied) { ds.crowns = rd.var.crowns; ds.nres = rd.var.nres; }
     double worst = 0.0, maxdiff = 0.0;
     size_t nall = ds.nunseen + ds.nextrap;
     /* per spacing: 0 teacher, 1 teacher shuffled, 2 teacher rotated, 3 direction-blind */
@@ -438,6 +443,7 @@ int exp_main_cmd_baselines(int argc, char **argv)
     if (!st) st = prov_write(w, &pv);
     if (!st) {
         tsv_writer_meta(w, "scale", "%s", pl.scale);
+        exp_variant_meta(w, &rd);
         tsv_writer_meta(w, "noise_floor", "W1 between the teacher clearances of the first n_half (first half of the eval stands) and the rest");
         tsv_writer_meta(w, "direction_blind", "W1 between clearances with every crown replaced by its circular mean and the teacher's (a rotation leaves it unchanged)");
         tsv_writer_meta(w, "teacher_probes", "added after the first verdict: W1 between the teacher's own crowns under the shuffled-geometry probe "
