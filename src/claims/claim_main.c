@@ -78,9 +78,10 @@ static double med(const double *x, int n)
 }
 
 /* mean over the unseen spacings of the direction-blind or noise-floor W1 */
-static cs_status read_baseline(const char *col, const char *split, double d_only, double *out, char *where, size_t wn)
+/* path: the row's source (frozen/main/baselines.tsv in the registry; a
+ * sensitivity run's baselines table for the E0 sensitivity, design.md §7 E0). */
+static cs_status read_baseline(const char *path, const char *col, const char *split, double d_only, double *out, char *where, size_t wn)
 {
-    const char *path = "frozen/main/baselines.tsv";
     tsv *t;
     cs_status st = tsv_read(path, &t);
     if (st) return st;
@@ -160,7 +161,7 @@ cs_status claim_main_geom_ratio(const claim_row *row, claim_result *res)
 cs_status claim_main_noise(const claim_row *row, claim_result *res)
 {
     double v;
-    cs_status st = read_baseline("noise_floor_w1", "unseen", 0, &v, res->where, sizeof res->where);
+    cs_status st = read_baseline(row->source, "noise_floor_w1", "unseen", 0, &v, res->where, sizeof res->where);
     if (st) return st;
     claim_set_value(row, res, v);
     return CS_OK;
@@ -169,7 +170,7 @@ cs_status claim_main_noise(const claim_row *row, claim_result *res)
 cs_status claim_main_iso(const claim_row *row, claim_result *res)
 {
     double v;
-    cs_status st = read_baseline("direction_blind_w1", "unseen", 0, &v, res->where, sizeof res->where);
+    cs_status st = read_baseline(row->source, "direction_blind_w1", "unseen", 0, &v, res->where, sizeof res->where);
     if (st) return st;
     claim_set_value(row, res, v);
     /* precondition: m_J <= 0.5 x direction-blind error (needs the runs) */
@@ -214,7 +215,7 @@ cs_status claim_main_teach_probe(const claim_row *row, claim_result *res)
 {
     double v;
     const char *col = strstr(row->macro, "Rot") ? "teacher_rotated_w1" : "teacher_shuffled_w1";
-    cs_status st = read_baseline(col, "unseen", 0, &v, res->where, sizeof res->where);
+    cs_status st = read_baseline(row->source, col, "unseen", 0, &v, res->where, sizeof res->where);
     if (st) return st;
     claim_set_value(row, res, v);
     return CS_OK;
@@ -271,7 +272,7 @@ cs_status claim_extrap_rel(const claim_row *row, claim_result *res)
     claim_judge(row, res, GATE_GE, rel);
     /* judged per spacing, together with: the joint arm below the direction-blind error there */
     double blind;
-    if ((st = read_baseline("direction_blind_w1", "extrap", want, &blind, NULL, 0))) {
+    if ((st = read_baseline("frozen/main/baselines.tsv", "direction_blind_w1", "extrap", want, &blind, NULL, 0))) {
         res->gate = VERDICT_PENDING;
         snprintf(res->gate_detail, sizeof res->gate_detail, "needs frozen/main/baselines.tsv: %s", cs_errmsg());
         return CS_OK;

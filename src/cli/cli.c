@@ -38,6 +38,8 @@ static const cli_cmd cli_cmds[] = {
     {"main-redraw", exp_main_cmd_redraw, "E3/E4: draw a unit's clearance samples again from its frozen weights"},
     {"comp-run", exp_comp_cmd_run, "E7: comparison patch (teacher, joint, independent) and dart probe"},
     {"readings-summary", cli_cmd_readings_summary, "E0: the readings table from the runs under --dir (design.md §7 E0)"},
+    {"sens-run", cli_cmd_sens_run, "E0 sensitivity: one unit, one unstated choice at one value (design.md §7 E0)"},
+    {"sens-summary", cli_cmd_sens_summary, "E0 sensitivity: the table from the units under --dir"},
     {"bench-teacher", cli_cmd_bench_teacher, "teacher ms per 144-tree stand at N = 48 and 384"},
     {"run", cli_cmd_run, "run one experiment unit of E1/E2/figure data (crownshy run --help)"},
     {"gates", cli_cmd_gates, "parse and list the preregistered gate files"},

@@ -160,3 +160,43 @@ $(READINGS_DIR)/summary.tsv: $(READING_TARGETS) audit/claims.tsv | $(CLI)
 .PHONY: readings
 readings: $(READINGS_DIR)/summary.tsv
 REPRODUCE_UNITS += $(READINGS_DIR)/summary.tsv
+
+# ---- E0 sensitivity (design.md §7 E0 "sensitivity"; src/cli/cli_sens.c, src/claims/sens.c) --
+# One make unit per (unstated choice, value) and one centre unit (the design's
+# values), each `crownshy sens-run` into $(SENS_DIR)/<choice>_<value>/ (resumable:
+# finished tables are kept; unit.tsv is written last). E1/E2 at SENS_STANDS stands
+# per cell (the full run uses 8; the centre run uses the same reduced count, so the
+# columns compare), E5/E6 at the full run's counts. Then sensitivity/summary.tsv.
+# The values are those of src/base/unstated.c, printed with %g (tests/test_sens.c
+# checks that the two lists agree).
+SENS_DIR := $(RESULTS)/sensitivity
+ifeq ($(SCALE),smoke)
+SENS_STANDS := 1
+else
+SENS_STANDS := 4
+endif
+SENS_VARIANTS := crown_R:3 crown_R:3.5 crown_R:4.5 crown_R:5 \
+  crown_spread:0.05 crown_spread:0.1 crown_spread:0.2 crown_spread:0.25 \
+  height_sd:2 height_sd:3 height_sd:5 height_sd:6 \
+  lobing:0.1 lobing:0.15 lobing:0.25 lobing:0.3 \
+  growth_N:24 growth_N:32 growth_N:64 growth_N:96 \
+  start:0.02 start:0.03 start:0.075 start:0.1 \
+  fig_hardcore:0.3 fig_hardcore:0.4 fig_hardcore:0.6 fig_hardcore:0.7 \
+  field_d:3 field_d:3.5 field_d:4.5 field_d:5 \
+  field_L:28 field_L:32 field_L:44 field_L:60
+SENS_ARGS = --stands $(SENS_STANDS) --field-stands $(FIELD_STANDS) --sweep-stands $(ANISO_SWEEP_STANDS)
+SENS_DEPS := $(TEACHER_DEPS) gates/field.gate gates/anisotropy.gate gates/main.gate
+define SENS_UNIT
+$(SENS_DIR)/$(1)_$(2)/unit.tsv: $$(SENS_DEPS) | $$(CLI)
+	$$(CLI) sens-run --choice $(1) --value $(2) $$(SENS_ARGS) --out $$(@D)
+SENS_TARGETS += $(SENS_DIR)/$(1)_$(2)/unit.tsv
+endef
+$(foreach v,$(SENS_VARIANTS),$(eval $(call SENS_UNIT,$(word 1,$(subst :, ,$(v))),$(word 2,$(subst :, ,$(v))))))
+$(SENS_DIR)/centre/unit.tsv: $(SENS_DEPS) | $(CLI)
+	$(CLI) sens-run $(SENS_ARGS) --out $(@D)
+SENS_TARGETS += $(SENS_DIR)/centre/unit.tsv
+$(SENS_DIR)/summary.tsv: $(SENS_TARGETS) audit/claims.tsv | $(CLI)
+	$(CLI) sens-summary --dir $(SENS_DIR) --out $@
+.PHONY: sensitivity
+sensitivity: $(SENS_DIR)/summary.tsv
+REPRODUCE_UNITS += $(SENS_DIR)/summary.tsv
