@@ -9,6 +9,7 @@
  *    caught naming file, line and field. */
 #include "testutil.h"
 #include "unstated.h"
+#include "teacher.h"
 #include "claims.h"
 #include "estimator.h"
 #include "exp_common.h"
@@ -113,6 +114,17 @@ static void test_reading_switches_parse_strictly(void **s)
     assert_int_equal(exp_reading_vary("growth_N=32", &r), CS_OK);
     assert_int_equal(exp_nres(&r), 32);
     ASSERT_EXACT(exp_field_d(&r), 4.0);
+    {
+        exp_reading sr;
+        teacher_params tp;
+        assert_int_equal(exp_reading_parse(NULL, NULL, &sr), CS_OK);
+        EXP_TEACHER_PARAMS(&sr, &tp);
+        ASSERT_EXACT(tp.start_frac, 0.05);
+        assert_int_equal(exp_reading_vary("start=0.1", &sr), CS_OK);
+        EXP_TEACHER_PARAMS(&sr, &tp);
+        ASSERT_EXACT(tp.start_frac, 0.1);
+        assert_int_equal(tp.nres, 48);
+    }
     assert_int_equal(exp_reading_vary("growth_N=32.5", &r), CS_EINPUT);
     assert_int_equal(exp_reading_vary("crown_X=3", &r), CS_EINPUT);
     assert_int_equal(exp_reading_vary("crown_R", &r), CS_EINPUT);
@@ -132,6 +144,19 @@ static void test_reading_switches_parse_strictly(void **s)
             assert_int_equal(exp_reading_vary(spec, &v), CS_OK);
             assert_true(k < 2 ? uc[i].values[k] < uc[i].ours : uc[i].values[k] > uc[i].ours);
         }
+    assert_int_equal(exp_reading_parse("teacher-2-arc", NULL, &r), CS_OK);
+    assert_int_equal(r.dieback, TEACHER_DIEBACK_NEIGHBOURS);
+    assert_int_equal(r.one_sided, 0);
+    assert_int_equal(exp_reading_parse("teacher-2-target", NULL, &r), CS_OK);
+    assert_int_equal(r.dieback, TEACHER_DIEBACK_TARGET);
+    {
+        prov pt;
+        char *av[] = {"x"};
+        exp_prov_begin(&pt, "test", &r, 1, av);
+        assert_string_equal(pt.teacher_version, "teacher-2-target");
+    }
+    assert_int_equal(exp_reading_parse("teacher-2-arcs", NULL, &r), CS_EINPUT);
+    assert_int_equal(exp_reading_parse("teacher-2x", NULL, &r), CS_EINPUT);
     assert_int_equal(exp_reading_parse("teacher-3", NULL, &r), CS_EINPUT);
     assert_int_equal(exp_reading_parse(NULL, "r3", &r), CS_EINPUT);
     /* the provenance names the reading that ran */

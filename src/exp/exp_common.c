@@ -136,9 +136,18 @@ cs_status exp_reading_parse(const char *teacher, const char *layout, exp_reading
     memset(r, 0, sizeof *r);
     r->one_sided = 0;
     r->layout = EXP_LAYOUT_R2;
-    if (teacher && !strcmp(teacher, TEACHER_VERSION_ONE_SIDED)) r->one_sided = 1;
-    else if (teacher && strcmp(teacher, TEACHER_VERSION))
-        return cs_err(CS_EINPUT, "--teacher: must be %s or %s, not '%s'", TEACHER_VERSION, TEACHER_VERSION_ONE_SIDED, teacher);
+    if (teacher) {
+        /* teacher-1|teacher-2, optionally -arc|-target: the name teacher_version() gives */
+        size_t l = strlen(TEACHER_VERSION);
+        const char *suffix = teacher + l;
+        if (!strncmp(teacher, TEACHER_VERSION_ONE_SIDED, l)) r->one_sided = 1;
+        else if (strncmp(teacher, TEACHER_VERSION, l)) suffix = NULL;
+        if (suffix && !strcmp(suffix, "-arc")) r->dieback = TEACHER_DIEBACK_NEIGHBOURS;
+        else if (suffix && !strcmp(suffix, "-target")) r->dieback = TEACHER_DIEBACK_TARGET;
+        else if (!suffix || *suffix)
+            return cs_err(CS_EINPUT, "--teacher: must be %s or %s, optionally with -arc or -target, not '%s'", TEACHER_VERSION,
+                          TEACHER_VERSION_ONE_SIDED, teacher);
+    }
     if (layout && !strcmp(layout, "r1")) r->layout = EXP_LAYOUT_R1;
     else if (layout && strcmp(layout, "r2")) return cs_err(CS_EINPUT, "--layout: must be r1 or r2, not '%s'", layout);
     return CS_OK;

@@ -41,7 +41,10 @@ typedef struct {
     double field_d, field_L; /* field stands (the r2 layout's values otherwise) */
 } exp_variant;
 
-typedef struct { int one_sided; exp_layout layout; int varied; exp_variant var; } exp_reading;
+/* dieback: the teacher's die-back reading (teacher.h teacher_dieback: 0 own
+ * sector, Eq. 3 as written; 1 the contact arc s-1..s+1; 2 beta of the target
+ * length), chosen by the --teacher suffix -arc / -target. */
+typedef struct { int one_sided; exp_layout layout; int dieback; int varied; exp_variant var; } exp_reading;
 /* Parse the switches (NULL: the default); CS_EINPUT naming the option.
  * vary: "NAME=VALUE" (unstated.h names) or NULL. */
 cs_status exp_reading_parse(const char *teacher, const char *layout, exp_reading *r);
@@ -50,9 +53,13 @@ cs_status exp_reading_vary(const char *vary, exp_reading *r);
  * r's rule and, when varied, its resolution and start radius. A macro so that
  * this header need not include the teacher (the include depth of the units). */
 #define EXP_TEACHER_PARAMS(r, p) do { \
+        const exp_reading *exp_rd_ = (r); \
         teacher_params_default(p); \
-        (p)->one_sided = (r) ? (r)->one_sided : 0; \
-        if ((r) && (r)->varied) (p)->nres = (r)->var.nres; \
+        if (exp_rd_) { \
+            (p)->one_sided = exp_rd_->one_sided; \
+            (p)->dieback = (teacher_dieback)exp_rd_->dieback; \
+            if (exp_rd_->varied) { (p)->nres = exp_rd_->var.nres; (p)->start_frac = exp_rd_->var.start_frac; } \
+        } \
     } while (0)
 /* stand_alloc_dist with the reading's crown draws (r may be NULL). */
 cs_status exp_stand_alloc(const exp_reading *r, stand **out, stand_kind kind, double d, double L, double shape,
@@ -71,7 +78,7 @@ void exp_prov_begin(prov *p, const char *experiment, const exp_reading *r, int a
 double exp_field_d(const exp_reading *r);
 double exp_field_L(const exp_reading *r);
 const char *exp_layout_name(exp_layout l);
-#define EXP_OPT_TEACHER(var) {"teacher", OPT_STR, &(var), 0, 0, "teacher reading: teacher-2 (default, mutual abrasion) or teacher-1 (revision 1, one-sided)"}
+#define EXP_OPT_TEACHER(var) {"teacher", OPT_STR, &(var), 0, 0, "teacher reading: teacher-2 (default, mutual abrasion) or teacher-1 (revision 1, one-sided), each with -arc or -target for the other die-back readings"}
 #define EXP_OPT_VARY(var) {"vary", OPT_STR, &(var), 0, 0, "sensitivity: NAME=VALUE changes one unstated choice (crownshy sens-run --help lists them)"}
 #define EXP_OPT_LAYOUT(var) {"layout", OPT_STR, &(var), 0, 0, "field layout: r2 (default, d = 4 m on L = 36 m) or r1 (revision 1, d = 5 m on L = 60 m)"}
 

@@ -124,8 +124,10 @@ REPRODUCE_UNITS += $(RESULTS)/comparison/patch.tsv
 # readings/summary.tsv (quantity x reading, beside the paper's values).
 # Stand counts as in the adopted run (smoke: the smoke counts).
 READINGS_DIR := $(RESULTS)/readings
-READING_RUNS := t1-r1 t2-r1 t1-r2 t2-r2
-reading_teacher = $(if $(filter t1-%,$(1)),teacher-1,teacher-2)
+# t2a / t2t: teacher-2 with the other die-back readings (-arc: the contact arc
+# s-1..s+1 dies back too; -target: beta of the target length, against Eq. 3).
+READING_RUNS := t1-r1 t2-r1 t1-r2 t2-r2 t2a-r2 t2t-r2
+reading_teacher = $(if $(filter t1-%,$(1)),teacher-1,$(if $(filter t2a-%,$(1)),teacher-2-arc,$(if $(filter t2t-%,$(1)),teacher-2-target,teacher-2)))
 reading_layout = $(if $(filter %-r1,$(1)),r1,r2)
 define READING_UNITS
 $(READINGS_DIR)/$(1)/mechanism/sweep.tsv: $$(TEACHER_DEPS) | $$(CLI)
