@@ -108,11 +108,12 @@ verify: deps
 # and compare with frozen/ bit for bit (data rows), with progress; the model
 # part (redraw samples from the frozen weights) runs when `crownshy main-redraw`
 # exists (issue 14). Every teacher unit of src/exp/experiments.mk: E1, E2 at
-# beta_train and beta_field, the teacher figure data, E5, E6 and the E0 readings.
+# beta_train and beta_field, the teacher figure data, E5, E6, the E0 readings
+# and the E0 sensitivity units.
 DEEP := $(B)/deep
 DEEP_UNITS = $(foreach u,$(MECH_UNITS) $(RESULTS)/mechanism/figure_stats.tsv $(IRRED_UNITS) $(TEACHER_FIG_UNITS) \
   $(FIELD_CAL) $(RESULTS)/field/heldout.tsv $(addprefix $(RESULTS)/anisotropy/,lattice.tsv hardcore.tsv jitter.tsv jitter_calibration.tsv heldout.tsv) \
-  $(IRRED_FIELD_UNITS) $(READINGS_DIR)/summary.tsv,$(patsubst $(RESULTS)/%,$(DEEP)/%,$(u)))
+  $(IRRED_FIELD_UNITS) $(READINGS_DIR)/summary.tsv $(SENS_TARGETS) $(SENS_DIR)/summary.tsv,$(patsubst $(RESULTS)/%,$(DEEP)/%,$(u)))
 .PHONY: verify-deep
 verify-deep: deps
 	@$(MAKE) --no-print-directory $(CLI)
@@ -187,8 +188,9 @@ freeze: deps
 	@if [ -d $(B)/results ]; then \
 	  for d in $(B)/results/*/; do [ -d "$$d" ] || continue; e=$$(basename $$d); mkdir -p frozen/$$e; \
 	    (cd $$d && find . \( -name '*.tsv' -o -name 'weights_*.ckpt' \) ! -name '*.tmp*' ! -name '.*' ! -path './*/*/figure_crowns*' ! -path './*/*/figure_poly*' -exec cp --parents {} $(CURDIR)/frozen/$$e/ \;) ; done; fi
-	@# the readings keep their run folders; their figure tables are not part of the readings table
+	@# the readings and the sensitivity units keep their run folders; their figure tables are not part of their tables
 	@if [ -f frozen/readings/summary.tsv ]; then $(CLI) readings-summary --dir frozen/readings --out frozen/readings/summary.tsv >/dev/null; fi
+	@if [ -f frozen/sensitivity/summary.tsv ]; then $(CLI) sens-summary --dir frozen/sensitivity --out frozen/sensitivity/summary.tsv >/dev/null; fi
 	@$(CLI) hash-frozen
 	@$(CLI) numbers
 

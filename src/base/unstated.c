@@ -1,20 +1,23 @@
 /* unstated: the sensitivity choices; see unstated.h. Values: the design's
- * value (design.md §2, §3, §4, §7 E5) with two alternatives below and two
- * above, wide enough that a reader's other plausible reading falls inside. */
+ * value (design.md §2, §3, §4, §7 E5) with alternatives below and above it,
+ * wide enough that a reader's other plausible reading falls inside. A choice
+ * of scope "all" reruns every cheap teacher experiment (about 30 CPU-s per
+ * unit at the sensitivity's stand counts), so it gets the wider pair only;
+ * the figure and field choices are cheap and get two either side. */
 #include "unstated.h"
 #include <stdio.h>
 #include <string.h>
 
 static const unstated_choice CHOICES[] = {
-    {"crown_R", "crown-radius scale R0 (m): R = R0 exp(s z)", 4.0, {3.0, 3.5, 4.5, 5.0}, UNSTATED_ALL},
-    {"crown_spread", "crown-radius spread s: R = R0 exp(s z)", 0.15, {0.05, 0.10, 0.20, 0.25}, UNSTATED_ALL},
-    {"height_sd", "height spread (m): h ~ N(25, sd^2) on [12, 38]", 4.0, {2.0, 3.0, 5.0, 6.0}, UNSTATED_ALL},
-    {"lobing", "lobing range: a ~ U[0, a_max]", 0.2, {0.10, 0.15, 0.25, 0.30}, UNSTATED_ALL},
-    {"growth_N", "growth resolution N (step = median R / N)", 48, {24, 32, 64, 96}, UNSTATED_ALL},
-    {"start", "start radius, fraction of the target", 0.05, {0.02, 0.03, 0.075, 0.10}, UNSTATED_ALL},
-    {"fig_hardcore", "hard-core level c of the figure stands (minimum distance c d)", 0.5, {0.3, 0.4, 0.6, 0.7}, UNSTATED_FIGURE},
-    {"field_d", "field-stand spacing (m)", 4.0, {3.0, 3.5, 4.5, 5.0}, UNSTATED_FIELD},
-    {"field_L", "field-stand footprint (m)", 36.0, {28.0, 32.0, 44.0, 60.0}, UNSTATED_FIELD},
+    {"crown_R", "crown-radius scale R0 (m): R = R0 exp(s z)", 4.0, 2, {3.0, 5.0}, UNSTATED_ALL},
+    {"crown_spread", "crown-radius spread s: R = R0 exp(s z)", 0.15, 2, {0.05, 0.25}, UNSTATED_ALL},
+    {"height_sd", "height spread (m): h ~ N(25, sd^2) on [12, 38]", 4.0, 2, {2.0, 6.0}, UNSTATED_ALL},
+    {"lobing", "lobing range: a ~ U[0, a_max]", 0.2, 2, {0.10, 0.30}, UNSTATED_ALL},
+    {"growth_N", "growth resolution N (step = median R / N)", 48, 2, {24, 96}, UNSTATED_ALL},
+    {"start", "start radius, fraction of the target", 0.05, 2, {0.02, 0.10}, UNSTATED_ALL},
+    {"fig_hardcore", "hard-core level c of the figure stands (minimum distance c d)", 0.5, 4, {0.3, 0.4, 0.6, 0.7}, UNSTATED_FIGURE},
+    {"field_d", "field-stand spacing (m)", 4.0, 4, {3.0, 3.5, 4.5, 5.0}, UNSTATED_FIELD},
+    {"field_L", "field-stand footprint (m)", 36.0, 4, {28.0, 32.0, 44.0, 60.0}, UNSTATED_FIELD},
 };
 #define NCHOICES (sizeof CHOICES / sizeof CHOICES[0])
 

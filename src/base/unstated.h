@@ -1,7 +1,9 @@
 /* unstated: the choices the reference paper leaves unstated, and the values
  * the sensitivity runs try for each (design.md §7 E0 "sensitivity"). One
  * choice is changed at a time, everything else pinned: two values either
- * side of ours. The experiments map a choice onto the parameter it sets
+ * side of ours (two either side where a unit is cheap: the figure and field
+ * choices; one either side, the wider pair, where a unit reruns every teacher
+ * experiment). The experiments map a choice onto the parameter it sets
  * (exp_common.h, exp_variant); the claims read the same list to build the
  * sensitivity table, so both stages agree on names, values and scope.
  * A choice's scope says which experiment tables it can change; every other
@@ -16,13 +18,14 @@ typedef enum {
     UNSTATED_FIELD      /* the E5/E6 field stands, and E2 at beta_field */
 } unstated_scope;
 
-#define UNSTATED_NVALUES 4
+#define UNSTATED_MAXVALUES 4
 
 typedef struct {
     const char *name;   /* e.g. "crown_R" (a directory-safe token) */
     const char *what;   /* what it sets, with its unit */
     double ours;        /* the design's value */
-    double values[UNSTATED_NVALUES]; /* ascending: two below ours, two above */
+    int nvalues;        /* 2 (one either side) or 4 (two either side) */
+    double values[UNSTATED_MAXVALUES]; /* ascending: half below ours, half above */
     unstated_scope scope;
 } unstated_choice;
 

@@ -28,9 +28,10 @@ const char *const *sens_quantities(size_t *n) { *n = NQ; return QUANT; }
 
 size_t sens_units_per_quantity(void)
 {
-    size_t nc;
-    unstated_list(&nc);
-    return 1 + nc * UNSTATED_NVALUES;
+    size_t nc, n = 1;
+    const unstated_choice *ch = unstated_list(&nc);
+    for (size_t i = 0; i < nc; i++) n += (size_t)ch[i].nvalues;
+    return n;
 }
 size_t sens_count(void) { return NQ * sens_units_per_quantity(); }
 
@@ -76,7 +77,7 @@ cs_status sens_compute(const claims *c, const char *dir, sens_row *rows)
         sens_row *r = rows + q * per;
         cs_status st = one(c, dir, NULL, NAN, QUANT[q], r++);
         for (size_t i = 0; i < nc && !st; i++)
-            for (int k = 0; k < UNSTATED_NVALUES && !st; k++) st = one(c, dir, &ch[i], ch[i].values[k], QUANT[q], r++);
+            for (int k = 0; k < ch[i].nvalues && !st; k++) st = one(c, dir, &ch[i], ch[i].values[k], QUANT[q], r++);
         if (st) return st;
     }
     return CS_OK;
@@ -99,8 +100,11 @@ cs_status sens_write(const char *path, const char *dir, const sens_row *rows, si
     size_t nc;
     const unstated_choice *ch = unstated_list(&nc);
     for (size_t i = 0; i < nc; i++)
-        tsv_writer_meta(w, ch[i].name, "ours %g; values %g %g %g %g: %s", ch[i].ours, ch[i].values[0], ch[i].values[1],
-                        ch[i].values[2], ch[i].values[3], ch[i].what);
+    {
+        char vals[96] = "";
+        for (int k = 0; k < ch[i].nvalues; k++) snprintf(vals + strlen(vals), sizeof vals - strlen(vals), " %g", ch[i].values[k]);
+        tsv_writer_meta(w, ch[i].name, "ours %g; values%s: %s", ch[i].ours, vals, ch[i].what);
+    }
     tsv_writer_columns(w, COLS);
     for (size_t i = 0; i < n; i++) {
         tsv_writer_str(w, rows[i].quantity);

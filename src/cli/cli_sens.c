@@ -122,9 +122,11 @@ int cli_cmd_sens_run(int argc, char **argv)
                                   "choice changed (every other pinned), into DIR; resumable (tables present are kept). Choices:\n");
     size_t nc;
     const unstated_choice *cl = unstated_list(&nc);
-    for (size_t i = 0; i < nc && off < sizeof about; i++)
-        off += (size_t)snprintf(about + off, sizeof about - off, "  %-13s ours %g; %g %g | %g %g: %s\n", cl[i].name, cl[i].ours,
-                                cl[i].values[0], cl[i].values[1], cl[i].values[2], cl[i].values[3], cl[i].what);
+    for (size_t i = 0; i < nc && off < sizeof about; i++) {
+        off += (size_t)snprintf(about + off, sizeof about - off, "  %-13s ours %g; values", cl[i].name, cl[i].ours);
+        for (int k = 0; k < cl[i].nvalues && off < sizeof about; k++) off += (size_t)snprintf(about + off, sizeof about - off, " %g", cl[i].values[k]);
+        if (off < sizeof about) off += (size_t)snprintf(about + off, sizeof about - off, ": %s\n", cl[i].what);
+    }
     const opts_cmd oc = {"sens-run", "[--choice NAME --value V] --out DIR [--stands N]", about, spec, sizeof spec / sizeof *spec, 0, 0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);

@@ -177,12 +177,8 @@ SENS_STANDS := 1
 else
 SENS_STANDS := 4
 endif
-SENS_VARIANTS := crown_R:3 crown_R:3.5 crown_R:4.5 crown_R:5 \
-  crown_spread:0.05 crown_spread:0.1 crown_spread:0.2 crown_spread:0.25 \
-  height_sd:2 height_sd:3 height_sd:5 height_sd:6 \
-  lobing:0.1 lobing:0.15 lobing:0.25 lobing:0.3 \
-  growth_N:24 growth_N:32 growth_N:64 growth_N:96 \
-  start:0.02 start:0.03 start:0.075 start:0.1 \
+SENS_VARIANTS := crown_R:3 crown_R:5 crown_spread:0.05 crown_spread:0.25 height_sd:2 height_sd:6 \
+  lobing:0.1 lobing:0.3 growth_N:24 growth_N:96 start:0.02 start:0.1 \
   fig_hardcore:0.3 fig_hardcore:0.4 fig_hardcore:0.6 fig_hardcore:0.7 \
   field_d:3 field_d:3.5 field_d:4.5 field_d:5 \
   field_L:28 field_L:32 field_L:44 field_L:60
