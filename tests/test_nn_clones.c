@@ -23,12 +23,12 @@
 #define nn_attention_scratch_len base_attention_scratch_len
 #define nn_attention_forward_biased base_attention_forward_biased
 #define nn_attention_backward_biased base_attention_backward_biased
-#define nn_product_gflops base_product_gflops
 #define nn_linear_bias_gelu_forward base_linear_bias_gelu_forward
 #define nn_linear_bias_residual_forward base_linear_bias_residual_forward
 #define nn_linear_backward_gelu base_linear_backward_gelu
 #define nn_linear_attention_forward base_linear_attention_forward
 #define nn_linear_backward_attention base_linear_backward_attention
+#define nn_linear_backward_qkv base_linear_backward_qkv
 #define nn_linear_forward_epi base_linear_forward_epi
 #define nn_linear_backward_epi base_linear_backward_epi
 #include "nn.c"
