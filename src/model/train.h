@@ -86,7 +86,7 @@ cs_status train_load(train *t, const char *path);
 cs_status train_save_weights(const train *t, const char *path);
 /* Read the model (and its deviation scale) of a checkpoint or a weights file
  * (told apart by the magic) into a freshly allocated model with that config
- * (used by `crownshy sample`, comp-run and main-redraw). */
+ * (used by `crownshy sample`, comparison-run and main-redraw). */
 cs_status train_load_model(const char *path, model **out, int Bmax, double *scale);
 
 #endif
