@@ -91,7 +91,7 @@ cs_status sens_write(const char *path, const char *dir, const sens_row *rows, si
     cs_status st = tsv_writer_open(&w, path);
     if (st) return st;
     prov p;
-    char *argv[] = {"sens-summary", "--dir", (char *)dir, "--out", (char *)path};
+    char *argv[] = {"sensitivity-summary", "--dir", (char *)dir, "--out", (char *)path};
     prov_begin(&p, "sensitivity", 5, argv);
     snprintf(p.seeds, sizeof p.seeds, "those of each unit's tables under %s/<unit>/", dir);
     p.worst_overlap_m = -1;

@@ -1,7 +1,7 @@
 /* sens: the E0 sensitivity table (design.md §7 E0 "sensitivity"). For each
  * choice the reference paper leaves unstated (src/base/unstated.h) the cheap
  * teacher experiments were run with that choice at two values either side
- * of ours, everything else pinned (crownshy sens-run, one unit per choice
+ * of ours, everything else pinned (crownshy sensitivity-run, one unit per choice
  * and value, into <dir>/<choice>_<value>/), and once with the design's
  * values at the same stand counts (<dir>/centre/). This module computes one
  * row per (quantity, unit) with the registry's own computing function

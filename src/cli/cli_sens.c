@@ -1,7 +1,8 @@
 /* cli_sens: the E0 sensitivity (design.md §7 E0 "sensitivity"):
- * `crownshy sens-run`, one unit = one unstated choice (src/base/unstated.h)
- * at one value, or the centre run (the design's values); and
- * `crownshy sens-summary`, the table over all units (src/claims/sens.h).
+ * `crownshy sensitivity-run`, one unit = one unstated choice
+ * (src/base/unstated.h) at one value, or the centre run (the design's
+ * values); and `crownshy sensitivity-summary`, the table over all units
+ * (src/claims/sens.h).
  * A unit runs the cheap teacher experiments with the same commands as the
  * full run, each with --vary NAME=VALUE, into DIR/<experiment>/...: the
  * tables its choice can change (unstated_touches; every other table of the
@@ -29,24 +30,24 @@
  * %F field stands, %W sweep stands, %B beta_field (from DIR/field/calibration.tsv). */
 typedef struct { const char *target; const char *cmd; } sens_step;
 static const sens_step STEPS[] = {
-    {"mechanism/sweep.tsv", "run mechanism-sweep --stands %S --out %D"},
-    {"mechanism/ablation.tsv", "run mechanism-ablation --stands %S --out %D"},
-    {"mechanism/figure_crowns.tsv", "run fig-mechanism --out %D"},
-    {"pointcloud/stats.tsv", "run fig-pointcloud --out %D"},
-    {"irreducibility/perturb_train.tsv", "run irreducibility-perturb --stands %S --out %D"},
-    {"irreducibility/refine_train.tsv", "run irreducibility-refine --stands %S --out %D"},
-    {"irreducibility/reduction_train.tsv", "run irreducibility-reduction --stands %S --out %D"},
+    {"mechanism/sweep.tsv", "mechanism-sweep --stands %S --out %D"},
+    {"mechanism/ablation.tsv", "mechanism-ablation --stands %S --out %D"},
+    {"mechanism/figure_crowns.tsv", "mechanism-figure --out %D"},
+    {"pointcloud/stats.tsv", "pointcloud-figure --out %D"},
+    {"irreducibility/perturb_train.tsv", "irreducibility-perturb --stands %S --out %D"},
+    {"irreducibility/refine_train.tsv", "irreducibility-refine --stands %S --out %D"},
+    {"irreducibility/reduction_train.tsv", "irreducibility-reduction --stands %S --out %D"},
     {"main/baselines.tsv", "main-baselines --scale full --out %D/main/baselines.tsv"},
     {"field/calibration.tsv", "field-calibrate --out %D/field/calibration.tsv"},
     {"field/heldout.tsv", "field-heldout --calibration %D/field/calibration.tsv --stands %F --out %D/field/heldout.tsv"},
-    {"anisotropy/lattice.tsv", "aniso-lattice --calibration %D/field/calibration.tsv --stands %F --out %D/anisotropy/lattice.tsv"},
-    {"anisotropy/hardcore.tsv", "aniso-hardcore --calibration %D/field/calibration.tsv --stands %W --out %D/anisotropy/hardcore.tsv"},
-    {"anisotropy/jitter.tsv", "aniso-jitter --calibration %D/field/calibration.tsv --stands %W --out %D/anisotropy/jitter.tsv"},
-    {"anisotropy/jitter_calibration.tsv", "!aniso-jitter-calibrate --sweep %D/anisotropy/jitter.tsv --out %D/anisotropy/jitter_calibration.tsv"},
-    {"anisotropy/heldout.tsv", "aniso-heldout --calibration %D/field/calibration.tsv --jitter-calibration %D/anisotropy/jitter_calibration.tsv --stands %F --out %D/anisotropy/heldout.tsv"},
-    {"irreducibility/perturb_field.tsv", "run irreducibility-perturb --stands %S --beta %B --tag field --out %D"},
-    {"irreducibility/refine_field.tsv", "run irreducibility-refine --stands %S --beta %B --tag field --out %D"},
-    {"irreducibility/reduction_field.tsv", "run irreducibility-reduction --stands %S --beta %B --tag field --out %D"},
+    {"anisotropy/lattice.tsv", "anisotropy-lattice --calibration %D/field/calibration.tsv --stands %F --out %D/anisotropy/lattice.tsv"},
+    {"anisotropy/hardcore.tsv", "anisotropy-hardcore --calibration %D/field/calibration.tsv --stands %W --out %D/anisotropy/hardcore.tsv"},
+    {"anisotropy/jitter.tsv", "anisotropy-jitter --calibration %D/field/calibration.tsv --stands %W --out %D/anisotropy/jitter.tsv"},
+    {"anisotropy/jitter_calibration.tsv", "!anisotropy-jitter-calibrate --sweep %D/anisotropy/jitter.tsv --out %D/anisotropy/jitter_calibration.tsv"},
+    {"anisotropy/heldout.tsv", "anisotropy-heldout --calibration %D/field/calibration.tsv --jitter-calibration %D/anisotropy/jitter_calibration.tsv --stands %F --out %D/anisotropy/heldout.tsv"},
+    {"irreducibility/perturb_field.tsv", "irreducibility-perturb --stands %S --beta %B --tag field --out %D"},
+    {"irreducibility/refine_field.tsv", "irreducibility-refine --stands %S --beta %B --tag field --out %D"},
+    {"irreducibility/reduction_field.tsv", "irreducibility-reduction --stands %S --beta %B --tag field --out %D"},
 };
 #define NSTEPS (sizeof STEPS / sizeof STEPS[0])
 
@@ -104,35 +105,50 @@ static cs_status write_unit(const sens_ctx *x, const unstated_choice *c, double 
     return tsv_writer_commit(w);
 }
 
-int cli_cmd_sens_run(int argc, char **argv)
+/* "centre" (c = NULL) or "<choice>_<value>" with value one of the choice's (%g). */
+static int parse_unit(const char *unit, const unstated_choice **c, double *value)
 {
-    const char *choice = NULL, *out = NULL;
+    *c = NULL;
+    if (!strcmp(unit, UNSTATED_CENTRE)) return 0;
+    size_t nc;
+    const unstated_choice *cl = unstated_list(&nc);
+    for (size_t i = 0; i < nc; i++)
+        for (int k = 0; k < cl[i].nvalues; k++) {
+            char d[64];
+            unstated_dirname(&cl[i], cl[i].values[k], d, sizeof d);
+            if (!strcmp(d, unit)) { *c = &cl[i]; *value = cl[i].values[k]; return 0; }
+        }
+    return -1;
+}
+
+int cli_sensitivity_run(int argc, char **argv)
+{
+    const char *unit = NULL, *out = NULL;
     double value = 0.0;
     sens_ctx x = {.stands = 4, .field_stands = 28, .sweep_stands = 12};
     const opt_spec spec[] = {
-        {"choice", OPT_STR, &choice, 0, 0, "the unstated choice (unstated.h; omit for the centre run)"},
-        {"value", OPT_DOUBLE, &value, 0, 1e6, "its value"},
-        {"out", OPT_STR, &out, 0, 0, "the unit's folder, e.g. build/results/sensitivity/crown_R_3.5 (required)"},
+        {"unit", OPT_STR, &unit, 0, 0, "the unit: centre, or <choice>_<value> with a value of the list below", .required = 1},
+        {"out", OPT_STR, &out, 0, 0, "the unit's folder, e.g. build/results/sensitivity/crown_R_3", .required = 1},
         {"stands", OPT_LONG, &x.stands, 1, 10000, "E1/E2 stands per cell (default 4)"},
         {"field-stands", OPT_LONG, &x.field_stands, 1, 10000, "E5/E6 held-out and lattice stands (default 28)"},
         {"sweep-stands", OPT_LONG, &x.sweep_stands, 1, 10000, "E6 stands per sweep level (default 12)"},
     };
     char about[2048];
     size_t off = (size_t)snprintf(about, sizeof about, "One E0 sensitivity unit (design.md §7 E0): the cheap teacher experiments with one unstated\n"
-                                  "choice changed (every other pinned), into DIR; resumable (tables present are kept). Choices:\n");
+                                  "choice changed (every other pinned), into DIR; resumable (tables present are kept). Units:\n"
+                                  "  centre         every choice ours\n");
     size_t nc;
     const unstated_choice *cl = unstated_list(&nc);
     for (size_t i = 0; i < nc && off < sizeof about; i++) {
-        off += (size_t)snprintf(about + off, sizeof about - off, "  %-13s ours %g; values", cl[i].name, cl[i].ours);
+        off += (size_t)snprintf(about + off, sizeof about - off, "  %s_<v>, ours %g, v in", cl[i].name, cl[i].ours);
         for (int k = 0; k < cl[i].nvalues && off < sizeof about; k++) off += (size_t)snprintf(about + off, sizeof about - off, " %g", cl[i].values[k]);
         if (off < sizeof about) off += (size_t)snprintf(about + off, sizeof about - off, ": %s\n", cl[i].what);
     }
-    const opts_cmd oc = {"sens-run", "[--choice NAME --value V] --out DIR [--stands N]", about, spec, sizeof spec / sizeof *spec, 0, 0};
+    const opts_cmd oc = {"sensitivity-run", "--unit UNIT --out DIR [--stands N]", about, spec, sizeof spec / sizeof *spec, 0, 0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
-    if (!out) { opts_usage_error("sens-run", "--out DIR is required"); return 2; }
-    const unstated_choice *c = choice ? unstated_find(choice) : NULL;
-    if (choice && !c) { opts_usage_error("sens-run", "--choice: no unstated choice '%s'", choice); return 2; }
+    const unstated_choice *c;
+    if (parse_unit(unit, &c, &value)) { opts_usage_error("sensitivity-run", "--unit: no unit '%s' (centre or <choice>_<value>, see --help)", unit); return 2; }
     char vary[64];
     if (c) { snprintf(vary, sizeof vary, "%s=%.17g", c->name, value); x.vary = vary; }
     x.dir = out;
@@ -145,42 +161,41 @@ int cli_cmd_sens_run(int argc, char **argv)
             fs_calibration fc;
             snprintf(cal, sizeof cal, "%s/field/calibration.tsv", out);
             cs_status st = fs_beta_field(cal, &fc);
-            if (st) return cli_fail("sens-run", st);
+            if (st) return cli_fail("sensitivity-run", st);
             snprintf(x.beta, sizeof x.beta, "%.17g", fc.value);
         }
         char buf[1600], *av[48];
         int n = expand(&x, STEPS[i].cmd, buf, sizeof buf, av, 48);
-        fprintf(stderr, "sens-run %s: step %zu of %zu: %s\n", c ? vary : UNSTATED_CENTRE, i + 1, NSTEPS, STEPS[i].target);
+        fprintf(stderr, "sensitivity-run %s: step %zu of %zu: %s\n", unit, i + 1, NSTEPS, STEPS[i].target);
         int rc = cli_main(n, av);
-        if (rc) { fprintf(stderr, "crownshy sens-run: step %s failed (exit %d)\n", STEPS[i].target, rc); return rc; }
+        if (rc) { fprintf(stderr, "crownshy sensitivity-run: step %s failed (exit %d)\n", STEPS[i].target, rc); return rc; }
     }
     cs_status st = write_unit(&x, c, value, argc, argv);
-    return st ? cli_fail("sens-run", st) : 0;
+    return st ? cli_fail("sensitivity-run", st) : 0;
 }
 
-int cli_cmd_sens_summary(int argc, char **argv)
+int cli_sensitivity_summary(int argc, char **argv)
 {
     const char *dir = NULL, *out = NULL;
     const opt_spec spec[] = {
-        {"dir", OPT_STR, &dir, 0, 0, "sensitivity root holding centre/ and <choice>_<value>/ (required)"},
-        {"out", OPT_STR, &out, 0, 0, "the table, e.g. DIR/summary.tsv (required)"},
+        {"dir", OPT_STR, &dir, 0, 0, "sensitivity root holding centre/ and <choice>_<value>/", .required = 1},
+        {"out", OPT_STR, &out, 0, 0, "the table, e.g. DIR/summary.tsv", .required = 1},
     };
-    const opts_cmd oc = {"sens-summary", "--dir DIR --out DIR/summary.tsv",
+    const opts_cmd oc = {"sensitivity-summary", "--dir DIR --out DIR/summary.tsv",
                          "E0 sensitivity: every quantity of the sensitivity table under the centre run and each\n"
                          "(choice, value), recomputed from the units' tables by the registry's computing functions.",
                          spec, sizeof spec / sizeof *spec, 0, 0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
-    if (!dir || !out) { opts_usage_error("sens-summary", "--dir and --out are required"); return 2; }
     claims cl;
     cs_status st = claims_load(PATHS_CLAIMS, &cl);
-    if (st) return cli_fail("sens-summary", st);
+    if (st) return cli_fail("sensitivity-summary", st);
     size_t n = sens_count();
     sens_row *rows = calloc(n, sizeof *rows);
     st = rows ? sens_compute(&cl, dir, rows) : cs_err(CS_ENOMEM, "out of memory");
     if (!st) st = sens_write(out, dir, rows, n);
-    if (!st) printf("sens-summary: %zu rows -> %s\n", n, out);
+    if (!st) printf("sensitivity-summary: %zu rows -> %s\n", n, out);
     free(rows);
     claims_free(&cl);
-    return st ? cli_fail("sens-summary", st) : 0;
+    return st ? cli_fail("sensitivity-summary", st) : 0;
 }

@@ -17,6 +17,7 @@ cs_status mainset_design_get(mainset_design *d)
     memset(d, 0, sizeof *d);
     crown_dist_default(&d->crowns);
     d->nres = 48;
+    d->start_frac = 0.05;
     if ((st = gate_read_value(PATHS_GATE("mechanism"), "dieback_train", 0, &d->beta))) return st;
     if ((st = gate_read_value(PATHS_GATE("anisotropy"), "canonical_jitter", 0, &d->jitter))) return st;
     if ((st = gate_read_value(PATHS_GATE("main"), "estimator_agreement_tol_m", 0, &d->tol))) return st;
@@ -52,6 +53,7 @@ static cs_status add_stand_patches(const mainset_design *ds, const char *exp, do
     teacher_params_default(&tp);
     tp.beta = ds->beta;
     tp.nres = ds->nres;
+    tp.start_frac = ds->start_frac;
     st = stand_grow(sd, &tp, NULL, r, NULL, worst);
     patch_stand pst;
     if (!st) st = patch_stand_init(&pst, (int)n, sd->s->x, sd->s->y, r, sd->h, d);
