@@ -4,15 +4,15 @@
 # over the centre run and every choice's values, one choice at a time) against
 # the reference paper's value (the vertical line at 1), as our value over the
 # paper's; the dot is the centre run (the design's choices at the sensitivity's
-# stand counts). At the bar's ends, the choice and value that give the lowest
+# stand counts; a number a choice leaves not computable is left out). At the bar's ends, the choice and value that give the lowest
 # and highest number. A bar beyond the axis ends in an arrow with the value.
 # Shaded: within 10 % and 25 % of the paper. Reads only frozen files.
 # Run from the repository root: gnuplot figures/sensitivity.gp
 if (!exists("outdir")) outdir = 'figures'
-f = 'frozen/sensitivity/summary.tsv'
+if (!exists("f")) f = 'frozen/sensitivity/summary.tsv'
 # one line per quantity: index, name, centre/paper, lo/paper, hi/paper, lo label, hi label
 # (ratios of values of the same sign; a value of the other sign is drawn at 0)
-prep = "< awk -F'\\t' '!/^#/ && $1 != \"quantity\" { q = $1; r = ($5 != 0) ? $4 / $5 : 0; if (r < 0) r = 0; " . \
+prep = "< awk -F'\\t' '!/^#/ && $1 != \"quantity\" && $4 !~ /nan/ { q = $1; r = ($5 != 0) ? $4 / $5 : 0; if (r < 0) r = 0; " . \
        "if (!(q in seen)) { seen[q] = 1; order[++n] = q; lo[q] = 1e9; hi[q] = -1e9 } " . \
        "if ($2 == \"centre\") c[q] = r; " . \
        "if (r < lo[q]) { lo[q] = r; ll[q] = ($2 == \"centre\") ? \"ours\" : $2 \" \" $3 } " . \
@@ -22,8 +22,8 @@ nq = real(system("awk -F'\t' '!/^#/ && $1 != \"quantity\" && !($1 in s) {s[$1]; 
 xmax = 2.6
 clip(x) = x > xmax ? xmax : x
 do for [fmt in "png pdf"] {
-  if (fmt eq "png") { set terminal pngcairo size 1100,1250 font "Sans,13"; set output outdir.'/sensitivity.png' } \
-  else { set terminal pdfcairo size 7in,8in font "Sans,9"; set output outdir.'/sensitivity.pdf' }
+  if (fmt eq "png") { set terminal pngcairo size 1100,1500 font "Sans,13"; set output outdir.'/sensitivity.png' } \
+  else { set terminal pdfcairo size 7in,9.2in font "Sans,9"; set output outdir.'/sensitivity.pdf' }
   set datafile separator "\t"
   unset key
   set title "E0 sensitivity: the span the unstated choices cover, against the reference paper's value"

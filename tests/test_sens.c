@@ -87,6 +87,7 @@ static void test_variants_read_the_centre_only_where_untouched(void **s)
                 assert_non_null(tab);
                 assert_non_null(where);
                 int touched = unstated_touches(&ch[i], tab);
+                if (!strcmp(where, "failed")) { assert_true(touched); continue; } /* a finding, with its note */
                 assert_string_equal(where, touched ? "here" : UNSTATED_CENTRE);
                 snprintf(path, sizeof path, "%s/%s/%s", PATHS_SENS_DIR, touched ? dir : UNSTATED_CENTRE, tab);
                 if (!strstr(tab, "figure_crowns")) { /* figure crowns are not frozen (make freeze) */

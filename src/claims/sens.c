@@ -35,6 +35,27 @@ size_t sens_units_per_quantity(void)
 }
 size_t sens_count(void) { return NQ * sens_units_per_quantity(); }
 
+/* The reason a table of a unit could not be built (its unit.tsv says
+ * "failed": the choice's stands cannot be built or leave the statistic
+ * undefined, a finding), or 0 when it was. The figure statistics come with
+ * the figure crowns (one step writes both). */
+static int unit_failed(const char *dir, const char *folder, const char *rel, char *why, size_t n)
+{
+    char path[400];
+    snprintf(path, sizeof path, "%.200s/%.60s/unit.tsv", dir, folder);
+    tsv *t;
+    if (tsv_read(path, &t)) { cs_errclear(); return 0; }
+    int found = 0;
+    for (size_t r = 0; r < tsv_nrows(t) && !found; r++) {
+        const char *tab = tsv_str(t, r, "table"), *f = tsv_str(t, r, "folder"), *note = tsv_str(t, r, "note");
+        if (!tab || !f || strcmp(f, "failed")) continue;
+        int same = !strcmp(tab, rel) || (!strncmp(tab, "mechanism/figure_", 17) && !strncmp(rel, "mechanism/figure_", 17));
+        if (same) { snprintf(why, n, "%s", note ? note : "failed"); found = 1; }
+    }
+    tsv_free(t);
+    return found;
+}
+
 /* Quantity q in the unit of choice c at value x (c NULL: the centre run). */
 static cs_status one(const claims *cl, const char *dir, const unstated_choice *c, double x, const char *q, sens_row *out)
 {
@@ -55,6 +76,15 @@ static cs_status one(const claims *cl, const char *dir, const unstated_choice *c
     char *end;
     out->paper = strtod(reg->reference, &end);
     if (end == reg->reference) out->paper = NAN;
+    char why[300];
+    if (unit_failed(dir, folder, rel, why, sizeof why)) {
+        /* not computable under this choice: a finding, reported with its reason */
+        out->value = NAN;
+        out->rel_diff = NAN;
+        size_t l = strlen(out->source);
+        snprintf(out->source + l, sizeof out->source - l, " (not computable: %.150s)", why);
+        return CS_OK;
+    }
     claim_fn fn = claims_lookup_fn(row.function);
     if (!fn) return cs_err(CS_EINPUT, "sensitivity: %s: computing function %s unknown", q, row.function);
     claim_result res;

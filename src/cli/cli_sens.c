@@ -80,7 +80,10 @@ static int expand(const sens_ctx *x, const char *tmpl, char *buf, size_t bn, cha
 static int exists(const char *path) { struct stat sb; return stat(path, &sb) == 0 && S_ISREG(sb.st_mode); }
 
 /* DIR/unit.tsv: where each table of the variant lives (this folder or the centre's). */
-static cs_status write_unit(const sens_ctx *x, const unstated_choice *c, double value, int argc, char **argv)
+/* failed[i]: the reason step i could not be built ("" when it was, or was
+ * not run); DIR/unit.tsv records it, and the summary reports the numbers
+ * of that table as not computable with the reason. */
+static cs_status write_unit(const sens_ctx *x, const unstated_choice *c, double value, char failed[][300], int argc, char **argv)
 {
     char path[600];
     snprintf(path, sizeof path, "%s/unit.tsv", x->dir);
@@ -96,10 +99,12 @@ static cs_status write_unit(const sens_ctx *x, const unstated_choice *c, double 
                     c ? c->what : "the centre run (every choice the design's)");
     if (c) tsv_writer_meta(w, "choice", "%s = %.17g (ours %.17g)", c->name, value, c->ours);
     tsv_writer_meta(w, "stands", "E1/E2 %ld per cell (the full run: 8), E5/E6 %ld held-out and %ld per sweep level (as the full run)", x->stands, x->field_stands, x->sweep_stands);
-    tsv_writer_columns(w, "table\tfolder");
+    tsv_writer_meta(w, "failed", "a table the unit's stands could not be built for (the teacher refuses overlapping starting crowns; an E6 tree with an empty cardinal cone): a finding of that choice, its numbers not computable");
+    tsv_writer_columns(w, "table\tfolder\tnote");
     for (size_t i = 0; i < NSTEPS; i++) {
         tsv_writer_str(w, STEPS[i].target);
-        tsv_writer_str(w, !c || unstated_touches(c, STEPS[i].target) ? "here" : UNSTATED_CENTRE);
+        tsv_writer_str(w, failed[i][0] ? "failed" : !c || unstated_touches(c, STEPS[i].target) ? "here" : UNSTATED_CENTRE);
+        tsv_writer_str(w, failed[i][0] ? failed[i] : "-");
         tsv_writer_endrow(w);
     }
     return tsv_writer_commit(w);
@@ -152,6 +157,8 @@ int cli_sensitivity_run(int argc, char **argv)
     char vary[64];
     if (c) { snprintf(vary, sizeof vary, "%s=%.17g", c->name, value); x.vary = vary; }
     x.dir = out;
+    static char failed[NSTEPS][300];
+    memset(failed, 0, sizeof failed);
     for (size_t i = 0; i < NSTEPS; i++) {
         char path[600];
         snprintf(path, sizeof path, "%s/%s", out, STEPS[i].target);
@@ -167,10 +174,18 @@ int cli_sensitivity_run(int argc, char **argv)
         char buf[1600], *av[48];
         int n = expand(&x, STEPS[i].cmd, buf, sizeof buf, av, 48);
         fprintf(stderr, "sensitivity-run %s: step %zu of %zu: %s\n", unit, i + 1, NSTEPS, STEPS[i].target);
+        cs_errclear();
         int rc = cli_main(n, av);
-        if (rc) { fprintf(stderr, "crownshy sensitivity-run: step %s failed (exit %d)\n", STEPS[i].target, rc); return rc; }
+        /* a stand the choice cannot build (exit 3, bad input) or a statistic it
+         * leaves undefined (exit 4 from the E6 cone check) is a finding of the
+         * choice: recorded, the other steps still run; anything else stops */
+        if (rc == 3 || rc == 4) {
+            snprintf(failed[i], sizeof failed[i], "exit %d: %.260s", rc, cs_errmsg()[0] ? cs_errmsg() : "see the log");
+            for (char *q = failed[i]; *q; q++) if (*q == '\t' || *q == '\n') *q = ' ';
+            fprintf(stderr, "crownshy sensitivity-run: step %s not buildable under %s: %s (recorded)\n", STEPS[i].target, unit, failed[i]);
+        } else if (rc) { fprintf(stderr, "crownshy sensitivity-run: step %s failed (exit %d)\n", STEPS[i].target, rc); return rc; }
     }
-    cs_status st = write_unit(&x, c, value, argc, argv);
+    cs_status st = write_unit(&x, c, value, failed, argc, argv);
     return st ? cli_fail("sensitivity-run", st) : 0;
 }
 
