@@ -18,6 +18,10 @@ static const unstated_choice CHOICES[] = {
     {"fig_hardcore", "hard-core level c of the figure stands (minimum distance c d)", 0.5, 4, {0.3, 0.4, 0.6, 0.7}, UNSTATED_FIGURE},
     {"field_d", "field-stand spacing (m)", 4.0, 4, {3.0, 3.5, 4.5, 5.0}, UNSTATED_FIELD},
     {"field_L", "field-stand footprint (m)", 36.0, 4, {28.0, 32.0, 44.0, 60.0}, UNSTATED_FIELD},
+    /* not an unstated number but the die-back readings (design.md §7 E0), run
+     * here because a unit tolerates what a reading cannot build: 0 own sector
+     * (Eq. 3, ours), 1 the contact arc s-1..s+1 too, 2 beta of the target length */
+    {"dieback", "die-back reading: 1 = the contact arc s-1..s+1 dies back too, 2 = beta of the target length (against Eq. 3); ours 0 = the contacting sector (Eq. 3)", 0, 2, {1, 2}, UNSTATED_ALL},
 };
 #define NCHOICES (sizeof CHOICES / sizeof CHOICES[0])
 

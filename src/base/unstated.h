@@ -25,7 +25,7 @@ typedef struct {
     const char *what;   /* what it sets, with its unit */
     double ours;        /* the design's value */
     int nvalues;        /* 2 (one either side) or 4 (two either side) */
-    double values[UNSTATED_MAXVALUES]; /* ascending: half below ours, half above */
+    double values[UNSTATED_MAXVALUES]; /* ascending: half below ours, half above (the die-back readings: both above) */
     unstated_scope scope;
 } unstated_choice;
 

@@ -402,13 +402,15 @@ static void check_provenance(const claims *c, checklist *cl, const paths_list *f
                 for (size_t j = 0; j < n; j++) if (!strcmp(cur[j].key, keys[k])) want = cur[j].value;
                 if (v && want && !strcmp(v, want)) continue;
                 /* The readings (design.md §7 E0) run the pinned teacher under its
-                 * revision-1 switch and its other die-back readings too: under
-                 * frozen/readings/ those version strings (teacher_version():
+                 * revision-1 switch and its other die-back readings too (the
+                 * sensitivity's dieback units as well): under frozen/readings/
+                 * and frozen/sensitivity/ those version strings (teacher_version():
                  * the pinned or the one-sided version, optionally "-arc" or
                  * "-target") are expected, not a mismatch. */
                 char one[32] = "";
                 if (k == 0 && prov_teacher_version_one_sided(one, sizeof one)) one[0] = '\0';
-                if (k == 0 && v && !strncmp(p, PATHS_FROZEN_DIR "/readings/", strlen(PATHS_FROZEN_DIR) + 10) &&
+                if (k == 0 && v && (!strncmp(p, PATHS_FROZEN_DIR "/readings/", strlen(PATHS_FROZEN_DIR) + 10) ||
+                                    !strncmp(p, PATHS_SENS_DIR "/", strlen(PATHS_SENS_DIR) + 1)) &&
                     ((one[0] && reading_version(v, one)) || (want && reading_version(v, want)) || !strcmp(v, "per run")))
                     continue;
                 mismatch++;

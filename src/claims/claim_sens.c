@@ -121,7 +121,7 @@ cs_status claim_sens_step(const claim_row *row, claim_result *res)
 /* Spans and single cells of a summary table (sensitivity: quantity choice x
  * value; readings: quantity reading value). */
 static cs_status table_pick(const char *path, const char *q, const char *unitcol, const char *unit, double x,
-                            double *lo, double *hi, int *n)
+                            const char *skip, double *lo, double *hi, int *n)
 {
     tsv *t;
     cs_status st = tsv_read(path, &t);
@@ -131,7 +131,7 @@ static cs_status table_pick(const char *path, const char *q, const char *unitcol
     *n = 0;
     for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
         const char *qq = tsv_str(t, r, "quantity"), *u = tsv_str(t, r, unitcol);
-        if (!qq || !u || strcmp(qq, q) || (unit && strcmp(u, unit))) continue;
+        if (!qq || !u || strcmp(qq, q) || (unit && strcmp(u, unit)) || (skip && !strcmp(u, skip))) continue;
         double v, xx = NAN;
         if ((st = tsv_double_nf(t, r, "value", &v))) break;
         if (isfinite(x) && ((st = tsv_double_nf(t, r, "x", &xx)) || xx != x)) continue;
@@ -154,17 +154,19 @@ cs_status claim_sens_table(const claim_row *row, claim_result *res)
         {"SensCoupOffSmall", "MechCoupOff", "crown_R", 3.0, 1}, {"SensCoupOffSmallKTwo", "MechCoupOffKTwo", "crown_R", 3.0, 1},
         {"SensCoupOffSmallKThree", "MechCoupOffKThree", "crown_R", 3.0, 1},
         {"SensArcMechOn", "MechOn", "arc", NAN, 1}, {"SensArcCalibDieback", "CalibDieback", "arc", NAN, 1},
-        {"SensTargetMechOn", "MechOn", "target", NAN, 1},
+        {"SensTargetMechOn", "MechOn", "dieback", 2.0, 1},
     };
     for (size_t i = 0; i < sizeof map / sizeof *map; i++) {
         if (strcmp(map[i].macro, row->macro)) continue;
         int readings = strstr(row->source, "readings/") != NULL;
         double lo, hi;
         int n;
-        cs_status st = table_pick(row->source, map[i].q, readings ? "reading" : "choice", map[i].unit, map[i].x, &lo, &hi, &n);
+        /* spans "under every unstated choice" leave out the die-back readings' units */
+        cs_status st = table_pick(row->source, map[i].q, readings ? "reading" : "choice", map[i].unit, map[i].x,
+                                  map[i].unit ? NULL : "dieback", &lo, &hi, &n);
         if (st) return st;
         snprintf(res->where, sizeof res->where, "%s (%s of %s%s%s over %d row(s))", row->source, map[i].hi ? "highest" : "lowest",
-                 map[i].q, map[i].unit ? " under " : "", map[i].unit ? map[i].unit : "", n);
+                 map[i].q, map[i].unit ? " under " : "", map[i].unit ? map[i].unit : ", every unit but the die-back readings'", n);
         claim_set_value(row, res, map[i].hi ? hi : lo);
         return CS_OK;
     }

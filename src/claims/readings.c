@@ -16,11 +16,10 @@ static const readings_def READINGS[] = {
     {"t1-r2", "t1-r2", 1, 1, "revision 2 with teacher-1 (one-sided die-back)"},
     {"rev2", "t2-r2", 1, 1, "revision 2 (adopted): teacher-2, layout r2 (4 m on 36 m), all-axis elongation, Mech* on the figure stand"},
     {"arc", "t2a-r2", 1, 1, "revision 2 with the contact arc s-1..s+1 dying back too (teacher-2-arc; measured, not adopted)"},
-    {"target", "t2t-r2", 1, 1, "revision 2 with die-back by beta of the target length (teacher-2-target; contradicts Eq. 3; a reading only)"},
 };
 #define NREAD (sizeof READINGS / sizeof READINGS[0])
 
-static const char *const RUNS[] = {"t1-r1", "t2-r1", "t1-r2", "t2-r2", "t2a-r2", "t2t-r2"};
+static const char *const RUNS[] = {"t1-r1", "t2-r1", "t1-r2", "t2-r2", "t2a-r2"};
 #define NRUNS (sizeof RUNS / sizeof RUNS[0])
 
 /* Quantities: registry macros (values by their computing functions). */

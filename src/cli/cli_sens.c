@@ -163,6 +163,12 @@ int cli_sensitivity_run(int argc, char **argv)
         char path[600];
         snprintf(path, sizeof path, "%s/%s", out, STEPS[i].target);
         if ((c && !unstated_touches(c, STEPS[i].target)) || exists(path)) continue;
+        /* a step reading a table that could not be built cannot be built either */
+        for (size_t j = 0; j < i && !failed[i][0]; j++)
+            if (failed[j][0] && (strstr(STEPS[i].cmd, STEPS[j].target) ||
+                                 (strstr(STEPS[i].cmd, "%B") && !strcmp(STEPS[j].target, "field/calibration.tsv"))))
+                snprintf(failed[i], sizeof failed[i], "needs %s, not buildable under this choice", STEPS[j].target);
+        if (failed[i][0]) continue;
         if (strstr(STEPS[i].cmd, "%B")) {
             char cal[600];
             fs_calibration fc;

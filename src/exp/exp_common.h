@@ -39,6 +39,7 @@ typedef struct {
     double start_frac;   /* start radius / target */
     double fig_c;        /* hard-core level of the figure stands */
     double field_d, field_L; /* field stands (the r2 layout's values otherwise) */
+    int dieback;         /* the die-back reading (0: the reading's own) */
 } exp_variant;
 
 /* dieback: the teacher's die-back reading (teacher.h teacher_dieback: 0 own

@@ -329,7 +329,7 @@ cs_status exp_main_baselines(const exp_main_baselines_args *a)
     cs_status st = mainset_design_get(&ds);
     if (!st) st = exp_main_plan_get(scale, &pl);
     if (st) return st;
-    if (rd.varied) { ds.crowns = rd.var.crowns; ds.nres = rd.var.nres; ds.start_frac = rd.var.start_frac; }
+    if (rd.varied) { ds.crowns = rd.var.crowns; ds.nres = rd.var.nres; ds.start_frac = rd.var.start_frac; ds.dieback = rd.dieback; }
     double worst = 0.0, maxdiff = 0.0;
     size_t nall = ds.nunseen + ds.nextrap;
     /* per spacing: 0 teacher, 1 teacher shuffled, 2 teacher rotated, 3 direction-blind */

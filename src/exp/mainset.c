@@ -54,6 +54,7 @@ static cs_status add_stand_patches(const mainset_design *ds, const char *exp, do
     tp.beta = ds->beta;
     tp.nres = ds->nres;
     tp.start_frac = ds->start_frac;
+    tp.dieback = (teacher_dieback)ds->dieback;
     st = stand_grow(sd, &tp, NULL, r, NULL, worst);
     patch_stand pst;
     if (!st) st = patch_stand_init(&pst, (int)n, sd->s->x, sd->s->y, r, sd->h, d);

@@ -33,6 +33,7 @@ typedef struct {
     crown_dist crowns;  /* the teachers' crown draws (crown.h; the default unless a sensitivity run varies them) */
     int nres;           /* the teacher's growth resolution (48 unless varied) */
     double start_frac;  /* the teacher's start radius / target (0.05 unless varied) */
+    int dieback;        /* the teacher's die-back reading (teacher.h teacher_dieback; 0 = Eq. 3) */
     double train_d[MAINSET_MAXSP], unseen_d[MAINSET_MAXSP], extrap_d[MAINSET_MAXSP];
     size_t ntrain, nunseen, nextrap;
 } mainset_design;
