@@ -33,6 +33,6 @@ do for [fmt in "png pdf"] {
        "" using (strcol(2) eq "t2-r1-axes" ? 1 + $5 : NaN):(yq($0) + off(2)) with points pt 8 ps 1.5 lw 2 lc rgb "#9467bd" title "+ all-axis, figure stand", \
        "" using (strcol(2) eq "t1-r2" ? 1 + $5 : NaN):(yq($0) + off(3)) with points pt 12 ps 1.5 lw 2 lc rgb "#1f77b4" title "rev2 with teacher-1", \
        "" using (strcol(2) eq "arc" ? 1 + $5 : NaN):(yq($0) + off(5)) with points pt 2 ps 1.4 lw 2 lc rgb "#17becf" title "rev2, arc die-back", \
-       "" using (strcol(2) eq "rev2" ? 1 + $5 : NaN):(yq($0) + off(4)):ytic(strcol(2) eq "rev2" ? strcol(1) : "") with points pt 7 ps 1.6 lc rgb "#d62728" title "rev2 (adopted)"
+       "" using (strcol(2) eq "rev2" ? 1 + $5 : NaN):(strcol(2) eq "rev2" ? yq($0) + off(4) : 1000):ytic(strcol(2) eq "rev2" ? strcol(1) : "") with points pt 7 ps 1.6 lc rgb "#d62728" title "rev2 (adopted)"
   unset output
 }
