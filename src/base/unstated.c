@@ -9,19 +9,19 @@
 #include <string.h>
 
 static const unstated_choice CHOICES[] = {
-    {"crown_R", "crown-radius scale R0 (m): R = R0 exp(s z)", 4.0, 2, {3.0, 5.0}, UNSTATED_ALL},
-    {"crown_spread", "crown-radius spread s: R = R0 exp(s z)", 0.15, 2, {0.05, 0.25}, UNSTATED_ALL},
-    {"height_sd", "height spread (m): h ~ N(25, sd^2) on [12, 38]", 4.0, 2, {2.0, 6.0}, UNSTATED_ALL},
-    {"lobing", "lobing range: a ~ U[0, a_max]", 0.2, 2, {0.10, 0.30}, UNSTATED_ALL},
-    {"growth_N", "growth resolution N (step = median R / N)", 48, 2, {24, 96}, UNSTATED_ALL},
-    {"start", "start radius, fraction of the target", 0.05, 2, {0.02, 0.10}, UNSTATED_ALL},
-    {"fig_hardcore", "hard-core level c of the figure stands (minimum distance c d)", 0.5, 4, {0.3, 0.4, 0.6, 0.7}, UNSTATED_FIGURE},
-    {"field_d", "field-stand spacing (m)", 4.0, 4, {3.0, 3.5, 4.5, 5.0}, UNSTATED_FIELD},
-    {"field_L", "field-stand footprint (m)", 36.0, 4, {28.0, 32.0, 44.0, 60.0}, UNSTATED_FIELD},
+    {"crown_R", "crown-radius scale R0 (m): R = R0 exp(s z)", 4.0, 2, {3.0, 5.0}, UNSTATED_ALL, 0},
+    {"crown_spread", "crown-radius spread s: R = R0 exp(s z)", 0.15, 2, {0.05, 0.25}, UNSTATED_ALL, 0},
+    {"height_sd", "height spread (m): h ~ N(25, sd^2) on [12, 38]", 4.0, 2, {2.0, 6.0}, UNSTATED_ALL, 0},
+    {"lobing", "lobing range: a ~ U[0, a_max]", 0.2, 2, {0.10, 0.30}, UNSTATED_ALL, 0},
+    {"growth_N", "growth resolution N (step = median R / N)", 48, 2, {24, 96}, UNSTATED_ALL, 0},
+    {"start", "start radius, fraction of the target", 0.05, 2, {0.02, 0.10}, UNSTATED_ALL, 0},
+    {"fig_hardcore", "hard-core level c of the figure stands (minimum distance c d)", 0.5, 4, {0.3, 0.4, 0.6, 0.7}, UNSTATED_FIGURE, 0},
+    {"field_d", "field-stand spacing (m)", 4.0, 4, {3.0, 3.5, 4.5, 5.0}, UNSTATED_FIELD, 0},
+    {"field_L", "field-stand footprint (m)", 36.0, 4, {28.0, 32.0, 44.0, 60.0}, UNSTATED_FIELD, 0},
     /* not an unstated number but the die-back readings (design.md §7 E0), run
      * here because a unit tolerates what a reading cannot build: 0 own sector
      * (Eq. 3, ours), 1 the contact arc s-1..s+1 too, 2 beta of the target length */
-    {"dieback", "die-back reading: 1 = the contact arc s-1..s+1 dies back too, 2 = beta of the target length (against Eq. 3); ours 0 = the contacting sector (Eq. 3)", 0, 2, {1, 2}, UNSTATED_ALL},
+    {"dieback", "die-back reading: 1 = the contact arc s-1..s+1 dies back too, 2 = beta of the target length (against Eq. 3); ours 0 = the contacting sector (Eq. 3)", 0, 2, {1, 2}, UNSTATED_ALL, 1},
 };
 #define NCHOICES (sizeof CHOICES / sizeof CHOICES[0])
 

@@ -27,6 +27,7 @@ typedef struct {
     int nvalues;        /* 2 (one either side) or 4 (two either side) */
     double values[UNSTATED_MAXVALUES]; /* ascending: half below ours, half above (the die-back readings: both above) */
     unstated_scope scope;
+    int categorical;    /* 1: the values name rules, not points on a scale (no value lies between two) */
 } unstated_choice;
 
 const unstated_choice *unstated_list(size_t *n);

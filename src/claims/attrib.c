@@ -2,6 +2,7 @@
 #include "attrib.h"
 #include "afile.h"
 #include "tsv.h"
+#include "unstated.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -105,7 +106,10 @@ void attrib_judge(const attrib_data *d, const claim_row *row, const claim_result
             if (strcmp(b->unit, "centre") && (isnan(best) || fabs(b->value - p) < fabs(best - p))) best = b->value;
         }
         int near = isfinite(best) && fabs(best - p) <= REACH * fabs(p);
-        if (near || (lo <= p && p <= hi)) add_by(out, a->unit);
+        /* a categorical choice (the die-back rules) has nothing between its values */
+        const unstated_choice *uc = unstated_find(a->unit);
+        int bracket = lo <= p && p <= hi && !(uc && uc->categorical);
+        if (near || bracket) add_by(out, a->unit);
     }
     out->kind = out->by[0] ? ATTRIB_EXPLAINED : tested ? ATTRIB_UNEXPLAINED : ATTRIB_UNTESTED;
 }
