@@ -202,8 +202,9 @@ static void cell(char *buf, size_t n, double v)
 }
 
 /* paper/sensitivity.tex: one row per quantity: the paper's value, the centre
- * run, and per choice the span (lowest--highest over the centre and the
- * choice's four values); a span that contains the paper's value in bold. */
+ * run, and per choice the span [lowest, highest] over the centre and the
+ * choice's values; a span that contains the paper's value in bold (not for
+ * the categorical die-back rules). */
 cs_status sens_write_tex(const char *path, const sens_row *rows, size_t n)
 {
     afile a;
@@ -230,16 +231,17 @@ cs_status sens_write_tex(const char *path, const sens_row *rows, size_t n)
         char p[32], o[32];
         cell(p, sizeof p, c0->paper);
         cell(o, sizeof o, c0->value);
-        fprintf(f, "\\texttt{%s} & %s & %s", QUANT[q], p, o);
+        fprintf(f, "\\texttt{%s} & $%s$ & $%s$", QUANT[q], p, o);
         for (size_t i = 0; i < nc; i++) {
             double lo, hi;
             char l[32], h[32];
             if (!sens_span(rows, n, QUANT[q], ch[i].name, &lo, &hi)) { fprintf(f, " & --"); continue; }
             cell(l, sizeof l, lo);
             cell(h, sizeof h, hi);
-            int reach = isfinite(c0->paper) && lo <= c0->paper && c0->paper <= hi;
-            if (!strcmp(l, h)) fprintf(f, reach ? " & \\textbf{%s}" : " & %s", l);
-            else fprintf(f, reach ? " & \\textbf{%s--%s}" : " & %s--%s", l, h);
+            /* a categorical choice (the die-back rules) has no value between its values */
+            int reach = isfinite(c0->paper) && lo <= c0->paper && c0->paper <= hi && !ch[i].categorical;
+            if (!strcmp(l, h)) fprintf(f, reach ? " & $\\mathbf{%s}$" : " & $%s$", l);
+            else fprintf(f, reach ? " & $\\mathbf{[%s,\\,%s]}$" : " & $[%s,\\,%s]$", l, h);
         }
         fprintf(f, "\\\\\n");
     }
