@@ -17,6 +17,7 @@
 #include "sens.h"
 #include "tsv.h"
 #include "unstated.h"
+#include <stdlib.h>
 #include <string.h>
 
 static claims g_c;
@@ -192,6 +193,41 @@ static void test_attribution_rules(void **s)
     free(d.v);
 }
 
+/* One cheap unit end to end: a figure choice runs only the figure steps into
+ * its folder and names the centre for every other table; a unit that is not
+ * in the list is a usage error. */
+static void test_a_figure_unit_runs_only_its_tables(void **s)
+{
+    (void)s;
+    static char out[65536];
+    char dir[] = "/tmp/crownshy_sens_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char args[512];
+    snprintf(args, sizeof args, "sensitivity-run --unit fig_hardcore_0.7 --stands 1 --out %s/fig_hardcore_0.7", dir);
+    int rc = tu_run_cli("", args, out, sizeof out);
+    if (rc) printf("%s\n", out);
+    assert_int_equal(rc, 0);
+    char path[600];
+    snprintf(path, sizeof path, "%s/fig_hardcore_0.7/unit.tsv", dir);
+    tsv *t;
+    assert_int_equal(tsv_read(path, &t), CS_OK);
+    size_t here = 0;
+    for (size_t r = 0; r < tsv_nrows(t); r++) here += !strcmp(tsv_str(t, r, "folder"), "here");
+    assert_int_equal(here, 2); /* the figure stand and the point-cloud stands */
+    tsv_free(t);
+    snprintf(path, sizeof path, "%s/fig_hardcore_0.7/mechanism/figure_stats.tsv", dir);
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    fclose(f);
+    snprintf(path, sizeof path, "%s/fig_hardcore_0.7/mechanism/sweep.tsv", dir);
+    assert_null(fopen(path, "r"));
+    snprintf(args, sizeof args, "sensitivity-run --unit crown_R_3.3 --out %s/x", dir);
+    assert_int_equal(tu_run_cli("", args, out, sizeof out), 2);
+    assert_non_null(strstr(out, "no unit 'crown_R_3.3'"));
+    snprintf(args, sizeof args, "rm -rf %s", dir);
+    assert_int_equal(system(args), 0);
+}
+
 int main(void)
 {
     if (claims_load(PATHS_CLAIMS, &g_c) != CS_OK) { fprintf(stderr, "%s\n", cs_errmsg()); return 1; }
@@ -201,6 +237,7 @@ int main(void)
         cmocka_unit_test(test_variants_read_the_centre_only_where_untouched),
         cmocka_unit_test(test_make_units_are_the_list),
         cmocka_unit_test(test_attribution_rules),
+        cmocka_unit_test(test_a_figure_unit_runs_only_its_tables),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     claims_free(&g_c);
