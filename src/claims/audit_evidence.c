@@ -327,7 +327,7 @@ static int git_past_value(const char *path, int version, const char *value, char
     int found = 0;
     while (!found && fgets(line, sizeof line, p)) {
         line[strcspn(line, "\n")] = '\0';
-        if (!strncmp(line, "C ", 2)) { snprintf(rev, sizeof rev, "%s", line + 2); continue; }
+        if (!strncmp(line, "C ", 2)) { snprintf(rev, sizeof rev, "%.63s", line + 2); continue; }
         if (!line[0] || !rev[0]) continue;
         if (!git_blob_value(rev, line, version, v, sizeof v) && !strcmp(v, value)) { found = 1; snprintf(commit, cn, "%.12s", rev); }
     }
