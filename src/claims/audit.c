@@ -263,6 +263,16 @@ static void check_pins(const claims *c, checklist *cl)
                 for (size_t i = 0; i < c->n && off < sizeof affected - 40; i++)
                     if (!strcmp(c->rows[i].kind, "measured") || !strcmp(c->rows[i].kind, "probe")) off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
                 if (!cnt) snprintf(affected, sizeof affected, "every measured claim");
+            } else if (!strcmp(key, "design_sha256") || !strcmp(key, "design_numbers_sha256")) {
+                snprintf(affected, sizeof affected, "every claim resting on the design constants (%s)", path);
+            } else if (!strcmp(key, "claim_test_sha256")) {
+                snprintf(affected, sizeof affected, "every claim whose test is in %s", path);
+            } else if (!strcmp(key, "superseded_sha256")) {
+                snprintf(affected, sizeof affected, "every claim of a table made by a superseded reading (%s)", path);
+            } else if (!strcmp(key, "grids_sha256")) {
+                snprintf(affected, sizeof affected, "every claim of a table with a design grid (%s)", path);
+            } else if (!strcmp(key, "gates_prereg_sha256")) {
+                snprintf(affected, sizeof affected, "every gated claim (%s)", path);
             } else snprintf(affected, sizeof affected, "(gates as a whole)");
             checklist_add(cl, VERDICT_FAIL, name, "%s changed: %s is %.16s…, pinned %.16s… (%s:%d); claims affected: %s",
                           path, key, m->value, val, PATHS_PINS, tsv_line(t, r), affected);
