@@ -316,24 +316,38 @@ static int git_blob_value(const char *rev, const char *path, int version, char *
     return !out[0];
 }
 
-/* Is value a past value of path (any committed version, renames followed)? */
-static int git_past_value(const char *path, int version, const char *value, char *commit, size_t cn)
+/* Is value a past value of path in one listing of its history? */
+static int git_past_value_in(const char *how, const char *path, int version, const char *value, char *commit, size_t cn)
 {
     char cmd[600];
-    snprintf(cmd, sizeof cmd, "git log --follow --format='C %%H' --name-only -- '%s' 2>/dev/null", path);
+    snprintf(cmd, sizeof cmd, "git log %s --format='C %%H' --name-only -- '%s' 2>/dev/null", how, path);
     FILE *p = popen(cmd, "r");
     if (!p) return 0;
     char line[600], rev[64] = "", v[80];
     int found = 0;
     while (!found && fgets(line, sizeof line, p)) {
         line[strcspn(line, "\n")] = '\0';
-        if (!strncmp(line, "C ", 2)) { snprintf(rev, sizeof rev, "%.63s", line + 2); continue; }
+        if (!strncmp(line, "C ", 2)) {
+            snprintf(rev, sizeof rev, "%.63s", line + 2);
+            /* without --follow the path is the same at every commit, merges included
+             * (git prints no name for a merge) */
+            if (strcmp(how, "--follow") && !git_blob_value(rev, path, version, v, sizeof v) && !strcmp(v, value)) { found = 1; snprintf(commit, cn, "%.12s", rev); }
+            continue;
+        }
+        if (strcmp(how, "--follow")) continue;
         if (!line[0] || !rev[0]) continue;
         if (!git_blob_value(rev, line, version, v, sizeof v) && !strcmp(v, value)) { found = 1; snprintf(commit, cn, "%.12s", rev); }
     }
     while (fgets(line, sizeof line, p)) {}
     pclose(p);
     return found;
+}
+
+/* Is value a past value of path: any committed version, merges included
+ * (--full-history), and under earlier names (--follow, which skips merges)? */
+static int git_past_value(const char *path, int version, const char *value, char *commit, size_t cn)
+{
+    return git_past_value_in("--full-history", path, version, value, commit, cn) || git_past_value_in("--follow", path, version, value, commit, cn);
 }
 
 /* ---- the gates against their preregistered content ---- */
