@@ -105,8 +105,9 @@ check-fast: deps
 # kind: 1 inconsistency, 2 usage, 3 bad input, 4 environment (design.md §11).
 CS_STATUS = st=$$?; if [ $$st -ne 0 ]; then case $$st in 1) k=inconsistency;; 2) k=usage;; 3) k='bad input';; 4) k=environment;; *) k=other;; esac; \
   echo "make $@: crownshy exited $$st ($$k)" >&2; fi; exit $$st
+# From clean the CLI is built on both cores unless make already runs parallel.
 verify: deps
-	@$(MAKE) --no-print-directory $(CLI)
+	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j2) $(CLI)
 	@$(CLI) verify $(if $(STRICT),--strict); $(CS_STATUS)
 
 # Tier 2 (design.md §9 rev. 2): rerun every teacher experiment unit into build/deep/
