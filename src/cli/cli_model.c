@@ -42,7 +42,7 @@ int cli_cmd_train(int argc, char **argv)
         {"depth", OPT_LONG, &depth, 1, 64, "transformer blocks (default 3)"},
         {"heads", OPT_LONG, &heads, 1, 64, "attention heads (default 4)"},
         {"mlp", OPT_LONG, &mlp, 1, 16384, "MLP width (default 256)"},
-        {"pair", OPT_LONG, &pair, 0, 1, "1: pair-aware model with standardised features (design.md §8 revision 2; default 0)"},
+        {"pair", OPT_LONG, &pair, 0, 1, "1: pair-aware model with standardised features (design.md §8; default 0)"},
         {"seed", OPT_LONG, &seed, 0, 4294967295.0, "run seed: init/batch/noise streams use 3s+1, 3s+2, 3s+3 (default 1)"},
         {"stands", OPT_LONG, &stands, 1, 100000, "toy training stands, 64 patches each (default 8)"},
         {"spacing", OPT_DOUBLE, &d, 0.1, 100, "toy stand spacing in m (default 4.5)"},
@@ -176,7 +176,7 @@ int cli_cmd_bench_model(int argc, char **argv)
     printf("gemm_path\t%s\n", gemm_isa_name());
     printf("model_to_sgemm_ratio\t%.3f\n", r.ratio);
     printf("goals: >= 55 steps/s, ratio >= 0.60: %s\n", r.steps_per_s >= 55 && r.ratio >= 0.6 ? "met" : "not met");
-    /* revision 2 (design.md §10): the pair-aware model at the same configuration,
+    /* design.md §10: the pair-aware model at the same configuration,
      * in the same run; its rate against the same run's gemm_fma rate (the
      * fused product the model runs on) and sgemm rate */
     train_bench_result rp;
