@@ -99,7 +99,7 @@ check-fast: deps
 	@bash tests/run.sh $(TESTS) tests/layout.sh
 
 # ---- verification (the reviewer's job) --------------------------------------
-# Tier 1 (design.md §9 rev. 2): exit 0 when the package is consistent (a failing
+# Tier 1 (design.md §9): exit 0 when the package is consistent (a failing
 # preregistered gate is a finding, reported "not reproduced"); STRICT=1 also
 # fails on a failing gate.
 verify: deps
@@ -151,7 +151,7 @@ DEEP_UNITS :=
 MANIFEST_EXPERIMENTS :=
 -include src/exp/experiments.mk
 
-# ==== reproduce engines (issue 16) ==========================================
+# ==== reproduce engines (design.md §13) ==========================================
 # make reproduce [ENGINE=local|slurm] [SCALE=smoke] [SLURM_ARGS='sbatch options']
 # make reproduce-status    per unit: done, queued, running, failed (with its log), missing
 # make reproduce-graph     each unit and the units it needs
@@ -214,12 +214,12 @@ paper: $(CLI)
 	@if ! command -v pdflatex >/dev/null; then echo "paper: pdflatex not installed; run make deps-paper (Debian texlive packages)" >&2; exit 1; fi
 	@cd paper && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && echo "paper: wrote paper/main.pdf"
 
-# ---- fuzzing (issues 7, 15): libFuzzer on the parsers, FUZZ_SECONDS each ---------
+# ---- fuzzing (design.md §11): libFuzzer on the parsers, FUZZ_SECONDS each ---------
 # Needs clang with libFuzzer (Debian: clang, libclang-rt-14-dev); built with -DNN_NO_CLONES
 # (clang refuses nn.c's AVX-512 clones; the parsers do not need them). Seeds: the
 # committed frozen tables, gates, numbers.tex and a fresh smoke checkpoint.
 # A crash leaves its input in build/fuzz/<target>/crash-*; copy it into
-# tests/data/fuzz/ and add a regression case to tests/test_fuzz_regress.c.
+# tests/data/fuzz/ and add a regression case to the parser's cmocka tests.
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := tsv gate ckpt numbers gatemap aggr paper
 FUZZ_CC := clang

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Tamper tests (design.md §9 rev. 2; issues 7 and 15): on a scratch copy of the
+# Tamper tests (design.md §9): on a scratch copy of the
 # repository, make one class of edit per case; each must make `crownshy verify`
 # exit 1 with a FAIL line naming the culprit file and the claims it feeds.
 # The untampered copy must exit 0 (a failing preregistered gate is a finding,
@@ -96,7 +96,7 @@ out=$(cd "$scratch" && "$cli" verify --no-figures 2>&1); rc=$?
 if [ $rc -eq 0 ] && grep -q 'PENDING .*frozen/mechanism/: 1 tables made by a superseded reading.*MechOn' <<<"$out"; then ok "superseded reading recorded: pending, named"
 else bad "superseded reading recorded: pending, named" "exit $rc: $(grep -E 'provenance|FAIL' <<<"$out" | head -3)"; fi
 
-# ---- issue 15: every editable input of a number or a picture ----
+# ---- every editable input of a number or a picture ----
 # 6. the registry's gate column (and numbers.tex regenerated): the pinned map decides
 fresh
 awk -F'\t' 'BEGIN{OFS="\t"} $1=="MainGeomRatio"{$5="-"} {print}' "$scratch/audit/claims.tsv" > "$scratch/x" && mv "$scratch/x" "$scratch/audit/claims.tsv"

@@ -1,4 +1,4 @@
-/* audit_paper: the write-up against frozen/ (design.md §9 rev. 2; issue 15).
+/* audit_paper: the write-up against frozen/ (design.md §9).
  * The generated files (numbers.tex, comparison.tex, readings.tex) must equal
  * a fresh generation; every other .tex under paper/ (subfolders included) may
  * use claim macros only: no measured number typed in any rounding, no claim
