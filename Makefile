@@ -90,7 +90,7 @@ $(B)/tests $(B)/asan/tests:
 # Every cmocka binary, then all of them again under ASan+UBSan; one aggregate line.
 check: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS) $(ASAN_TESTS)
-	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/citation.sh -- $(ASAN_TESTS)
+	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/manifest.sh tests/citation.sh -- $(ASAN_TESTS)
 
 check-fast: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS)
@@ -104,19 +104,15 @@ verify: deps
 	@$(MAKE) --no-print-directory $(CLI)
 	@$(CLI) verify $(if $(STRICT),--strict)
 
-# Tier 2 (design.md §9 rev. 2): rerun every teacher experiment unit into build/deep/
-# and compare with frozen/ bit for bit (data rows), with progress; the model
-# part (redraw samples from the frozen weights) runs when `crownshy main-redraw`
-# exists (issue 14). Every teacher unit of src/exp/experiments.mk: E1, E2 at
-# beta_train and beta_field, the teacher figure data, E5, E6 and the E0 readings.
+# Tier 2 (design.md §9): rerun every unit of each experiment whose manifest
+# row says "rerun" (src/base/manifest.h; DEEP_UNITS is generated) into
+# build/deep/ and compare with frozen/ bit for bit (data rows), with
+# progress; then redraw every frozen model's samples from its weights.
 DEEP := $(B)/deep
-DEEP_UNITS = $(foreach u,$(MECH_UNITS) $(RESULTS)/mechanism/figure_stats.tsv $(IRRED_UNITS) $(TEACHER_FIG_UNITS) \
-  $(FIELD_CAL) $(RESULTS)/field/heldout.tsv $(addprefix $(RESULTS)/anisotropy/,lattice.tsv hardcore.tsv jitter.tsv jitter_calibration.tsv heldout.tsv) \
-  $(IRRED_FIELD_UNITS) $(READINGS_DIR)/summary.tsv,$(patsubst $(RESULTS)/%,$(DEEP)/%,$(u)))
 .PHONY: verify-deep
 verify-deep: deps
 	@$(MAKE) --no-print-directory $(CLI)
-	@DEEP='$(DEEP)' JOBS=2 CLI='$(CLI)' MAKE='$(MAKE)' DEEP_UNITS='$(DEEP_UNITS)' bash src/exp/verify_deep.sh
+	@DEEP='$(DEEP)' JOBS=2 CLI='$(CLI)' MAKE='$(MAKE)' DEEP_UNITS='$(patsubst $(RESULTS)/%,$(DEEP)/%,$(DEEP_UNITS))' bash src/exp/verify_deep.sh
 
 audit: deps
 	@$(MAKE) --no-print-directory $(CLI)
@@ -149,6 +145,8 @@ else
 RESULTS := $(B)/results
 endif
 REPRODUCE_UNITS :=
+DEEP_UNITS :=
+MANIFEST_EXPERIMENTS :=
 -include src/exp/experiments.mk
 
 # ==== reproduce engines (issue 16) ==========================================
@@ -177,6 +175,12 @@ reproduce-status:
 	@$(REPRODUCE_ENV) bash $(REPRODUCE_SH) status
 reproduce-graph:
 	@$(REPRODUCE_ENV) bash $(REPRODUCE_SH) graph
+# the experiments and units the manifest gives make (src/base/manifest.h)
+.PHONY: units
+units:
+	@echo "experiments: $(strip $(MANIFEST_EXPERIMENTS))"
+	@echo "reproduce: $(strip $(REPRODUCE_UNITS))"
+	@echo "verify-deep: $(strip $(DEEP_UNITS))"
 # ==== end of reproduce engines ==============================================
 
 # Copy finished full-scale results (tables, and the E3/E4 weights files) into

@@ -43,6 +43,10 @@ cs_status claims_load(const char *path, claims *out);
 cs_status claims_apply_gate_map(claims *c, const char *map_path);
 void claims_free(claims *c);
 const claim_row *claims_find(const claims *c, const char *macro);
+/* Where a computing function is defined: the file of src/claims/ holding its
+ * definition ("cs_status FN(" at the start of a line) and the line; CS_EINPUT
+ * when no file defines it. */
+cs_status claims_function_file(const char *function, char *path, size_t pathsz, int *line);
 /* The computing function named in a row, or NULL. */
 claim_fn claims_lookup_fn(const char *name);
 /* Names of every registered computing function (NULL-terminated). */

@@ -1,5 +1,6 @@
 /* verify: the `make verify` driver and `crownshy trace` (design.md §9). */
 #include "verify.h"
+#include "study.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -283,7 +284,12 @@ cs_status verify_trace(const char *macro)
     printf("value        %s%s%s\n", r.status == VERDICT_PASS ? r.text : verdict_name(r.status), r.status == VERDICT_PASS ? "" : ": ", r.status == VERDICT_PASS ? "" : r.why);
     printf("numbers.tex  %s (paper/numbers.tex:%d)\n", have ? have : "(absent)", line);
     printf("source       %s\n", r.where);
-    printf("function     %s (src/claim_*.c)\n", row->function);
+    char fpath[512];
+    int fline = 0;
+    if (claims_function_file(row->function, fpath, sizeof fpath, &fline)) printf("function     %s (%s)\n", row->function, cs_errmsg());
+    else printf("function     %s (%s:%d)\n", row->function, fpath, fline);
+    const study_experiment *ex = study_of_path(row->source);
+    if (ex) printf("experiment   %s (%s): %s; run by %s\n", ex->name, ex->code, ex->what, ex->source);
     printf("gate         %s%s%s%s\n", row->gate, strcmp(row->gate, "-") ? " -> " : "", strcmp(row->gate, "-") ? verdict_name(r.gate) : "",
            r.gate_detail[0] ? "" : "");
     if (r.gate_detail[0]) printf("gate detail  %s\n", r.gate_detail);

@@ -73,14 +73,14 @@ int exp_comp_cmd_run(int argc, char **argv)
         {"indep", OPT_STR, &ci, 0, 0, "independent-arm weights (or checkpoint) CKPT of E3 seed 1 (required)"},
         {"out", OPT_STR, &dir, 0, 0, "results root DIR (required)"},
     };
-    const opts_cmd c = {"comp-run", "--joint CKPT --indep CKPT --out DIR",
+    const opts_cmd c = {"comparison-run", "--joint CKPT --indep CKPT --out DIR",
                         "E7: one 24-tree patch at 5.0 m (teacher, joint, independent arm) and the dart probe\n"
                         "(joint model on hard-core stems); writes DIR/comparison/{patch,patch_crowns,dart_probe}.tsv.",
                         spec, sizeof spec / sizeof *spec, 0, 0};
     int rc = opts_parse(&c, argc, argv, NULL, NULL);
     if (rc) return opts_exit_code(rc);
     for (size_t i = 0; i < sizeof spec / sizeof *spec; i++)
-        if (!*(const char **)spec[i].dst) { opts_usage_error("comp-run", "--%s is required", spec[i].name); return 2; }
+        if (!*(const char **)spec[i].dst) { opts_usage_error("comparison-run", "--%s is required", spec[i].name); return 2; }
     prov pv;
     prov_begin(&pv, "comparison", argc, argv);
     double beta = 0, jitter = 0;

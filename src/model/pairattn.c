@@ -173,7 +173,11 @@ void pairattn_linear_forward(float *qkv, float *out, float *prob, float *Phi, co
     pair_ctx a = {.out = out, .prob = prob, .Phi = Phi, .qkv = qkv, .phi = phi, .phit = phit,
                   .wb = wb, .wv = wvt, .T = T, .C = C, .H = H, .mode = mode, .scratch = scratch};
     if (w) gemm_transpose(wt, w, N, C);
-    gemm_fma_bias_epi(M, N, C, in, C, 1, wt, N, qkv, N, b, epi_forward, &a);
+    if (mode == NN_ATTN_SELF) /* self-only attention reads only v (nn.h) */
+        gemm_fma_bias_epi(M, C, C, in, C, 1, wt + 2 * C, N, qkv + 2 * C, N, b ? b + 2 * C : NULL,
+                          epi_forward, &a);
+    else
+        gemm_fma_bias_epi(M, N, C, in, C, 1, wt, N, qkv, N, b, epi_forward, &a);
 }
 
 void pairattn_linear_backward(float *dqkv, float *datt, float *dpw, float *dpb, float *dwb,
