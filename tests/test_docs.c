@@ -53,7 +53,7 @@ static void test_clean_page_passes(void **state)
     tu_write(p, "x\n");
     snprintf(p, sizeof p, "%s/page.md", d);
     tu_write(p, "Relative improvement <!--MainRel-->91.3<!--/--> % (paper <!--MainRelPaper-->53.6<!--/-->, gate <!--MainRelGate-->PASS<!--/-->), 12 seeds,\n"
-                "version 1.2.0, host 127.0.0.1, ratio 2.5, see [the other page](other.md#top) and [web](https://example.org).\n");
+                "syntax `<!--MainJoint-->...<!--/-->` (a code span: literal), version 1.2.0, host 127.0.0.1, ratio 2.5, see [the other page](other.md#top) and [web](https://example.org).\n");
     size_t bad = check(p, out, sizeof out);
     if (bad) print_error("%s", out);
     assert_int_equal(bad, 0);

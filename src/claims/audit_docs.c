@@ -96,11 +96,20 @@ static void findings(sbuf *b, const claims *c, const claim_result *res)
     }
 }
 
-/* The inline marker at s ("<!--Name-->"): its name length and where its value
- * starts and ends; 0 when s is no marker. */
-static int marker_at(const char *s, size_t *nl, const char **v, const char **ve)
+/* Is s inside a code span of line (an odd number of backticks before it)? A
+ * marker there is literal text, as Markdown renders it. */
+static int in_code(const char *line, const char *s)
 {
-    if (strncmp(s, "<!--", 4)) return 0;
+    int k = 0;
+    for (const char *q = line; q < s; q++) k += *q == '`';
+    return k & 1;
+}
+
+/* The inline marker at s ("<!--Name-->") of line: its name length and where
+ * its value starts and ends; 0 when s is no marker. */
+static int marker_at(const char *line, const char *s, size_t *nl, const char **v, const char **ve)
+{
+    if (strncmp(s, "<!--", 4) || in_code(line, s)) return 0;
     size_t k = 0;
     while (isalnum((unsigned char)s[4 + k])) k++;
     if (!k || !isalpha((unsigned char)s[4]) || strncmp(s + 4 + k, "-->", 3)) return 0;
@@ -117,7 +126,7 @@ static void render_line(sbuf *b, const char *line, const claims *c, const claim_
     for (const char *s = line; *s; ) {
         size_t nl;
         const char *v, *ve;
-        if (!marker_at(s, &nl, &v, &ve)) { sb_printf(b, "%c", *s++); continue; }
+        if (!marker_at(line, s, &nl, &v, &ve)) { sb_printf(b, "%c", *s++); continue; }
         char name[80], text[160];
         snprintf(name, sizeof name, "%.*s", (int)(nl < 79 ? nl : 79), s + 4);
         if (marker_text(name, c, res, text, sizeof text)) sb_printf(b, "<!--%s-->%s" MARK_END, name, text);
@@ -278,11 +287,12 @@ static size_t scan_page(const char *path, const measured *m, checklist *cl)
         for (char *s = line; (s = strstr(s, "<!--")); ) {
             size_t nl;
             const char *v, *ve;
-            if (marker_at(s, &nl, &v, &ve)) { size_t k = (size_t)(ve + strlen(MARK_END) - s); memset(s, ' ', k); s += k; continue; }
+            if (marker_at(line, s, &nl, &v, &ve)) { size_t k = (size_t)(ve + strlen(MARK_END) - s); memset(s, ' ', k); s += k; continue; }
             char *e = strstr(s + 4, "-->");
             size_t len = e ? (size_t)(e - s - 4) : strlen(s + 4);
             if (exemption(s + 4, len)) {
-                checklist_add(cl, VERDICT_FAIL, "docs: self-exemption", "%s:%d: comment '%.80s' asks for an exemption from the audit: none is honoured; remove it", path, lineno, s + 4);
+                checklist_add(cl, VERDICT_FAIL, "docs: self-exemption", "%s:%d: comment '%.*s' asks for an exemption from the audit: none is honoured; remove it", path, lineno,
+                              (int)(len < 80 ? len : 80), s + 4);
                 bad++;
             }
             s += 4;
@@ -295,9 +305,11 @@ static size_t scan_page(const char *path, const measured *m, checklist *cl)
     return bad;
 }
 
-/* First line where text and the file differ (0: none); that file line in lb. */
-static int first_diff(const char *path, const char *text, char *lb, size_t n)
+/* First line where text and the file differ (0: none); that file line in lb,
+ * and in *col the first column where they differ. */
+static int first_diff(const char *path, const char *text, char *lb, size_t n, size_t *col)
 {
+    *col = 0;
     FILE *f = fopen(path, "r");
     if (!f) return 1;
     char *line = NULL;
@@ -310,7 +322,12 @@ static int first_diff(const char *path, const char *text, char *lb, size_t n)
         size_t tl = strcspn(t, "\n");
         if (k <= 0) { diff = *t ? lineno : 0; lb[0] = '\0'; break; }
         size_t ll = strcspn(line, "\n");
-        if (!*t || ll != tl || strncmp(line, t, tl)) { diff = lineno; snprintf(lb, n, "%.*s", (int)ll, line); break; }
+        if (!*t || ll != tl || strncmp(line, t, tl)) {
+            diff = lineno;
+            snprintf(lb, n, "%.*s", (int)ll, line);
+            while (*col < ll && *col < tl && line[*col] == t[*col]) (*col)++;
+            break;
+        }
         t += tl + (t[tl] == '\n');
     }
     free(line);
@@ -326,15 +343,17 @@ size_t docs_check_page(const char *path, const claims *c, const claim_result *re
         checklist_add(cl, VERDICT_FAIL, "docs: generated", "%s", cs_errmsg());
         return 1;
     }
-    char lb[600];
-    int d = first_diff(path, fresh, lb, sizeof lb);
+    char lb[4096];
+    size_t col;
+    int d = first_diff(path, fresh, lb, sizeof lb, &col);
     free(fresh);
     if (d) {
+        /* the claim of the marker where the line first differs */
         char claim[96] = "";
-        for (const char *s = lb; (s = strstr(s, "<!--")) && !claim[0]; s += 4) {
+        for (const char *s = lb; (s = strstr(s, "<!--")) && (size_t)(s - lb) <= col; s += 4) {
             size_t nl;
             const char *v, *ve;
-            if (marker_at(s, &nl, &v, &ve)) snprintf(claim, sizeof claim, "; claim: %.*s", (int)nl, s + 4);
+            if (marker_at(lb, s, &nl, &v, &ve)) snprintf(claim, sizeof claim, "; claim: %.*s", (int)nl, s + 4);
         }
         checklist_add(cl, VERDICT_FAIL, "docs: generated", "%s:%d differs from a fresh generation ('%.200s'): edited by hand or stale (crownshy numbers regenerates it)%s",
                       path, d, lb, claim);
@@ -383,7 +402,7 @@ void audit_docs(const claims *c, const claim_result *res, checklist *cl)
             for (const char *s = line; (s = strstr(s, "<!--")); s += 4) {
                 size_t nl;
                 const char *v, *ve;
-                regions += marker_at(s, &nl, &v, &ve) || !strncmp(s, FIND_BEGIN, strlen(FIND_BEGIN));
+                regions += marker_at(line, s, &nl, &v, &ve) || !strncmp(s, FIND_BEGIN, strlen(FIND_BEGIN));
             }
         free(line);
         if (f) fclose(f);
@@ -404,8 +423,9 @@ cs_status docs_refresh(const claims *c, const claim_result *res, size_t *changed
         struct stat sb;
         if (stat(pages.p[i], &sb) != 0) continue;
         char *fresh, lb[8];
+        size_t col;
         if ((st = docs_render(pages.p[i], c, res, &fresh))) break;
-        if (first_diff(pages.p[i], fresh, lb, sizeof lb)) {
+        if (first_diff(pages.p[i], fresh, lb, sizeof lb, &col)) {
             afile a;
             if (!(st = afile_open(&a, pages.p[i]))) {
                 if (fputs(fresh, a.f) < 0) a.err = 1;
