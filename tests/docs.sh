@@ -33,6 +33,8 @@ expect() {
 val() { sed -n "s/^\\\\newcommand{\\\\$1}{\\(.*\\)}\$/\\1/p" "$root/paper/numbers.tex"; }
 
 echo "[==========] Running documentation tests"
+size=$(wc -c < "$root/README.md")
+[ "$size" -le 8192 ] && ok "README.md is $size bytes (at most 8 KB)" || bad "README.md size" "$size bytes, over 8192"
 fresh
 out=$(run); rc=$?
 if [ $rc -eq 0 ] && grep -qE '^  PASS +docs ' <<<"$out"; then ok "the untouched copy passes, docs included"
