@@ -85,10 +85,10 @@ UNIT(irreducibility, "refine_field.tsv", "@R@/field/calibration.tsv", "$(CLI) ir
 UNIT(irreducibility, "reduction_field.tsv", "@R@/field/calibration.tsv", "$(CLI) irreducibility-reduction --stands $(TEACHER_STANDS) --beta $$($(CLI) field-beta @R@/field/calibration.tsv) --tag field --out @R@", "top")
 
 EXPERIMENT(main, "E3", "src/exp/exp_main.c", "gates/main.gate", "src/claims/claim_main.c", "figures/main.gp", "redraw", "joint vs independent generation at the unseen spacings: one training and evaluation unit per (seed, arm), baselines, summary")
-COMMAND(main, "main-run", exp_main_cmd_run, "E3/E4: one (seed, arm) training + evaluation unit")
-COMMAND(main, "main-baselines", exp_main_cmd_baselines, "E3/E4: direction-blind baseline and noise floor")
-COMMAND(main, "main-summary", exp_main_cmd_summary, "E3/E4: gather the runs into the frozen tables")
-COMMAND(main, "main-redraw", exp_main_cmd_redraw, "E3/E4: draw a unit's clearance samples again from its frozen weights")
+COMMAND(main, "main-run", cli_main_run, "E3/E4: one (seed, arm) training + evaluation unit")
+COMMAND(main, "main-baselines", cli_main_baselines, "E3/E4: direction-blind baseline and noise floor")
+COMMAND(main, "main-summary", cli_main_summary, "E3/E4: gather the runs into the frozen tables")
+COMMAND(main, "main-redraw", cli_main_redraw, "E3/E4: draw a unit's clearance samples again from its frozen weights")
 UNIT(main, "run_s%_joint.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --seed $* --arm joint --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/main_s$*_joint.ckpt --samples @R@/main/samples_s$*_joint.tsv --weights @R@/main/weights_s$*_joint.ckpt --out $@", "-")
 UNIT(main, "run_s%_indep.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --seed $* --arm indep --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/main_s$*_indep.ckpt --samples @R@/main/samples_s$*_indep.tsv --weights @R@/main/weights_s$*_indep.ckpt --out $@", "-")
 UNIT(main, "baselines.tsv", "", "$(CLI) main-baselines --scale $(SCALE) --samples @R@/main/samples_baselines.tsv --out $@", "-")
@@ -119,7 +119,7 @@ UNIT(anisotropy, "jitter_calibration.tsv", "@R@/anisotropy/jitter.tsv", "$(CLI) 
 UNIT(anisotropy, "heldout.tsv", "@R@/field/calibration.tsv @R@/anisotropy/jitter_calibration.tsv", "$(CLI) anisotropy-heldout @TEACHER@ @LAYOUT@ --calibration @R@/field/calibration.tsv --jitter-calibration @R@/anisotropy/jitter_calibration.tsv --stands $(FIELD_STANDS) --out $@", "top readings")
 
 EXPERIMENT(comparison, "E7", "src/exp/exp_comp.c", "-", "src/claims/claim_comp.c", "figures/teaser.gp", "-", "a 24-tree patch at 5.0 m by the teacher, the joint and the independent model of seed 1, and the dart probe")
-COMMAND(comparison, "comparison-run", exp_comp_cmd_run, "E7: comparison patch (teacher, joint, independent) and dart probe")
+COMMAND(comparison, "comparison-run", cli_comparison_run, "E7: comparison patch (teacher, joint, independent) and dart probe")
 UNIT(comparison, "patch.tsv", "@R@/main/run_s01_joint.tsv @R@/main/run_s01_indep.tsv", "$(CLI) comparison-run --joint @R@/main/weights_s01_joint.ckpt --indep @R@/main/weights_s01_indep.ckpt --out @R@", "top")
 
 EXPERIMENT(pointcloud, "E8", "src/exp/exp_stands.c", "-", "src/claims/claim_teacher.c", "figures/pointcloud-stand.gp", "rerun", "hard-core stands at 5, 4 and 3 m: crowns contacting a neighbour, coupled vs uncoupled clearance")

@@ -19,6 +19,8 @@ typedef int (*cmd_fn)(int argc, char **argv);
 typedef enum { G_REVIEW, G_STUDY, G_MAINTAIN } cmd_group;
 typedef struct { const char *name; cmd_fn fn; cmd_group group; const char *help; } cli_cmd;
 
+const char *const CLI_ARMS[] = {"joint", "indep", "independent=indep", NULL};
+
 int cli_fail(const char *cmd, cs_status st)
 {
     fprintf(stderr, "crownshy %s: %s\n", cmd, cs_errmsg()[0] ? cs_errmsg() : cs_status_name(st));

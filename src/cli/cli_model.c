@@ -39,7 +39,7 @@ int cli_cmd_train(int argc, char **argv)
     long steps = 2000, batch = 64, width = 64, depth = 3, heads = 4, mlp = 256, seed = 1, stands = 8, every = 200, pair = 0;
     double lr = 2e-3, d = 4.5;
     const opt_spec o[] = {
-        {"arm", OPT_STR, &arm, 0, 0, "joint (attention across the patch) or independent (default joint)"},
+        {"arm", OPT_CHOICE, &arm, 0, 0, "joint (attention across the patch) or indep (each token alone; default joint)", .choices = CLI_ARMS},
         {"steps", OPT_LONG, &steps, 1, 1e9, "optimiser steps (default 2000)"},
         {"batch", OPT_LONG, &batch, 1, 4096, "patches per step (default 64)"},
         {"lr", OPT_DOUBLE, &lr, 1e-12, 10, "peak learning rate (default 2e-3)"},
@@ -54,11 +54,12 @@ int cli_cmd_train(int argc, char **argv)
         {"ckpt", OPT_STR, &ckpt, 0, 0, "checkpoint file; resumed from when it exists (default none)"},
         {"ckpt-every", OPT_LONG, &every, 0, 1e9, "steps between checkpoints (default 200)"},
     };
-    const opts_cmd c = {"train", "[options]", "Train the flow-matching generator on toy stands.", o, sizeof o / sizeof *o, 0, 0};
+    const opts_cmd c = {"train", "[options]", "Train the flow-matching generator on toy stands (lattice stands with circular\n"
+                        "crowns of a toy teacher, patch.h): a check of the trainer and its checkpoints. The\n"
+                        "study's training runs are the E3/E4 units (main-run).", o, sizeof o / sizeof *o, 0, 0};
     int rc = opts_parse(&c, argc, argv, NULL, NULL);
     if (rc) return opts_exit_code(rc);
-    int joint = !strcmp(arm, "joint") ? 1 : !strcmp(arm, "independent") ? 0 : -1;
-    if (joint < 0) { opts_usage_error("train", "--arm: must be joint or independent, not '%s'", arm); return 2; }
+    int joint = !strcmp(arm, "joint");
     model_cfg cfg = model_cfg_reference(PATCH_NCOND);
     cfg.C = (int)width; cfg.L = (int)depth; cfg.H = (int)heads; cfg.F = (int)mlp; cfg.joint = joint; cfg.pair = (int)pair;
     cs_status st = model_cfg_check(&cfg);
@@ -87,7 +88,7 @@ int cli_cmd_train(int argc, char **argv)
         fprintf(stderr, "resumed from %s at step %ld\n", ckpt, t->step);
     }
     fprintf(stderr, "train: %s arm, %zu parameters, %d patches (scale %.4g m), %ld steps of %d\n",
-            joint ? "joint" : "independent", t->m->nparams, ps->n, ps->scale, steps, t->B);
+            joint ? "joint" : "indep", t->m->nparams, ps->n, ps->scale, steps, t->B);
     st = train_run(t, steps, ckpt, every, stderr);
     double l = NAN;
     if (!st) st = train_eval_loss(t, ps, 4, 12345, &l);
