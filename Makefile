@@ -13,7 +13,9 @@ CC ?= cc
 # -Wno-psabi: GCC notes that 32-byte vectors are passed differently since GCC
 # 4.6 for nn.c's always-inlined helpers, which never cross a call boundary; the
 # note ignores nn.c's pragma and would print on every build.
-CFLAGS ?= -std=c11 -O2 -ffp-contract=off -g -Wall -Wextra -Wno-unused-parameter -Wno-psabi \
+# -Wno-missing-field-initializers: option tables name the leading fields of
+# opt_spec and leave the optional ones (required, choices) zero.
+CFLAGS ?= -std=c11 -O2 -ffp-contract=off -g -Wall -Wextra -Wno-unused-parameter -Wno-psabi -Wno-missing-field-initializers \
           -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
 STAGES := base forest model exp claims
 CPPFLAGS += $(addprefix -Isrc/,$(STAGES) cli)
@@ -34,7 +36,7 @@ TESTS := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_SRC))
 ASAN_TESTS := $(patsubst tests/%.c,$(B)/asan/tests/%,$(TEST_SRC))
 CLI := $(B)/crownshy
 
-.PHONY: all deps check check-fast verify verify-deep bench reproduce freeze figures paper deps-paper audit numbers trace fuzz clean
+.PHONY: all deps check check-fast verify verify-deep bench reproduce freeze figures paper deps-paper audit numbers trace fuzz clean dist dist-version
 .DELETE_ON_ERROR:
 
 all: $(CLI) $(TESTS)
@@ -90,14 +92,14 @@ $(B)/tests $(B)/asan/tests:
 # Every cmocka binary, then all of them again under ASan+UBSan; one aggregate line.
 check: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS) $(ASAN_TESTS)
-	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh -- $(ASAN_TESTS)
+	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/manifest.sh tests/citation.sh tests/docs.sh -- $(ASAN_TESTS)
 
 check-fast: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS)
-	@bash tests/run.sh $(TESTS) tests/layout.sh
+	@bash tests/run.sh $(TESTS) tests/layout.sh tests/citation.sh
 
 # ---- verification (the reviewer's job) --------------------------------------
-# Tier 1 (design.md §9 rev. 2): exit 0 when the package is consistent (a failing
+# Tier 1 (design.md §9): exit 0 when the package is consistent (a failing
 # preregistered gate is a finding, reported "not reproduced"); STRICT=1 also
 # fails on a failing gate.
 # GNU make itself exits 2 whenever a recipe fails; the recipe ends with
@@ -110,19 +112,15 @@ verify: deps
 	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j2) $(CLI)
 	@$(CLI) verify $(if $(STRICT),--strict); $(CS_STATUS)
 
-# Tier 2 (design.md §9 rev. 2): rerun every teacher experiment unit into build/deep/
-# and compare with frozen/ bit for bit (data rows), with progress; the model
-# part (redraw samples from the frozen weights) runs when `crownshy main-redraw`
-# exists (issue 14). Every teacher unit of src/exp/experiments.mk: E1, E2 at
-# beta_train and beta_field, the teacher figure data, E5, E6 and the E0 readings.
+# Tier 2 (design.md §9): rerun every unit of each experiment whose manifest
+# row says "rerun" (src/base/manifest.h; DEEP_UNITS is generated) into
+# build/deep/ and compare with frozen/ bit for bit (data rows), with
+# progress; then redraw every frozen model's samples from its weights.
 DEEP := $(B)/deep
-DEEP_UNITS = $(foreach u,$(MECH_UNITS) $(RESULTS)/mechanism/figure_stats.tsv $(IRRED_UNITS) $(TEACHER_FIG_UNITS) \
-  $(FIELD_CAL) $(RESULTS)/field/heldout.tsv $(addprefix $(RESULTS)/anisotropy/,lattice.tsv hardcore.tsv jitter.tsv jitter_calibration.tsv heldout.tsv) \
-  $(IRRED_FIELD_UNITS) $(READINGS_DIR)/summary.tsv,$(patsubst $(RESULTS)/%,$(DEEP)/%,$(u)))
 .PHONY: verify-deep
 verify-deep: deps
 	@$(MAKE) --no-print-directory $(CLI)
-	@DEEP='$(DEEP)' JOBS=2 CLI='$(CLI)' MAKE='$(MAKE)' DEEP_UNITS='$(DEEP_UNITS)' bash src/exp/verify_deep.sh
+	@DEEP='$(DEEP)' JOBS=2 CLI='$(CLI)' MAKE='$(MAKE)' DEEP_UNITS='$(patsubst $(RESULTS)/%,$(DEEP)/%,$(DEEP_UNITS))' bash src/exp/verify_deep.sh
 
 audit: deps
 	@$(MAKE) --no-print-directory $(CLI)
@@ -155,9 +153,11 @@ else
 RESULTS := $(B)/results
 endif
 REPRODUCE_UNITS :=
+DEEP_UNITS :=
+MANIFEST_EXPERIMENTS :=
 -include src/exp/experiments.mk
 
-# ==== reproduce engines (issue 16) ==========================================
+# ==== reproduce engines (design.md §13) ==========================================
 # make reproduce [ENGINE=local|slurm] [SCALE=smoke] [SLURM_ARGS='sbatch options']
 # make reproduce-status    per unit: done, queued, running, failed (with its log), missing
 # make reproduce-graph     each unit and the units it needs
@@ -190,6 +190,12 @@ reproduce-status:
 	@$(REPRODUCE_ENV) bash $(REPRODUCE_SH) status
 reproduce-graph:
 	@$(REPRODUCE_ENV) bash $(REPRODUCE_SH) graph
+# the experiments and units the manifest gives make (src/base/manifest.h)
+.PHONY: units
+units:
+	@echo "experiments: $(strip $(MANIFEST_EXPERIMENTS))"
+	@echo "reproduce: $(strip $(REPRODUCE_UNITS))"
+	@echo "verify-deep: $(strip $(DEEP_UNITS))"
 # ==== end of reproduce engines ==============================================
 
 # Copy finished full-scale results (tables, and the E3/E4 weights files) into
@@ -208,6 +214,33 @@ freeze: deps
 trace: $(CLI)
 	@$(CLI) trace $(MACRO)
 
+# ---- the release archive ------------------------------------------------------
+# `make dist`: $(B)/dist/crownshy-VERSION.tar.gz (VERSION from CITATION.cff) with
+# its SHA-256. It holds the committed and new unignored files of the package
+# (git ls-files; without .git, the same folders less the ignored build outputs)
+# and no build/. Byte-reproducible for one tree: names sorted, owner 0, every
+# mtime the last commit's time (or SOURCE_DATE_EPOCH), gzip without a timestamp.
+# tests/dist.sh unpacks it without .git and runs `make verify` there.
+VERSION := $(shell sed -n 's/^version: *//p' CITATION.cff 2>/dev/null)
+DIST := crownshy-$(VERSION)
+DIST_PATHS := Makefile README.md LICENSE CITATION.cff .ci .gitignore src tests gates frozen audit paper figures
+dist-version:
+	@echo '$(VERSION)'
+dist:
+	@[ -n '$(VERSION)' ] || { echo "dist: no 'version:' line in CITATION.cff" >&2; exit 1; }
+	@mkdir -p $(B)/dist
+	@set -eo pipefail; \
+	if [ -e .git ]; then git ls-files -co --exclude-standard -- $(DIST_PATHS); \
+	else find $(DIST_PATHS) -type f ! -name '*.tmp*' ! -name '*.pdf' ! -path 'paper/*.aux' ! -path 'paper/*.log' ! -path 'paper/*.out'; fi \
+	  | LC_ALL=C sort -u > $(B)/dist/files; \
+	if [ -e .git ] && [ -n "$$(git status --porcelain -- $(DIST_PATHS))" ]; then echo "dist: note: uncommitted changes are included"; fi; \
+	epoch=$${SOURCE_DATE_EPOCH:-$$(git log -1 --format=%ct 2>/dev/null || echo 0)}; \
+	tar --transform 's,^,$(DIST)/,' --sort=name --owner=0 --group=0 --numeric-owner --mtime=@$$epoch \
+	  --no-recursion -T $(B)/dist/files -cf - | gzip -9n > $(B)/dist/$(DIST).tar.gz.tmp; \
+	mv $(B)/dist/$(DIST).tar.gz.tmp $(B)/dist/$(DIST).tar.gz; \
+	echo "dist: $(B)/dist/$(DIST).tar.gz ($$(wc -l < $(B)/dist/files) files, $$(du -h $(B)/dist/$(DIST).tar.gz | cut -f1))"; \
+	(cd $(B)/dist && sha256sum $(DIST).tar.gz)
+
 # ---- the write-up -------------------------------------------------------------
 deps-paper:
 	@if command -v pdflatex >/dev/null; then exit 0; fi; \
@@ -221,12 +254,12 @@ paper: $(CLI)
 	@if ! command -v pdflatex >/dev/null; then echo "paper: pdflatex not installed; run make deps-paper (Debian texlive packages)" >&2; exit 1; fi
 	@cd paper && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && echo "paper: wrote paper/main.pdf"
 
-# ---- fuzzing (issues 7, 15): libFuzzer on the parsers, FUZZ_SECONDS each ---------
+# ---- fuzzing (design.md §11): libFuzzer on the parsers, FUZZ_SECONDS each ---------
 # Needs clang with libFuzzer (Debian: clang, libclang-rt-14-dev); built with -DNN_NO_CLONES
 # (clang refuses nn.c's AVX-512 clones; the parsers do not need them). Seeds: the
 # committed frozen tables, gates, numbers.tex and a fresh smoke checkpoint.
 # A crash leaves its input in build/fuzz/<target>/crash-*; copy it into
-# tests/data/fuzz/ and add a regression case to tests/test_fuzz_regress.c.
+# tests/data/fuzz/ and add a regression case to the parser's cmocka tests.
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := tsv gate ckpt numbers gatemap aggr paper
 FUZZ_CC := clang

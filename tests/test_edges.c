@@ -1,4 +1,4 @@
-/* Behaviour at the edges (design.md §11; issue 15): bad input never reaches
+/* Behaviour at the edges (design.md §11): bad input never reaches
  * paper/, non-finite values are named, directories and byte-order marks are
  * clear input errors or handled, the field table loads in O(n log n),
  * concurrent atomic writers never share a temp file, the gate map and the

@@ -42,6 +42,11 @@
 #define PATHS_PAPER_DIR "paper"
 #define PATHS_FIGURES_DIR "figures"
 #define PATHS_FROZEN_DIR "frozen"
+/* The documentation pages the audit reads for typed numbers (design.md §9):
+ * README.md and every *.md under these folders; the changelog is history. */
+#define PATHS_README "README.md"
+#define PATHS_DOCS_DIRS {"audit", "frozen", "src", "tests", "paper", "figures", "gates", NULL}
+#define PATHS_CHANGELOG "paper/CHANGELOG.md"
 
 /* The pinned instrument (design.md §4, §5): its sources are hashed into every
  * frozen file's provenance and into audit/pins.tsv; the teacher header holds

@@ -1,4 +1,4 @@
-/* audit: traceability checks (design.md §9; issue 7). Messages always name the
+/* audit: traceability checks (design.md §9). Messages always name the
  * file and the claims it feeds, so a tampered byte points at its culprit. */
 #include "audit.h"
 #include "afile.h"
@@ -419,7 +419,7 @@ static void check_provenance(const claims *c, checklist *cl, const paths_list *f
                 for (size_t j = 0; j < n; j++) if (!strcmp(cur[j].key, keys[k])) want = cur[j].value;
                 if (v && want && !strcmp(v, want)) continue;
                 /* The readings (design.md §7 E0) run the pinned teacher under its
-                 * revision-1 switch too: under frozen/readings/ the other
+                 * one-sided switch too: under frozen/readings/ the other
                  * reading's version string is expected, not a mismatch. */
                 char one[32] = "";
                 if (k == 0 && prov_teacher_version_one_sided(one, sizeof one)) one[0] = '\0';

@@ -447,7 +447,7 @@ size_t paper_scan_file(const char *path, const claims *c, const double *vals, co
  * (how many values the key has), "define FILE:NAME" (a #define of a pinned
  * header), or "text" (a number that is no quantity of the study: a date, a
  * revision, an ordinal; its 'what' says which). Each is checked at its source. */
-static size_t design_numbers_load(checklist *cl, double **out)
+size_t audit_design_numbers(checklist *cl, double **out)
 {
     tsv *t;
     *out = NULL;
@@ -501,7 +501,7 @@ void audit_paper_text(const claims *c, const claim_result *res, checklist *cl)
         if (res[r].status == VERDICT_PASS && isfinite(res[r].value)) { vals[nv] = res[r].value; who[nv++] = c->rows[r].macro; }
         if (end != c->rows[r].reference && !*end && isfinite(ref)) { vals[nv] = ref; who[nv++] = c->rows[r].macro; }
     }
-    size_t nd = design_numbers_load(cl, &design);
+    size_t nd = audit_design_numbers(cl, &design);
     static char verdicts[64][64];
     tex_scan t = {c, vals, (const char *const *)who, nv, design, nd, cl, &used, 0, 1, verdicts, 0, &files, "", "", 0};
     /* pass 1 follows every \input, \include and local package and collects the

@@ -1,6 +1,6 @@
 /* claim_comp: computing functions for E7 (reference paper Fig. teaser b-d,
  * Limitations) from frozen/comparison/{patch,dart_probe}.tsv written by
- * src/exp_comp.c, and the lidar span of teaser panel a (needs CHM=path). */
+ * src/exp/exp_comp.c, and the lidar span of teaser panel a (needs CHM=path). */
 #include "claims.h"
 #include "paths.h"
 #include "tsv.h"

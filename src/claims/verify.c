@@ -1,5 +1,6 @@
 /* verify: the `make verify` driver and `crownshy trace` (design.md §9). */
 #include "verify.h"
+#include "study.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,6 +11,7 @@
 #include "afile.h"
 #include "audit_data.h"
 #include "audit_evidence.h"
+#include "audit_docs.h"
 
 cs_status verify_eval_all(const claims *c, claim_result **out)
 {
@@ -231,6 +233,7 @@ cs_status verify_run(const verify_opts *o)
     size_t count[3] = {0}; /* consistency checks by verdict: PASS, FAIL, PENDING */
     checklist cl = {0};
     audit_run(&c, res, &cl);
+    audit_docs(&c, res, &cl);
     printf("== audit (pins, frozen hashes and provenance, aggregates, registry and gate map, generated and written paper)\n");
     checklist_print(&cl, count);
     checklist_free(&cl);
@@ -324,7 +327,12 @@ cs_status verify_trace(const char *macro)
     printf("value        %s%s%s\n", r.status == VERDICT_PASS ? r.text : verdict_name(r.status), r.status == VERDICT_PASS ? "" : ": ", r.status == VERDICT_PASS ? "" : r.why);
     printf("numbers.tex  %s (paper/numbers.tex:%d)\n", have ? have : "(absent)", line);
     printf("source       %s\n", r.where);
-    printf("function     %s (src/claim_*.c)\n", row->function);
+    char fpath[512];
+    int fline = 0;
+    if (claims_function_file(row->function, fpath, sizeof fpath, &fline)) printf("function     %s (%s)\n", row->function, cs_errmsg());
+    else printf("function     %s (%s:%d)\n", row->function, fpath, fline);
+    const study_experiment *ex = study_of_path(row->source);
+    if (ex) printf("experiment   %s (%s): %s; run by %s\n", ex->name, ex->code, ex->what, ex->source);
     printf("gate         %s%s%s%s\n", row->gate, strcmp(row->gate, "-") ? " -> " : "", strcmp(row->gate, "-") ? verdict_name(r.gate) : "",
            r.gate_detail[0] ? "" : "");
     if (r.gate_detail[0]) printf("gate detail  %s\n", r.gate_detail);

@@ -9,7 +9,7 @@
 /* strict: a failing preregistered gate (a finding) also fails verify. */
 typedef struct { int quiet; int no_figures; int strict; } verify_opts;
 
-/* design.md §9 rev. 2: CS_OK when every number, verdict, table, figure and
+/* design.md §9: CS_OK when every number, verdict, table, figure and
  * sentence follows from frozen/ and the pinned code (a failing gate is a
  * finding, "not reproduced"); CS_EFAIL on any inconsistency, or with strict
  * on any failing gate; another status on a broken installation. */

@@ -12,6 +12,7 @@
 #include "tsv.h"
 #include "verify.h"
 #include "audit_paper.h"
+#include "audit_docs.h"
 #include <unistd.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -51,7 +52,8 @@ int cli_cmd_numbers(int argc, char **argv)
     const opt_spec spec[] = {{"check", OPT_FLAG, &check, 0, 0, "only compare paper/numbers.tex with a fresh generation"}};
     const opts_cmd oc = {"numbers", "[--check]", "Regenerate paper/numbers.tex, paper/comparison.tex and paper/readings.tex from frozen/:\n"
                         "all three are generated into build/ first and moved into paper/ only when every claim\n"
-                        "was computed (exit 3 naming the claim and its input otherwise, writing nothing).\n"
+                        "was computed (exit 3 naming the claim and its input otherwise, writing nothing); then the\n"
+                        "generated regions (<!--Macro-->value<!--/-->, <!-- findings -->) of README.md and the *.md pages.\n"
                         "--check: compare the three with a fresh generation (exit 1 naming the first differing line).", spec, 1, 0, 0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
@@ -99,6 +101,8 @@ int cli_cmd_numbers(int argc, char **argv)
     size_t pend = 0;
     for (size_t i = 0; i < c.n; i++) pend += res[i].status != VERDICT_PASS;
     if (!st) printf("wrote %s, %s%s: %zu claims (%zu pending)\n", PATHS_NUMBERS, PATHS_COMPARISON, readings ? ", " PATHS_READINGS_TEX : "", c.n, pend);
+    size_t pages = 0; /* the generated regions of the documentation pages */
+    if (!st && !(st = docs_refresh(&c, res, &pages)) && pages) printf("refreshed the generated regions of %zu documentation page(s)\n", pages);
     free(res);
     claims_free(&c);
     return st ? die(st) : 0;

@@ -65,12 +65,6 @@ static int file_exists(const char *p)
     return stat(p, &sb) == 0;
 }
 
-static int fail_with(cs_status st)
-{
-    fprintf(stderr, "crownshy: %s\n", cs_errmsg());
-    return cs_exit_code(st);
-}
-
 static cs_status file_sha256(const char *path, char hex[65])
 {
     FILE *f = fopen(path, "rb");
@@ -180,36 +174,13 @@ static const char *seeds_text(char *buf, size_t n, unsigned seed)
     return buf;
 }
 
-int exp_main_cmd_run(int argc, char **argv)
+cs_status exp_main_run(const exp_main_run_args *a)
 {
-    long seedl = 0, epochs = 0, train_stands = 0, pairl = 1;
-    const char *arm = NULL, *out = NULL, *scale = "full", *ckpt = NULL, *samples = NULL, *weights = NULL;
-    const opt_spec spec[] = {
-        {"seed", OPT_LONG, &seedl, 1, 4294967295.0, "model seed (required; zero-padded 01 is 1)"},
-        {"arm", OPT_STR, &arm, 0, 0, "joint or indep (required)"},
-        {"out", OPT_STR, &out, 0, 0, "output table FILE.tsv (required)"},
-        {"scale", OPT_STR, &scale, 0, 0, "full or smoke (default full)"},
-        {"ckpt", OPT_STR, &ckpt, 0, 0, "checkpoint FILE, resumed from when it exists (default none)"},
-        {"samples", OPT_STR, &samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
-        {"weights", OPT_STR, &weights, 0, 0, "also write the final weights to FILE (weights format, README; default none)"},
-        {"epochs", OPT_LONG, &epochs, 1, 1000000, "exploration override of the plan's epochs (default: the plan's)"},
-        {"train-stands", OPT_LONG, &train_stands, 1, 10000, "exploration override of the plan's stands per training spacing (default: the plan's)"},
-        {"pair", OPT_LONG, &pairl, 0, 1, "1: the pair-aware model of design.md §8 revision 2, every probe on both arms; 0: the revision-1 model (default 1)"},
-    };
-    const opts_cmd c = {"main-run", "--seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--ckpt FILE] [--samples FILE.tsv] [--weights FILE]",
-                        "One (seed, arm) unit of E3/E4: build teacher data, train the flow model (resuming from\n"
-                        "--ckpt if it exists), evaluate W1 of focal nearest-neighbour clearances at the unseen and\n"
-                        "extrapolation spacings, as generated and under the shuffled-geometry and rotation probes,\n"
-                        "write FILE.tsv (and the samples and weights behind it).",
-                        spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = opts_parse(&c, argc, argv, NULL, NULL);
-    if (rc) return opts_exit_code(rc);
-    if (!seedl) { opts_usage_error("main-run", "--seed is required"); return 2; }
-    if (!arm) { opts_usage_error("main-run", "--arm is required"); return 2; }
-    if (strcmp(arm, "joint") && strcmp(arm, "indep")) { opts_usage_error("main-run", "--arm: must be joint or indep, not '%s'", arm); return 2; }
-    if (!out) { opts_usage_error("main-run", "--out is required"); return 2; }
-    if (strcmp(scale, "full") && strcmp(scale, "smoke")) { opts_usage_error("main-run", "--scale: must be full or smoke, not '%s'", scale); return 2; }
-    unsigned seed = (unsigned)seedl;
+    const char *arm = a->arm, *out = a->out, *scale = a->scale, *ckpt = a->ckpt, *samples = a->samples, *weights = a->weights;
+    const long epochs = a->epochs, train_stands = a->train_stands, pairl = a->pair;
+    const int argc = a->argc;
+    char **argv = a->argv;
+    const unsigned seed = a->seed;
     int joint = !strcmp(arm, "joint");
     prov pv;
     prov_begin(&pv, "main", argc, argv);
@@ -217,17 +188,17 @@ int exp_main_cmd_run(int argc, char **argv)
     exp_main_plan pl;
     cs_status st = mainset_design_get(&ds);
     if (!st) st = exp_main_plan_get(scale, &pl);
-    if (st) return fail_with(st);
+    if (st) return st;
     /* exploration overrides (recorded in the provenance command line) */
     if (epochs) pl.epochs = (int)epochs;
     if (train_stands) pl.train_stands = (int)train_stands;
-    if (pl.epochs < 1) { opts_usage_error("main-run", "the plan's epochs must be >= 1"); return 2; }
+    if (pl.epochs < 1) return cs_err(CS_EUSAGE, "main-run: the plan's epochs must be >= 1");
     const int pair = (int)pairl;
     double worst = 0.0, maxdiff = 0.0;
     patch_set *tr = NULL;
-    if ((st = mainset_train_build(&ds, pl.train_stands, &tr, &worst))) return fail_with(st);
+    if ((st = mainset_train_build(&ds, pl.train_stands, &tr, &worst))) return st;
     double data_scale = patch_set_rms(tr);
-    if ((st = patch_set_standardise(tr, data_scale))) { patch_set_free(tr); return fail_with(st); }
+    if ((st = patch_set_standardise(tr, data_scale))) { patch_set_free(tr); return st; }
 
     model_cfg cfg = model_cfg_reference(PATCH_NCOND);
     cfg.joint = joint;
@@ -241,15 +212,16 @@ int exp_main_cmd_run(int argc, char **argv)
     o.seed_batch = (unsigned long)seed_derive("main-model", 0, seed, "batch");
     o.seed_noise = (unsigned long)seed_derive("main-model", 0, seed, "noise");
     /* the checkpoint's directory must exist before the first atomic write */
-    if (ckpt && (st = afile_mkdir_parents(ckpt))) { patch_set_free(tr); return fail_with(st); }
+    if (ckpt && (st = afile_mkdir_parents(ckpt))) { patch_set_free(tr); return st; }
     train *t = NULL;
-    if ((st = train_alloc(&t, &cfg, tr, &o))) { patch_set_free(tr); return fail_with(st); }
+    if ((st = train_alloc(&t, &cfg, tr, &o))) { patch_set_free(tr); return st; }
     if (ckpt && file_exists(ckpt)) {
         st = train_load(t, ckpt);
         if (st) {
-            fprintf(stderr, "crownshy: %s (delete the checkpoint to restart this run)\n", cs_errmsg());
+            char why[512];
+            snprintf(why, sizeof why, "%s", cs_errmsg());
             train_free(t); patch_set_free(tr);
-            return cs_exit_code(st);
+            return cs_err(st, "%s (delete the checkpoint to restart this run)", why);
         }
         fprintf(stderr, "main-run s%u %s: resuming at step %ld of %ld\n", seed, arm, t->step, o.steps);
     }
@@ -259,7 +231,7 @@ int exp_main_cmd_run(int argc, char **argv)
     char wsha[65] = "", ssha[65] = "", sbuf[256];
     if (!st && weights && !(st = afile_mkdir_parents(weights)) && !(st = train_save_weights(t, weights)))
         st = file_sha256(weights, wsha);
-    if (st) { train_free(t); patch_set_free(tr); return fail_with(st); }
+    if (st) { train_free(t); patch_set_free(tr); return st; }
 
     run_row rows[MAINSET_NPROBE * 2 * MAXSP];
     size_t nrows = 0;
@@ -306,36 +278,17 @@ int exp_main_cmd_run(int argc, char **argv)
     rows_free(rows, nrows);
     train_free(t);
     patch_set_free(tr);
-    if (st) return fail_with(st);
-    return 0;
+    return st;
 }
 
 /* Redraw the samples of one unit from its frozen weights alone (design.md §9
  * verify-deep): the same evaluation sets, seeds and sampler as main-run. */
-int exp_main_cmd_redraw(int argc, char **argv)
+cs_status exp_main_redraw(const exp_main_redraw_args *a)
 {
-    long seedl = 0;
-    const char *arm = NULL, *out = NULL, *scale = "full", *weights = NULL;
-    const opt_spec spec[] = {
-        {"weights", OPT_STR, &weights, 0, 0, "weights FILE written by main-run --weights (or its checkpoint) (required)"},
-        {"seed", OPT_LONG, &seedl, 1, 4294967295.0, "model seed of the unit (required)"},
-        {"arm", OPT_STR, &arm, 0, 0, "joint or indep (required; must match the weights)"},
-        {"out", OPT_STR, &out, 0, 0, "output samples FILE.tsv (required)"},
-        {"scale", OPT_STR, &scale, 0, 0, "full or smoke (default full)"},
-    };
-    const opts_cmd c = {"main-redraw", "--weights FILE --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke]",
-                        "Draw the clearance samples of one E3/E4 unit again from its weights, without training:\n"
-                        "the data rows of FILE.tsv equal those of the unit's samples_s<seed>_<arm>.tsv bit for bit.",
-                        spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = opts_parse(&c, argc, argv, NULL, NULL);
-    if (rc) return opts_exit_code(rc);
-    if (!weights) { opts_usage_error("main-redraw", "--weights is required"); return 2; }
-    if (!seedl) { opts_usage_error("main-redraw", "--seed is required"); return 2; }
-    if (!arm) { opts_usage_error("main-redraw", "--arm is required"); return 2; }
-    if (strcmp(arm, "joint") && strcmp(arm, "indep")) { opts_usage_error("main-redraw", "--arm: must be joint or indep, not '%s'", arm); return 2; }
-    if (!out) { opts_usage_error("main-redraw", "--out is required"); return 2; }
-    if (strcmp(scale, "full") && strcmp(scale, "smoke")) { opts_usage_error("main-redraw", "--scale: must be full or smoke, not '%s'", scale); return 2; }
-    unsigned seed = (unsigned)seedl;
+    const char *arm = a->arm, *out = a->out, *scale = a->scale, *weights = a->weights;
+    const int argc = a->argc;
+    char **argv = a->argv;
+    const unsigned seed = a->seed;
     prov pv;
     prov_begin(&pv, "main", argc, argv);
     mainset_design ds;
@@ -356,33 +309,21 @@ int exp_main_cmd_redraw(int argc, char **argv)
     if (!st) st = samples_write(out, &pv, seed, arm, rows, nrows);
     rows_free(rows, nrows);
     model_free(m);
-    return st ? fail_with(st) : 0;
+    return st;
 }
 
-int exp_main_cmd_baselines(int argc, char **argv)
+cs_status exp_main_baselines(const exp_main_baselines_args *a)
 {
-    const char *out = NULL, *scale = "full", *samples = NULL;
-    const opt_spec spec[] = {
-        {"out", OPT_STR, &out, 0, 0, "output table FILE.tsv (required)"},
-        {"scale", OPT_STR, &scale, 0, 0, "full or smoke (default full)"},
-        {"samples", OPT_STR, &samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
-    };
-    const opts_cmd c = {"main-baselines", "--out FILE.tsv [--scale full|smoke] [--samples FILE.tsv]",
-                        "Direction-blind baseline (every crown replaced by its circular mean), split-half noise floor\n"
-                        "of the teacher, and the teacher's own crowns under the shuffled-geometry and rotation probes\n"
-                        "(added after the first verdict), as W1 of focal nearest-neighbour clearances per eval spacing.",
-                        spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = opts_parse(&c, argc, argv, NULL, NULL);
-    if (rc) return opts_exit_code(rc);
-    if (!out) { opts_usage_error("main-baselines", "--out is required"); return 2; }
-    if (strcmp(scale, "full") && strcmp(scale, "smoke")) { opts_usage_error("main-baselines", "--scale: must be full or smoke, not '%s'", scale); return 2; }
+    const char *out = a->out, *scale = a->scale, *samples = a->samples;
+    const int argc = a->argc;
+    char **argv = a->argv;
     prov pv;
     prov_begin(&pv, "main", argc, argv);
     mainset_design ds;
     exp_main_plan pl;
     cs_status st = mainset_design_get(&ds);
     if (!st) st = exp_main_plan_get(scale, &pl);
-    if (st) return fail_with(st);
+    if (st) return st;
     double worst = 0.0, maxdiff = 0.0;
     size_t nall = ds.nunseen + ds.nextrap;
     /* per spacing: 0 teacher, 1 teacher shuffled, 2 teacher rotated, 3 direction-blind */
@@ -462,28 +403,16 @@ int exp_main_cmd_baselines(int argc, char **argv)
     if (w) tsv_writer_abort(w);
     for (size_t si = 0; si < nall; si++)
         for (int q = 0; q < 4; q++) free(smp[si][q]);
-    return st ? fail_with(st) : 0;
+    return st;
 }
 
 /* Gather the per-run tables into main/runs.tsv (error on unseen spacings and
  * the shuffled probe, per seed and arm) and extrapolation/runs.tsv. */
-int exp_main_cmd_summary(int argc, char **argv)
+cs_status exp_main_summary(const exp_main_summary_args *a)
 {
-    const char *dir = NULL;
-    long ns = 0;
-    const opt_spec spec[] = {
-        {"dir", OPT_STR, &dir, 0, 0, "results root RESULTS (required)"},
-        {"seeds", OPT_LONG, &ns, 1, 64, "seeds 1..N to gather (required)"},
-    };
-    const opts_cmd c = {"main-summary", "--dir RESULTS --seeds N",
-                        "Read RESULTS/main/run_s<seed>_<arm>.tsv for seeds 1..N and both arms; write\n"
-                        "RESULTS/main/runs.tsv (per-run errors) and RESULTS/extrapolation/runs.tsv.",
-                        spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = opts_parse(&c, argc, argv, NULL, NULL);
-    if (rc) return opts_exit_code(rc);
-    if (!dir) { opts_usage_error("main-summary", "--dir is required"); return 2; }
-    if (!ns) { opts_usage_error("main-summary", "--seeds is required"); return 2; }
-    int nseeds = (int)ns;
+    const char *dir = a->dir;
+    const int nseeds = a->seeds, argc = a->argc;
+    char **argv = a->argv;
     prov pv;
     prov_begin(&pv, "main", argc, argv);
     const char *arms[2] = {"joint", "indep"};
@@ -550,5 +479,5 @@ int exp_main_cmd_summary(int argc, char **argv)
         st = tsv_writer_commit(w);
     }
     free(rr);
-    return st ? fail_with(st) : 0;
+    return st;
 }

@@ -23,7 +23,7 @@
 #include "patch.h"
 #include <gsl/gsl_rng.h>
 
-/* Stands per training spacing at full scale (issue 14: chosen so that E3+E4
+/* Stands per training spacing at full scale (design.md §8: chosen so that E3+E4
  * fit the 60 min budget on 2 cores; measured, README "Budgets"). */
 #define EXP_MAIN_TRAIN_STANDS 12
 
@@ -41,10 +41,49 @@ typedef struct {
 /* The plan for a scale ("full" or "smoke"); gate values read from gates/. */
 cs_status exp_main_plan_get(const char *scale, exp_main_plan *p);
 
-/* CLI entry points (return process exit codes; design.md §11). */
-int exp_main_cmd_run(int argc, char **argv);
-int exp_main_cmd_baselines(int argc, char **argv);
-int exp_main_cmd_summary(int argc, char **argv);
-int exp_main_cmd_redraw(int argc, char **argv);
+/* The entry points (argv tables: src/cli/cli_main.c). argc/argv are the
+ * command line, quoted in the provenance. */
+typedef struct {
+    unsigned seed;           /* model seed, >= 1 */
+    const char *arm;         /* "joint" or "indep" */
+    const char *out;         /* the run table */
+    const char *scale;       /* "full" or "smoke" */
+    const char *ckpt;        /* checkpoint, resumed from when it exists (NULL: none) */
+    const char *samples;     /* also the clearance samples behind every W1 (NULL: none) */
+    const char *weights;     /* also the final weights (NULL: none) */
+    long epochs;             /* 0: the plan's; else an exploration override */
+    long train_stands;       /* 0: the plan's; else an exploration override */
+    int pair;                /* 1: the pair-aware model (design.md §8), 0: the plain one */
+    int argc;
+    char **argv;
+} exp_main_run_args;
+/* One (seed, arm) unit: train (resuming), evaluate, write the run table. */
+cs_status exp_main_run(const exp_main_run_args *a);
+
+typedef struct {
+    const char *weights, *arm, *out, *scale;
+    unsigned seed;
+    int argc;
+    char **argv;
+} exp_main_redraw_args;
+/* A unit's samples drawn again from its weights alone (no training). */
+cs_status exp_main_redraw(const exp_main_redraw_args *a);
+
+typedef struct {
+    const char *out, *scale, *samples; /* samples: NULL for none */
+    int argc;
+    char **argv;
+} exp_main_baselines_args;
+/* The direction-blind baseline, the noise floor and the teacher under the probes. */
+cs_status exp_main_baselines(const exp_main_baselines_args *a);
+
+typedef struct {
+    const char *dir; /* results root */
+    int seeds;       /* seeds 1..seeds */
+    int argc;
+    char **argv;
+} exp_main_summary_args;
+/* main/runs.tsv and extrapolation/runs.tsv from the run tables. */
+cs_status exp_main_summary(const exp_main_summary_args *a);
 
 #endif

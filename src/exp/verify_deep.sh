@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# verify_deep.sh: the second tier of verification (design.md §9 rev. 2; issue 15),
+# verify_deep.sh: the second tier of verification (design.md §9),
 # behind `make verify-deep`. Reruns every teacher experiment unit (E1, E2, the
 # teacher figure data, E5, E6 and the E0 readings) into $DEEP with make -j$JOBS,
 # printing progress (units done of total, elapsed, ETA), then compares every
 # table it wrote with its frozen/ counterpart bit for bit: the data rows (the
 # header and every row after the "# key: value" lines); provenance lines
 # (date, wall time, git commit, command paths) are expected to differ.
-# The model part: for each frozen weights file, `crownshy main-redraw` (issue 14)
+# The model part: for each frozen weights file, `crownshy main-redraw`
 # redraws the unit's clearance samples and they are compared the same way.
 # Exit 0: every rerun table equals frozen/; 1: a difference, a missing model or a
 # failed unit. The last line is always the summary, with the exit status.
@@ -66,10 +66,10 @@ done < <(find "$DEEP" -name '*.tsv' ! -name '*.tmp*' ! -name '.*' | sort)
 echo "verify-deep: teacher part: $same tables bit-identical to frozen/, $differ differ, $missing not frozen, $skipped figure tables not frozen by design"
 [ $((differ + missing)) -eq 0 ] || status=1
 
-# ---- the model part (issue 14): redraw samples from the frozen weights ----
-# Every frozen/main/weights_sNN_ARM.ckpt is loaded by `crownshy main-redraw`,
+# ---- the model part: redraw samples from the frozen weights ----
+# Every frozen/main/weights_s<seed>_<arm>.ckpt is loaded by `crownshy main-redraw`,
 # which draws the unit's clearance samples again (no training) into
-# $DEEP/model/; each must equal frozen/main/samples_sNN_ARM.tsv (data rows).
+# $DEEP/model/; each must equal frozen/main/samples_s<seed>_<arm>.tsv (data rows).
 # Two redraws run at a time (about 40 s each on one core).
 # The list comes from the design (gates/main.gate seeds x the two arms), not
 # from the files that happen to exist: a deleted weights/samples pair fails.
