@@ -59,7 +59,8 @@ void pairattn_backward(float *dqkv, float *dwb, float *dwv, const float *dout, c
 
 /* Fused with the neighbouring products as nn_linear_attention_forward /
  * nn_linear_backward_attention (same values as the unfused sequence):
- * qkv = in w^T + b (w[3C x C]; wt as in nn_linear_forward), then pairattn_forward. */
+ * qkv = in w^T + b (w[3C x C]; wt as in nn_linear_forward), then pairattn_forward;
+ * under NN_ATTN_SELF only the v columns of qkv (nn_linear_attention_forward). */
 void pairattn_linear_forward(float *qkv, float *out, float *prob, float *Phi, const float *in,
                              const float *w, const float *b, const float *phi, const float *phit,
                              const float *wb, const float *wvt, int B, int T, int C, int H,
