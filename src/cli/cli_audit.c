@@ -41,7 +41,7 @@ int cli_cmd_verify(int argc, char **argv)
 int cli_cmd_numbers(int argc, char **argv)
 {
     int check = 0;
-    const opt_spec spec[] = {{"check", OPT_FLAG, &check, 0, 0, "only compare paper/numbers.tex with a fresh generation"}};
+    const opt_spec spec[] = {{"check", OPT_FLAG, &check, 0, 0, "only compare the three files with a fresh generation (write nothing)"}};
     const opts_cmd oc = {"numbers", "[--check]", "Regenerate paper/numbers.tex, paper/comparison.tex and paper/readings.tex from frozen/:\n"
                         "all three are generated into build/ first and moved into paper/ only when every claim\n"
                         "was computed (exit 3 naming the claim and its input otherwise, writing nothing).\n"

@@ -39,7 +39,7 @@ cs_status exp_aniso_lattice(const exp_field_opts *args)
     double a;
     cs_status st = exp_canonical_jitter(&a);
     if (st) return st;
-    exp_field_job j = {"anisotropy/lattice", STAND_LATTICE, a, a, c.value, o.stands, 0, 0, o.rd};
+    exp_field_job j = {.seed_exp = "anisotropy/lattice", .kind = STAND_LATTICE, .shape = a, .level = a, .beta = c.value, .nstands = o.stands, .rd = o.rd};
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
@@ -78,7 +78,7 @@ static cs_status aniso_family(const char *cmd, const exp_field_opts *args, stand
     fs_trees_init(&acc);
     double worst = 0;
     for (size_t k = 0; k < nl && !st; k++) {
-        jobs[k] = (exp_field_job){seed_exp, kind, lv[k], lv[k], c.value, o.stands, 0, 0, o.rd};
+        jobs[k] = (exp_field_job){.seed_exp = seed_exp, .kind = kind, .shape = lv[k], .level = lv[k], .beta = c.value, .nstands = o.stands, .rd = o.rd};
         st = exp_field_run_job(&jobs[k], &acc, &worst);
         if (!st) {
             fs_summary s;
@@ -160,7 +160,7 @@ cs_status exp_aniso_heldout(const exp_field_opts *args)
     if (st) return st;
     prov p;
     exp_prov_begin(&p, "anisotropy", &o.rd, argc, argv);
-    exp_field_job j = {"anisotropy/heldout", STAND_LATTICE, js.value, js.value, c.value, o.stands, 0, 0, o.rd};
+    exp_field_job j = {.seed_exp = "anisotropy/heldout", .kind = STAND_LATTICE, .shape = js.value, .level = js.value, .beta = c.value, .nstands = o.stands, .rd = o.rd};
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;

@@ -90,7 +90,7 @@ cs_status exp_field_calibrate(const exp_field_opts *args)
     double worst = 0;
     for (size_t k = 0; k < nb && !st; k++) {
         double beta = fs_round_step(lo + (double)k * step, step);
-        jobs[k] = (exp_field_job){"field/calibration", STAND_LATTICE, a, beta, beta, (unsigned)seeds, 0, 0, o.rd};
+        jobs[k] = (exp_field_job){.seed_exp = "field/calibration", .kind = STAND_LATTICE, .shape = a, .level = beta, .beta = beta, .nstands = (unsigned)seeds, .rd = o.rd};
         st = exp_field_run_job(&jobs[k], &acc, &worst);
         if (!st && (k % 7 == 0 || k + 1 == nb)) fprintf(stderr, "field-calibrate: beta %.2f done (%zu/%zu)\n", beta, k + 1, nb);
     }
@@ -127,7 +127,7 @@ cs_status exp_field_heldout(const exp_field_opts *args)
     double a;
     cs_status st = exp_canonical_jitter(&a);
     if (st) return st;
-    exp_field_job j = {"field/heldout", STAND_LATTICE, a, c.value, c.value, o.stands, 1, 0, o.rd};
+    exp_field_job j = {.seed_exp = "field/heldout", .kind = STAND_LATTICE, .shape = a, .level = c.value, .beta = c.value, .nstands = o.stands, .twins = 1, .rd = o.rd};
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
@@ -197,7 +197,7 @@ cs_status exp_field_diagnose(const exp_field_opts *args)
     /* 3. a perfect lattice at beta_field */
     fs_trees acc;
     fs_trees_init(&acc);
-    exp_field_job j = {"field/diagnose", STAND_LATTICE, 0.0, 0.0, c.value, o.stands, 0, 0, o.rd};
+    exp_field_job j = {.seed_exp = "field/diagnose", .kind = STAND_LATTICE, .shape = 0.0, .level = 0.0, .beta = c.value, .nstands = o.stands, .rd = o.rd};
     double worst = 0;
     st = exp_field_run_job(&j, &acc, &worst);
     fs_summary sm;
