@@ -130,9 +130,11 @@ figures: deps
 	@$(MAKE) --no-print-directory $(CLI)
 	@$(CLI) figures
 
-# Speed (design.md §10), measured here and never by a timed test: teacher ms per
-# 144-tree stand at N = 48 and 384; trainer steps/s, model and same-run sgemm
-# GFLOP/s at the reference configuration, and their ratio.
+# Speed (design.md §10), measured here and never by a timed test: teacher CPU ms
+# per 144-tree stand at N = 48 and 384; on every vector path of the CPU, the
+# core's FMA peak and, as fractions of it measured beside each, the own product,
+# sgemm, training and sampling of the plain and pair models, every goal judged,
+# and the projected wall time of E3+E4 (README "Speed").
 bench: deps
 	@$(MAKE) --no-print-directory $(CLI)
 	@$(CLI) bench-teacher
