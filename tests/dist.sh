@@ -6,7 +6,8 @@
 # builds the CLI from nothing and exits 0, reports the git ledger unavailable,
 # and prints every other line of the clone's verify unchanged: the same
 # audit, the same claim table, the same figures and summary (folder names
-# made with a process id aside).
+# made with a process id aside); and `make dist` in the unpacked copy (no
+# .git: the folders less the ignored build outputs) rebuilds the same bytes.
 # Prints cmocka-style lines so tests/run.sh and .ci/run count the cases.
 set -u
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -19,14 +20,14 @@ echo "[==========] Running the release-archive test"
 
 ver=$(make -s --no-print-directory dist-version)
 tgz=build/dist/crownshy-$ver.tar.gz
-if ! make -s --no-print-directory dist > "$tmp/dist1.log" 2>&1 || [ ! -f "$tgz" ]; then
+if ! SOURCE_DATE_EPOCH=$(git log -1 --format=%ct 2>/dev/null || echo 0) make -s --no-print-directory dist > "$tmp/dist1.log" 2>&1 || [ ! -f "$tgz" ]; then
   bad "make dist" "failed: $(tail -3 "$tmp/dist1.log")"
 else
   sum1=$(grep -E "^[0-9a-f]{64}  crownshy-$ver.tar.gz$" "$tmp/dist1.log" | cut -c1-64)
   real=$(sha256sum "$tgz" | cut -c1-64)
   [ -n "$sum1" ] && [ "$sum1" = "$real" ] && ok "make dist prints the archive's SHA-256 ($real)" || bad "make dist" "printed '$sum1', the archive's is $real"
   cp "$tgz" "$tmp/first.tar.gz"
-  make -s --no-print-directory dist > "$tmp/dist2.log" 2>&1
+  SOURCE_DATE_EPOCH=$(git log -1 --format=%ct 2>/dev/null || echo 0) make -s --no-print-directory dist > "$tmp/dist2.log" 2>&1
   cmp -s "$tgz" "$tmp/first.tar.gz" && ok "make dist again: the same bytes" || bad "reproducible archive" "a second make dist differs"
 fi
 
@@ -62,6 +63,12 @@ if [ "$nc" -gt 0 ] && diff <(claims "$tmp/clone.n") <(claims "$tmp/dist.n") > "$
 else bad "claim table" "$nc claim lines in the clone; differences: $(head -4 "$tmp/claims.diff")"; fi
 if diff "$tmp/clone.n" "$tmp/dist.n" > "$tmp/all.diff"; then ok "every other verify line the same as in the clone ($(wc -l < "$tmp/clone.n") lines, the ledger aside)"
 else bad "verify output" "differs from the clone: $(head -6 "$tmp/all.diff")"; fi
+
+# the unpacked copy rebuilds the same archive (same files, one mtime)
+epoch=$(git log -1 --format=%ct 2>/dev/null || echo 0)
+if (cd "$dir" && SOURCE_DATE_EPOCH=$epoch GIT_CEILING_DIRECTORIES="$tmp" make -s --no-print-directory dist) > "$tmp/dist3.log" 2>&1 \
+   && cmp -s "$dir/build/dist/crownshy-$ver.tar.gz" "$tgz"; then ok "make dist in the unpacked copy (no .git) rebuilds the same bytes"
+else bad "make dist in the unpacked copy" "$(tail -2 "$tmp/dist3.log"); $(diff <(tar tzf "$tgz") <(tar tzf "$dir/build/dist/crownshy-$ver.tar.gz" 2>/dev/null) | head -3)"; fi
 
 echo "[==========] $((pass + fail)) test(s) run."
 echo "[  PASSED  ] $pass test(s)."
