@@ -99,12 +99,17 @@ check-fast: deps
 	@bash tests/run.sh $(TESTS) tests/layout.sh tests/citation.sh
 
 # ---- verification (the reviewer's job) --------------------------------------
-# Tier 1 (design.md §9 rev. 2): exit 0 when the package is consistent (a failing
+# Tier 1 (design.md §9): exit 0 when the package is consistent (a failing
 # preregistered gate is a finding, reported "not reproduced"); STRICT=1 also
 # fails on a failing gate.
+# GNU make itself exits 2 whenever a recipe fails; the recipe ends with
+# crownshy's own status (make prints it as "Error K") after one line naming its
+# kind: 1 inconsistency, 2 usage, 3 bad input, 4 environment (design.md §11).
+CS_STATUS = st=$$?; if [ $$st -ne 0 ]; then case $$st in 1) k=inconsistency;; 2) k=usage;; 3) k='bad input';; 4) k=environment;; *) k=other;; esac; \
+  echo "make $@: crownshy exited $$st ($$k)" >&2; fi; exit $$st
 verify: deps
 	@$(MAKE) --no-print-directory $(CLI)
-	@$(CLI) verify $(if $(STRICT),--strict)
+	@$(CLI) verify $(if $(STRICT),--strict); $(CS_STATUS)
 
 # Tier 2 (design.md §9): rerun every unit of each experiment whose manifest
 # row says "rerun" (src/base/manifest.h; DEEP_UNITS is generated) into
@@ -118,7 +123,7 @@ verify-deep: deps
 
 audit: deps
 	@$(MAKE) --no-print-directory $(CLI)
-	@$(CLI) audit
+	@$(CLI) audit; $(CS_STATUS)
 
 figures: deps
 	@$(MAKE) --no-print-directory $(CLI)
@@ -134,7 +139,7 @@ bench: deps
 
 numbers: deps
 	@$(MAKE) --no-print-directory $(CLI)
-	@$(CLI) numbers
+	@$(CLI) numbers; $(CS_STATUS)
 
 # ---- the full run of the study ----------------------------------------------
 # One make target per unit (seed, arm, experiment) writing into $(RESULTS);
@@ -151,7 +156,7 @@ DEEP_UNITS :=
 MANIFEST_EXPERIMENTS :=
 -include src/exp/experiments.mk
 
-# ==== reproduce engines (issue 16) ==========================================
+# ==== reproduce engines (design.md §13) ==========================================
 # make reproduce [ENGINE=local|slurm] [SCALE=smoke] [SLURM_ARGS='sbatch options']
 # make reproduce-status    per unit: done, queued, running, failed (with its log), missing
 # make reproduce-graph     each unit and the units it needs
@@ -169,9 +174,16 @@ REPRODUCE_ENV = REPRODUCE_RESULTS='$(RESULTS)' REPRODUCE_UNITS='$(strip $(REPROD
   REPRODUCE_VARS='SCALE=$(SCALE)$(if $(filter command line,$(origin B)), B=$(B))$(if $(filter command line,$(origin RESULTS)), RESULTS=$(RESULTS))' \
   SLURM_ARGS='$(SLURM_ARGS)' MAKE='$(MAKE)'
 .PHONY: reproduce-status reproduce-graph
+# One reproduce at a time per tree: the second refuses (exit 4, naming the
+# holder) instead of racing the first for the same results (build/reproduce.lock,
+# held by the recipe's shell and its children until the run ends).
+REPRODUCE_LOCK := build/reproduce.lock
 reproduce: deps
-	@$(MAKE) --no-print-directory $(CLI)
-	@if [ -z "$(strip $(REPRODUCE_UNITS))" ]; then echo "reproduce: no experiment registered yet"; \
+	@mkdir -p $(dir $(REPRODUCE_LOCK)); exec 9>>$(REPRODUCE_LOCK); \
+	 if ! flock -n 9; then echo "reproduce: another make reproduce is running in this tree ($(REPRODUCE_LOCK) held by pid $$(cat $(REPRODUCE_LOCK).pid 2>/dev/null || echo '?')): wait for it to end, or stop it" >&2; exit 4; fi; \
+	 echo $$$$ > $(REPRODUCE_LOCK).pid; \
+	 $(MAKE) --no-print-directory $(CLI) || exit $$?; \
+	 if [ -z "$(strip $(REPRODUCE_UNITS))" ]; then echo "reproduce: no experiment registered yet"; \
 	 else $(REPRODUCE_ENV) bash $(REPRODUCE_SH) $(ENGINE); fi
 reproduce-status:
 	@$(REPRODUCE_ENV) bash $(REPRODUCE_SH) status
@@ -241,12 +253,12 @@ paper: $(CLI)
 	@if ! command -v pdflatex >/dev/null; then echo "paper: pdflatex not installed; run make deps-paper (Debian texlive packages)" >&2; exit 1; fi
 	@cd paper && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && echo "paper: wrote paper/main.pdf"
 
-# ---- fuzzing (issues 7, 15): libFuzzer on the parsers, FUZZ_SECONDS each ---------
+# ---- fuzzing (design.md §11): libFuzzer on the parsers, FUZZ_SECONDS each ---------
 # Needs clang with libFuzzer (Debian: clang, libclang-rt-14-dev); built with -DNN_NO_CLONES
 # (clang refuses nn.c's AVX-512 clones; the parsers do not need them). Seeds: the
 # committed frozen tables, gates, numbers.tex and a fresh smoke checkpoint.
 # A crash leaves its input in build/fuzz/<target>/crash-*; copy it into
-# tests/data/fuzz/ and add a regression case to tests/test_fuzz_regress.c.
+# tests/data/fuzz/ and add a regression case to the parser's cmocka tests.
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := tsv gate ckpt numbers gatemap aggr paper
 FUZZ_CC := clang

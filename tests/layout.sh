@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The layout of src/ (issue 12): the pipeline is visible in its folders and
+# The layout of src/: the pipeline is visible in its folders and
 # imports only point down it. Checks, from the sources alone:
 #  1. no source file over 600 lines;
 #  2. the module import graph has no cycle (a module is a basename: x.c +
@@ -16,7 +16,9 @@
 #     experiments: the files its rows name exist, every frozen/ folder has a
 #     row, every command is named <experiment>-... and has a handler, no
 #     command or unit is listed by hand in src/cli/cli.c, the Makefile or
-#     experiments.mk, and the experiment table of src/README.md is the generated one.
+#     experiments.mk, and the experiment table of src/README.md is the generated one;
+#  5. every path a comment names (src/, tests/, figures/, audit/, gates/,
+#     paper/, frozen/) exists.
 # Prints cmocka-style lines so tests/run.sh counts it like a test binary.
 set -u
 cd "$(dirname "$0")/.."
@@ -129,6 +131,20 @@ if [ -z "$hand" ]; then ok "no unit list by hand in the Makefile or experiments.
 readme=$(awk '/^<!-- experiments: generated/ {on = 1; next} /^<!-- end of experiments -->/ {on = 0} on' src/README.md)
 if [ "$readme" = "$(bash src/base/manifest.sh readme)" ]; then ok "src/README.md's experiment table is the manifest's"
 else bad "src/README.md's experiment table is the manifest's" "regenerate it with: bash src/base/manifest.sh readme"; fi
+
+# 5. every path a comment names exists (C: lines with /*, * or //; shell,
+# make, gnuplot: after #). A pattern is written with <...>, * or %.
+# The pinned teacher and estimator change only with a re-pin and a re-freeze:
+# their comments are checked when they are next edited, not here.
+cpaths=$(for f in src/*/*.c src/*/*.h src/*/*.inc tests/*.c tests/*.h; do
+  case "$f" in src/forest/teacher.[ch]|src/forest/estimator.[ch]) continue;; esac
+  grep -nE '/\*|^\s*\*|//' "$f" | sed "s|^|$f:|"; done
+  for f in src/*/*.sh src/*/*.mk tests/*.sh Makefile .ci/run figures/*.gp; do
+  [ -f "$f" ] && grep -n '#' "$f" | sed 's/^\([0-9]*:\)[^#]*#/\1#/' | sed "s|^|$f:|"; done)
+stale=$(grep -oE '^[^:]+:[0-9]+:|(^|[^A-Za-z0-9_./<-])(src|tests|figures|audit|gates|paper|frozen)/[A-Za-z0-9_./<>*%{}-]*[A-Za-z0-9_>}*]' <<<"$cpaths" |
+  awk '/^[^ ]+:[0-9]+:$/ { where = $0; next } { sub(/^[^a-z]/, ""); print where " " $0 }' |
+  while read -r where p; do case "$p" in *[\<\*%{]*) continue;; esac; [ -e "$p" ] || echo "$where$p"; done | sort -u)
+if [ -z "$stale" ]; then ok "every path named in a comment exists"; else bad "every path named in a comment exists" "$(echo $stale)"; fi
 
 echo "[==========] layout tests run."
 echo "[  PASSED  ] $pass test(s)."

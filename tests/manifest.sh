@@ -9,7 +9,7 @@
 #    `make toy` runs it;
 #  - `crownshy --help` lists its command and `crownshy toy-run --help` works;
 #  - after `make freeze`-style steps (copy, hash-frozen, pin, numbers) its
-#    claim is computed from frozen/toy/, `crownshy trace` names the table,
+#    claim is computed from its frozen table, `crownshy trace` names it,
 #    the computing function's real file and the experiment, and
 #    `crownshy verify --no-figures` says the package is consistent.
 # Prints cmocka-style lines so tests/run.sh counts it like a test binary.

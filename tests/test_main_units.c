@@ -1,4 +1,4 @@
-/* E3/E4 units at smoke scale (issue 14): a unit writes the clearance samples
+/* E3/E4 units at smoke scale (design.md §8): a unit writes the clearance samples
  * behind every W1 of its table and its final weights; `crownshy main-redraw`
  * draws the same samples from the weights alone, bit for bit; every W1 of the
  * table is est_w1 of its samples (claim_main_samples_check). Runs

@@ -380,7 +380,7 @@ cs_status claims_write_comparison(const char *path, const claims *c, const claim
     return afile_commit(&a);
 }
 
-/* Distance to the reference paper (issue 13): measured claims whose value
+/* Distance to the reference paper (design.md §9): measured claims whose value
  * was computed and whose reference is a plain non-zero number. */
 int claims_rel_diff(const claim_row *row, const claim_result *res, double *ref, double *rel)
 {

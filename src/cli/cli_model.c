@@ -47,7 +47,7 @@ int cli_cmd_train(int argc, char **argv)
         {"depth", OPT_LONG, &depth, 1, 64, "transformer blocks (default 3)"},
         {"heads", OPT_LONG, &heads, 1, 64, "attention heads (default 4)"},
         {"mlp", OPT_LONG, &mlp, 1, 16384, "MLP width (default 256)"},
-        {"pair", OPT_LONG, &pair, 0, 1, "1: pair-aware model with standardised features (design.md §8 revision 2; default 0)"},
+        {"pair", OPT_LONG, &pair, 0, 1, "1: pair-aware model with standardised features (design.md §8; default 0)"},
         {"seed", OPT_LONG, &seed, 0, 4294967295.0, "run seed: init/batch/noise streams use 3s+1, 3s+2, 3s+3 (default 1)"},
         {"stands", OPT_LONG, &stands, 1, 100000, "toy training stands, 64 patches each (default 8)"},
         {"spacing", OPT_DOUBLE, &d, 0.1, 100, "toy stand spacing in m (default 4.5)"},

@@ -23,7 +23,7 @@
 #include "patch.h"
 #include <gsl/gsl_rng.h>
 
-/* Stands per training spacing at full scale (issue 14: chosen so that E3+E4
+/* Stands per training spacing at full scale (design.md §8: chosen so that E3+E4
  * fit the 60 min budget on 2 cores; measured, README "Budgets"). */
 #define EXP_MAIN_TRAIN_STANDS 12
 

@@ -35,7 +35,7 @@ typedef struct {
     int joint; /* 1: attention across the patch; 0: each token attends only to itself */
     int pair;  /* 1: revision 2 (design.md §8 "Pair awareness"): per-token features
                 * standardised with the model's z-scores (model_norm_fit) and
-                * pair-aware attention (src/pairattn.h) from features 0..2 =
+                * pair-aware attention (src/model/pairattn.h) from features 0..2 =
                 * (x, y, rbar) / d; 0: the revision-1 model, unchanged */
 } model_cfg;
 

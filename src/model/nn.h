@@ -83,7 +83,7 @@ void nn_attention_forward(float *out, float *prob, const float *qkv,
 void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
                            const float *prob, int B, int T, int C, int H,
                            nn_attn_mode mode, float *scratch);
-/* The same with additive terms for pair-aware attention (src/pairattn.h):
+/* The same with additive terms for pair-aware attention (src/model/pairattn.h):
  * sbias[B x H x T x T] (NULL: none) is added to the scaled scores before the
  * softmax; dpadd[B x H x T x T] (NULL: none) is added to dP = dO V^T before
  * the softmax backward. Both are ignored by NN_ATTN_SELF. After a backward

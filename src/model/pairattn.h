@@ -34,7 +34,7 @@ enum { PAIRATTN_Q = 8 };
 
 /* Raw pair features f[T x T x Q] of one patch whose token i has position
  * (tok[i*stride], tok[i*stride + 1]) and mean radius tok[i*stride + 2], all
- * in units of the spacing d (the model's features 0..2, src/patch.h);
+ * in units of the spacing d (the model's features 0..2, src/model/patch.h);
  * computed in double and rounded to float. */
 void pairattn_features(float *f, const float *tok, int stride, int T);
 /* Standardised phi[T x T x Q] and phit[Q x T x T] of one patch:
