@@ -218,7 +218,7 @@ trace: $(CLI)
 
 # ---- the release archive ------------------------------------------------------
 # `make dist`: $(B)/dist/crownshy-VERSION.tar.gz (VERSION from CITATION.cff) with
-# its SHA-256. It holds the committed and new unignored files of the package
+# its SHA-256 (printed, and in crownshy-VERSION.tar.gz.sha256). It holds the committed and new unignored files of the package
 # (git ls-files; without .git, the same folders less the ignored build outputs)
 # and no build/. Byte-reproducible for one tree: names sorted, owner 0, every
 # mtime the last commit's time (or SOURCE_DATE_EPOCH), gzip without a timestamp.
@@ -241,7 +241,7 @@ dist:
 	  --no-recursion -T $(B)/dist/files -cf - | gzip -9n > $(B)/dist/$(DIST).tar.gz.tmp; \
 	mv $(B)/dist/$(DIST).tar.gz.tmp $(B)/dist/$(DIST).tar.gz; \
 	echo "dist: $(B)/dist/$(DIST).tar.gz ($$(wc -l < $(B)/dist/files) files, $$(du -h $(B)/dist/$(DIST).tar.gz | cut -f1))"; \
-	(cd $(B)/dist && sha256sum $(DIST).tar.gz)
+	(cd $(B)/dist && sha256sum $(DIST).tar.gz | tee $(DIST).tar.gz.sha256)
 
 # ---- the write-up -------------------------------------------------------------
 deps-paper:
