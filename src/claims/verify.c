@@ -217,6 +217,53 @@ cs_status verify_external_inputs(const claims *c, const claim_result *res, const
     return bad ? cs_err(CS_EINPUT, "%zu claim(s) cannot be computed from the input given (FIELD_TABLE, CHM): a bad input, not an inconsistency of the package", bad) : CS_OK;
 }
 
+/* The gated claims' tally of one verify run. */
+typedef struct { size_t rep, notrep, pend; char notrep_list[1024]; } gate_tally;
+
+/* One line per claim: its consistency verdict (counted in count[]), value,
+ * kind, gate and distance to the paper; the gated ones tallied in g. A table
+ * made by a superseded reading is pending: its numbers are that reading's
+ * until re-run, never counted as reproduced (nor as not reproduced). */
+static void verify_claim_rows(const claims *c, const claim_result *res, const numbers_tex *nt, size_t count[3], gate_tally *g)
+{
+    for (size_t i = 0; i < c->n; i++) {
+        char msg[1200];
+        verdict v = verify_consistent(&c->rows[i], &res[i], nt, msg, sizeof msg);
+        int gated = strcmp(c->rows[i].gate, "-") != 0;
+        const char *label = verdict_name(v);
+        /* a table made by a superseded reading: its numbers are that reading's
+         * until re-run; never counted as reproduced (nor as not reproduced) */
+        if (v != VERDICT_FAIL && !strncmp(c->rows[i].source, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1) && audit_table_superseded(c->rows[i].source)) {
+            v = VERDICT_PENDING;
+            label = "PENDING";
+            snprintf(msg, sizeof msg, "%s was made by a superseded reading (%s): pending until its unit is re-run", c->rows[i].source, PATHS_PINS_SUPERSEDED);
+            if (gated) g->pend++;
+            gated = 0;
+        }
+        if (gated && v != VERDICT_FAIL) {
+            if (res[i].gate == VERDICT_PASS) g->rep++;
+            else if (res[i].gate == VERDICT_FAIL) {
+                g->notrep++;
+                size_t l = strlen(g->notrep_list);
+                snprintf(g->notrep_list + l, sizeof g->notrep_list - l, "%s%s", l ? ", " : "", c->rows[i].macro);
+                /* consistent: the write-up states this very verdict */
+                label = "NOTREP";
+                snprintf(msg, sizeof msg, "%s = %s does not reproduce: fails its preregistered gate %s: %s (%s); numbers.tex states FAIL",
+                         c->rows[i].macro, res[i].text, c->rows[i].gate, res[i].gate_detail, c->rows[i].source);
+            } else g->pend++;
+        }
+        const char *val = res[i].status == VERDICT_PASS ? res[i].text : "-";
+        const char *g = gated ? verdict_name(res[i].gate) : "-";
+        double ref, rel;
+        char dist[96] = "";
+        if (claims_rel_diff(&c->rows[i], &res[i], &ref, &rel))
+            snprintf(dist, sizeof dist, " [paper %s: %+.1f %%]", c->rows[i].reference, 100.0 * rel);
+        printf("  %-7s %-19s %-12s %-10s %-8s %s%s\n", label, c->rows[i].macro, val, c->rows[i].kind, g, msg, dist);
+        count[v]++;
+    }
+
+}
+
 cs_status verify_run(const verify_opts *o)
 {
     claims c;
@@ -241,43 +288,8 @@ cs_status verify_run(const verify_opts *o)
     printf("\n== claims (recomputed from frozen/ and compared with paper/numbers.tex; a failing gate is a finding: NOTREP)\n");
     printf("  %-7s %-19s %-12s %-10s %-8s %s\n", "status", "macro", "value", "kind", "gate", "source / reason");
     if (!have_nt) { printf("  FAIL    paper/numbers.tex unreadable: %s\n", nterr); count[VERDICT_FAIL]++; }
-    size_t rep = 0, notrep = 0, gpend = 0;
-    char notrep_list[1024] = "";
-    for (size_t i = 0; i < c.n; i++) {
-        char msg[1200];
-        verdict v = verify_consistent(&c.rows[i], &res[i], have_nt ? &nt : NULL, msg, sizeof msg);
-        int gated = strcmp(c.rows[i].gate, "-") != 0;
-        const char *label = verdict_name(v);
-        /* a table made by a superseded reading: its numbers are that reading's
-         * until re-run; never counted as reproduced (nor as not reproduced) */
-        if (v != VERDICT_FAIL && !strncmp(c.rows[i].source, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1) && audit_table_superseded(c.rows[i].source)) {
-            v = VERDICT_PENDING;
-            label = "PENDING";
-            snprintf(msg, sizeof msg, "%s was made by a superseded reading (%s): pending until its unit is re-run", c.rows[i].source, PATHS_PINS_SUPERSEDED);
-            if (gated) gpend++;
-            gated = 0;
-        }
-        if (gated && v != VERDICT_FAIL) {
-            if (res[i].gate == VERDICT_PASS) rep++;
-            else if (res[i].gate == VERDICT_FAIL) {
-                notrep++;
-                size_t l = strlen(notrep_list);
-                snprintf(notrep_list + l, sizeof notrep_list - l, "%s%s", l ? ", " : "", c.rows[i].macro);
-                /* consistent: the write-up states this very verdict */
-                label = "NOTREP";
-                snprintf(msg, sizeof msg, "%s = %s does not reproduce: fails its preregistered gate %s: %s (%s); numbers.tex states FAIL",
-                         c.rows[i].macro, res[i].text, c.rows[i].gate, res[i].gate_detail, c.rows[i].source);
-            } else gpend++;
-        }
-        const char *val = res[i].status == VERDICT_PASS ? res[i].text : "-";
-        const char *g = gated ? verdict_name(res[i].gate) : "-";
-        double ref, rel;
-        char dist[96] = "";
-        if (claims_rel_diff(&c.rows[i], &res[i], &ref, &rel))
-            snprintf(dist, sizeof dist, " [paper %s: %+.1f %%]", c.rows[i].reference, 100.0 * rel);
-        printf("  %-7s %-19s %-12s %-10s %-8s %s%s\n", label, c.rows[i].macro, val, c.rows[i].kind, g, msg, dist);
-        count[v]++;
-    }
+    gate_tally g = {0};
+    verify_claim_rows(&c, res, have_nt ? &nt : NULL, count, &g);
 
     if (!o->no_figures) {
         checklist fl = {0};
@@ -294,15 +306,15 @@ cs_status verify_run(const verify_opts *o)
     claims_within(&c, res, &m, &a10, &a25);
     printf("\n%zu pending (input data missing on this machine: reason above; never counted as passed)\n", count[VERDICT_PENDING]);
     printf("%zu of %zu measured numbers within 10 %% / %zu within 25 %% of the reference paper (distance, not a verdict)\n", a10, m, a25);
-    printf("reference paper's gated claims: %zu reproduced, %zu not reproduced%s%s%s, %zu pending\n", rep, notrep,
-           notrep ? " (" : "", notrep_list, notrep ? ")" : "", gpend);
+    printf("reference paper's gated claims: %zu reproduced, %zu not reproduced%s%s%s, %zu pending\n", g.rep, g.notrep,
+           g.notrep ? " (" : "", g.notrep_list, g.notrep ? ")" : "", g.pend);
     if (count[VERDICT_FAIL])
         printf("package: INCONSISTENT: %zu check(s) failed: a number, verdict, table, figure or sentence does not follow from frozen/ and the pinned code\n", count[VERDICT_FAIL]);
     else
         printf("package: consistent: every number, verdict, table, figure and sentence follows from frozen/ and the pinned code\n");
-    int strict_fail = o->strict && notrep;
-    if (strict_fail) printf("--strict: %zu preregistered gate(s) not reproduced\n", notrep);
-    printf("%zu passed, %zu failed\n", count[VERDICT_PASS], count[VERDICT_FAIL] + (strict_fail ? notrep : 0));
+    int strict_fail = o->strict && g.notrep;
+    if (strict_fail) printf("--strict: %zu preregistered gate(s) not reproduced\n", g.notrep);
+    printf("%zu passed, %zu failed\n", count[VERDICT_PASS], count[VERDICT_FAIL] + (strict_fail ? g.notrep : 0));
     if (have_nt) numbers_free(&nt);
     free(res);
     claims_free(&c);
