@@ -4,6 +4,7 @@
 #include "cli.h"
 #include "exp_aniso.h"
 #include "exp_field.h"
+#include "fieldrun.h"
 #include "opts.h"
 #include <stdio.h>
 

@@ -4,7 +4,10 @@
  * table (o->calibration) and returns a status. */
 #ifndef EXP_ANISO_H
 #define EXP_ANISO_H
-#include "exp_common.h"
+#include "cs.h"
+
+/* The arguments (fieldrun.h). */
+typedef struct exp_field_opts exp_field_opts;
 
 cs_status exp_aniso_lattice(const exp_field_opts *o);
 cs_status exp_aniso_hardcore(const exp_field_opts *o);

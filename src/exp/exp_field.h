@@ -3,7 +3,10 @@
  * returns a status. E6 (anisotropy) is exp_aniso.h. */
 #ifndef EXP_FIELD_H
 #define EXP_FIELD_H
-#include "exp_common.h"
+#include "cs.h"
+
+/* The arguments (fieldrun.h). */
+typedef struct exp_field_opts exp_field_opts;
 
 /* Summarise a raw field table (NULL: $FIELD_TABLE) beside the published figures. */
 cs_status exp_field_summary(const char *table);
