@@ -1,6 +1,6 @@
 /* exp_field: E5 field validation (design.md §7 E5; reference paper §5.3): the
  * commands field-summary, field-calibrate, field-beta, field-heldout and
- * field-diagnose (E6, the anisotropy commands, is exp_aniso.c).
+ * field-diagnose (E6, the anisotropy commands, is exp_anisotropy.c).
  *
  * Field stands (--layout, exp_common.h): r2 (default, design.md §7 E5)
  * the controlled lattice at d = 4 m on L = 36 m (9 x 9 stems, interior trees

@@ -1,5 +1,5 @@
 /* fieldrun: the field stands of E5 (exp_field.c, reference paper §5.3) and
- * E6 (exp_aniso.c, §5.4), design.md §7: groups of stands grown at one level,
+ * E6 (exp_anisotropy.c, §5.4), design.md §7: groups of stands grown at one level,
  * their per-tree and summary tables, the arguments of those commands.
  * Field stands: the controlled lattice (or a hard-core family) at
  * d = exp_field_d(layout), L = exp_field_L(layout) (r2: 4 m on 36 m; r1: 5 m

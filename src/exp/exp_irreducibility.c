@@ -1,4 +1,4 @@
-/* exp_irred: E2 irreducibility (design.md §7 E2; reference paper §3.3, Eq. 4),
+/* exp_irreducibility: E2 irreducibility (design.md §7 E2; reference paper §3.3, Eq. 4),
  * writing frozen/irreducibility at one die-back (beta_train, or beta_field
  * with --tag field). Choices the spec leaves open:
  *  - focal tree: the interior stem nearest the footprint centre (stems_focal);
@@ -16,7 +16,7 @@
  *                          magnitude_ratio   (pooled rows first; gate on pooled N=384)
  *  irreducibility/reduction_<tag>.tsv scope spacing_m sectors sigma_m miss_m step_m
  *                          miss_steps own_sigma_m own_miss_m (pooled row first) */
-#include "exp_irred.h"
+#include "exp_irreducibility.h"
 #include "exp_common.h"
 #include "unit_out.h"
 #include "estimator.h"
@@ -119,7 +119,7 @@ static cs_status irred_open(const exp_opts *o, const char *prefix, double beta, 
     return CS_OK;
 }
 
-cs_status exp_irred_perturb(const exp_opts *o, double beta)
+cs_status exp_irreducibility_perturb(const exp_opts *o, double beta)
 {
     prov pv;
     exp_prov_begin(&pv, "irreducibility", &o->rd, o->argc, o->argv);
@@ -159,7 +159,7 @@ cs_status exp_irred_perturb(const exp_opts *o, double beta)
     return unit_out_finish(w, &pv, path);
 }
 
-cs_status exp_irred_refine(const exp_opts *o, double beta)
+cs_status exp_irreducibility_refine(const exp_opts *o, double beta)
 {
     prov pv;
     exp_prov_begin(&pv, "irreducibility", &o->rd, o->argc, o->argv);
@@ -278,7 +278,7 @@ static cs_status reduction_gather(const exp_opts *o, double beta, const irred_cf
     return st;
 }
 
-cs_status exp_irred_reduction(const exp_opts *o, double beta)
+cs_status exp_irreducibility_reduction(const exp_opts *o, double beta)
 {
     prov pv;
     exp_prov_begin(&pv, "irreducibility", &o->rd, o->argc, o->argv);

@@ -1,4 +1,4 @@
-/* exp_aniso: E6 anisotropy attribution (design.md §7 E6; reference paper §5.4):
+/* exp_anisotropy: E6 anisotropy attribution (design.md §7 E6; reference paper §5.4):
  * the commands anisotropy-lattice, anisotropy-hardcore, anisotropy-jitter,
  * anisotropy-jitter-calibrate and anisotropy-heldout. Every E6 unit runs the teacher at
  * beta_field, read from the E5 calibration table (--calibration).
@@ -17,7 +17,7 @@
  * Limits: d and L are fixed by the design; the levels come from
  * gates/anisotropy.gate (at most 32 per family); a hard-core level that
  * cannot be built is recorded, not a crash; stand counts are options. */
-#include "exp_aniso.h"
+#include "exp_anisotropy.h"
 #include "fieldrun.h"
 #include "fieldsim.h"
 #include "gate.h"
@@ -26,7 +26,7 @@
 #include <stdio.h>
 #include <string.h>
 
-cs_status exp_aniso_lattice(const exp_field_opts *args)
+cs_status exp_anisotropy_lattice(const exp_field_opts *args)
 {
     exp_field_opts o = *args;
     const int argc = args->argc;
@@ -95,19 +95,19 @@ static cs_status aniso_family(const char *cmd, const exp_field_opts *args, stand
     return st;
 }
 
-cs_status exp_aniso_hardcore(const exp_field_opts *o)
+cs_status exp_anisotropy_hardcore(const exp_field_opts *o)
 {
     return aniso_family("anisotropy-hardcore", o, STAND_HARDCORE, "hardcore_levels", "anisotropy/hardcore",
                         "E6 hard-core family: n = (L/d)^2 stems, minimum distance c d (level = c), layout in the layout line, teacher at beta_field");
 }
 
-cs_status exp_aniso_jitter(const exp_field_opts *o)
+cs_status exp_anisotropy_jitter(const exp_field_opts *o)
 {
     return aniso_family("anisotropy-jitter", o, STAND_LATTICE, "jitter_levels", "anisotropy/jitter",
                         "E6 jitter family: lattice (layout in the layout line), jitter sd a d (level = a), teacher at beta_field");
 }
 
-cs_status exp_aniso_jitter_calibrate(const exp_field_opts *args)
+cs_status exp_anisotropy_jitter_calibrate(const exp_field_opts *args)
 {
     exp_field_opts o = *args;
     const int argc = args->argc;
@@ -148,7 +148,7 @@ cs_status exp_aniso_jitter_calibrate(const exp_field_opts *args)
     return CS_OK;
 }
 
-cs_status exp_aniso_heldout(const exp_field_opts *args)
+cs_status exp_anisotropy_heldout(const exp_field_opts *args)
 {
     exp_field_opts o = *args;
     const int argc = args->argc;
