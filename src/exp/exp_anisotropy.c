@@ -39,7 +39,7 @@ cs_status exp_anisotropy_lattice(const exp_field_opts *args)
     double a;
     cs_status st = fieldrun_canonical_jitter(&a);
     if (st) return st;
-    fieldrun_job j = {.seed_exp = "anisotropy/lattice", .kind = STAND_LATTICE, .shape = a, .level = a, .beta = c.value, .nstands = o.stands, .rd = o.rd};
+    fieldrun_job j = {.seed_exp = "anisotropy/lattice", .kind = stems_lattice, .shape = a, .level = a, .beta = c.value, .nstands = o.stands, .rd = o.rd};
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
@@ -58,7 +58,7 @@ cs_status exp_anisotropy_lattice(const exp_field_opts *args)
 }
 
 /* A family sweep: one job per level of `key` in anisotropy.gate. */
-static cs_status aniso_family(const char *cmd, const exp_field_opts *args, stand_kind kind, const char *key, const char *seed_exp,
+static cs_status aniso_family(const char *cmd, const exp_field_opts *args, const stems_type *kind, const char *key, const char *seed_exp,
                               const char *what)
 {
     exp_field_opts o = *args;
@@ -97,13 +97,13 @@ static cs_status aniso_family(const char *cmd, const exp_field_opts *args, stand
 
 cs_status exp_anisotropy_hardcore(const exp_field_opts *o)
 {
-    return aniso_family("anisotropy-hardcore", o, STAND_HARDCORE, "hardcore_levels", "anisotropy/hardcore",
+    return aniso_family("anisotropy-hardcore", o, stems_hardcore, "hardcore_levels", "anisotropy/hardcore",
                         "E6 hard-core family: n = (L/d)^2 stems, minimum distance c d (level = c), layout in the layout line, teacher at beta_field");
 }
 
 cs_status exp_anisotropy_jitter(const exp_field_opts *o)
 {
-    return aniso_family("anisotropy-jitter", o, STAND_LATTICE, "jitter_levels", "anisotropy/jitter",
+    return aniso_family("anisotropy-jitter", o, stems_lattice, "jitter_levels", "anisotropy/jitter",
                         "E6 jitter family: lattice (layout in the layout line), jitter sd a d (level = a), teacher at beta_field");
 }
 
@@ -160,7 +160,7 @@ cs_status exp_anisotropy_heldout(const exp_field_opts *args)
     if (st) return st;
     prov p;
     exp_prov_begin(&p, "anisotropy", &o.rd, argc, argv);
-    fieldrun_job j = {.seed_exp = "anisotropy/heldout", .kind = STAND_LATTICE, .shape = js.value, .level = js.value, .beta = c.value, .nstands = o.stands, .rd = o.rd};
+    fieldrun_job j = {.seed_exp = "anisotropy/heldout", .kind = stems_lattice, .shape = js.value, .level = js.value, .beta = c.value, .nstands = o.stands, .rd = o.rd};
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;

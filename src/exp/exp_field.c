@@ -90,7 +90,7 @@ cs_status exp_field_calibrate(const exp_field_opts *args)
     double worst = 0;
     for (size_t k = 0; k < nb && !st; k++) {
         double beta = fs_round_step(lo + (double)k * step, step);
-        jobs[k] = (fieldrun_job){.seed_exp = "field/calibration", .kind = STAND_LATTICE, .shape = a, .level = beta, .beta = beta, .nstands = (unsigned)seeds, .rd = o.rd};
+        jobs[k] = (fieldrun_job){.seed_exp = "field/calibration", .kind = stems_lattice, .shape = a, .level = beta, .beta = beta, .nstands = (unsigned)seeds, .rd = o.rd};
         st = fieldrun_run(&jobs[k], &acc, &worst);
         if (!st && (k % 7 == 0 || k + 1 == nb)) fprintf(stderr, "field-calibrate: beta %.2f done (%zu/%zu)\n", beta, k + 1, nb);
     }
@@ -127,7 +127,7 @@ cs_status exp_field_heldout(const exp_field_opts *args)
     double a;
     cs_status st = fieldrun_canonical_jitter(&a);
     if (st) return st;
-    fieldrun_job j = {.seed_exp = "field/heldout", .kind = STAND_LATTICE, .shape = a, .level = c.value, .beta = c.value, .nstands = o.stands, .twins = 1, .rd = o.rd};
+    fieldrun_job j = {.seed_exp = "field/heldout", .kind = stems_lattice, .shape = a, .level = c.value, .beta = c.value, .nstands = o.stands, .twins = 1, .rd = o.rd};
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
@@ -165,7 +165,7 @@ cs_status exp_field_diagnose(const exp_field_opts *args)
     if ((st = gate_read_value(PATHS_GATE("field"), "elongation_band", 0, &lo))) return st;
     for (unsigned s = 0; s < o.stands && !st; s++) {
         stand *sd;
-        if ((st = stand_alloc(&sd, STAND_LATTICE, d, L, a, "field/heldout", s))) break;
+        if ((st = stand_alloc(&sd, stems_lattice, d, L, a, "field/heldout", s))) break;
         for (size_t i = 0; i < sd->s->n; i++) {
             double e = est_elongation(sd->rstar + i * CROWN_NSEC);
             int k = sd->draw[i].k;
@@ -197,7 +197,7 @@ cs_status exp_field_diagnose(const exp_field_opts *args)
     /* 3. a perfect lattice at beta_field */
     fs_trees acc;
     fs_trees_init(&acc);
-    fieldrun_job j = {.seed_exp = "field/diagnose", .kind = STAND_LATTICE, .shape = 0.0, .level = 0.0, .beta = c.value, .nstands = o.stands, .rd = o.rd};
+    fieldrun_job j = {.seed_exp = "field/diagnose", .kind = stems_lattice, .shape = 0.0, .level = 0.0, .beta = c.value, .nstands = o.stands, .rd = o.rd};
     double worst = 0;
     st = fieldrun_run(&j, &acc, &worst);
     fs_summary sm;

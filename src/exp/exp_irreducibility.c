@@ -99,7 +99,7 @@ static void irred_meta(tsv_writer *w, const exp_opts *o, double beta)
 /* Stand k of the E2 design at spacing d: controlled lattice, a = 0.04, L = 12 d. */
 static cs_status irred_stand(stand **sd, double d, int k)
 {
-    return stand_alloc(sd, STAND_LATTICE, d, 12.0 * d, 0.04, "irreducibility", (unsigned)k);
+    return stand_alloc(sd, stems_lattice, d, 12.0 * d, 0.04, "irreducibility", (unsigned)k);
 }
 
 /* Open irreducibility/<prefix>_<tag>.tsv and write the provenance block and

@@ -49,7 +49,7 @@ static cs_status cell_close(dvec g[3], double cover, double overlap, size_t tree
 }
 
 /* One (stem process, d, params) cell over o->stands stands of key `key`. */
-static cs_status run_cell(const exp_opts *o, const char *key, stand_kind kind, double d, double shape,
+static cs_status run_cell(const exp_opts *o, const char *key, const stems_type *kind, double d, double shape,
                           const teacher_params *p, cell_result *res, double *worst)
 {
     dvec g[3] = {{0}, {0}, {0}};
@@ -96,7 +96,7 @@ cs_status exp_mechanism_sweep(const exp_opts *o)
             teacher_params_default(&p);
             p.one_sided = o->rd.one_sided;
             p.beta = betas[b];
-            st = run_cell(o, "mechanism", STAND_LATTICE, ds[a], 0.04, &p, &res[a * nb + b], &worst);
+            st = run_cell(o, "mechanism", stems_lattice, ds[a], 0.04, &p, &res[a * nb + b], &worst);
             if (!st) fprintf(stderr, "mechanism sweep: d=%.1f beta=%.2f k1=%+.3f k2=%+.3f k3=%+.3f cover=%.3f\n",
                              ds[a], betas[b], res[a * nb + b].k[0], res[a * nb + b].k[1],
                              res[a * nb + b].k[2], res[a * nb + b].cover);
@@ -207,7 +207,7 @@ cs_status exp_mechanism_ablation(const exp_opts *o)
             p.one_sided = o->rd.one_sided;
         p.coupled = coupled[a];
         p.beta = beta[a];
-        st = run_cell(o, "mechanism", STAND_LATTICE, d, 0.04, &p, &res[a], &worst);
+        st = run_cell(o, "mechanism", stems_lattice, d, 0.04, &p, &res[a], &worst);
         if (!st) fprintf(stderr, "mechanism ablation: %s k1=%+.3f k2=%+.3f k3=%+.3f cover=%.3f overlap=%.3g\n",
                          arms[a], res[a].k[0], res[a].k[1], res[a].k[2], res[a].cover, res[a].overlap);
     }
@@ -227,7 +227,7 @@ cs_status exp_mechanism_figure(const exp_opts *o)
     cs_status st = ablation_gate(&d, beta);
     if (st) return st;
     stand *sd = NULL;
-    st = stand_alloc(&sd, STAND_HARDCORE, d, EXP_FIG_L, EXP_FIG_C, "fig/mechanism", 0);
+    st = stand_alloc(&sd, stems_hardcore, d, EXP_FIG_L, EXP_FIG_C, "fig/mechanism", 0);
     if (st) return st;
     size_t n = sd->s->n;
     double *r = malloc(3 * n * NS * sizeof *r);

@@ -38,7 +38,7 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
     double worst = 0.0;
     if (!sds || !rs) st = cs_err(CS_ENOMEM, "experiments: out of memory");
     for (size_t a = 0; a < nd && !st; a++) {
-        st = stand_alloc(&sds[a], STAND_HARDCORE, ds[a], EXP_FIG_L, EXP_FIG_C, key, 0);
+        st = stand_alloc(&sds[a], stems_hardcore, ds[a], EXP_FIG_L, EXP_FIG_C, key, 0);
         for (size_t b = 0; b < nrows + (size_t)with_uncoupled && !st; b++) {
             double *r = malloc(sds[a]->s->n * NS * sizeof *r);
             rs[a * (nrows + (size_t)with_uncoupled) + b] = r;
@@ -92,7 +92,7 @@ static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size
     cs_status st = CS_OK;
     for (size_t a = 0; a < nd && !st; a++) {
         stand *sd = NULL;
-        st = stand_alloc(&sd, STAND_HARDCORE, ds[a], EXP_FIG_L, EXP_FIG_C, "fig/pointcloud", 0);
+        st = stand_alloc(&sd, stems_hardcore, ds[a], EXP_FIG_L, EXP_FIG_C, "fig/pointcloud", 0);
         if (st) break;
         size_t n = sd->s->n;
         double *rc = malloc(n * NS * sizeof *rc), *ru = malloc(n * NS * sizeof *ru);

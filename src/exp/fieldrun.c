@@ -15,7 +15,7 @@ cs_status fieldrun_run(fieldrun_job *j, fs_trees *acc, double *worst)
     for (unsigned s = 0; s < j->nstands; s++) {
         stand *sd;
         cs_status st = stand_alloc(&sd, j->kind, d, L, j->shape, j->seed_exp, s);
-        if (st == CS_EINPUT && j->kind == STAND_HARDCORE && strstr(cs_errmsg(), "unbuildable")) {
+        if (st == CS_EINPUT && j->kind == stems_hardcore && strstr(cs_errmsg(), "unbuildable")) {
             /* A level the stem process cannot reach is a finding, not a crash. */
             j->failed++;
             continue;

@@ -28,7 +28,7 @@ cs_status fieldrun_canonical_jitter(double *a);
 /* One group of stands: `nstands` stands of one stem process at one level. */
 typedef struct {
     const char *seed_exp;
-    stand_kind kind;
+    const stems_type *kind;
     double shape, level, beta;
     unsigned nstands;
     int twins;          /* also grow the uncoupled twin of each stand */

@@ -28,7 +28,7 @@ cs_status stand_grow_bench(int nres, int reps, double *ms_per_stand)
     double total = 0.0;
     for (int k = 0; k < reps; k++) {
         stand *sd = NULL;
-        cs_status rc = stand_alloc(&sd, STAND_LATTICE, 3.5, 12.0 * 3.5, 0.04, "bench", (unsigned)k);
+        cs_status rc = stand_alloc(&sd, stems_lattice, 3.5, 12.0 * 3.5, 0.04, "bench", (unsigned)k);
         if (rc) return rc;
         double *r = malloc(sd->s->n * CROWN_NSEC * sizeof *r);
         if (!r) { stand_free(sd); return cs_err(CS_ENOMEM, "stand_grow: out of memory"); }
