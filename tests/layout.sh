@@ -16,7 +16,7 @@
 #     experiments: the files its rows name exist, every frozen/ folder has a
 #     row, every command is named <experiment>-... and has a handler, no
 #     command or unit is listed by hand in src/cli/cli.c, the Makefile or
-#     experiments.mk, and the README's experiment table is the generated one;
+#     experiments.mk, and the experiment table of src/README.md is the generated one;
 #  5. every path a comment names (src/, tests/, figures/, audit/, gates/,
 #     paper/, frozen/) exists;
 #  6. a header-only module declares no function (it would be another
@@ -131,9 +131,9 @@ if [ -z "$badcmd" ]; then ok "every experiment command is named <experiment>-...
 else bad "every experiment command is named <experiment>-..., has its handler and is listed only in the manifest" "$badcmd"; fi
 hand=$(grep -nE '^\s*(REPRODUCE_UNITS|DEEP_UNITS|MANIFEST_EXPERIMENTS)\s*\+?=\s*\S' Makefile src/exp/experiments.mk)
 if [ -z "$hand" ]; then ok "no unit list by hand in the Makefile or experiments.mk"; else bad "no unit list by hand in the Makefile or experiments.mk" "$hand"; fi
-readme=$(awk '/^<!-- experiments: generated/ {on = 1; next} /^<!-- end of experiments -->/ {on = 0} on' README.md)
-if [ "$readme" = "$(bash src/base/manifest.sh readme)" ]; then ok "the README's experiment table is the manifest's"
-else bad "the README's experiment table is the manifest's" "regenerate it with: bash src/base/manifest.sh readme"; fi
+readme=$(awk '/^<!-- experiments: generated/ {on = 1; next} /^<!-- end of experiments -->/ {on = 0} on' src/README.md)
+if [ "$readme" = "$(bash src/base/manifest.sh readme)" ]; then ok "src/README.md's experiment table is the manifest's"
+else bad "src/README.md's experiment table is the manifest's" "regenerate it with: bash src/base/manifest.sh readme"; fi
 
 # 5. every path a comment names exists (C: lines with /*, * or //; shell,
 # make, gnuplot: after #). A pattern is written with <...>, * or %.

@@ -7,7 +7,7 @@
  *    list (src/base/manifest.sh make -> build/manifest.mk, included by the
  *    Makefile);
  *  - the CLI's command table and its --help groups (src/cli/cli.c);
- *  - the README's experiment table (src/base/manifest.sh readme);
+ *  - the experiment table of src/README.md (src/base/manifest.sh readme);
  *  - trace's experiment line (manifest.c).
  * tests/layout.sh fails when any of them is listed by hand elsewhere, when a
  * named file is missing, or when a frozen/ folder has no row here.

@@ -12,6 +12,7 @@
 #include "tsv.h"
 #include "verify.h"
 #include "audit_paper.h"
+#include "audit_docs.h"
 #include <unistd.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,7 +30,8 @@ int cli_cmd_verify(int argc, char **argv)
                         "the committed PNG, and print the package's consistency and the reference paper's gated\n"
                         "claims (reproduced, not reproduced, pending). A failing gate is a finding, not an error.\n"
                         "Exit 0: consistent (gate failures allowed); 1: any inconsistency (with --strict also any\n"
-                        "failing gate); 2: usage; 3: registry or gate map unreadable; 4: environment (I/O, memory).",
+                        "failing gate); 2: usage; 3: bad input (the registry or gate map unreadable, a FIELD_TABLE or\n"
+                        "CHM that cannot be read); 4: environment (a build/ that cannot be written, I/O, memory).",
                         spec, 2, 0, 0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
@@ -44,14 +46,15 @@ int cli_cmd_numbers(int argc, char **argv)
     const opt_spec spec[] = {{"check", OPT_FLAG, &check, 0, 0, "only compare the three files with a fresh generation (write nothing)"}};
     const opts_cmd oc = {"numbers", "[--check]", "Regenerate paper/numbers.tex, paper/comparison.tex and paper/readings.tex from frozen/:\n"
                         "all three are generated into build/ first and moved into paper/ only when every claim\n"
-                        "was computed (exit 3 naming the claim and its input otherwise, writing nothing).\n"
+                        "was computed (exit 3 naming the claim and its input otherwise, writing nothing); then the\n"
+                        "generated regions (<!--Macro-->value<!--/-->, <!-- findings -->) of README.md and the *.md pages.\n"
                         "--check: compare the three with a fresh generation (exit 1 naming the first differing line).", spec, 1, 0, 0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     claims c;
     claim_result *res;
-    cs_status st = verify_load_eval(&c, &res);
-    if (st) return cli_fail("numbers", st);
+    cs_status st = verify_preflight();
+    if (st || (st = verify_load_eval(&c, &res))) return cli_fail("numbers", st);
     if (check) {
         checklist cl = {0};
         audit_generated(&c, res, &cl, 0);
@@ -92,6 +95,8 @@ int cli_cmd_numbers(int argc, char **argv)
     size_t pend = 0;
     for (size_t i = 0; i < c.n; i++) pend += res[i].status != VERDICT_PASS;
     if (!st) printf("wrote %s, %s%s: %zu claims (%zu pending)\n", PATHS_NUMBERS, PATHS_COMPARISON, readings ? ", " PATHS_READINGS_TEX : "", c.n, pend);
+    size_t pages = 0; /* the generated regions of the documentation pages */
+    if (!st && !(st = docs_refresh(&c, res, &pages)) && pages) printf("refreshed the generated regions of %zu documentation page(s)\n", pages);
     free(res);
     claims_free(&c);
     return st ? cli_fail("numbers", st) : 0;
@@ -105,8 +110,9 @@ int cli_cmd_audit(int argc, char **argv)
     if (r) return opts_exit_code(r);
     claims c;
     claim_result *res;
-    cs_status st = verify_load_eval(&c, &res);
-    if (st) return cli_fail("audit", st);
+    cs_status st = verify_preflight();
+    if (st || (st = verify_load_eval(&c, &res))) return cli_fail("audit", st);
+    if ((st = verify_external_inputs(&c, res, "audit"))) { free(res); claims_free(&c); return cli_fail("audit", st); }
     checklist cl = {0};
     audit_run(&c, res, &cl);
     size_t count[3] = {0};

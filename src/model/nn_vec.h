@@ -20,8 +20,8 @@
 #endif
 #define INL static inline __attribute__((always_inline))
 /* AVX-512 forms of the GELU and of attention at the reference head shape,
- * taken at run time where the CPU has AVX-512F (absent from the baseline copy
- * that test_nn_clones compares them with). */
+ * taken at run time on the AVX-512 gemm path (gemm_get_isa; absent from the
+ * baseline copy that test_nn_clones compares them with). */
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(NN_NO_CLONES)
 #define NN_AVX512 1
 #endif
