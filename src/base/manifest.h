@@ -73,7 +73,7 @@ UNIT(mechanism, "ablation.tsv", "$(TEACHER_DEPS)", "$(CLI) mechanism-ablation @T
 UNIT(mechanism, "figure_crowns.tsv", "$(TEACHER_DEPS)", "$(CLI) mechanism-figure @TEACHER@ --out @R@", "top readings")
 UNIT(mechanism, "figure_stats.tsv", "@R@/mechanism/figure_crowns.tsv", "", "side")
 
-EXPERIMENT(irreducibility, "E2", "src/exp/exp_irred.c", "gates/irreducibility.gate", "src/claims/claim_teacher.c", "figures/irreducible.gp", "rerun", "no local rule reproduces the growth: response to a perturbed tree, refinement of N, best-fit Voronoi reduction, at beta_train and beta_field")
+EXPERIMENT(irreducibility, "E2", "src/exp/exp_irreducibility.c", "gates/irreducibility.gate", "src/claims/claim_teacher.c", "figures/irreducible.gp", "rerun", "no local rule reproduces the growth: response to a perturbed tree, refinement of N, best-fit Voronoi reduction, at beta_train and beta_field")
 COMMAND(irreducibility, "irreducibility-perturb", cli_irreducibility_perturb, "E2: one tree 30% taller, 5 spacings")
 COMMAND(irreducibility, "irreducibility-refine", cli_irreducibility_refine, "E2: growth resolution N in {48, 96, 192, 384}")
 COMMAND(irreducibility, "irreducibility-reduction", cli_irreducibility_reduction, "E2: best-fit Voronoi reduction")
@@ -106,7 +106,7 @@ COMMAND(field, "field-diagnose", cli_field_diagnose, "E5/E6: diagnostics for the
 UNIT(field, "calibration.tsv", "", "$(CLI) field-calibrate @TEACHER@ @LAYOUT@ --out $@", "top readings")
 UNIT(field, "heldout.tsv", "@R@/field/calibration.tsv", "$(CLI) field-heldout @TEACHER@ @LAYOUT@ --calibration @R@/field/calibration.tsv --stands $(FIELD_STANDS) --out $@", "top readings")
 
-EXPERIMENT(anisotropy, "E6", "src/exp/exp_aniso.c", "gates/anisotropy.gate", "src/claims/claim_aniso.c", "figures/anisotropy.gp", "rerun", "what sets the gap anisotropy: the lattice, a hard-core and a jitter family, a* calibrated, held-out stands at a*")
+EXPERIMENT(anisotropy, "E6", "src/exp/exp_anisotropy.c", "gates/anisotropy.gate", "src/claims/claim_aniso.c", "figures/anisotropy.gp", "rerun", "what sets the gap anisotropy: the lattice, a hard-core and a jitter family, a* calibrated, held-out stands at a*")
 COMMAND(anisotropy, "anisotropy-lattice", cli_anisotropy_lattice, "E6: anisotropy on the controlled lattice at beta_field")
 COMMAND(anisotropy, "anisotropy-hardcore", cli_anisotropy_hardcore, "E6: hard-core stem family sweep")
 COMMAND(anisotropy, "anisotropy-jitter", cli_anisotropy_jitter, "E6: jitter-amplitude family sweep")

@@ -217,14 +217,12 @@ cs_status verify_external_inputs(const claims *c, const claim_result *res, const
     return bad ? cs_err(CS_EINPUT, "%zu claim(s) cannot be computed from the input given (FIELD_TABLE, CHM): a bad input, not an inconsistency of the package", bad) : CS_OK;
 }
 
-/* The gated claims' tally of one verify run. */
-typedef struct { size_t rep, notrep, pend; char notrep_list[1024]; } gate_tally;
+/* What the gated claims say about the reference paper, tallied by print_claims. */
+typedef struct { size_t rep, notrep, gpend; char notrep_list[1024]; } gate_tally;
 
-/* One line per claim: its consistency verdict (counted in count[]), value,
- * kind, gate and distance to the paper; the gated ones tallied in g. A table
- * made by a superseded reading is pending: its numbers are that reading's
- * until re-run, never counted as reproduced (nor as not reproduced). */
-static void verify_claim_rows(const claims *c, const claim_result *res, const numbers_tex *nt, size_t count[3], gate_tally *g)
+/* One line per claim: consistent or not, and its gate's verdict (a table
+ * made by a superseded reading is pending, never reproduced nor not). */
+static void print_claims(const claims *c, const claim_result *res, const numbers_tex *nt, size_t count[3], gate_tally *t)
 {
     for (size_t i = 0; i < c->n; i++) {
         char msg[1200];
@@ -237,20 +235,20 @@ static void verify_claim_rows(const claims *c, const claim_result *res, const nu
             v = VERDICT_PENDING;
             label = "PENDING";
             snprintf(msg, sizeof msg, "%s was made by a superseded reading (%s): pending until its unit is re-run", c->rows[i].source, PATHS_PINS_SUPERSEDED);
-            if (gated) g->pend++;
+            if (gated) t->gpend++;
             gated = 0;
         }
         if (gated && v != VERDICT_FAIL) {
-            if (res[i].gate == VERDICT_PASS) g->rep++;
+            if (res[i].gate == VERDICT_PASS) t->rep++;
             else if (res[i].gate == VERDICT_FAIL) {
-                g->notrep++;
-                size_t l = strlen(g->notrep_list);
-                snprintf(g->notrep_list + l, sizeof g->notrep_list - l, "%s%s", l ? ", " : "", c->rows[i].macro);
+                t->notrep++;
+                size_t l = strlen(t->notrep_list);
+                snprintf(t->notrep_list + l, sizeof t->notrep_list - l, "%s%s", l ? ", " : "", c->rows[i].macro);
                 /* consistent: the write-up states this very verdict */
                 label = "NOTREP";
                 snprintf(msg, sizeof msg, "%s = %s does not reproduce: fails its preregistered gate %s: %s (%s); numbers.tex states FAIL",
                          c->rows[i].macro, res[i].text, c->rows[i].gate, res[i].gate_detail, c->rows[i].source);
-            } else g->pend++;
+            } else t->gpend++;
         }
         const char *val = res[i].status == VERDICT_PASS ? res[i].text : "-";
         const char *g = gated ? verdict_name(res[i].gate) : "-";
@@ -261,7 +259,6 @@ static void verify_claim_rows(const claims *c, const claim_result *res, const nu
         printf("  %-7s %-19s %-12s %-10s %-8s %s%s\n", label, c->rows[i].macro, val, c->rows[i].kind, g, msg, dist);
         count[v]++;
     }
-
 }
 
 cs_status verify_run(const verify_opts *o)
@@ -288,8 +285,10 @@ cs_status verify_run(const verify_opts *o)
     printf("\n== claims (recomputed from frozen/ and compared with paper/numbers.tex; a failing gate is a finding: NOTREP)\n");
     printf("  %-7s %-19s %-12s %-10s %-8s %s\n", "status", "macro", "value", "kind", "gate", "source / reason");
     if (!have_nt) { printf("  FAIL    paper/numbers.tex unreadable: %s\n", nterr); count[VERDICT_FAIL]++; }
-    gate_tally g = {0};
-    verify_claim_rows(&c, res, have_nt ? &nt : NULL, count, &g);
+    gate_tally gt = {0};
+    print_claims(&c, res, have_nt ? &nt : NULL, count, &gt);
+    const size_t rep = gt.rep, notrep = gt.notrep, gpend = gt.gpend;
+    const char *notrep_list = gt.notrep_list;
 
     if (!o->no_figures) {
         checklist fl = {0};
@@ -306,15 +305,15 @@ cs_status verify_run(const verify_opts *o)
     claims_within(&c, res, &m, &a10, &a25);
     printf("\n%zu pending (input data missing on this machine: reason above; never counted as passed)\n", count[VERDICT_PENDING]);
     printf("%zu of %zu measured numbers within 10 %% / %zu within 25 %% of the reference paper (distance, not a verdict)\n", a10, m, a25);
-    printf("reference paper's gated claims: %zu reproduced, %zu not reproduced%s%s%s, %zu pending\n", g.rep, g.notrep,
-           g.notrep ? " (" : "", g.notrep_list, g.notrep ? ")" : "", g.pend);
+    printf("reference paper's gated claims: %zu reproduced, %zu not reproduced%s%s%s, %zu pending\n", rep, notrep,
+           notrep ? " (" : "", notrep_list, notrep ? ")" : "", gpend);
     if (count[VERDICT_FAIL])
         printf("package: INCONSISTENT: %zu check(s) failed: a number, verdict, table, figure or sentence does not follow from frozen/ and the pinned code\n", count[VERDICT_FAIL]);
     else
         printf("package: consistent: every number, verdict, table, figure and sentence follows from frozen/ and the pinned code\n");
-    int strict_fail = o->strict && g.notrep;
-    if (strict_fail) printf("--strict: %zu preregistered gate(s) not reproduced\n", g.notrep);
-    printf("%zu passed, %zu failed\n", count[VERDICT_PASS], count[VERDICT_FAIL] + (strict_fail ? g.notrep : 0));
+    int strict_fail = o->strict && notrep;
+    if (strict_fail) printf("--strict: %zu preregistered gate(s) not reproduced\n", notrep);
+    printf("%zu passed, %zu failed\n", count[VERDICT_PASS], count[VERDICT_FAIL] + (strict_fail ? notrep : 0));
     if (have_nt) numbers_free(&nt);
     free(res);
     claims_free(&c);

@@ -1,9 +1,10 @@
 /* cli_field: the argv tables of E5 (field-*) and E6 (anisotropy-*): each
  * fills exp_field_opts and calls its entry point (src/exp/exp_field.h,
- * exp_aniso.h). */
+ * exp_anisotropy.h). */
 #include "cli.h"
-#include "exp_aniso.h"
+#include "exp_anisotropy.h"
 #include "exp_field.h"
+#include "fieldrun.h"
 #include "opts.h"
 #include <stdio.h>
 
@@ -81,7 +82,7 @@ int cli_anisotropy_lattice(int argc, char **argv)
                          spec, sizeof spec / sizeof *spec, 0, 0};
     int r = field_parse(&oc, argc, argv, &o);
     if (r) return opts_exit_code(r);
-    cs_status st = exp_aniso_lattice(&o);
+    cs_status st = exp_anisotropy_lattice(&o);
     return st ? cli_fail("anisotropy-lattice", st) : 0;
 }
 
@@ -98,7 +99,7 @@ int cli_anisotropy_jitter_calibrate(int argc, char **argv)
                          spec, sizeof spec / sizeof *spec, 0, 0};
     int r = field_parse(&oc, argc, argv, &o);
     if (r) return opts_exit_code(r);
-    cs_status st = exp_aniso_jitter_calibrate(&o);
+    cs_status st = exp_anisotropy_jitter_calibrate(&o);
     return st ? cli_fail("anisotropy-jitter-calibrate", st) : 0;
 }
 
@@ -120,7 +121,7 @@ int cli_anisotropy_heldout(int argc, char **argv)
                          spec, sizeof spec / sizeof *spec, 0, 0};
     int r = field_parse(&oc, argc, argv, &o);
     if (r) return opts_exit_code(r);
-    cs_status st = exp_aniso_heldout(&o);
+    cs_status st = exp_anisotropy_heldout(&o);
     return st ? cli_fail("anisotropy-heldout", st) : 0;
 }
 
@@ -142,7 +143,7 @@ int cli_anisotropy_hardcore(int argc, char **argv)
                         "E6 hard-core family (design.md §7): stems by random sequential addition with minimum distance c d,\n"
                         "c in anisotropy.gate hardcore_levels, N stands per level (default 12), teacher at beta_field.\n"
                         "A level whose stands cannot be built is recorded (stands_failed, trees 0), not a crash.",
-                        exp_aniso_hardcore, argc, argv);
+                        exp_anisotropy_hardcore, argc, argv);
 }
 
 int cli_anisotropy_jitter(int argc, char **argv)
@@ -150,7 +151,7 @@ int cli_anisotropy_jitter(int argc, char **argv)
     return aniso_family("anisotropy-jitter", "--calibration DIR/calibration.tsv --out DIR/jitter.tsv [--stands N]",
                         "E6 jitter family (design.md §7): controlled lattice with per-axis jitter sd a d, a in\n"
                         "anisotropy.gate jitter_levels, N stands per level (default 12), teacher at beta_field.",
-                        exp_aniso_jitter, argc, argv);
+                        exp_anisotropy_jitter, argc, argv);
 }
 
 int cli_field_summary(int argc, char **argv)

@@ -3,7 +3,7 @@
  * bench-teacher` and `crownshy readings-summary`. Only the CLI decides how the
  * process dies. */
 #include "cli.h"
-#include "exp_irred.h"
+#include "exp_irreducibility.h"
 #include "exp_mechanism.h"
 #include "exp_stands.h"
 #include "gate.h"
@@ -84,21 +84,21 @@ int cli_mechanism_figure(int argc, char **argv)
 int cli_irreducibility_perturb(int argc, char **argv)
 {
     static const teacher_unit u = {"irreducibility-perturb", "E2: one tree 30% taller, 5 spacings -> DIR/irreducibility/perturb_<tag>.tsv",
-                                   U_STANDS | U_BETA | U_TAG, NULL, exp_irred_perturb};
+                                   U_STANDS | U_BETA | U_TAG, NULL, exp_irreducibility_perturb};
     return teacher_unit_run(&u, argc, argv);
 }
 
 int cli_irreducibility_refine(int argc, char **argv)
 {
     static const teacher_unit u = {"irreducibility-refine", "E2: N in {48,96,192,384} -> DIR/irreducibility/refine_<tag>.tsv",
-                                   U_STANDS | U_BETA | U_TAG, NULL, exp_irred_refine};
+                                   U_STANDS | U_BETA | U_TAG, NULL, exp_irreducibility_refine};
     return teacher_unit_run(&u, argc, argv);
 }
 
 int cli_irreducibility_reduction(int argc, char **argv)
 {
     static const teacher_unit u = {"irreducibility-reduction", "E2: best-fit Voronoi reduction -> DIR/irreducibility/reduction_<tag>.tsv",
-                                   U_STANDS | U_BETA | U_TAG, NULL, exp_irred_reduction};
+                                   U_STANDS | U_BETA | U_TAG, NULL, exp_irreducibility_reduction};
     return teacher_unit_run(&u, argc, argv);
 }
 

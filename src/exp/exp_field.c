@@ -1,6 +1,6 @@
 /* exp_field: E5 field validation (design.md §7 E5; reference paper §5.3): the
  * commands field-summary, field-calibrate, field-beta, field-heldout and
- * field-diagnose (E6, the anisotropy commands, is exp_aniso.c).
+ * field-diagnose (E6, the anisotropy commands, is exp_anisotropy.c).
  *
  * Field stands (--layout, exp_common.h): r2 (default, design.md §7 E5)
  * the controlled lattice at d = 4 m on L = 36 m (9 x 9 stems, interior trees
@@ -22,7 +22,7 @@
  * spread ratios against the field need the raw field table (FIELD_TABLE),
  * which is not shipped. */
 #include "exp_field.h"
-#include "exp_common.h"
+#include "fieldrun.h"
 #include "design.h"
 #include "fieldsim.h"
 #include "gate.h"
@@ -81,22 +81,22 @@ cs_status exp_field_calibrate(const exp_field_opts *args)
     if (!st) st = gate_read_value(PATHS_GATE("field"), "dieback_grid", 1, &hi);
     if (!st) st = gate_read_value(PATHS_GATE("field"), "dieback_grid", 2, &step);
     if (!st) st = gate_read_value(PATHS_GATE("field"), "calibration_seeds", 0, &seeds);
-    if (!st) st = exp_canonical_jitter(&a);
+    if (!st) st = fieldrun_canonical_jitter(&a);
     if (st) return st;
     size_t nb = (size_t)lround((hi - lo) / step) + 1;
-    exp_field_job *jobs = calloc(nb, sizeof *jobs);
+    fieldrun_job *jobs = calloc(nb, sizeof *jobs);
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
     for (size_t k = 0; k < nb && !st; k++) {
         double beta = fs_round_step(lo + (double)k * step, step);
-        jobs[k] = (exp_field_job){.seed_exp = "field/calibration", .kind = STAND_LATTICE, .shape = a, .level = beta, .beta = beta, .nstands = (unsigned)seeds, .rd = o.rd};
-        st = exp_field_run_job(&jobs[k], &acc, &worst);
+        jobs[k] = (fieldrun_job){.seed_exp = "field/calibration", .kind = stems_lattice, .shape = a, .level = beta, .beta = beta, .nstands = (unsigned)seeds, .rd = o.rd};
+        st = fieldrun_run(&jobs[k], &acc, &worst);
         if (!st && (k % 7 == 0 || k + 1 == nb)) fprintf(stderr, "field-calibrate: beta %.2f done (%zu/%zu)\n", beta, k + 1, nb);
     }
     snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/calibration\", %g, s, stems|crowns), s = 0..%u at every beta", exp_field_d(o.rd.layout), (unsigned)seeds - 1);
     p.worst_overlap_m = worst;
-    if (!st) st = exp_field_write(o.out, &p, &acc, jobs, nb, meta_calibration, NULL);
+    if (!st) st = fieldrun_write(o.out, &p, &acc, jobs, nb, meta_calibration, NULL);
     fs_trees_free(&acc);
     free(jobs);
     if (st) return st;
@@ -125,23 +125,23 @@ cs_status exp_field_heldout(const exp_field_opts *args)
     prov p;
     exp_prov_begin(&p, "field", &o.rd, argc, argv);
     double a;
-    cs_status st = exp_canonical_jitter(&a);
+    cs_status st = fieldrun_canonical_jitter(&a);
     if (st) return st;
-    exp_field_job j = {.seed_exp = "field/heldout", .kind = STAND_LATTICE, .shape = a, .level = c.value, .beta = c.value, .nstands = o.stands, .twins = 1, .rd = o.rd};
+    fieldrun_job j = {.seed_exp = "field/heldout", .kind = stems_lattice, .shape = a, .level = c.value, .beta = c.value, .nstands = o.stands, .twins = 1, .rd = o.rd};
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
-    st = exp_field_run_job(&j, &acc, &worst);
+    st = fieldrun_run(&j, &acc, &worst);
     snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/heldout\", %g, s, stems|crowns), s = 0..%u; uncoupled twin = same stand", exp_field_d(o.rd.layout), o.stands - 1);
     p.worst_overlap_m = worst;
-    exp_meta_ctx m = {c.value, a, "E5 held-out: controlled lattice (layout in the layout line), canonical jitter, teacher at beta_field; coupled stands and their uncoupled twins (same stems and crown draws)"};
-    if (!st) st = exp_field_write(o.out, &p, &acc, &j, 1, exp_meta_generic, &m);
+    fieldrun_meta_ctx m = {c.value, a, "E5 held-out: controlled lattice (layout in the layout line), canonical jitter, teacher at beta_field; coupled stands and their uncoupled twins (same stems and crown draws)"};
+    if (!st) st = fieldrun_write(o.out, &p, &acc, &j, 1, fieldrun_meta_generic, &m);
     if (!st) {
         fs_summary s;
         if (!fs_group(&acc, 1, c.value, &s))
             printf("field-heldout: beta_field %.2f, %zu stands, %zu trees: tree-mean median %.4f m, elongation median %.4f, spread %.4f m\n",
                    c.value, s.stands, s.f.trees, s.f.tree_mean_median, s.elong_median, s.f.spread);
-        exp_print_spread_ratios("field-heldout", &acc, c.value, 1);
+        fieldrun_print_spread_ratios("field-heldout", &acc, c.value, 1);
     }
     fs_trees_free(&acc);
     return st;
@@ -157,7 +157,7 @@ cs_status exp_field_diagnose(const exp_field_opts *args)
     cs_status stb = fs_beta_field(o.calibration, &c);
     if (stb) return stb;
     double d = exp_field_d(o.rd.layout), L = exp_field_L(o.rd.layout), a;
-    cs_status st = exp_canonical_jitter(&a);
+    cs_status st = fieldrun_canonical_jitter(&a);
     if (st) return st;
     /* 1. open-grown target elongation on the E5 held-out stands' draws */
     size_t n[6] = {0}, ge[6] = {0}, tot = 0, totge = 0;
@@ -165,7 +165,7 @@ cs_status exp_field_diagnose(const exp_field_opts *args)
     if ((st = gate_read_value(PATHS_GATE("field"), "elongation_band", 0, &lo))) return st;
     for (unsigned s = 0; s < o.stands && !st; s++) {
         stand *sd;
-        if ((st = stand_alloc(&sd, STAND_LATTICE, d, L, a, "field/heldout", s))) break;
+        if ((st = stand_alloc(&sd, stems_lattice, d, L, a, "field/heldout", s))) break;
         for (size_t i = 0; i < sd->s->n; i++) {
             double e = est_elongation(sd->rstar + i * CROWN_NSEC);
             int k = sd->draw[i].k;
@@ -197,9 +197,9 @@ cs_status exp_field_diagnose(const exp_field_opts *args)
     /* 3. a perfect lattice at beta_field */
     fs_trees acc;
     fs_trees_init(&acc);
-    exp_field_job j = {.seed_exp = "field/diagnose", .kind = STAND_LATTICE, .shape = 0.0, .level = 0.0, .beta = c.value, .nstands = o.stands, .rd = o.rd};
+    fieldrun_job j = {.seed_exp = "field/diagnose", .kind = stems_lattice, .shape = 0.0, .level = 0.0, .beta = c.value, .nstands = o.stands, .rd = o.rd};
     double worst = 0;
-    st = exp_field_run_job(&j, &acc, &worst);
+    st = fieldrun_run(&j, &acc, &worst);
     fs_summary sm;
     if (!st) st = fs_group(&acc, 1, 0.0, &sm);
     fs_trees_free(&acc);

@@ -1,9 +1,12 @@
 /* exp_field: E5, field validation (design.md §7 E5; reference paper §5.3).
  * The entry points of its commands (argv tables: src/cli/cli_field.c); each
- * returns a status. E6 (anisotropy) is exp_aniso.h. */
+ * returns a status. E6 (anisotropy) is exp_anisotropy.h. */
 #ifndef EXP_FIELD_H
 #define EXP_FIELD_H
-#include "exp_common.h"
+#include "cs.h"
+
+/* The arguments (fieldrun.h). */
+typedef struct exp_field_opts exp_field_opts;
 
 /* Summarise a raw field table (NULL: $FIELD_TABLE) beside the published figures. */
 cs_status exp_field_summary(const char *table);

@@ -1,4 +1,4 @@
-/* exp_aniso: E6 anisotropy attribution (design.md §7 E6; reference paper §5.4):
+/* exp_anisotropy: E6 anisotropy attribution (design.md §7 E6; reference paper §5.4):
  * the commands anisotropy-lattice, anisotropy-hardcore, anisotropy-jitter,
  * anisotropy-jitter-calibrate and anisotropy-heldout. Every E6 unit runs the teacher at
  * beta_field, read from the E5 calibration table (--calibration).
@@ -17,8 +17,8 @@
  * Limits: d and L are fixed by the design; the levels come from
  * gates/anisotropy.gate (at most 32 per family); a hard-core level that
  * cannot be built is recorded, not a crash; stand counts are options. */
-#include "exp_aniso.h"
-#include "exp_common.h"
+#include "exp_anisotropy.h"
+#include "fieldrun.h"
 #include "fieldsim.h"
 #include "gate.h"
 #include "paths.h"
@@ -26,7 +26,7 @@
 #include <stdio.h>
 #include <string.h>
 
-cs_status exp_aniso_lattice(const exp_field_opts *args)
+cs_status exp_anisotropy_lattice(const exp_field_opts *args)
 {
     exp_field_opts o = *args;
     const int argc = args->argc;
@@ -37,17 +37,17 @@ cs_status exp_aniso_lattice(const exp_field_opts *args)
     prov p;
     exp_prov_begin(&p, "anisotropy", &o.rd, argc, argv);
     double a;
-    cs_status st = exp_canonical_jitter(&a);
+    cs_status st = fieldrun_canonical_jitter(&a);
     if (st) return st;
-    exp_field_job j = {.seed_exp = "anisotropy/lattice", .kind = STAND_LATTICE, .shape = a, .level = a, .beta = c.value, .nstands = o.stands, .rd = o.rd};
+    fieldrun_job j = {.seed_exp = "anisotropy/lattice", .kind = stems_lattice, .shape = a, .level = a, .beta = c.value, .nstands = o.stands, .rd = o.rd};
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
-    st = exp_field_run_job(&j, &acc, &worst);
+    st = fieldrun_run(&j, &acc, &worst);
     snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"anisotropy/lattice\", %g, s, stems|crowns), s = 0..%u", exp_field_d(o.rd.layout), o.stands - 1);
     p.worst_overlap_m = worst;
-    exp_meta_ctx m = {c.value, a, "E6 lattice: controlled lattice (layout in the layout line), canonical jitter (level = a), teacher at beta_field"};
-    if (!st) st = exp_field_write(o.out, &p, &acc, &j, 1, exp_meta_generic, &m);
+    fieldrun_meta_ctx m = {c.value, a, "E6 lattice: controlled lattice (layout in the layout line), canonical jitter (level = a), teacher at beta_field"};
+    if (!st) st = fieldrun_write(o.out, &p, &acc, &j, 1, fieldrun_meta_generic, &m);
     if (!st) {
         fs_summary s;
         if (!fs_group(&acc, 1, a, &s))
@@ -58,7 +58,7 @@ cs_status exp_aniso_lattice(const exp_field_opts *args)
 }
 
 /* A family sweep: one job per level of `key` in anisotropy.gate. */
-static cs_status aniso_family(const char *cmd, const exp_field_opts *args, stand_kind kind, const char *key, const char *seed_exp,
+static cs_status aniso_family(const char *cmd, const exp_field_opts *args, const stems_type *kind, const char *key, const char *seed_exp,
                               const char *what)
 {
     exp_field_opts o = *args;
@@ -73,13 +73,13 @@ static cs_status aniso_family(const char *cmd, const exp_field_opts *args, stand
     size_t nl;
     cs_status st = gate_read_values(PATHS_GATE("anisotropy"), key, lv, 32, &nl);
     if (st) return st;
-    exp_field_job jobs[32];
+    fieldrun_job jobs[32];
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
     for (size_t k = 0; k < nl && !st; k++) {
-        jobs[k] = (exp_field_job){.seed_exp = seed_exp, .kind = kind, .shape = lv[k], .level = lv[k], .beta = c.value, .nstands = o.stands, .rd = o.rd};
-        st = exp_field_run_job(&jobs[k], &acc, &worst);
+        jobs[k] = (fieldrun_job){.seed_exp = seed_exp, .kind = kind, .shape = lv[k], .level = lv[k], .beta = c.value, .nstands = o.stands, .rd = o.rd};
+        st = fieldrun_run(&jobs[k], &acc, &worst);
         if (!st) {
             fs_summary s;
             if (jobs[k].failed == o.stands) fprintf(stderr, "%s: level %.2f UNBUILDABLE (%zu of %u stands failed)\n", cmd, lv[k], jobs[k].failed, o.stands);
@@ -89,25 +89,25 @@ static cs_status aniso_family(const char *cmd, const exp_field_opts *args, stand
     }
     snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"%s\", %g, s, stems|crowns), s = 0..%u at every level", seed_exp, exp_field_d(o.rd.layout), o.stands - 1);
     p.worst_overlap_m = worst;
-    exp_meta_ctx m = {c.value, 0, what};
-    if (!st) st = exp_field_write(o.out, &p, &acc, jobs, nl, exp_meta_generic, &m);
+    fieldrun_meta_ctx m = {c.value, 0, what};
+    if (!st) st = fieldrun_write(o.out, &p, &acc, jobs, nl, fieldrun_meta_generic, &m);
     fs_trees_free(&acc);
     return st;
 }
 
-cs_status exp_aniso_hardcore(const exp_field_opts *o)
+cs_status exp_anisotropy_hardcore(const exp_field_opts *o)
 {
-    return aniso_family("anisotropy-hardcore", o, STAND_HARDCORE, "hardcore_levels", "anisotropy/hardcore",
+    return aniso_family("anisotropy-hardcore", o, stems_hardcore, "hardcore_levels", "anisotropy/hardcore",
                         "E6 hard-core family: n = (L/d)^2 stems, minimum distance c d (level = c), layout in the layout line, teacher at beta_field");
 }
 
-cs_status exp_aniso_jitter(const exp_field_opts *o)
+cs_status exp_anisotropy_jitter(const exp_field_opts *o)
 {
-    return aniso_family("anisotropy-jitter", o, STAND_LATTICE, "jitter_levels", "anisotropy/jitter",
+    return aniso_family("anisotropy-jitter", o, stems_lattice, "jitter_levels", "anisotropy/jitter",
                         "E6 jitter family: lattice (layout in the layout line), jitter sd a d (level = a), teacher at beta_field");
 }
 
-cs_status exp_aniso_jitter_calibrate(const exp_field_opts *args)
+cs_status exp_anisotropy_jitter_calibrate(const exp_field_opts *args)
 {
     exp_field_opts o = *args;
     const int argc = args->argc;
@@ -148,7 +148,7 @@ cs_status exp_aniso_jitter_calibrate(const exp_field_opts *args)
     return CS_OK;
 }
 
-cs_status exp_aniso_heldout(const exp_field_opts *args)
+cs_status exp_anisotropy_heldout(const exp_field_opts *args)
 {
     exp_field_opts o = *args;
     const int argc = args->argc;
@@ -160,21 +160,21 @@ cs_status exp_aniso_heldout(const exp_field_opts *args)
     if (st) return st;
     prov p;
     exp_prov_begin(&p, "anisotropy", &o.rd, argc, argv);
-    exp_field_job j = {.seed_exp = "anisotropy/heldout", .kind = STAND_LATTICE, .shape = js.value, .level = js.value, .beta = c.value, .nstands = o.stands, .rd = o.rd};
+    fieldrun_job j = {.seed_exp = "anisotropy/heldout", .kind = stems_lattice, .shape = js.value, .level = js.value, .beta = c.value, .nstands = o.stands, .rd = o.rd};
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
-    st = exp_field_run_job(&j, &acc, &worst);
+    st = fieldrun_run(&j, &acc, &worst);
     snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"anisotropy/heldout\", %g, s, stems|crowns), s = 0..%u", exp_field_d(o.rd.layout), o.stands - 1);
     p.worst_overlap_m = worst;
-    exp_meta_ctx m = {c.value, js.value, "E6 held-out at a*: lattice (layout in the layout line), jitter a* (level), teacher at beta_field"};
-    if (!st) st = exp_field_write(o.out, &p, &acc, &j, 1, exp_meta_generic, &m);
+    fieldrun_meta_ctx m = {c.value, js.value, "E6 held-out at a*: lattice (layout in the layout line), jitter a* (level), teacher at beta_field"};
+    if (!st) st = fieldrun_write(o.out, &p, &acc, &j, 1, fieldrun_meta_generic, &m);
     if (!st) {
         fs_summary s;
         if (!fs_group(&acc, 1, js.value, &s))
             printf("anisotropy-heldout: a* %.2f: anisotropy median %.4f (%zu trees, %zu excluded), elongation %.4f, spread %.4f m; %zu of %u stands built\n",
                    js.value, s.f.aniso_median, s.f.aniso_trees, s.f.aniso_excluded, s.elong_median, s.f.spread, s.stands, o.stands);
-        exp_print_spread_ratios("anisotropy-heldout", &acc, js.value, 0);
+        fieldrun_print_spread_ratios("anisotropy-heldout", &acc, js.value, 0);
     }
     fs_trees_free(&acc);
     return st;
