@@ -107,8 +107,9 @@ check-fast: deps
 # kind: 1 inconsistency, 2 usage, 3 bad input, 4 environment (design.md §11).
 CS_STATUS = st=$$?; if [ $$st -ne 0 ]; then case $$st in 1) k=inconsistency;; 2) k=usage;; 3) k='bad input';; 4) k=environment;; *) k=other;; esac; \
   echo "make $@: crownshy exited $$st ($$k)" >&2; fi; exit $$st
+# From clean the CLI is built on both cores unless make already runs parallel.
 verify: deps
-	@$(MAKE) --no-print-directory $(CLI)
+	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j2) $(CLI)
 	@$(CLI) verify $(if $(STRICT),--strict); $(CS_STATUS)
 
 # Tier 2 (design.md §9): rerun every unit of each experiment whose manifest
@@ -129,9 +130,11 @@ figures: deps
 	@$(MAKE) --no-print-directory $(CLI)
 	@$(CLI) figures
 
-# Speed (design.md §10), measured here and never by a timed test: teacher ms per
-# 144-tree stand at N = 48 and 384; trainer steps/s, model and same-run sgemm
-# GFLOP/s at the reference configuration, and their ratio.
+# Speed (design.md §10), measured here and never by a timed test: teacher CPU ms
+# per 144-tree stand at N = 48 and 384; on every vector path of the CPU, the
+# core's FMA peak and, as fractions of it measured beside each, the own product,
+# sgemm, training and sampling of the plain and pair models, every goal judged,
+# and the projected wall time of E3+E4 (README "Speed").
 bench: deps
 	@$(MAKE) --no-print-directory $(CLI)
 	@$(CLI) bench-teacher

@@ -67,7 +67,7 @@ EOF
 cat > src/exp/exp_toy.c <<'EOF'
 /* exp_toy: see exp_toy.h. */
 #include "exp_toy.h"
-#include "exp_common.h"
+#include "unit_out.h"
 
 cs_status exp_toy_run(const exp_toy_args *a)
 {
@@ -83,7 +83,7 @@ cs_status exp_toy_run(const exp_toy_args *a)
         tsv_writer_dbl(w, 0.5 * k);
         tsv_writer_endrow(w);
     }
-    return exp_finish(w, &p, a->out);
+    return unit_out_finish(w, &p, a->out);
 }
 EOF
 cat > src/cli/cli_toy.c <<'EOF'

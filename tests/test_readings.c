@@ -29,7 +29,7 @@ static void test_figure_stand_macros_come_from_the_hard_core_stand(void **s)
     assert_int_equal(r.status, VERDICT_PASS);
     /* the stand shown: hard-core, c = EXP_FIG_C, d = 3.5 m, L = 36 m, seed "fig/mechanism" */
     stand *sd;
-    assert_int_equal(stand_alloc(&sd, STAND_HARDCORE, 3.5, EXP_FIG_L, EXP_FIG_C, "fig/mechanism", 0), CS_OK);
+    assert_int_equal(stand_alloc(&sd, stems_hardcore, 3.5, EXP_FIG_L, EXP_FIG_C, "fig/mechanism", 0), CS_OK);
     double *rr = malloc(sd->s->n * CROWN_NSEC * sizeof *rr);
     teacher_params p;
     teacher_params_default(&p);

@@ -1,7 +1,7 @@
 /* claim_teacher: computing functions for the teacher claims — E1 mechanism
  * (paper §3.2; gates/mechanism.gate), E2 irreducibility (§3.3;
  * gates/irreducibility.gate), the hero figure (E9) and the point-cloud figure
- * (E8) — from the frozen tables written by src/exp/exp_mechanism.c, exp_irred.c and exp_stands.c. Row verdicts are
+ * (E8) — from the frozen tables written by src/exp/exp_mechanism.c, exp_irreducibility.c and exp_stands.c. Row verdicts are
  * recomputed from the clearances and the gate thresholds, never read from a
  * stored pass column. */
 #include "claims.h"

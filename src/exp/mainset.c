@@ -41,7 +41,7 @@ static cs_status add_stand_patches(const mainset_design *ds, const char *exp, do
                                    patch_set *ps, int *added, double *worst)
 {
     stand *sd;
-    cs_status st = stand_alloc(&sd, STAND_LATTICE, d, 12.0 * d, ds->jitter, exp, k);
+    cs_status st = stand_alloc(&sd, stems_lattice, d, 12.0 * d, ds->jitter, exp, k);
     if (st) return st;
     size_t n = sd->s->n;
     double *r = malloc(n * CROWN_NSEC * sizeof *r);

@@ -37,7 +37,7 @@ cs_status stand_grow_bench(int nres, int reps, double ms[3])
     cs_status rc = CS_OK;
     for (int k = 0; k < reps && !rc; k++) {
         stand *sd = NULL;
-        rc = stand_alloc(&sd, STAND_LATTICE, 3.5, 12.0 * 3.5, 0.04, "bench", (unsigned)k);
+        rc = stand_alloc(&sd, stems_lattice, 3.5, 12.0 * 3.5, 0.04, "bench", (unsigned)k);
         if (rc) break;
         double *r = malloc(sd->s->n * CROWN_NSEC * sizeof *r);
         if (!r) { stand_free(sd); rc = cs_err(CS_ENOMEM, "stand_grow: out of memory"); break; }
