@@ -36,6 +36,8 @@ static const cli_cmd cli_cmds[] = {
     {"main-baselines", exp_main_cmd_baselines, "E3/E4: direction-blind baseline and noise floor"},
     {"main-summary", exp_main_cmd_summary, "E3/E4: gather runs into frozen tables"},
     {"main-redraw", exp_main_cmd_redraw, "E3/E4: draw a unit's clearance samples again from its frozen weights"},
+    {"main-train", exp_main_cmd_train, "E3/E4: train one (seed, arm, reading) unit: weights and training table"},
+    {"main-eval", exp_main_cmd_eval, "E3/E4: evaluate one unit from its weights, without training: run table and samples"},
     {"comp-run", exp_comp_cmd_run, "E7: comparison patch (teacher, joint, independent) and dart probe"},
     {"readings-summary", cli_cmd_readings_summary, "E0: the readings table from the runs under --dir (design.md §7 E0)"},
     {"bench-teacher", cli_cmd_bench_teacher, "teacher ms per 144-tree stand at N = 48 and 384"},

@@ -1,17 +1,25 @@
 /* exp_main: E3 main experiment and E4 extrapolation (reference paper
- * §4.3-§5.2; design.md §7 E3/E4, §8). See exp_main.h for the data plan and
- * mainset.h for the data, the generation and the probes.
+ * §4.3-§5.2; design.md §7 E3/E4, §8). See exp_main.h for the data plan,
+ * mainset.h for the data, the generation and the probes, and mainrun.h for a
+ * unit's evaluation and tables.
  * The error of a run at one spacing is W1 (est_w1, the pinned estimator)
  * between the focal nearest-neighbour clearances of generated patches and of
  * the teacher's patches at that spacing; the run's error is the mean over the
  * unseen spacings. Clearances on patches come from the batched estimator
  * (patch_focal_clearances), checked against est_clearance to 1e-6 m before
- * every run (paper §4.3); a mismatch aborts the run. Each unit also writes the
- * clearance samples behind every W1 and its final weights; main-redraw draws
- * the samples again from the weights alone. */
+ * every evaluation (paper §4.3); a mismatch aborts the run.
+ * Units: main-run trains and evaluates; main-train trains only (weights and a
+ * training table); main-eval evaluates weights without training (the run
+ * table and samples); main-redraw draws the samples again from weights.
+ * Step plan: `epochs` x ceil(patches / batch) steps, while an epoch of the
+ * batch order holds floor(patches / batch) whole batches (train.c reshuffles
+ * when the next batch would run past the data): 300 epochs of the full plan
+ * are 14 700 steps = 306.25 passes over the data. The same for every reading,
+ * so the frozen pair-aware runs keep their weights; stated in design.md §8. */
 #include "exp_main.h"
 #include "afile.h"
 #include "estimator.h"
+#include "mainrun.h"
 #include "mainset.h"
 #include "model.h"
 #include "opts.h"
@@ -19,7 +27,6 @@
 #include "paths.h"
 #include "prov.h"
 #include "seed.h"
-#include "sha256.h"
 #include "stats.h"
 #include "gate.h"
 #include "train.h"
@@ -42,6 +49,7 @@ cs_status exp_main_plan_get(const char *scale, exp_main_plan *p)
     p->euler = (int)euler;
     p->batch = 64;
     p->lr = 2e-3;
+    p->volume = "v1";
     if (!strcmp(scale, "full")) {
         p->scale = "full";
         p->train_stands = EXP_MAIN_TRAIN_STANDS; /* x 4 spacings x ~64 interior stems */
@@ -59,6 +67,21 @@ cs_status exp_main_plan_get(const char *scale, exp_main_plan *p)
     return CS_OK;
 }
 
+cs_status exp_main_plan_volume(exp_main_plan *p, const char *volume)
+{
+    const int full = !strcmp(p->scale, "full");
+    if (!strcmp(volume, "v1")) {
+        p->volume = "v1";
+        p->eval_stands = full ? 16 : 2;
+        p->gen_patches = full ? 256 : 32;
+    } else if (!strcmp(volume, "v2")) {
+        p->volume = "v2";
+        p->eval_stands = full ? EXP_MAIN_V2_EVAL_STANDS : 4;
+        p->gen_patches = full ? EXP_MAIN_V2_GEN_PATCHES : 64;
+    } else return cs_err(CS_EUSAGE, "unknown evaluation volume '%s' (v1 or v2)", volume);
+    return CS_OK;
+}
+
 static int file_exists(const char *p)
 {
     struct stat sb;
@@ -71,132 +94,190 @@ static int fail_with(cs_status st)
     return cs_exit_code(st);
 }
 
-static cs_status file_sha256(const char *path, char hex[65])
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) return cs_err(CS_EIO, "%s: cannot open to hash", path);
-    sha256_ctx c;
-    sha256_init(&c);
-    unsigned char b[65536];
-    size_t n;
-    while ((n = fread(b, 1, sizeof b, f)) > 0) sha256_update(&c, b, n);
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) return cs_err(CS_EIO, "%s: read error while hashing", path);
-    uint8_t d[32];
-    sha256_final(&c, d);
-    sha256_tohex(d, hex);
-    return CS_OK;
-}
-
 static const char *base_name(const char *p)
 {
     const char *s = strrchr(p, '/');
     return s ? s + 1 : p;
 }
 
-/* One W1 of a run: spacing, probe, the generated clearances behind it, and
- * (on the generated row of a spacing) the teacher's. */
+/* The options every unit command shares, parsed and checked. */
 typedef struct {
-    double d, w1;
-    int unseen, ng, nt;
-    mainset_probe probe;
-    double *gen, *teach;
-} run_row;
+    long seed, epochs, train_stands, pair;
+    const char *arm, *out, *scale, *ckpt, *samples, *weights, *reading, *volume, *trained;
+} unit_args;
 
-static void rows_free(run_row *rows, size_t n)
+static int unit_check(const char *cmd, const unit_args *a, int need_weights)
 {
-    for (size_t i = 0; i < n; i++) { free(rows[i].gen); free(rows[i].teach); }
+    if (need_weights && !a->weights) { opts_usage_error(cmd, "--weights is required"); return 2; }
+    if (!a->seed) { opts_usage_error(cmd, "--seed is required"); return 2; }
+    if (!a->arm) { opts_usage_error(cmd, "--arm is required"); return 2; }
+    if (strcmp(a->arm, "joint") && strcmp(a->arm, "indep")) { opts_usage_error(cmd, "--arm: must be joint or indep, not '%s'", a->arm); return 2; }
+    if (!a->out) { opts_usage_error(cmd, "--out is required"); return 2; }
+    if (strcmp(a->scale, "full") && strcmp(a->scale, "smoke")) { opts_usage_error(cmd, "--scale: must be full or smoke, not '%s'", a->scale); return 2; }
+    if (a->volume && strcmp(a->volume, "v1") && strcmp(a->volume, "v2")) { opts_usage_error(cmd, "--volume: must be v1 or v2, not '%s'", a->volume); return 2; }
+    model_reading r;
+    if (a->reading && model_reading_parse(a->reading, &r)) { opts_usage_error(cmd, "--reading: %s", cs_errmsg()); return 2; }
+    if (a->reading && a->pair >= 0 && (r == MODEL_PAIR) != (a->pair == 1)) { opts_usage_error(cmd, "--pair %ld contradicts --reading %s", a->pair, a->reading); return 2; }
+    return 0;
 }
 
-/* Probes a unit runs: the pair model (revision 2) every probe on both arms;
- * the revision-1 model as it did (joint: shuffled; independent: none). */
-static int unit_nprobe(int pair, int joint)
+/* The reading of a training unit: --reading, else --pair (0 plain, 1 pair), else pair. */
+static model_reading unit_reading(const unit_args *a)
 {
-    return pair ? MAINSET_NPROBE : joint ? 2 : 1;
+    model_reading r = MODEL_PAIR;
+    if (a->reading) model_reading_parse(a->reading, &r);
+    else if (a->pair == 0) r = MODEL_PLAIN;
+    return r;
 }
 
-/* Every evaluation spacing x probe of one model: the rows of a run table and
- * the samples behind them. main-run and main-redraw both come through here. */
-static cs_status evaluate(model *m, int Bmax, const mainset_design *ds, const exp_main_plan *pl, double scale,
-                          unsigned seed, const char *arm, int nprobe, run_row *rows, size_t *nrows,
-                          double *worst, double *maxdiff)
+/* What a training unit leaves for its tables. */
+typedef struct {
+    model_cfg cfg;
+    int npatches;
+    long steps;
+    double final_loss, scale, train_s, steps_per_s;
+    char wsha[65];
+} unit_trained;
+
+/* Build the teacher data, train (resuming from a->ckpt), write the weights;
+ * *out owns the trainer, *data its patches. */
+static cs_status unit_train(const unit_args *a, const mainset_design *ds, const exp_main_plan *pl,
+                            model_reading reading, train **out, patch_set **data, unit_trained *u, double *worst)
 {
-    cs_status st = CS_OK;
-    *nrows = 0;
-    for (size_t si = 0; si < ds->nunseen + ds->nextrap && !st; si++) {
-        int unseen;
-        double d = mainset_eval_spacing(ds, si, &unseen);
-        mainset_eval e;
-        st = mainset_eval_build(ds, pl->eval_stands, d, scale, &e, worst, maxdiff);
-        for (int probe = 0; probe < nprobe && !st; probe++) {
-            run_row *r = &rows[(*nrows)++];
-            memset(r, 0, sizeof *r);
-            r->d = d; r->unseen = unseen; r->probe = (mainset_probe)probe; r->nt = e.ps->n;
-            r->gen = malloc((size_t)pl->gen_patches * sizeof *r->gen);
-            if (!probe) r->teach = malloc((size_t)e.ps->n * sizeof *r->teach);
-            if (!r->gen || (!probe && !r->teach)) { st = cs_err(CS_ENOMEM, "out of memory"); break; }
-            if (!probe) memcpy(r->teach, e.teach, (size_t)e.ps->n * sizeof *r->teach);
-            st = mainset_generate(m, Bmax, &e, pl->gen_patches, pl->euler, seed, r->probe, r->gen, &r->ng);
-            if (!st) st = est_w1(r->gen, (size_t)r->ng, e.teach, (size_t)e.ps->n, &r->w1);
-            if (!st) fprintf(stderr, "main-run s%u %s: d = %.1f %s W1 = %.4f m\n", seed, arm, d, mainset_probe_name(r->probe), r->w1);
-        }
-        mainset_eval_free(&e);
+    *out = NULL;
+    memset(u, 0, sizeof *u);
+    const unsigned seed = (unsigned)a->seed;
+    patch_set *tr = NULL;
+    cs_status st = mainset_train_build(ds, pl->train_stands, &tr, worst);
+    *data = tr;
+    if (st) return st;
+    u->scale = patch_set_rms(tr);
+    if ((st = patch_set_standardise(tr, u->scale))) return st;
+    model_cfg cfg = model_cfg_reference(PATCH_NCOND);
+    cfg.joint = !strcmp(a->arm, "joint");
+    model_cfg_set_reading(&cfg, reading);
+    train_opts o = train_opts_default();
+    o.batch = pl->batch;
+    o.lr = pl->lr;
+    long spe = (tr->n + o.batch - 1) / o.batch; /* the step plan (see the top of this file) */
+    o.steps = (long)pl->epochs * spe;
+    o.seed_init = (unsigned long)seed_derive("main-model", 0, seed, "init");
+    o.seed_batch = (unsigned long)seed_derive("main-model", 0, seed, "batch");
+    o.seed_noise = (unsigned long)seed_derive("main-model", 0, seed, "noise");
+    /* the checkpoint's directory must exist before the first atomic write */
+    if (a->ckpt && (st = afile_mkdir_parents(a->ckpt))) return st;
+    train *t = NULL;
+    if ((st = train_alloc(&t, &cfg, tr, &o))) return st;
+    *out = t;
+    if (a->ckpt && file_exists(a->ckpt)) {
+        if ((st = train_load(t, a->ckpt)))
+            return cs_err(st, "%s (delete the checkpoint to restart this run)", cs_errmsg());
+        fprintf(stderr, "main s%u %s %s: resuming at step %ld of %ld\n", seed, a->arm, model_reading_name(reading), t->step, o.steps);
     }
+    const long every = o.steps / 50 > 0 ? o.steps / 50 : 1, from = t->step;
+    const double t0 = prov_now();
+    st = train_run(t, o.steps, a->ckpt, a->ckpt ? every : 0, stderr);
+    u->train_s = prov_now() - t0;
+    u->steps_per_s = u->train_s > 0 ? (double)(o.steps - from) / u->train_s : 0;
+    u->cfg = cfg;
+    u->npatches = tr->n;
+    u->steps = o.steps;
+    u->final_loss = t->loss;
+    if (!st && a->weights && !(st = afile_mkdir_parents(a->weights)) && !(st = train_save_weights(t, a->weights)))
+        st = prov_sha256_file(a->weights, u->wsha);
     return st;
 }
 
-/* The samples behind every W1 of a run (README "Frozen samples and weights"):
- * per spacing the teacher's focal NN clearances (which = teacher, probe =
- * none), then the generated ones under each probe (which = generated). */
-static cs_status samples_write(const char *path, prov *pv, unsigned seed, const char *arm,
-                               const run_row *rows, size_t n)
+/* `# model:` and `# training:` texts of a trained unit. */
+static void unit_meta_model(char *buf, size_t n, const model_cfg *c)
 {
-    tsv_writer *w;
-    cs_status st = tsv_writer_open(&w, path);
-    if (st) return st;
-    if ((st = prov_write(w, pv))) { tsv_writer_abort(w); return st; }
-    tsv_writer_meta(w, "what", "focal nearest-neighbour clearances (m) behind every W1 of run_s%02u_%s.tsv: W1(spacing, probe) = est_w1(generated values of that spacing and probe, teacher values of that spacing), values in drawing order", seed, arm);
-    tsv_writer_columns(w, "spacing\tsplit\tprobe\twhich\tvalue");
-    for (size_t i = 0; i < n; i++) {
-        const run_row *r = &rows[i];
-        const char *split = r->unseen ? "unseen" : "extrap";
-        for (int k = 0; r->teach && k < r->nt; k++) {
-            tsv_writer_dbl(w, r->d); tsv_writer_str(w, split); tsv_writer_str(w, "none"); tsv_writer_str(w, "teacher");
-            tsv_writer_dbl(w, r->teach[k]); tsv_writer_endrow(w);
-        }
-        for (int k = 0; k < r->ng; k++) {
-            tsv_writer_dbl(w, r->d); tsv_writer_str(w, split); tsv_writer_str(w, mainset_probe_name(r->probe));
-            tsv_writer_str(w, "generated"); tsv_writer_dbl(w, r->gen[k]); tsv_writer_endrow(w);
-        }
-    }
-    return tsv_writer_commit(w);
+    const model_reading r = model_cfg_reading(c);
+    if (c->pair || r != MODEL_PLAIN)
+        snprintf(buf, n, "T %d P %d width %d blocks %d heads %d mlp %d joint %d pair %d params %zu%s%s", c->T, c->P, c->C, c->L, c->H,
+                 c->F, c->joint, c->pair, model_nparams(c), r == MODEL_PAIR ? "" : " reading ", r == MODEL_PAIR ? "" : model_reading_name(r));
+    else
+        snprintf(buf, n, "T %d P %d width %d blocks %d heads %d mlp %d joint %d params %zu", c->T, c->P, c->C, c->L, c->H, c->F, c->joint, model_nparams(c));
 }
 
-static const char *seeds_text(char *buf, size_t n, unsigned seed)
+static void unit_meta_training(char *buf, size_t n, const unit_trained *u, const exp_main_plan *pl)
 {
-    snprintf(buf, n, "stands seed_derive(main-train|main-eval, d, k, stems|crowns); model seed_derive(main-model, 0, %u, init|batch|noise); "
-             "sampling seed_derive(main-model[-shuffled|-rotated], d, %u, sample), permutation seed_derive(main-model, d, %u, shuffle)", seed, seed, seed);
-    return buf;
+    snprintf(buf, n, "%d patches (%d stands per training spacing), batch %d, %d epochs = %ld steps, lr %g, final loss %.17g, deviation scale %.17g m",
+             u->npatches, pl->train_stands, pl->batch, pl->epochs, u->steps, pl->lr, u->final_loss, u->scale);
+}
+
+static void unit_meta_eval(char *buf, size_t n, const exp_main_plan *pl, const model_cfg *c)
+{
+    const int v1 = !strcmp(pl->volume, "v1");
+    if (v1)
+        snprintf(buf, n, "%d teacher stands per spacing, up to %d generated patches, %d Euler steps; probes: shuffled (preregistered gate)%s",
+                 pl->eval_stands, pl->gen_patches, pl->euler,
+                 c->pair ? ", rotated by (1 + g mod 7) x 45 deg about the focal stem (added after the first verdict)" : "");
+    else
+        snprintf(buf, n, "volume v2: %d teacher stands per spacing, up to %d generated patches, %d Euler steps; probes at the unseen spacings only: "
+                 "shuffled (preregistered gate), rotated by (1 + g mod 7) x 45 deg about the focal stem (added after the first verdict)",
+                 pl->eval_stands, pl->gen_patches, pl->euler);
+}
+
+/* Evaluate m, write the samples (if asked) and the run table with meta[0..nmeta)
+ * followed by the eval, estimator and samples/weights lines. */
+static cs_status unit_evaluate_write(const unit_args *a, prov *pv, model *m, int Bmax, const mainset_design *ds,
+                                     const exp_main_plan *pl, double scale, const char *(*meta)[2], int nmeta,
+                                     const char *wsha, double *worst)
+{
+    const unsigned seed = (unsigned)a->seed;
+    mainrun_row rows[MAINRUN_MAXROWS];
+    size_t nrows = 0;
+    double maxdiff = 0;
+    char sbuf[256], ssha[65] = "", ev[512], ec[160], sl[160], wl[200];
+    cs_status st = mainrun_evaluate(m, Bmax, ds, pl, scale, seed, a->arm, rows, &nrows, worst, &maxdiff);
+    snprintf(pv->seeds, sizeof pv->seeds, "%s", mainrun_seeds_text(sbuf, sizeof sbuf, seed));
+    pv->worst_overlap_m = *worst;
+    if (!st && a->samples && !(st = afile_mkdir_parents(a->samples)) && !(st = mainrun_samples_write(a->samples, pv, seed, a->arm, rows, nrows)))
+        st = prov_sha256_file(a->samples, ssha);
+    unit_meta_eval(ev, sizeof ev, pl, &m->cfg);
+    snprintf(ec, sizeof ec, "max |batched - est_clearance| = %.3g m (tolerance %.3g m)", maxdiff, ds->tol);
+    meta[nmeta][0] = "eval"; meta[nmeta++][1] = ev;
+    meta[nmeta][0] = "estimator_check"; meta[nmeta++][1] = ec;
+    if (a->samples) { snprintf(sl, sizeof sl, "%s sha256 %s", base_name(a->samples), ssha); meta[nmeta][0] = "samples"; meta[nmeta++][1] = sl; }
+    if (a->weights) { snprintf(wl, sizeof wl, "%s sha256 %s (weights format 1, README)", base_name(a->weights), wsha); meta[nmeta][0] = "weights"; meta[nmeta++][1] = wl; }
+    if (!st && !(st = afile_mkdir_parents(a->out))) st = mainrun_table_write(a->out, pv, seed, a->arm, (const char *const (*)[2])meta, nmeta, rows, nrows);
+    mainrun_rows_free(rows, nrows);
+    return st;
+}
+
+#define UNIT_OPTS(a) \
+    {"seed", OPT_LONG, &(a).seed, 1, 4294967295.0, "model seed (required; zero-padded 01 is 1)"}, \
+    {"arm", OPT_STR, &(a).arm, 0, 0, "joint or indep (required)"}, \
+    {"scale", OPT_STR, &(a).scale, 0, 0, "full or smoke (default full)"}
+#define TRAIN_OPTS(a) \
+    {"ckpt", OPT_STR, &(a).ckpt, 0, 0, "checkpoint FILE, resumed from when it exists (default none)"}, \
+    {"epochs", OPT_LONG, &(a).epochs, 1, 1000000, "exploration override of the plan's epochs (default: the plan's)"}, \
+    {"train-stands", OPT_LONG, &(a).train_stands, 1, 10000, "exploration override of the plan's stands per training spacing (default: the plan's)"}, \
+    {"reading", OPT_STR, &(a).reading, 0, 0, "generator reading: plain, paper, paper-fourier or pair (design.md §8; default pair)"}, \
+    {"pair", OPT_LONG, &(a).pair, 0, 1, "1: the pair reading; 0: the plain reading (the form before --reading)"}
+
+/* Plan for a unit: scale, volume, exploration overrides. */
+static cs_status unit_plan(const unit_args *a, mainset_design *ds, exp_main_plan *pl)
+{
+    cs_status st = mainset_design_get(ds);
+    if (!st) st = exp_main_plan_get(a->scale, pl);
+    if (!st && a->volume) st = exp_main_plan_volume(pl, a->volume);
+    if (!st && a->epochs) pl->epochs = (int)a->epochs;
+    if (!st && a->train_stands) pl->train_stands = (int)a->train_stands;
+    return st;
 }
 
 int exp_main_cmd_run(int argc, char **argv)
 {
-    long seedl = 0, epochs = 0, train_stands = 0, pairl = 1;
-    const char *arm = NULL, *out = NULL, *scale = "full", *ckpt = NULL, *samples = NULL, *weights = NULL;
+    unit_args a = {.scale = "full", .pair = -1};
     const opt_spec spec[] = {
-        {"seed", OPT_LONG, &seedl, 1, 4294967295.0, "model seed (required; zero-padded 01 is 1)"},
-        {"arm", OPT_STR, &arm, 0, 0, "joint or indep (required)"},
-        {"out", OPT_STR, &out, 0, 0, "output table FILE.tsv (required)"},
-        {"scale", OPT_STR, &scale, 0, 0, "full or smoke (default full)"},
-        {"ckpt", OPT_STR, &ckpt, 0, 0, "checkpoint FILE, resumed from when it exists (default none)"},
-        {"samples", OPT_STR, &samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
-        {"weights", OPT_STR, &weights, 0, 0, "also write the final weights to FILE (weights format, README; default none)"},
-        {"epochs", OPT_LONG, &epochs, 1, 1000000, "exploration override of the plan's epochs (default: the plan's)"},
-        {"train-stands", OPT_LONG, &train_stands, 1, 10000, "exploration override of the plan's stands per training spacing (default: the plan's)"},
-        {"pair", OPT_LONG, &pairl, 0, 1, "1: the pair-aware model of design.md §8 revision 2, every probe on both arms; 0: the revision-1 model (default 1)"},
+        UNIT_OPTS(a), TRAIN_OPTS(a),
+        {"out", OPT_STR, &a.out, 0, 0, "output table FILE.tsv (required)"},
+        {"samples", OPT_STR, &a.samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
+        {"weights", OPT_STR, &a.weights, 0, 0, "also write the final weights to FILE (weights format, README; default none)"},
+        {"volume", OPT_STR, &a.volume, 0, 0, "evaluation volume v1 or v2 (mainrun.h; default v1)"},
     };
-    const opts_cmd c = {"main-run", "--seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--ckpt FILE] [--samples FILE.tsv] [--weights FILE]",
+    const opts_cmd c = {"main-run", "--seed S --arm joint|indep --out FILE.tsv [--reading R] [--volume v1|v2] [--scale full|smoke] [--ckpt FILE] [--samples FILE.tsv] [--weights FILE]",
                         "One (seed, arm) unit of E3/E4: build teacher data, train the flow model (resuming from\n"
                         "--ckpt if it exists), evaluate W1 of focal nearest-neighbour clearances at the unseen and\n"
                         "extrapolation spacings, as generated and under the shuffled-geometry and rotation probes,\n"
@@ -204,170 +285,219 @@ int exp_main_cmd_run(int argc, char **argv)
                         spec, sizeof spec / sizeof *spec, 0, 0};
     int rc = opts_parse(&c, argc, argv, NULL, NULL);
     if (rc) return opts_exit_code(rc);
-    if (!seedl) { opts_usage_error("main-run", "--seed is required"); return 2; }
-    if (!arm) { opts_usage_error("main-run", "--arm is required"); return 2; }
-    if (strcmp(arm, "joint") && strcmp(arm, "indep")) { opts_usage_error("main-run", "--arm: must be joint or indep, not '%s'", arm); return 2; }
-    if (!out) { opts_usage_error("main-run", "--out is required"); return 2; }
-    if (strcmp(scale, "full") && strcmp(scale, "smoke")) { opts_usage_error("main-run", "--scale: must be full or smoke, not '%s'", scale); return 2; }
-    unsigned seed = (unsigned)seedl;
-    int joint = !strcmp(arm, "joint");
+    if ((rc = unit_check("main-run", &a, 0))) return rc;
     prov pv;
     prov_begin(&pv, "main", argc, argv);
     mainset_design ds;
     exp_main_plan pl;
-    cs_status st = mainset_design_get(&ds);
-    if (!st) st = exp_main_plan_get(scale, &pl);
+    cs_status st = unit_plan(&a, &ds, &pl);
     if (st) return fail_with(st);
-    /* exploration overrides (recorded in the provenance command line) */
-    if (epochs) pl.epochs = (int)epochs;
-    if (train_stands) pl.train_stands = (int)train_stands;
-    if (pl.epochs < 1) { opts_usage_error("main-run", "the plan's epochs must be >= 1"); return 2; }
-    const int pair = (int)pairl;
-    double worst = 0.0, maxdiff = 0.0;
-    patch_set *tr = NULL;
-    if ((st = mainset_train_build(&ds, pl.train_stands, &tr, &worst))) return fail_with(st);
-    double data_scale = patch_set_rms(tr);
-    if ((st = patch_set_standardise(tr, data_scale))) { patch_set_free(tr); return fail_with(st); }
-
-    model_cfg cfg = model_cfg_reference(PATCH_NCOND);
-    cfg.joint = joint;
-    cfg.pair = pair;
-    train_opts o = train_opts_default();
-    o.batch = pl.batch;
-    o.lr = pl.lr;
-    long spe = (tr->n + o.batch - 1) / o.batch;
-    o.steps = (long)pl.epochs * spe;
-    o.seed_init = (unsigned long)seed_derive("main-model", 0, seed, "init");
-    o.seed_batch = (unsigned long)seed_derive("main-model", 0, seed, "batch");
-    o.seed_noise = (unsigned long)seed_derive("main-model", 0, seed, "noise");
-    /* the checkpoint's directory must exist before the first atomic write */
-    if (ckpt && (st = afile_mkdir_parents(ckpt))) { patch_set_free(tr); return fail_with(st); }
+    double worst = 0.0;
     train *t = NULL;
-    if ((st = train_alloc(&t, &cfg, tr, &o))) { patch_set_free(tr); return fail_with(st); }
-    if (ckpt && file_exists(ckpt)) {
-        st = train_load(t, ckpt);
-        if (st) {
-            fprintf(stderr, "crownshy: %s (delete the checkpoint to restart this run)\n", cs_errmsg());
-            train_free(t); patch_set_free(tr);
-            return cs_exit_code(st);
-        }
-        fprintf(stderr, "main-run s%u %s: resuming at step %ld of %ld\n", seed, arm, t->step, o.steps);
-    }
-    long every = o.steps / 50 > 0 ? o.steps / 50 : 1;
-    st = train_run(t, o.steps, ckpt, ckpt ? every : 0, stderr);
-    double final_loss = t->loss;
-    char wsha[65] = "", ssha[65] = "", sbuf[256];
-    if (!st && weights && !(st = afile_mkdir_parents(weights)) && !(st = train_save_weights(t, weights)))
-        st = file_sha256(weights, wsha);
-    if (st) { train_free(t); patch_set_free(tr); return fail_with(st); }
-
-    run_row rows[MAINSET_NPROBE * 2 * MAXSP];
-    size_t nrows = 0;
-    st = evaluate(t->m, t->B, &ds, &pl, data_scale, seed, arm, unit_nprobe(pair, joint), rows, &nrows, &worst, &maxdiff);
-    snprintf(pv.seeds, sizeof pv.seeds, "%s", seeds_text(sbuf, sizeof sbuf, seed));
-    pv.worst_overlap_m = worst;
-    if (!st && samples && !(st = afile_mkdir_parents(samples)) && !(st = samples_write(samples, &pv, seed, arm, rows, nrows)))
-        st = file_sha256(samples, ssha);
-    tsv_writer *w = NULL;
-    if (!st) st = tsv_writer_open(&w, out);
-    if (!st) st = prov_write(w, &pv);
+    patch_set *tr = NULL;
+    unit_trained u;
+    st = unit_train(&a, &ds, &pl, unit_reading(&a), &t, &tr, &u, &worst);
     if (!st) {
-        tsv_writer_meta(w, "scale", "%s", pl.scale);
-        if (cfg.pair)
-            tsv_writer_meta(w, "model", "T %d P %d width %d blocks %d heads %d mlp %d joint %d pair %d params %zu",
-                            cfg.T, cfg.P, cfg.C, cfg.L, cfg.H, cfg.F, cfg.joint, cfg.pair, model_nparams(&cfg));
-        else
-            tsv_writer_meta(w, "model", "T %d P %d width %d blocks %d heads %d mlp %d joint %d params %zu",
-                            cfg.T, cfg.P, cfg.C, cfg.L, cfg.H, cfg.F, cfg.joint, model_nparams(&cfg));
-        tsv_writer_meta(w, "training", "%d patches (%d stands per training spacing), batch %d, %d epochs = %ld steps, lr %g, final loss %.17g, deviation scale %.17g m",
-                        tr->n, pl.train_stands, o.batch, pl.epochs, o.steps, o.lr, final_loss, data_scale);
-        tsv_writer_meta(w, "eval", "%d teacher stands per spacing, up to %d generated patches, %d Euler steps; probes: shuffled (preregistered gate)%s",
-                        pl.eval_stands, pl.gen_patches, pl.euler,
-                        pair ? ", rotated by (1 + g mod 7) x 45 deg about the focal stem (added after the first verdict)" : "");
-        tsv_writer_meta(w, "estimator_check", "max |batched - est_clearance| = %.3g m (tolerance %.3g m)", maxdiff, ds.tol);
-        if (samples) tsv_writer_meta(w, "samples", "%s sha256 %s", base_name(samples), ssha);
-        if (weights) tsv_writer_meta(w, "weights", "%s sha256 %s (weights format 1, README)", base_name(weights), wsha);
-        tsv_writer_columns(w, "seed\tarm\tspacing\tsplit\tprobe\tw1\tn_gen\tn_teacher");
-        for (size_t i = 0; i < nrows; i++) {
-            tsv_writer_long(w, (long)seed);
-            tsv_writer_str(w, arm);
-            tsv_writer_dbl(w, rows[i].d);
-            tsv_writer_str(w, rows[i].unseen ? "unseen" : "extrap");
-            tsv_writer_str(w, mainset_probe_name(rows[i].probe));
-            tsv_writer_dbl(w, rows[i].w1);
-            tsv_writer_long(w, rows[i].ng);
-            tsv_writer_long(w, rows[i].nt);
-            tsv_writer_endrow(w);
-        }
-        st = tsv_writer_commit(w);
-        w = NULL;
+        char mm[200], tm[400];
+        unit_meta_model(mm, sizeof mm, &u.cfg);
+        unit_meta_training(tm, sizeof tm, &u, &pl);
+        const char *meta[8][2] = {{"scale", pl.scale}, {"model", mm}, {"training", tm}};
+        st = unit_evaluate_write(&a, &pv, t->m, t->B, &ds, &pl, u.scale, meta, 3, u.wsha, &worst);
     }
-    if (w) tsv_writer_abort(w);
-    rows_free(rows, nrows);
     train_free(t);
     patch_set_free(tr);
+    return st ? fail_with(st) : 0;
+}
+
+/* Train only: the weights and a one-row training table (what the readings
+ * table reads: parameters, steps, final loss, training time, steps/s). */
+int exp_main_cmd_train(int argc, char **argv)
+{
+    unit_args a = {.scale = "full", .pair = -1};
+    const opt_spec spec[] = {
+        UNIT_OPTS(a), TRAIN_OPTS(a),
+        {"out", OPT_STR, &a.out, 0, 0, "output training table FILE.tsv (required)"},
+        {"weights", OPT_STR, &a.weights, 0, 0, "final weights FILE (weights format, README; required)"},
+    };
+    const opts_cmd c = {"main-train", "--seed S --arm joint|indep --weights FILE --out FILE.tsv [--reading R] [--scale full|smoke] [--ckpt FILE]",
+                        "Train one (seed, arm) unit of E3/E4 (resuming from --ckpt if it exists) and write its weights\n"
+                        "and a training table; `crownshy main-eval` evaluates the weights.",
+                        spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = opts_parse(&c, argc, argv, NULL, NULL);
+    if (rc) return opts_exit_code(rc);
+    if ((rc = unit_check("main-train", &a, 1))) return rc;
+    prov pv;
+    prov_begin(&pv, "main", argc, argv);
+    mainset_design ds;
+    exp_main_plan pl;
+    cs_status st = unit_plan(&a, &ds, &pl);
     if (st) return fail_with(st);
-    return 0;
+    double worst = 0.0;
+    train *t = NULL;
+    patch_set *tr = NULL;
+    unit_trained u;
+    const model_reading reading = unit_reading(&a);
+    st = unit_train(&a, &ds, &pl, reading, &t, &tr, &u, &worst);
+    tsv_writer *w = NULL;
+    char sbuf[256];
+    snprintf(pv.seeds, sizeof pv.seeds, "%s", mainrun_seeds_text(sbuf, sizeof sbuf, (unsigned)a.seed));
+    pv.worst_overlap_m = worst;
+    if (!st && !(st = afile_mkdir_parents(a.out))) st = tsv_writer_open(&w, a.out);
+    if (!st && (st = prov_write(w, &pv))) { tsv_writer_abort(w); w = NULL; }
+    if (!st) {
+        char mm[200], tm[400];
+        unit_meta_model(mm, sizeof mm, &u.cfg);
+        unit_meta_training(tm, sizeof tm, &u, &pl);
+        tsv_writer_meta(w, "scale", "%s", pl.scale);
+        tsv_writer_meta(w, "model", "%s", mm);
+        tsv_writer_meta(w, "training", "%s", tm);
+        tsv_writer_meta(w, "step_plan", "%d epochs x ceil(%d / %d) = %ld steps; an epoch of the batch order holds %d whole batches, so %.17g passes over the data",
+                        pl.epochs, u.npatches, pl.batch, u.steps, u.npatches / pl.batch, (double)u.steps / (u.npatches / pl.batch));
+        tsv_writer_meta(w, "weights", "%s sha256 %s (weights format 1, README)", base_name(a.weights), u.wsha);
+        tsv_writer_meta(w, "train_s", "training wall time of this invocation (a resumed run counts its last part only); steps_per_s likewise");
+        tsv_writer_columns(w, "seed\tarm\treading\tparams\tsteps\tfinal_loss\ttrain_s\tsteps_per_s");
+        tsv_writer_long(w, a.seed); tsv_writer_str(w, a.arm); tsv_writer_str(w, model_reading_name(reading));
+        tsv_writer_long(w, (long)model_nparams(&u.cfg)); tsv_writer_long(w, u.steps); tsv_writer_dbl(w, u.final_loss);
+        tsv_writer_dbl(w, u.train_s); tsv_writer_dbl(w, u.steps_per_s);
+        tsv_writer_endrow(w);
+        st = tsv_writer_commit(w);
+    }
+    train_free(t);
+    patch_set_free(tr);
+    return st ? fail_with(st) : 0;
+}
+
+/* Copy the training record of a unit (its training or run table): model and
+ * training lines, and the teacher, commit and date it was trained under. */
+static cs_status trained_meta(const char *path, const char *(*meta)[2], int *nmeta, char (*buf)[512])
+{
+    tsv *t;
+    cs_status st = tsv_read(path, &t);
+    if (st) return st;
+    static const char *keys[][2] = {{"model", "model"}, {"training", "training"}, {"teacher_sha256", "trained_teacher_sha256"},
+                                    {"git_commit", "trained_git_commit"}, {"date", "trained_date"}, {"wall_s", "trained_wall_s"}};
+    for (size_t k = 0; k < sizeof keys / sizeof *keys && !st; k++) {
+        const char *v = tsv_meta(t, keys[k][0]);
+        if (!v) { st = cs_err(CS_EINPUT, "%s: provenance line '# %s:' missing (need a training or run table)", path, keys[k][0]); break; }
+        snprintf(buf[*nmeta], 512, "%s", v);
+        meta[*nmeta][0] = keys[k][1];
+        meta[*nmeta][1] = buf[*nmeta];
+        (*nmeta)++;
+    }
+    snprintf(buf[*nmeta], 512, "%s", base_name(path));
+    meta[*nmeta][0] = "trained";
+    meta[*nmeta][1] = buf[*nmeta];
+    (*nmeta)++;
+    tsv_free(t);
+    return st;
+}
+
+/* Load weights for a unit: the arm must match. */
+static cs_status unit_load(const unit_args *a, const exp_main_plan *pl, model **m, double *scale)
+{
+    cs_status st = train_load_model(a->weights, m, pl->batch, scale);
+    if (!st && (*m)->cfg.joint != !strcmp(a->arm, "joint"))
+        st = cs_err(CS_EINPUT, "%s: weights of the %s arm, not %s", a->weights, (*m)->cfg.joint ? "joint" : "indep", a->arm);
+    model_reading r;
+    if (!st && a->reading && !model_reading_parse(a->reading, &r) && model_cfg_reading(&(*m)->cfg) != r)
+        st = cs_err(CS_EINPUT, "%s: weights of the %s reading, not %s", a->weights, model_reading_name(model_cfg_reading(&(*m)->cfg)), a->reading);
+    return st;
+}
+
+/* Evaluate frozen weights without training (design.md §9: frozen models are
+ * re-evaluated from their weights): the run table and samples of main-run. */
+int exp_main_cmd_eval(int argc, char **argv)
+{
+    unit_args a = {.scale = "full", .pair = -1};
+    const opt_spec spec[] = {
+        UNIT_OPTS(a),
+        {"weights", OPT_STR, &a.weights, 0, 0, "weights FILE written by main-run/main-train --weights (or its checkpoint) (required)"},
+        {"trained", OPT_STR, &a.trained, 0, 0, "the unit's training or run table, whose model, training, teacher and commit lines are recorded (required)"},
+        {"out", OPT_STR, &a.out, 0, 0, "output run table FILE.tsv (required)"},
+        {"samples", OPT_STR, &a.samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
+        {"volume", OPT_STR, &a.volume, 0, 0, "evaluation volume v1 or v2 (mainrun.h; default v1)"},
+        {"reading", OPT_STR, &a.reading, 0, 0, "the reading the weights must be (default: any)"},
+    };
+    const opts_cmd c = {"main-eval", "--weights FILE --trained TABLE --seed S --arm joint|indep --out FILE.tsv [--volume v1|v2] [--samples FILE.tsv] [--scale full|smoke]",
+                        "Evaluate one E3/E4 unit from its weights, without training: the run table and samples of\n"
+                        "main-run at the chosen volume (v1: the data rows of the unit's main-run table, bit for bit).",
+                        spec, sizeof spec / sizeof *spec, 0, 0};
+    int rc = opts_parse(&c, argc, argv, NULL, NULL);
+    if (rc) return opts_exit_code(rc);
+    if ((rc = unit_check("main-eval", &a, 1))) return rc;
+    if (!a.trained) { opts_usage_error("main-eval", "--trained is required"); return 2; }
+    prov pv;
+    prov_begin(&pv, "main", argc, argv);
+    mainset_design ds;
+    exp_main_plan pl;
+    model *m = NULL;
+    double scl = 0, worst = 0;
+    const char *meta[16][2] = {{"scale", NULL}};
+    char buf[8][512];
+    int nmeta = 1;
+    cs_status st = unit_plan(&a, &ds, &pl);
+    meta[0][1] = pl.scale;
+    if (!st) st = trained_meta(a.trained, meta, &nmeta, buf);
+    if (!st) st = unit_load(&a, &pl, &m, &scl);
+    char wsha[65] = "";
+    if (!st) st = prov_sha256_file(a.weights, wsha);
+    if (!st) st = unit_evaluate_write(&a, &pv, m, pl.batch, &ds, &pl, scl, meta, nmeta, wsha, &worst);
+    model_free(m);
+    return st ? fail_with(st) : 0;
 }
 
 /* Redraw the samples of one unit from its frozen weights alone (design.md §9
  * verify-deep): the same evaluation sets, seeds and sampler as main-run. */
 int exp_main_cmd_redraw(int argc, char **argv)
 {
-    long seedl = 0;
-    const char *arm = NULL, *out = NULL, *scale = "full", *weights = NULL;
+    unit_args a = {.scale = "full", .pair = -1};
     const opt_spec spec[] = {
-        {"weights", OPT_STR, &weights, 0, 0, "weights FILE written by main-run --weights (or its checkpoint) (required)"},
-        {"seed", OPT_LONG, &seedl, 1, 4294967295.0, "model seed of the unit (required)"},
-        {"arm", OPT_STR, &arm, 0, 0, "joint or indep (required; must match the weights)"},
-        {"out", OPT_STR, &out, 0, 0, "output samples FILE.tsv (required)"},
-        {"scale", OPT_STR, &scale, 0, 0, "full or smoke (default full)"},
+        {"weights", OPT_STR, &a.weights, 0, 0, "weights FILE written by main-run --weights (or its checkpoint) (required)"},
+        {"seed", OPT_LONG, &a.seed, 1, 4294967295.0, "model seed of the unit (required)"},
+        {"arm", OPT_STR, &a.arm, 0, 0, "joint or indep (required; must match the weights)"},
+        {"out", OPT_STR, &a.out, 0, 0, "output samples FILE.tsv (required)"},
+        {"scale", OPT_STR, &a.scale, 0, 0, "full or smoke (default full)"},
+        {"volume", OPT_STR, &a.volume, 0, 0, "evaluation volume v1 or v2 (mainrun.h; default v1)"},
     };
-    const opts_cmd c = {"main-redraw", "--weights FILE --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke]",
+    const opts_cmd c = {"main-redraw", "--weights FILE --seed S --arm joint|indep --out FILE.tsv [--volume v1|v2] [--scale full|smoke]",
                         "Draw the clearance samples of one E3/E4 unit again from its weights, without training:\n"
                         "the data rows of FILE.tsv equal those of the unit's samples_s<seed>_<arm>.tsv bit for bit.",
                         spec, sizeof spec / sizeof *spec, 0, 0};
     int rc = opts_parse(&c, argc, argv, NULL, NULL);
     if (rc) return opts_exit_code(rc);
-    if (!weights) { opts_usage_error("main-redraw", "--weights is required"); return 2; }
-    if (!seedl) { opts_usage_error("main-redraw", "--seed is required"); return 2; }
-    if (!arm) { opts_usage_error("main-redraw", "--arm is required"); return 2; }
-    if (strcmp(arm, "joint") && strcmp(arm, "indep")) { opts_usage_error("main-redraw", "--arm: must be joint or indep, not '%s'", arm); return 2; }
-    if (!out) { opts_usage_error("main-redraw", "--out is required"); return 2; }
-    if (strcmp(scale, "full") && strcmp(scale, "smoke")) { opts_usage_error("main-redraw", "--scale: must be full or smoke, not '%s'", scale); return 2; }
-    unsigned seed = (unsigned)seedl;
+    if ((rc = unit_check("main-redraw", &a, 1))) return rc;
     prov pv;
     prov_begin(&pv, "main", argc, argv);
     mainset_design ds;
     exp_main_plan pl;
     model *m = NULL;
     double scl = 0, worst = 0, maxdiff = 0;
-    cs_status st = mainset_design_get(&ds);
-    if (!st) st = exp_main_plan_get(scale, &pl);
-    if (!st) st = train_load_model(weights, &m, pl.batch, &scl);
-    if (!st && m->cfg.joint != !strcmp(arm, "joint")) st = cs_err(CS_EINPUT, "%s: weights of the %s arm, not %s", weights, m->cfg.joint ? "joint" : "indep", arm);
-    run_row rows[MAINSET_NPROBE * 2 * MAXSP];
+    cs_status st = unit_plan(&a, &ds, &pl);
+    if (!st) st = unit_load(&a, &pl, &m, &scl);
+    mainrun_row rows[MAINRUN_MAXROWS];
     size_t nrows = 0;
     char sbuf[256];
-    if (!st) st = evaluate(m, pl.batch, &ds, &pl, scl, seed, arm, unit_nprobe(m->cfg.pair, m->cfg.joint), rows, &nrows, &worst, &maxdiff);
-    snprintf(pv.seeds, sizeof pv.seeds, "%s", seeds_text(sbuf, sizeof sbuf, seed));
+    const unsigned seed = (unsigned)a.seed;
+    if (!st) st = mainrun_evaluate(m, pl.batch, &ds, &pl, scl, seed, a.arm, rows, &nrows, &worst, &maxdiff);
+    snprintf(pv.seeds, sizeof pv.seeds, "%s", mainrun_seeds_text(sbuf, sizeof sbuf, seed));
     pv.worst_overlap_m = worst;
-    if (!st) st = afile_mkdir_parents(out);
-    if (!st) st = samples_write(out, &pv, seed, arm, rows, nrows);
-    rows_free(rows, nrows);
+    if (!st) st = afile_mkdir_parents(a.out);
+    if (!st) st = mainrun_samples_write(a.out, &pv, seed, a.arm, rows, nrows);
+    mainrun_rows_free(rows, nrows);
     model_free(m);
     return st ? fail_with(st) : 0;
 }
 
 int exp_main_cmd_baselines(int argc, char **argv)
 {
-    const char *out = NULL, *scale = "full", *samples = NULL;
+    const char *out = NULL, *scale = "full", *samples = NULL, *volume = "v1";
     const opt_spec spec[] = {
         {"out", OPT_STR, &out, 0, 0, "output table FILE.tsv (required)"},
         {"scale", OPT_STR, &scale, 0, 0, "full or smoke (default full)"},
         {"samples", OPT_STR, &samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
+        {"volume", OPT_STR, &volume, 0, 0, "evaluation volume v1 or v2 (mainrun.h; default v1)"},
     };
-    const opts_cmd c = {"main-baselines", "--out FILE.tsv [--scale full|smoke] [--samples FILE.tsv]",
+    const opts_cmd c = {"main-baselines", "--out FILE.tsv [--scale full|smoke] [--volume v1|v2] [--samples FILE.tsv]",
                         "Direction-blind baseline (every crown replaced by its circular mean), split-half noise floor\n"
                         "of the teacher, and the teacher's own crowns under the shuffled-geometry and rotation probes\n"
                         "(added after the first verdict), as W1 of focal nearest-neighbour clearances per eval spacing.",
@@ -382,6 +512,7 @@ int exp_main_cmd_baselines(int argc, char **argv)
     exp_main_plan pl;
     cs_status st = mainset_design_get(&ds);
     if (!st) st = exp_main_plan_get(scale, &pl);
+    if (!st) st = exp_main_plan_volume(&pl, volume);
     if (st) return fail_with(st);
     double worst = 0.0, maxdiff = 0.0;
     size_t nall = ds.nunseen + ds.nextrap;
@@ -432,12 +563,13 @@ int exp_main_cmd_baselines(int argc, char **argv)
             st = tsv_writer_commit(w);
             w = NULL;
         }
-        if (!st) st = file_sha256(samples, ssha);
+        if (!st) st = prov_sha256_file(samples, ssha);
     }
     if (!st) st = tsv_writer_open(&w, out);
     if (!st) st = prov_write(w, &pv);
     if (!st) {
         tsv_writer_meta(w, "scale", "%s", pl.scale);
+        if (strcmp(pl.volume, "v1")) tsv_writer_meta(w, "volume", "%s: %d teacher stands per spacing", pl.volume, pl.eval_stands);
         tsv_writer_meta(w, "noise_floor", "W1 between the teacher clearances of the first n_half (first half of the eval stands) and the rest");
         tsv_writer_meta(w, "direction_blind", "W1 between clearances with every crown replaced by its circular mean and the teacher's (a rotation leaves it unchanged)");
         tsv_writer_meta(w, "teacher_probes", "added after the first verdict: W1 between the teacher's own crowns under the shuffled-geometry probe "
