@@ -301,8 +301,10 @@ int exp_main_cmd_run(int argc, char **argv)
         char mm[200], tm[400];
         unit_meta_model(mm, sizeof mm, &u.cfg);
         unit_meta_training(tm, sizeof tm, &u, &pl);
-        const char *meta[8][2] = {{"scale", pl.scale}, {"model", mm}, {"training", tm}};
-        st = unit_evaluate_write(&a, &pv, t->m, t->B, &ds, &pl, u.scale, meta, 3, u.wsha, &worst);
+        char tt[200];
+        snprintf(tt, sizeof tt, "train_s %.3f steps_per_s %.4g (this invocation; a resumed run counts its last part only)", u.train_s, u.steps_per_s);
+        const char *meta[10][2] = {{"scale", pl.scale}, {"model", mm}, {"training", tm}, {"train_time", tt}};
+        st = unit_evaluate_write(&a, &pv, t->m, t->B, &ds, &pl, u.scale, meta, 4, u.wsha, &worst);
     }
     train_free(t);
     patch_set_free(tr);

@@ -3,35 +3,73 @@
 # gives a rule writing $(RESULTS)/<experiment>/<unit>.tsv via the CLI.
 
 # ---- E3 main experiment + E4 extrapolation (src/exp/exp_main.c) ------------------
-# One unit per (seed, arm); checkpoints in build/ckpt/<scale>/ make a killed
-# unit resume bit-identically. `make -j2 reproduce` runs two units at a time.
+# The generator readings (design.md §8 "Readings of the generator"; model.h):
+# the preregistered gates judge the paper reading (paper §4.2 as written), in
+# $(RESULTS)/main and $(RESULTS)/extrapolation; the pair-aware model, added
+# after the first verdict, is an extension judged beside it in
+# $(RESULTS)/extension-pair; plain and paper-fourier are descriptive rows in
+# $(RESULTS)/model-readings/<reading>. One unit per (reading, seed, arm);
+# checkpoints in build/ckpt/<scale>/ make a killed unit resume bit-identically.
+# Every reading is evaluated at volume v2 (src/exp/mainrun.h), the same for all.
 # Each unit also writes the samples behind its W1 (samples_s<seed>_<arm>.tsv)
 # and its final weights (weights_s<seed>_<arm>.ckpt, README "Frozen samples
 # and weights"); `crownshy main-redraw` draws the samples again from them.
 ifeq ($(SCALE),smoke)
 MAIN_NSEEDS := 2
+READING_NSEEDS := 1
 else
 MAIN_NSEEDS := $(shell awk '$$1=="seeds"{print $$2}' gates/main.gate)
+READING_NSEEDS := 4
 endif
+MAIN_VOLUME := v2
 MAIN_SEED_LIST := $(shell seq -f '%02g' 1 $(MAIN_NSEEDS))
+READING_SEED_LIST := $(shell seq -f '%02g' 1 $(READING_NSEEDS))
 MAIN_RUNS := $(foreach s,$(MAIN_SEED_LIST),$(RESULTS)/main/run_s$(s)_joint.tsv $(RESULTS)/main/run_s$(s)_indep.tsv)
 
-$(RESULTS)/main/run_s%_joint.tsv: | $(CLI)
-	@mkdir -p $(B)/ckpt/$(SCALE)
-	$(CLI) main-run --seed $* --arm joint --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/main_s$*_joint.ckpt \
-	  --samples $(RESULTS)/main/samples_s$*_joint.tsv --weights $(RESULTS)/main/weights_s$*_joint.ckpt --out $@
-$(RESULTS)/main/run_s%_indep.tsv: | $(CLI)
-	@mkdir -p $(B)/ckpt/$(SCALE)
-	$(CLI) main-run --seed $* --arm indep --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/main_s$*_indep.ckpt \
-	  --samples $(RESULTS)/main/samples_s$*_indep.tsv --weights $(RESULTS)/main/weights_s$*_indep.ckpt --out $@
+# main_unit(dir, reading, ckpt prefix, arm): main-run of one reading into dir/main
+define MAIN_UNIT
+$(1)/main/run_s%_$(4).tsv: | $$(CLI)
+	@mkdir -p $$(B)/ckpt/$$(SCALE)
+	$$(CLI) main-run --reading $(2) --volume $$(MAIN_VOLUME) --seed $$* --arm $(4) --scale $$(SCALE) --ckpt $$(B)/ckpt/$$(SCALE)/$(3)main_s$$*_$(4).ckpt \
+	  --samples $(1)/main/samples_s$$*_$(4).tsv --weights $(1)/main/weights_s$$*_$(4).ckpt --out $$@
+endef
+$(foreach a,joint indep,$(eval $(call MAIN_UNIT,$(RESULTS),paper,,$(a))))
 $(RESULTS)/main/baselines.tsv: | $(CLI)
-	$(CLI) main-baselines --scale $(SCALE) --samples $(RESULTS)/main/samples_baselines.tsv --out $@
+	$(CLI) main-baselines --volume $(MAIN_VOLUME) --scale $(SCALE) --samples $(RESULTS)/main/samples_baselines.tsv --out $@
 $(RESULTS)/main/runs.tsv: $(MAIN_RUNS) $(RESULTS)/main/baselines.tsv | $(CLI)
 	$(CLI) main-summary --dir $(RESULTS) --seeds $(MAIN_NSEEDS)
 
-.PHONY: main-experiment
+# The extension: the pair-aware model. Its units as first run (training and
+# evaluation at volume v1, the frozen weights) in extension-pair/main/v1, then
+# evaluated from those weights at the volume of every reading (main-eval).
+EXT_PAIR := $(RESULTS)/extension-pair
+EXT_PAIR_RUNS := $(foreach s,$(MAIN_SEED_LIST),$(EXT_PAIR)/main/run_s$(s)_joint.tsv $(EXT_PAIR)/main/run_s$(s)_indep.tsv)
+define PAIR_UNIT
+$(EXT_PAIR)/main/v1/run_s%_$(1).tsv: | $$(CLI)
+	@mkdir -p $$(B)/ckpt/$$(SCALE)
+	$$(CLI) main-run --reading pair --volume v1 --seed $$* --arm $(1) --scale $$(SCALE) --ckpt $$(B)/ckpt/$$(SCALE)/pair-main_s$$*_$(1).ckpt \
+	  --samples $(EXT_PAIR)/main/v1/samples_s$$*_$(1).tsv --weights $(EXT_PAIR)/main/v1/weights_s$$*_$(1).ckpt --out $$@
+$(EXT_PAIR)/main/run_s%_$(1).tsv: $(EXT_PAIR)/main/v1/run_s%_$(1).tsv | $$(CLI)
+	$$(CLI) main-eval --reading pair --volume $$(MAIN_VOLUME) --seed $$* --arm $(1) --scale $$(SCALE) --weights $(EXT_PAIR)/main/v1/weights_s$$*_$(1).ckpt \
+	  --trained $$< --samples $(EXT_PAIR)/main/samples_s$$*_$(1).tsv --out $$@
+endef
+$(foreach a,joint indep,$(eval $(call PAIR_UNIT,$(a))))
+.PRECIOUS: $(EXT_PAIR)/main/v1/run_s%_joint.tsv $(EXT_PAIR)/main/v1/run_s%_indep.tsv
+$(EXT_PAIR)/main/runs.tsv: $(EXT_PAIR_RUNS) | $(CLI)
+	$(CLI) main-summary --dir $(EXT_PAIR) --seeds $(MAIN_NSEEDS)
+
+# The descriptive readings, READING_NSEEDS seeds each.
+MODEL_READINGS := plain paper-fourier
+MR_DIR := $(RESULTS)/model-readings
+$(foreach r,$(MODEL_READINGS),$(foreach a,joint indep,$(eval $(call MAIN_UNIT,$(MR_DIR)/$(r),$(r),$(r)-,$(a)))))
+MR_RUNS = $(foreach s,$(READING_SEED_LIST),$(MR_DIR)/$(1)/main/run_s$(s)_joint.tsv $(MR_DIR)/$(1)/main/run_s$(s)_indep.tsv)
+$(foreach r,$(MODEL_READINGS),$(eval $(MR_DIR)/$(r)/main/runs.tsv: $(call MR_RUNS,$(r)) | $$(CLI) ; $$(CLI) main-summary --dir $(MR_DIR)/$(r) --seeds $(READING_NSEEDS)))
+
+.PHONY: main-experiment main-extension model-readings
 main-experiment: $(RESULTS)/main/runs.tsv
-REPRODUCE_UNITS += $(RESULTS)/main/runs.tsv
+main-extension: $(EXT_PAIR)/main/runs.tsv
+model-readings: $(foreach r,$(MODEL_READINGS),$(MR_DIR)/$(r)/main/runs.tsv)
+REPRODUCE_UNITS += $(RESULTS)/main/runs.tsv $(EXT_PAIR)/main/runs.tsv
 # ---- E1 mechanism, E2 irreducibility (teacher) and teacher figure data ----------
 # 8 stands per cell at full scale, 1 at smoke scale (each unit is one process).
 ifeq ($(SCALE),smoke)
@@ -112,9 +150,9 @@ $(RESULTS)/irreducibility/reduction_field.tsv: $(FIELD_CAL) | $(CLI)
 	$(CLI) run irreducibility-reduction --stands $(TEACHER_STANDS) --beta $$($(CLI) field-beta $(FIELD_CAL)) --tag field --out $(RESULTS)
 REPRODUCE_UNITS += $(IRRED_FIELD_UNITS)
 
-# ---- E7 comparison patch and dart probe (src/exp/exp_comp.c): E3 seed-1 models ----
-$(RESULTS)/comparison/patch.tsv: $(RESULTS)/main/run_s01_joint.tsv $(RESULTS)/main/run_s01_indep.tsv | $(CLI)
-	$(CLI) comp-run --joint $(RESULTS)/main/weights_s01_joint.ckpt --indep $(RESULTS)/main/weights_s01_indep.ckpt --out $(RESULTS)
+# ---- E7 comparison patch and dart probe (src/exp/exp_comp.c): seed-1 models of the pair extension ----
+$(RESULTS)/comparison/patch.tsv: $(EXT_PAIR)/main/v1/run_s01_joint.tsv $(EXT_PAIR)/main/v1/run_s01_indep.tsv | $(CLI)
+	$(CLI) comp-run --joint $(EXT_PAIR)/main/v1/weights_s01_joint.ckpt --indep $(EXT_PAIR)/main/v1/weights_s01_indep.ckpt --out $(RESULTS)
 REPRODUCE_UNITS += $(RESULTS)/comparison/patch.tsv
 
 # ---- E0 readings (design.md §7 E0; src/claims/readings.c) -----------------------------
