@@ -386,11 +386,15 @@ static cs_status trained_meta(const char *path, const char *(*meta)[2], int *nme
         meta[*nmeta][1] = buf[*nmeta];
         (*nmeta)++;
     }
-    snprintf(buf[*nmeta], 512, "%s", base_name(path));
-    meta[*nmeta][0] = "trained";
-    meta[*nmeta][1] = buf[*nmeta];
-    (*nmeta)++;
     tsv_free(t);
+    char hex[65];
+    if (!st) st = prov_sha256_file(path, hex);
+    if (!st) {
+        snprintf(buf[*nmeta], 512, "sha256 %s of the table the unit's training run wrote (%s; git history at trained_git_commit)", hex, base_name(path));
+        meta[*nmeta][0] = "training_record";
+        meta[*nmeta][1] = buf[*nmeta];
+        (*nmeta)++;
+    }
     return st;
 }
 
@@ -435,7 +439,7 @@ int exp_main_cmd_eval(int argc, char **argv)
     model *m = NULL;
     double scl = 0, worst = 0;
     const char *meta[16][2] = {{"scale", NULL}};
-    char buf[8][512];
+    char buf[10][512];
     int nmeta = 1;
     cs_status st = unit_plan(&a, &ds, &pl);
     meta[0][1] = pl.scale;

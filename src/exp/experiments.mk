@@ -5,7 +5,7 @@
 # ---- E3 main experiment + E4 extrapolation (src/exp/exp_main.c) ------------------
 # The generator readings (design.md §8 "Readings of the generator"; model.h):
 # the preregistered gates judge the paper reading (paper §4.2 as written), in
-# $(RESULTS)/main and $(RESULTS)/extrapolation; the pair-aware model, added
+# $(RESULTS)/paper/{main,extrapolation}; the pair-aware model, added
 # after the first verdict, is an extension judged beside it in
 # $(RESULTS)/extension-pair; plain and paper-fourier are descriptive rows in
 # $(RESULTS)/model-readings/<reading>. One unit per (reading, seed, arm);
@@ -24,7 +24,8 @@ endif
 MAIN_VOLUME := v2
 MAIN_SEED_LIST := $(shell seq -f '%02g' 1 $(MAIN_NSEEDS))
 READING_SEED_LIST := $(shell seq -f '%02g' 1 $(READING_NSEEDS))
-MAIN_RUNS := $(foreach s,$(MAIN_SEED_LIST),$(RESULTS)/main/run_s$(s)_joint.tsv $(RESULTS)/main/run_s$(s)_indep.tsv)
+PAPER := $(RESULTS)/paper
+MAIN_RUNS := $(foreach s,$(MAIN_SEED_LIST),$(PAPER)/main/run_s$(s)_joint.tsv $(PAPER)/main/run_s$(s)_indep.tsv)
 
 # main_unit(dir, reading, ckpt prefix, arm): main-run of one reading into dir/main
 define MAIN_UNIT
@@ -33,11 +34,11 @@ $(1)/main/run_s%_$(4).tsv: | $$(CLI)
 	$$(CLI) main-run --reading $(2) --volume $$(MAIN_VOLUME) --seed $$* --arm $(4) --scale $$(SCALE) --ckpt $$(B)/ckpt/$$(SCALE)/$(3)main_s$$*_$(4).ckpt \
 	  --samples $(1)/main/samples_s$$*_$(4).tsv --weights $(1)/main/weights_s$$*_$(4).ckpt --out $$@
 endef
-$(foreach a,joint indep,$(eval $(call MAIN_UNIT,$(RESULTS),paper,,$(a))))
-$(RESULTS)/main/baselines.tsv: | $(CLI)
-	$(CLI) main-baselines --volume $(MAIN_VOLUME) --scale $(SCALE) --samples $(RESULTS)/main/samples_baselines.tsv --out $@
-$(RESULTS)/main/runs.tsv: $(MAIN_RUNS) $(RESULTS)/main/baselines.tsv | $(CLI)
-	$(CLI) main-summary --dir $(RESULTS) --seeds $(MAIN_NSEEDS)
+$(foreach a,joint indep,$(eval $(call MAIN_UNIT,$(PAPER),paper,paper-,$(a))))
+$(PAPER)/main/baselines.tsv: | $(CLI)
+	$(CLI) main-baselines --volume $(MAIN_VOLUME) --scale $(SCALE) --samples $(PAPER)/main/samples_baselines.tsv --out $@
+$(PAPER)/main/runs.tsv: $(MAIN_RUNS) $(PAPER)/main/baselines.tsv | $(CLI)
+	$(CLI) main-summary --dir $(PAPER) --seeds $(MAIN_NSEEDS)
 
 # The extension: the pair-aware model. Its units as first run (training and
 # evaluation at volume v1, the frozen weights) in extension-pair/main/v1, then
@@ -66,10 +67,10 @@ MR_RUNS = $(foreach s,$(READING_SEED_LIST),$(MR_DIR)/$(1)/main/run_s$(s)_joint.t
 $(foreach r,$(MODEL_READINGS),$(eval $(MR_DIR)/$(r)/main/runs.tsv: $(call MR_RUNS,$(r)) | $$(CLI) ; $$(CLI) main-summary --dir $(MR_DIR)/$(r) --seeds $(READING_NSEEDS)))
 
 .PHONY: main-experiment main-extension model-readings
-main-experiment: $(RESULTS)/main/runs.tsv
+main-experiment: $(PAPER)/main/runs.tsv
 main-extension: $(EXT_PAIR)/main/runs.tsv
 model-readings: $(foreach r,$(MODEL_READINGS),$(MR_DIR)/$(r)/main/runs.tsv)
-REPRODUCE_UNITS += $(RESULTS)/main/runs.tsv $(EXT_PAIR)/main/runs.tsv
+REPRODUCE_UNITS += $(PAPER)/main/runs.tsv $(EXT_PAIR)/main/runs.tsv
 # ---- E1 mechanism, E2 irreducibility (teacher) and teacher figure data ----------
 # 8 stands per cell at full scale, 1 at smoke scale (each unit is one process).
 ifeq ($(SCALE),smoke)
