@@ -5,7 +5,9 @@
  * teacher-2 (mutual abrasion): two spikes meeting tip to tip, where both
  * contacting sectors lose exactly beta of their own length and freeze; the
  * teacher-1 switch still gives the one-sided rule on the same pair (the
- * entered crown regrows); worst overlap exactly 0 on full 144-tree stands. */
+ * entered crown regrows); the two further die-back readings (the contact arc;
+ * beta of the target length) and the start fraction on the same pair; worst
+ * overlap exactly 0 on full 144-tree stands under every rule. */
 #include "testutil.h"
 #include "teacher.h"
 #include "stand.h"
@@ -278,7 +280,7 @@ static void test_bad_parameters_are_rejected(void **st)
     assert_int_equal(teacher_grow(&s, &p, r, NULL), CS_EINPUT);
 }
 
-/* ---- teacher-2: mutual abrasion (design.md §4, revision 2) -------------------------
+/* ---- teacher-2: mutual abrasion (design.md §4) -------------------------
  * Two spikes meeting tip to tip: tree 0 has target 3 m in sector 0 (east) and
  * 0.5 m elsewhere, tree 1 (4 m east) 3 m in sector 12 (west), 0.5 m elsewhere.
  * Equal heights, so both step by Delta = 3/48 = 0.0625 m per round (exact)
@@ -294,12 +296,27 @@ static void spikes(double *t)
     t[CROWN_NSEC + 12] = 3.0; /* tree 1, sector 12 (west, toward tree 0) */
 }
 
-/* v_k with the teacher's own arithmetic: r = 0.05 r*, then r <- r + Delta. */
-static double spike_len(int k)
+/* v_k with the teacher's own arithmetic: r = f r* (f = 0.05 unless a start
+ * fraction is given), then r <- r + Delta. */
+static double spike_len_from(double f, int k)
 {
-    double v = 0.05 * 3.0;
+    double v = f * 3.0;
     for (int q = 0; q < k; q++) v = fmin(v + 3.0 / 48.0, 3.0);
     return v;
+}
+static double spike_len(int k) { return spike_len_from(0.05, k); }
+
+/* The spike pair grown with parameters p (frozen output and step checked). */
+static void grow_spikes_with(teacher_params *p, double *r, unsigned char *fz, teacher_info *inf)
+{
+    double x[2] = {0.0, 4.0}, y[2] = {0.0, 0.0}, h[2] = {25.0, 25.0}, R[2] = {3.0, 3.0};
+    double t[2 * CROWN_NSEC];
+    spikes(t);
+    teacher_stand s = {2, x, y, h, R, t};
+    p->frozen_out = fz;
+    assert_int_equal(teacher_grow(&s, p, r, inf), CS_OK);
+    ASSERT_EXACT(inf->step, 0.0625);
+    ASSERT_EXACT(inf->worst_overlap, 0.0);
 }
 
 static void grow_spikes(int one_sided, double *r, unsigned char *fz, teacher_info *inf)
@@ -347,7 +364,7 @@ static void test_mutual_abrasion_both_sectors_die_back_by_beta_of_their_own_leng
     assert_string_equal(teacher_version(&(teacher_params){.one_sided = 0}), "teacher-2");
 }
 
-static void test_one_sided_switch_keeps_the_revision_1_rule(void **st)
+static void test_one_sided_switch_keeps_the_one_sided_rule(void **st)
 {
     (void)st;
     double r[2 * CROWN_NSEC];
@@ -377,6 +394,139 @@ static void test_one_sided_switch_keeps_the_revision_1_rule(void **st)
  * lattice and hard-core, at the closest, the figure and a wide spacing and at
  * die-backs 0 (freeze without retreat), 0.03, 0.06 and 0.09. Independent of
  * the self-check: every pair's Eq. 5 clearance >= 0. */
+/* Neighbouring-sector reading: the contacting sector and its two neighbours
+ * of each crown in the contact die back by beta of their own length and
+ * freeze: tree 1's sectors 11, 12, 13 and tree 0's sectors 23, 0, 1. */
+static void test_neighbour_dieback_abrades_the_contact_arc_of_both_crowns(void **st)
+{
+    (void)st;
+    double r[2 * CROWN_NSEC];
+    unsigned char fz[2 * CROWN_NSEC];
+    teacher_info inf;
+    teacher_params p;
+    teacher_params_default(&p);
+    p.dieback = TEACHER_DIEBACK_NEIGHBOURS;
+    grow_spikes_with(&p, r, fz, &inf);
+    const double b = 1.0 - 0.06;
+    const int arc[6] = {23, 0, 1, CROWN_NSEC + 11, CROWN_NSEC + 12, CROWN_NSEC + 13};
+    ASSERT_EXACT(r[CROWN_NSEC + 12], b * spike_len(29));
+    ASSERT_EXACT(r[0], b * spike_len(30));
+    ASSERT_EXACT(r[1], b * 0.5);
+    ASSERT_EXACT(r[23], b * 0.5);
+    ASSERT_EXACT(r[CROWN_NSEC + 11], b * 0.5);
+    ASSERT_EXACT(r[CROWN_NSEC + 13], b * 0.5);
+    for (int q = 0; q < 6; q++) assert_int_equal(fz[arc[q]], 1);
+    assert_int_equal(inf.frozen, 6);
+    double t[2 * CROWN_NSEC];
+    spikes(t);
+    for (int k = 0; k < 2 * CROWN_NSEC; k++) {
+        int in_arc = 0;
+        for (int q = 0; q < 6; q++) in_arc |= k == arc[q];
+        if (in_arc) continue;
+        ASSERT_EXACT(r[k], t[k]);
+        assert_int_equal(fz[k], 0);
+    }
+    assert_string_equal(teacher_version(&p), "teacher-2-arc");
+}
+
+/* Target-length reading: each contacting sector loses beta of its target
+ * (3 m), not of its own length: 0.18 m from 1.9625 and from 2.025. */
+static void test_target_dieback_removes_beta_of_the_target_length(void **st)
+{
+    (void)st;
+    double r[2 * CROWN_NSEC];
+    unsigned char fz[2 * CROWN_NSEC];
+    teacher_info inf;
+    teacher_params p;
+    teacher_params_default(&p);
+    p.dieback = TEACHER_DIEBACK_TARGET;
+    grow_spikes_with(&p, r, fz, &inf);
+    ASSERT_EXACT(r[CROWN_NSEC + 12], spike_len(29) - 0.06 * 3.0);
+    ASSERT_EXACT(r[0], spike_len(30) - 0.06 * 3.0);
+    assert_int_equal(fz[CROWN_NSEC + 12], 1);
+    assert_int_equal(fz[0], 1);
+    assert_int_equal(inf.frozen, 2);
+    assert_string_equal(teacher_version(&p), "teacher-2-target");
+    p.one_sided = 1;
+    assert_string_equal(teacher_version(&p), "teacher-1-target");
+}
+
+/* Start radius: from 0.1 r* the spikes are at 0.3 + 0.0625 k; after 27
+ * rounds both stand at v27 (sum 3.975 < 4) and in round 28 tree 0's own
+ * proposal v28 would enter tree 1: both lose beta of v27. The default 0.05
+ * grows bit-identically to an explicit 0.05, and a fraction outside (0, 1]
+ * is refused. */
+static void test_start_fraction_sets_the_starting_crowns(void **st)
+{
+    (void)st;
+    double r[2 * CROWN_NSEC];
+    unsigned char fz[2 * CROWN_NSEC];
+    teacher_info inf;
+    teacher_params p;
+    teacher_params_default(&p);
+    ASSERT_EXACT(p.start_frac, 0.05);
+    p.start_frac = 0.1;
+    grow_spikes_with(&p, r, fz, &inf);
+    ASSERT_EXACT(r[0], 0.94 * spike_len_from(0.1, 27));
+    ASSERT_EXACT(r[CROWN_NSEC + 12], 0.94 * spike_len_from(0.1, 27));
+    assert_int_equal(inf.frozen, 2);
+    assert_string_equal(teacher_version(&p), "teacher-2");
+
+    stand *sd = NULL;
+    assert_int_equal(stand_alloc(&sd, STAND_LATTICE, 3.5, 42.0, 0.04, "test/startfrac", 3), CS_OK);
+    teacher_stand v;
+    stand_view(sd, &v);
+    double *r1 = malloc(v.n * CROWN_NSEC * sizeof *r1), *r2 = malloc(v.n * CROWN_NSEC * sizeof *r2);
+    teacher_params_default(&p);
+    assert_int_equal(teacher_grow(&v, &p, r1, NULL), CS_OK);
+    p.start_frac = 0.05;
+    assert_int_equal(teacher_grow(&v, &p, r2, NULL), CS_OK);
+    assert_memory_equal(r1, r2, v.n * CROWN_NSEC * sizeof *r1);
+    p.start_frac = 0.2;
+    assert_int_equal(teacher_grow(&v, &p, r2, NULL), CS_OK);
+    assert_true(memcmp(r1, r2, v.n * CROWN_NSEC * sizeof *r1) != 0);
+    const double bad[3] = {0.0, -0.1, 1.5};
+    for (int q = 0; q < 3; q++) {
+        p.start_frac = bad[q];
+        assert_int_equal(teacher_grow(&v, &p, r2, NULL), CS_EINPUT);
+    }
+    teacher_params_default(&p);
+    p.dieback = (teacher_dieback)7;
+    assert_int_equal(teacher_grow(&v, &p, r2, NULL), CS_EINPUT);
+    free(r1);
+    free(r2);
+    stand_free(sd);
+}
+
+/* The two further die-back readings keep the no-overlap guarantee on full
+ * 144-tree stands (lattice and hard-core at 3.5 m, beta 0.06 and 0.09). */
+static void test_dieback_readings_never_overlap_on_full_stands(void **st)
+{
+    (void)st;
+    const teacher_dieback rules[2] = {TEACHER_DIEBACK_NEIGHBOURS, TEACHER_DIEBACK_TARGET};
+    const double betas[2] = {0.06, 0.09};
+    for (int a = 0; a < 2; a++)
+        for (int b = 0; b < 2; b++)
+            for (int kind = 0; kind < 2; kind++) {
+                stand *sd = NULL;
+                assert_int_equal(stand_alloc(&sd, kind ? STAND_HARDCORE : STAND_LATTICE, 3.5, 42.0,
+                                             kind ? 0.5 : 0.04, "test/dieback", (unsigned)b), CS_OK);
+                teacher_stand v;
+                stand_view(sd, &v);
+                double *r = malloc(v.n * CROWN_NSEC * sizeof *r);
+                teacher_params p;
+                teacher_params_default(&p);
+                p.dieback = rules[a];
+                p.beta = betas[b];
+                teacher_info inf;
+                if (teacher_grow(&v, &p, r, &inf)) fail_msg("%s beta=%g: %s", teacher_version(&p), betas[b], cs_errmsg());
+                if (!(inf.frozen > 0)) fail_msg("%s: no contact at all", teacher_version(&p));
+                ASSERT_EXACT(inf.worst_overlap, 0.0);
+                free(r);
+                stand_free(sd);
+            }
+}
+
 static void test_mutual_abrasion_never_overlaps_on_full_stands(void **st)
 {
     (void)st;
@@ -431,7 +581,11 @@ int main(void)
         cmocka_unit_test(test_frozen_output_marks_contact_sectors_only),
         cmocka_unit_test(test_bad_parameters_are_rejected),
         cmocka_unit_test(test_mutual_abrasion_both_sectors_die_back_by_beta_of_their_own_length),
-        cmocka_unit_test(test_one_sided_switch_keeps_the_revision_1_rule),
+        cmocka_unit_test(test_one_sided_switch_keeps_the_one_sided_rule),
+        cmocka_unit_test(test_neighbour_dieback_abrades_the_contact_arc_of_both_crowns),
+        cmocka_unit_test(test_target_dieback_removes_beta_of_the_target_length),
+        cmocka_unit_test(test_start_fraction_sets_the_starting_crowns),
+        cmocka_unit_test(test_dieback_readings_never_overlap_on_full_stands),
         cmocka_unit_test(test_mutual_abrasion_never_overlaps_on_full_stands),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

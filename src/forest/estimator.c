@@ -1,14 +1,14 @@
-/* estimator: the canonical instrument (SPEC §5; reference paper §4.3).
+/* estimator: the canonical instrument (design.md §5; reference paper §4.3).
  * This file is pinned by SHA-256 (audit/pins): any edit changes the pin.
  * Eq. 5 clearance, k-NN clearance, exact W1 (Eq. 6), canopy cover on a
  * 0.05 m grid, cardinal gaps, tree-mean clearance, anisotropy, elongation,
  * spread. Crown radius between sector centres: crown_radius_at (the one rule);
  * at a sector centre r(theta_s) is r_s by definition, read directly.
- * Elongation (paper §5.3, revision 2 of SPEC §5): longest / shortest of the
+ * Elongation (paper §5.3, design.md §5): longest / shortest of the
  * 12 axes r_s + r_{s+12}. Between sector centres an axis length is linear
  * (both ends interpolate over the same fraction), so these 12 hold its extremes
  * and the value is exact for the 24-sector profile. Limit: shape finer than
- * 15 degrees is not in the profile, so not in the statistic. The revision-1
+ * 15 degrees is not in the profile, so not in the statistic. The two-axis
  * cardinal reading stays as est_elongation_cardinal (readings only).
  * Plain loops, no acceleration structures: the instrument favours being
  * obviously right over being fast. */

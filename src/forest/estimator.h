@@ -52,12 +52,12 @@ double est_tree_mean(const double gaps[4]);
  * caller counts it; 1 when *aniso was set. */
 int est_anisotropy(const double gaps[4], double *aniso);
 /* Elongation (paper §5.3, "the ratio of the longest to shortest crown axis";
- * design.md §5, revision 2): max / min over the 12 axes r(theta_s) + r(theta_s + pi),
+ * design.md §5): max / min over the 12 axes r(theta_s) + r(theta_s + pi),
  * s = 0..11. Axis length is piecewise linear between sector centres, so no
  * finer axis gives another value. A square crown reads sqrt(2) at any rotation
  * that puts sector centres on its diagonals and sides (every multiple of 15 deg). */
 double est_elongation(const double *ri);
-/* Revision-1 reading, kept for the readings table (design.md §7 E0): longest /
+/* The two-axis reading, kept for the readings table (design.md §7 E0): longest /
  * shortest of the two cardinal axes only, r(N)+r(S) and r(E)+r(W). A square
  * crown reads 1 at any rotation, so this reads ~1 on any lattice. */
 double est_elongation_cardinal(const double *ri);
@@ -75,7 +75,7 @@ typedef struct {
     double spread;           /* IQR of the pooled cardinal gaps (4 per tree), m */
     double aniso_median;     /* median anisotropy (NaN when every tree is excluded) */
     double elong_median;     /* median elongation (all 12 axes) */
-    double elong_cardinal_median; /* median revision-1 elongation (cardinal axes; readings only) */
+    double elong_cardinal_median; /* median two-axis elongation (cardinal axes; readings only) */
 } est_directional;
 cs_status est_directional_summary(const double *x, const double *y, const double *r, size_t n,
                                   const unsigned char *use, est_directional *out);

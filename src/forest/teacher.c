@@ -1,6 +1,7 @@
-/* teacher: coupled growth with contact abrasion (SPEC §4; paper §3.1, Eqs. 1-3),
- * `teacher-2` (mutual abrasion) by default, `teacher-1` (one-sided) on the
- * one_sided switch. See teacher.h for the rule, the readings, why the entered
+/* teacher: coupled growth with contact abrasion (design.md §4; paper §3.1,
+ * Eqs. 1-3), `teacher-2` (mutual abrasion) by default; the one-sided and the
+ * two further die-back readings on switches (design.md §7, E0). See teacher.h
+ * for the rule, the readings, why the entered
  * crown's die-back is safe, and the contact test. Limits: 24 sectors, 8 sample
  * points per sector interval; overlap thinner than the gap between sample
  * points is invisible to the contact test and to the self-check alike.
@@ -32,11 +33,41 @@ void teacher_params_default(teacher_params *p)
     p->hbar = 0.0;
     p->frozen_out = NULL;
     p->one_sided = 0;
+    p->dieback = TEACHER_DIEBACK_OWN;
+    p->start_frac = 0.05;
 }
 
 const char *teacher_version(const teacher_params *p)
 {
-    return p->one_sided ? TEACHER_VERSION_ONE_SIDED : TEACHER_VERSION;
+    static const char *const names[2][3] = {
+        {TEACHER_VERSION, TEACHER_VERSION "-arc", TEACHER_VERSION "-target"},
+        {TEACHER_VERSION_ONE_SIDED, TEACHER_VERSION_ONE_SIDED "-arc", TEACHER_VERSION_ONE_SIDED "-target"}};
+    int d = p->dieback >= TEACHER_DIEBACK_OWN && p->dieback <= TEACHER_DIEBACK_TARGET ? (int)p->dieback : 0;
+    return names[p->one_sided ? 1 : 0][d];
+}
+
+/* Die-back of sector k of tree j (flat index jk) under the reading's rule,
+ * freezing it; the active count drops when a still-growing sector freezes. */
+static void die_back(const teacher_params *p, double *r, const double *rstar, unsigned char *frozen,
+                     int *active_j, size_t jk, size_t *nfrozen)
+{
+    if (!frozen[jk]) {
+        if (r[jk] != rstar[jk]) (*active_j)--;
+        frozen[jk] = 1;
+        (*nfrozen)++;
+    }
+    if (p->dieback == TEACHER_DIEBACK_TARGET) r[jk] = fmax(0.0, r[jk] - p->beta * rstar[jk]);
+    else r[jk] = (1.0 - p->beta) * r[jk];
+}
+
+/* The sectors a contact at sector k of tree j abrades: k, and k +- 1 under
+ * the neighbouring-sector reading. */
+static void abrade(const teacher_params *p, double *r, const double *rstar, unsigned char *frozen,
+                   int *active, size_t j, int k, size_t *nfrozen)
+{
+    int w = p->dieback == TEACHER_DIEBACK_NEIGHBOURS ? 1 : 0;
+    for (int q = -w; q <= w; q++)
+        die_back(p, r, rstar, frozen, active + j, j * NS + (size_t)((k + q + NS) % NS), nfrozen);
 }
 
 /* Unit vectors of the 192 sample bearings (index 8s+q) and of the sector centres. */
@@ -318,8 +349,11 @@ cs_status teacher_grow(const teacher_stand *st, const teacher_params *p, double 
 {
     teacher_info inf = {0};
     size_t n = st->n;
-    if (p->nres < 1 || !(p->beta >= 0.0 && p->beta < 1.0) || !(p->gamma >= 0.0))
-        return cs_err(CS_EINPUT, "teacher: bad parameters (N=%d beta=%g gamma=%g)", p->nres, p->beta, p->gamma);
+    if (p->nres < 1 || !(p->beta >= 0.0 && p->beta < 1.0) || !(p->gamma >= 0.0) ||
+        !(p->start_frac > 0.0 && p->start_frac <= 1.0) ||
+        !(p->dieback >= TEACHER_DIEBACK_OWN && p->dieback <= TEACHER_DIEBACK_TARGET))
+        return cs_err(CS_EINPUT, "teacher: bad parameters (N=%d beta=%g gamma=%g start_frac=%g dieback=%d)",
+                      p->nres, p->beta, p->gamma, p->start_frac, (int)p->dieback);
     if (n == 0) { if (info) *info = inf; return CS_OK; }
     for (size_t i = 0; i < n * NS; i++)
         if (!(st->rstar[i] > 0.0) || !isfinite(st->rstar[i]))
@@ -366,7 +400,7 @@ cs_status teacher_grow(const teacher_stand *st, const teacher_params *p, double 
         double m = 0.0, c = 0.0;
         for (int s = 0; s < NS; s++) {
             double t = st->rstar[i * NS + s];
-            r[i * NS + s] = 0.05 * t;
+            r[i * NS + s] = p->start_frac * t;
             if (t > m) m = t;
             if (r[i * NS + s] > c) c = r[i * NS + s];
         }
@@ -398,15 +432,15 @@ cs_status teacher_grow(const teacher_stand *st, const teacher_params *p, double 
         w.hits = malloc(deg * sizeof *w.hits);
         if (!w.hits) { rc = cs_err(CS_ENOMEM, "teacher: out of memory"); goto done; }
     }
-    /* Stems closer than their starting crowns (0.05 r*) cannot start without
+    /* Stems closer than their starting crowns (f r*) cannot start without
      * overlap; the rule is not bent for them: the stand is reported unbuildable. */
     {
         double w0 = 0.0;
         rc = worst_overlap_d(&w.dirs, st->x, st->y, r, n, &w0);
         if (rc) goto done;
         if (w0 > TEACHER_OVERLAP_MAX_M) {
-            rc = cs_err(CS_EINPUT, "teacher: stand unbuildable: starting crowns (0.05 r*) already overlap by "
-                        "%.17g m (stems too close)", w0);
+            rc = cs_err(CS_EINPUT, "teacher: stand unbuildable: starting crowns (%g r*) already overlap by "
+                        "%.17g m (stems too close)", p->start_frac, w0);
             goto done;
         }
     }
@@ -435,10 +469,7 @@ cs_status teacher_grow(const teacher_stand *st, const teacher_params *p, double 
                 moved = 1;
                 size_t nhit = 0;
                 if (conflict(&w, i, s, rp, clear_i, mutual ? w.hits : NULL, &nhit)) {
-                    fi[s] = 1;
-                    ri[s] = (1.0 - p->beta) * ri[s];
-                    inf.frozen++;
-                    active[i]--;
+                    abrade(p, r, st->rstar, w.frozen, active, i, s, &inf.frozen);
                     /* teacher-2: each crown j the proposal would enter loses beta
                      * of the sector nearest the bearing from p_j to i's proposed
                      * tip, and that sector freezes (again at every contact). */
@@ -446,13 +477,7 @@ cs_status teacher_grow(const teacher_stand *st, const teacher_params *p, double 
                     for (size_t h = 0; h < nhit; h++) {
                         size_t j = w.hits[h];
                         int t = nearest_sector(tx - st->x[j], ty - st->y[j]);
-                        size_t jt = j * NS + (size_t)t;
-                        if (!w.frozen[jt]) {
-                            if (r[jt] != st->rstar[jt]) active[j]--;
-                            w.frozen[jt] = 1;
-                            inf.frozen++;
-                        }
-                        r[jt] = (1.0 - p->beta) * r[jt];
+                        abrade(p, r, st->rstar, w.frozen, active, j, t, &inf.frozen);
                         inf.abraded++;
                     }
                 } else {

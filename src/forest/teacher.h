@@ -1,11 +1,14 @@
 /* teacher: coupled crown growth with contact abrasion (design.md §4; reference
- * paper §3.1, Eqs. 1-3). Two readings of Eq. 3, chosen by
- * teacher_params.one_sided and named by teacher_version(): `teacher-2`
- * (default, SPEC revision 2, pinned by the audit) and `teacher-1` (revision 1).
+ * paper §3.1, Eqs. 1-3). The adopted reading of Eq. 3 is mutual abrasion,
+ * `teacher-2`, pinned by the audit. teacher_params selects the other readings
+ * the paper's words allow, kept runnable for the readings and sensitivity
+ * tables (design.md §7, E0): one_sided (`teacher-1`) and the die-back rule
+ * (dieback: own sector only, the default; the contact arc s-1..s+1; beta of
+ * the target length), each named by teacher_version().
  *
  * Rule: step Delta = median_i(R_i) / N; hbar = mean height as drawn (or an
  * explicit override: a perturbation keeps the unperturbed mean). Start at
- * r = 0.05 r* (Eq. 1 targets). Rounds: trees in descending height (ties by
+ * r = f r* (Eq. 1 targets; f = start_frac, 0.05 by default). Rounds: trees in descending height (ties by
  * lower index); each tree advances, in sector order 0..23, every sector
  * neither frozen nor at target to r' = min(r + Delta (h_i/hbar)^gamma, r*_s)
  * (Eq. 2). Coupling on: if the proposed boundary of sector s of tree i would
@@ -22,7 +25,15 @@
  * contact, so a frozen sector can lose beta again. All crowns entered are
  * found against the same state before any die-back is applied.
  * teacher-1, one-sided: only i's sector dies back; j may regrow into the
- * space i gave up (kept runnable for the readings, design.md §7 E0).
+ * space i gave up.
+ * Die-back readings (dieback; apply to every crown that loses a sector):
+ *   TEACHER_DIEBACK_OWN (default, Eq. 3 as written): r_s <- (1 - beta) r_s;
+ *   TEACHER_DIEBACK_NEIGHBOURS (`-arc`): the sectors either side of the
+ *     contacting one die back the same way and freeze too (the contact test
+ *     already looks at the arc [theta_{s-1}, theta_{s+1}]);
+ *   TEACHER_DIEBACK_TARGET (`-target`): r_s <- max(0, r_s - beta r*_s), beta
+ *     of the target length (contradicts Eq. 3; a reading only).
+ * Both extra readings only lower radii, so the safety argument below holds.
  * Why j's die-back is safe for the self-check: it only lowers r_j,t, so j's
  * region shrinks (interpolation weights are >= 0): no clearance g falls and no
  * point enters j that was outside. j's changed sample points move inward along
@@ -57,10 +68,16 @@
 #include "stand.h"
 #include <stddef.h>
 
-#define TEACHER_VERSION "teacher-2"           /* the default reading, pinned by the audit */
-#define TEACHER_VERSION_ONE_SIDED "teacher-1" /* revision 1, kept for the readings (design.md §7 E0) */
+#define TEACHER_VERSION "teacher-2"           /* the adopted reading, pinned by the audit */
+#define TEACHER_VERSION_ONE_SIDED "teacher-1" /* one-sided die-back, a reading (design.md §7 E0) */
 #define TEACHER_SAMPLES_PER_SECTOR 8
 #define TEACHER_OVERLAP_MAX_M 1e-9
+
+typedef enum {
+    TEACHER_DIEBACK_OWN = 0,        /* the contacting sector only (Eq. 3) */
+    TEACHER_DIEBACK_NEIGHBOURS = 1, /* and its two neighbours */
+    TEACHER_DIEBACK_TARGET = 2      /* beta of the target length */
+} teacher_dieback;
 
 typedef struct {
     double beta;    /* die-back fraction (dimensionless) */
@@ -70,14 +87,18 @@ typedef struct {
     double hbar;    /* > 0: use this stand mean height; <= 0: mean of h */
     unsigned char *frozen_out; /* optional, n x CROWN_NSEC: 1 where a sector froze on contact
                                   (teacher-2: both the entering and the entered sector) */
-    int one_sided;  /* 0 (default): teacher-2, mutual abrasion; 1: teacher-1, revision 1's one-sided rule */
+    int one_sided;  /* 0 (default): teacher-2, mutual abrasion; 1: teacher-1, one-sided */
+    teacher_dieback dieback; /* die-back rule (default TEACHER_DIEBACK_OWN) */
+    double start_frac;       /* starting radius as a fraction of r*, in (0, 1] (default 0.05) */
 } teacher_params;
 
-/* The version string of the reading p selects: TEACHER_VERSION ("teacher-2")
- * or TEACHER_VERSION_ONE_SIDED ("teacher-1"). Provenance records this. */
+/* The version string of the reading p selects: "teacher-2" or "teacher-1",
+ * with "-arc" or "-target" for the other die-back rules. Provenance records
+ * it (start_frac is a parameter, not a reading: units record it themselves). */
 const char *teacher_version(const teacher_params *p);
 
-/* beta 0.06, coupled, N 48, gamma 1, hbar from the heights, no frozen output, teacher-2. */
+/* beta 0.06, coupled, N 48, gamma 1, hbar from the heights, no frozen output,
+ * teacher-2, own-sector die-back, start 0.05 r*. */
 void teacher_params_default(teacher_params *p);
 
 /* What the teacher reads of a stand (stand.h: stems, heights, radii, targets;
