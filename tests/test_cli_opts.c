@@ -30,6 +30,8 @@ static const cmd_case CMDS[] = {
     {"main-baselines", "", {{0}}},
     {"main-summary", "", {{"seeds", "65"}}},
     {"main-redraw", "", {{"seed", "0"}}},
+    {"main-train", "", {{"seed", "0"}, {"epochs", "0"}, {"train-stands", "10001"}, {"pair", "2"}}},
+    {"main-eval", "", {{"seed", "4294967296"}}},
     {"comp-run", "", {{0}}},
     {"bench-teacher", "", {{"reps", "0"}}},
     {"readings-summary", "", {{0}}},
