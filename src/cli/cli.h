@@ -23,6 +23,7 @@ int cli_cmd_bench_model(int argc, char **argv);
 int cli_cmd_run(int argc, char **argv);
 int cli_cmd_bench_teacher(int argc, char **argv);
 int cli_cmd_readings_summary(int argc, char **argv);
+int cli_cmd_model_readings(int argc, char **argv);
 
 /* The whole command line: dispatch argv[1] to its handler (cli.c). */
 int cli_main(int argc, char **argv);

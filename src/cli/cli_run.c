@@ -1,6 +1,8 @@
 /* cli_run: `crownshy run <unit>` (the teacher experiments' units of E1, E2
  * and the figure stands, one process per make target of experiments.mk) and
  * `crownshy bench-teacher`. Only the CLI decides how the process dies. */
+#include "afile.h"
+#include "model_readings.h"
 #include "cli.h"
 #include "exp_irred.h"
 #include "exp_mechanism.h"
@@ -130,5 +132,33 @@ int cli_cmd_readings_summary(int argc, char **argv)
     free(rows);
     claims_free(&cl);
     if (st) { fprintf(stderr, "crownshy readings-summary: %s\n", cs_errmsg()); return cs_exit_code(st); }
+    return 0;
+}
+
+/* The generator readings table (design.md §8; src/claims/model_readings.h). */
+int cli_cmd_model_readings(int argc, char **argv)
+{
+    const char *dir = NULL, *out = NULL;
+    const opt_spec spec[] = {
+        {"dir", OPT_STR, &dir, 0, 0, "results or frozen root holding paper/, extension-pair/, model-readings/ (required)"},
+        {"out", OPT_STR, &out, 0, 0, "table FILE.tsv (required), e.g. DIR/model-readings/summary.tsv"},
+    };
+    const opts_cmd c = {"model-readings", "--dir DIR --out FILE.tsv",
+                        "E3/E4 generator readings: per reading that has run, seeds, parameters, joint, independent and\n"
+                        "direction-blind errors, relative improvement, Wilcoxon p, probe ratios, extrapolation advantage, steps/s.",
+                        spec, 2, 0, 0};
+    int r = opts_parse(&c, argc, argv, NULL, NULL);
+    if (r) return opts_exit_code(r);
+    if (!dir || !out) { opts_usage_error("model-readings", "--dir and --out are required"); return 2; }
+    model_readings_row rows[4];
+    size_t n = 0;
+    cs_status st = model_readings_compute(dir, rows, &n);
+    if (!st && !n) st = cs_err(CS_EINPUT, "%s: no reading has a main/runs.tsv", dir);
+    if (!st) st = afile_mkdir_parents(out);
+    if (!st) st = model_readings_write(out, dir, rows, n, argc, argv);
+    for (size_t i = 0; !st && i < n; i++)
+        printf("%-13s %-11s seeds %2d  joint %.4f  indep %.4f  rel %.1f %%  p %.5f  shuffle x%.2f\n", rows[i].reading, rows[i].role,
+               rows[i].seeds, rows[i].joint, rows[i].indep, 100 * rows[i].rel, rows[i].p, rows[i].shuf_joint);
+    if (st) { fprintf(stderr, "crownshy model-readings: %s\n", cs_errmsg()); return cs_exit_code(st); }
     return 0;
 }
