@@ -8,6 +8,7 @@
 #include "exp_comp.h"
 #include "exp_field.h"
 #include "exp_main.h"
+#include "mainsum.h"
 #include "opts.h"
 #include <stdio.h>
 #include <string.h>
@@ -33,8 +34,8 @@ static int cli_cmd_version(int argc, char **argv)
 static const cli_cmd cli_cmds[] = {
     {"figures", cli_cmd_figures, "redraw every figure with gnuplot from frozen data"},
     {"main-run", exp_main_cmd_run, "E3/E4: one (seed, arm) training + evaluation unit"},
-    {"main-baselines", exp_main_cmd_baselines, "E3/E4: direction-blind baseline and noise floor"},
-    {"main-summary", exp_main_cmd_summary, "E3/E4: gather runs into frozen tables"},
+    {"main-baselines", mainsum_cmd_baselines, "E3/E4: direction-blind baseline and noise floor"},
+    {"main-summary", mainsum_cmd_summary, "E3/E4: gather runs into frozen tables"},
     {"main-redraw", exp_main_cmd_redraw, "E3/E4: draw a unit's clearance samples again from its frozen weights"},
     {"main-train", exp_main_cmd_train, "E3/E4: train one (seed, arm, reading) unit: weights and training table"},
     {"main-eval", exp_main_cmd_eval, "E3/E4: evaluate one unit from its weights, without training: run table and samples"},

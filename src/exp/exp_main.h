@@ -18,44 +18,9 @@
  * by construction and both arms of a seed share every seed. */
 #ifndef EXP_MAIN_H
 #define EXP_MAIN_H
-#include "cs.h"
-#include "model.h"
-#include "patch.h"
-#include <gsl/gsl_rng.h>
-
-/* Stands per training spacing at full scale (issue 14: chosen so that E3+E4
- * fit the 60 min budget on 2 cores; measured, README "Budgets"). */
-#define EXP_MAIN_TRAIN_STANDS 12
-
-/* Evaluation volume v2 at full scale (mainrun.h; design.md §8 "Readings of
- * the generator"): chosen from the split-half noise floor and its cost,
- * measured (README "Budgets"). */
-#define EXP_MAIN_V2_EVAL_STANDS 96
-#define EXP_MAIN_V2_GEN_PATCHES 1536
-
-typedef struct {
-    const char *scale;     /* "full" or "smoke" */
-    const char *volume;    /* evaluation volume: "v1" or "v2" (mainrun.h) */
-    int train_stands;      /* stands per training spacing */
-    int eval_stands;       /* teacher stands per eval spacing */
-    int gen_patches;       /* generated patches per eval spacing */
-    int epochs;            /* full: gates/main.gate epochs */
-    int euler;             /* gates/main.gate euler_steps */
-    int batch;
-    double lr;
-} exp_main_plan;
-
-/* The plan for a scale ("full" or "smoke"); gate values read from gates/. */
-cs_status exp_main_plan_get(const char *scale, exp_main_plan *p);
-
-/* Set the evaluation stands and generated patches of p (scale set) for a
- * volume ("v1" or "v2"; CS_EUSAGE otherwise). */
-cs_status exp_main_plan_volume(exp_main_plan *p, const char *volume);
 
 /* CLI entry points (return process exit codes; design.md §11). */
 int exp_main_cmd_run(int argc, char **argv);
-int exp_main_cmd_baselines(int argc, char **argv);
-int exp_main_cmd_summary(int argc, char **argv);
 int exp_main_cmd_redraw(int argc, char **argv);
 int exp_main_cmd_train(int argc, char **argv);
 int exp_main_cmd_eval(int argc, char **argv);

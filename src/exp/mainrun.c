@@ -1,23 +1,68 @@
 /* mainrun: one E3/E4 unit's evaluation and tables (see mainrun.h). */
 #include "mainrun.h"
 #include "estimator.h"
+#include "gate.h"
+#include "paths.h"
 #include "tsv.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+cs_status mainrun_plan_get(const char *scale, mainrun_plan *p)
+{
+    double epochs, euler;
+    cs_status st;
+    if ((st = gate_read_value(PATHS_GATE("main"), "epochs", 0, &epochs))) return st;
+    if ((st = gate_read_value(PATHS_GATE("main"), "euler_steps", 0, &euler))) return st;
+    memset(p, 0, sizeof *p);
+    p->euler = (int)euler;
+    p->batch = 64;
+    p->lr = 2e-3;
+    p->volume = "v1";
+    if (!strcmp(scale, "full")) {
+        p->scale = "full";
+        p->train_stands = MAINRUN_TRAIN_STANDS; /* x 4 spacings x ~64 interior stems */
+        p->eval_stands = 16;   /* ~1024 teacher clearances per eval spacing */
+        p->gen_patches = 256;
+        p->epochs = (int)epochs;
+    } else if (!strcmp(scale, "smoke")) {
+        p->scale = "smoke";
+        p->train_stands = 1;
+        p->eval_stands = 2;
+        p->gen_patches = 32;
+        p->epochs = 4;
+        p->euler = 10;
+    } else return cs_err(CS_EUSAGE, "unknown scale '%s' (full or smoke)", scale);
+    return CS_OK;
+}
+
+cs_status mainrun_plan_volume(mainrun_plan *p, const char *volume)
+{
+    const int full = !strcmp(p->scale, "full");
+    if (!strcmp(volume, "v1")) {
+        p->volume = "v1";
+        p->eval_stands = full ? 16 : 2;
+        p->gen_patches = full ? 256 : 32;
+    } else if (!strcmp(volume, "v2")) {
+        p->volume = "v2";
+        p->eval_stands = full ? MAINRUN_V2_EVAL_STANDS : 4;
+        p->gen_patches = full ? MAINRUN_V2_GEN_PATCHES : 64;
+    } else return cs_err(CS_EUSAGE, "unknown evaluation volume '%s' (v1 or v2)", volume);
+    return CS_OK;
+}
 
 void mainrun_rows_free(mainrun_row *rows, size_t n)
 {
     for (size_t i = 0; i < n; i++) { free(rows[i].gen); free(rows[i].teach); }
 }
 
-int mainrun_nprobe(const exp_main_plan *pl, const model_cfg *cfg, int unseen)
+int mainrun_nprobe(const mainrun_plan *pl, const model_cfg *cfg, int unseen)
 {
     if (!strcmp(pl->volume, "v1")) return cfg->pair ? MAINSET_NPROBE : cfg->joint ? 2 : 1;
     return unseen ? MAINSET_NPROBE : 1;
 }
 
-cs_status mainrun_evaluate(model *m, int Bmax, const mainset_design *ds, const exp_main_plan *pl, double scale,
+cs_status mainrun_evaluate(model *m, int Bmax, const mainset_design *ds, const mainrun_plan *pl, double scale,
                            unsigned seed, const char *arm, mainrun_row *rows, size_t *nrows,
                            double *worst, double *maxdiff)
 {
