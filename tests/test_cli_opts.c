@@ -35,6 +35,7 @@ static const cmd_case CMDS[] = {
     {"comp-run", "", {{0}}},
     {"bench-teacher", "", {{"reps", "0"}}},
     {"readings-summary", "", {{0}}},
+    {"model-readings", "", {{0}}},
     {"run", "irreducibility-perturb", {{"stands", "0"}, {"beta", "1"}}},
     {"gates", "", {{0}}},
     {"check-tsv", "no-such.tsv", {{0}}},
