@@ -33,6 +33,7 @@ static const cmd_case CMDS[] = {
     {"main-train", "", {{"seed", "0"}, {"epochs", "0"}, {"train-stands", "10001"}, {"pair", "2"}}},
     {"main-eval", "", {{"seed", "4294967296"}}},
     {"comp-run", "", {{0}}},
+    {"comp-dist", "", {{"patches", "0"}}},
     {"bench-teacher", "", {{"reps", "0"}}},
     {"readings-summary", "", {{0}}},
     {"model-readings", "", {{0}}},

@@ -6,6 +6,7 @@
 #include "cli.h"
 #include "exp_aniso.h"
 #include "exp_comp.h"
+#include "exp_compdist.h"
 #include "exp_field.h"
 #include "exp_main.h"
 #include "mainsum.h"
@@ -40,6 +41,7 @@ static const cli_cmd cli_cmds[] = {
     {"main-train", exp_main_cmd_train, "E3/E4: train one (seed, arm, reading) unit: weights and training table"},
     {"main-eval", exp_main_cmd_eval, "E3/E4: evaluate one unit from its weights, without training: run table and samples"},
     {"comp-run", exp_comp_cmd_run, "E7: comparison patch (teacher, joint, independent) and dart probe"},
+    {"comp-dist", exp_compdist_cmd_run, "E7: the comparison patch and the dart probe as distributions over fresh patches"},
     {"model-readings", cli_cmd_model_readings, "E3/E4: the generator readings table from the runs under --dir (design.md §8)"},
     {"readings-summary", cli_cmd_readings_summary, "E0: the readings table from the runs under --dir (design.md §7 E0)"},
     {"bench-teacher", cli_cmd_bench_teacher, "teacher ms per 144-tree stand at N = 48 and 384"},

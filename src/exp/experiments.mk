@@ -66,6 +66,13 @@ $(foreach r,$(MODEL_READINGS),$(foreach a,joint indep,$(eval $(call MAIN_UNIT,$(
 MR_RUNS = $(foreach s,$(READING_SEED_LIST),$(MR_DIR)/$(1)/main/run_s$(s)_joint.tsv $(MR_DIR)/$(1)/main/run_s$(s)_indep.tsv)
 $(foreach r,$(MODEL_READINGS),$(eval $(MR_DIR)/$(r)/main/runs.tsv: $(call MR_RUNS,$(r)) | $$(CLI) ; $$(CLI) main-summary --dir $(MR_DIR)/$(r) --seeds $(READING_NSEEDS)))
 
+# E7 and the dart probe as distributions over fresh patches (src/exp/exp_compdist.h),
+# seed-1 models of the paper reading and of the pair extension.
+$(PAPER)/comparison/dist_summary.tsv: $(PAPER)/main/run_s01_joint.tsv $(PAPER)/main/run_s01_indep.tsv | $(CLI)
+	$(CLI) comp-dist --joint $(PAPER)/main/weights_s01_joint.ckpt --indep $(PAPER)/main/weights_s01_indep.ckpt --out $(PAPER)
+$(EXT_PAIR)/comparison/dist_summary.tsv: $(EXT_PAIR)/main/v1/run_s01_joint.tsv $(EXT_PAIR)/main/v1/run_s01_indep.tsv | $(CLI)
+	$(CLI) comp-dist --joint $(EXT_PAIR)/main/v1/weights_s01_joint.ckpt --indep $(EXT_PAIR)/main/v1/weights_s01_indep.ckpt --out $(EXT_PAIR)
+REPRODUCE_UNITS += $(PAPER)/comparison/dist_summary.tsv $(EXT_PAIR)/comparison/dist_summary.tsv
 # The readings table (src/claims/model_readings.h) from every reading's runs.
 $(MR_DIR)/summary.tsv: $(PAPER)/main/runs.tsv $(EXT_PAIR)/main/runs.tsv $(foreach r,$(MODEL_READINGS),$(MR_DIR)/$(r)/main/runs.tsv) | $(CLI)
 	$(CLI) model-readings --dir $(RESULTS) --out $@
