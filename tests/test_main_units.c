@@ -51,6 +51,32 @@ static void test_unit_samples_redraw_bit_for_bit_and_recompute_w1(void **s)
                  dir, arm, a ? "joint" : "indep", dir);
         assert_int_equal(tu_run_cli("", args, out, sizeof out), 3);
     }
+    /* comp-dist on these two arms: every patch and source, the summary and the figure patch */
+    snprintf(args, sizeof args, "comp-dist --patches 5 --joint %s/main/weights_s03_joint.ckpt --indep %s/main/weights_s03_indep.ckpt --out %s",
+             dir, dir, dir);
+    if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("comp-dist: %s", out);
+    {
+        tsv *t;
+        char p[600];
+        snprintf(p, sizeof p, "%s/comparison/dist_patches.tsv", dir);
+        assert_int_equal(tsv_read(p, &t), CS_OK);
+        assert_int_equal(tsv_nrows(t), 5 * 3 + 5 * 2); /* comparison: teacher, joint, indep; dart: teacher, joint */
+        double jm[5];
+        int nj = 0;
+        for (size_t i = 0; i < tsv_nrows(t); i++)
+            if (!strcmp(tsv_str(t, i, "probe"), "comparison") && !strcmp(tsv_str(t, i, "source"), "joint"))
+                assert_int_equal(tsv_double(t, i, "median_nn_clearance_m", &jm[nj++]), CS_OK);
+        tsv_free(t);
+        assert_int_equal(nj, 5);
+        snprintf(p, sizeof p, "%s/comparison/dist_summary.tsv", dir);
+        assert_int_equal(tsv_read(p, &t), CS_OK);
+        assert_int_equal(tsv_nrows(t), 5);
+        int fig = atoi(tsv_meta(t, "figure_patch"));
+        tsv_free(t);
+        int below = 0, equal_before = 0;
+        for (int k = 0; k < 5; k++) { below += jm[k] < jm[fig]; equal_before += jm[k] == jm[fig] && k < fig; }
+        assert_int_equal(below + equal_before, 2); /* rank floor((5 - 1) / 2) */
+    }
     char msg[1024];
     int nchecked = 0;
     if (claim_main_samples_check(dir, 3, msg, sizeof msg, &nchecked) != CS_OK) fail_msg("%s", msg);
