@@ -13,7 +13,9 @@ CC ?= cc
 # -Wno-psabi: GCC notes that 32-byte vectors are passed differently since GCC
 # 4.6 for nn.c's always-inlined helpers, which never cross a call boundary; the
 # note ignores nn.c's pragma and would print on every build.
-CFLAGS ?= -std=c11 -O2 -ffp-contract=off -g -Wall -Wextra -Wno-unused-parameter -Wno-psabi \
+# -Wno-missing-field-initializers: option tables name the leading fields of
+# opt_spec and leave the optional ones (required, choices) zero.
+CFLAGS ?= -std=c11 -O2 -ffp-contract=off -g -Wall -Wextra -Wno-unused-parameter -Wno-psabi -Wno-missing-field-initializers \
           -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
 STAGES := base forest model exp claims
 CPPFLAGS += $(addprefix -Isrc/,$(STAGES) cli)
@@ -90,37 +92,38 @@ $(B)/tests $(B)/asan/tests:
 # Every cmocka binary, then all of them again under ASan+UBSan; one aggregate line.
 check: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS) $(ASAN_TESTS)
-	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh -- $(ASAN_TESTS)
+	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/manifest.sh -- $(ASAN_TESTS)
 
 check-fast: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS)
 	@bash tests/run.sh $(TESTS) tests/layout.sh
 
 # ---- verification (the reviewer's job) --------------------------------------
-# Tier 1 (design.md §9 rev. 2): exit 0 when the package is consistent (a failing
+# Tier 1 (design.md §9): exit 0 when the package is consistent (a failing
 # preregistered gate is a finding, reported "not reproduced"); STRICT=1 also
 # fails on a failing gate.
+# GNU make itself exits 2 whenever a recipe fails; the recipe ends with
+# crownshy's own status (make prints it as "Error K") after one line naming its
+# kind: 1 inconsistency, 2 usage, 3 bad input, 4 environment (design.md §11).
+CS_STATUS = st=$$?; if [ $$st -ne 0 ]; then case $$st in 1) k=inconsistency;; 2) k=usage;; 3) k='bad input';; 4) k=environment;; *) k=other;; esac; \
+  echo "make $@: crownshy exited $$st ($$k)" >&2; fi; exit $$st
 verify: deps
 	@$(MAKE) --no-print-directory $(CLI)
-	@$(CLI) verify $(if $(STRICT),--strict)
+	@$(CLI) verify $(if $(STRICT),--strict); $(CS_STATUS)
 
-# Tier 2 (design.md §9 rev. 2): rerun every teacher experiment unit into build/deep/
-# and compare with frozen/ bit for bit (data rows), with progress; the model
-# part (redraw samples from the frozen weights) runs when `crownshy main-redraw`
-# exists (issue 14). Every teacher unit of src/exp/experiments.mk: E1, E2 at
-# beta_train and beta_field, the teacher figure data, E5, E6 and the E0 readings.
+# Tier 2 (design.md §9): rerun every unit of each experiment whose manifest
+# row says "rerun" (src/base/manifest.h; DEEP_UNITS is generated) into
+# build/deep/ and compare with frozen/ bit for bit (data rows), with
+# progress; then redraw every frozen model's samples from its weights.
 DEEP := $(B)/deep
-DEEP_UNITS = $(foreach u,$(MECH_UNITS) $(RESULTS)/mechanism/figure_stats.tsv $(IRRED_UNITS) $(TEACHER_FIG_UNITS) \
-  $(FIELD_CAL) $(RESULTS)/field/heldout.tsv $(addprefix $(RESULTS)/anisotropy/,lattice.tsv hardcore.tsv jitter.tsv jitter_calibration.tsv heldout.tsv) \
-  $(IRRED_FIELD_UNITS) $(READINGS_DIR)/summary.tsv,$(patsubst $(RESULTS)/%,$(DEEP)/%,$(u)))
 .PHONY: verify-deep
 verify-deep: deps
 	@$(MAKE) --no-print-directory $(CLI)
-	@DEEP='$(DEEP)' JOBS=2 CLI='$(CLI)' MAKE='$(MAKE)' DEEP_UNITS='$(DEEP_UNITS)' bash src/exp/verify_deep.sh
+	@DEEP='$(DEEP)' JOBS=2 CLI='$(CLI)' MAKE='$(MAKE)' DEEP_UNITS='$(patsubst $(RESULTS)/%,$(DEEP)/%,$(DEEP_UNITS))' bash src/exp/verify_deep.sh
 
 audit: deps
 	@$(MAKE) --no-print-directory $(CLI)
-	@$(CLI) audit
+	@$(CLI) audit; $(CS_STATUS)
 
 figures: deps
 	@$(MAKE) --no-print-directory $(CLI)
@@ -136,7 +139,7 @@ bench: deps
 
 numbers: deps
 	@$(MAKE) --no-print-directory $(CLI)
-	@$(CLI) numbers
+	@$(CLI) numbers; $(CS_STATUS)
 
 # ---- the full run of the study ----------------------------------------------
 # One make target per unit (seed, arm, experiment) writing into $(RESULTS);
@@ -149,9 +152,11 @@ else
 RESULTS := $(B)/results
 endif
 REPRODUCE_UNITS :=
+DEEP_UNITS :=
+MANIFEST_EXPERIMENTS :=
 -include src/exp/experiments.mk
 
-# ==== reproduce engines (issue 16) ==========================================
+# ==== reproduce engines (design.md §13) ==========================================
 # make reproduce [ENGINE=local|slurm] [SCALE=smoke] [SLURM_ARGS='sbatch options']
 # make reproduce-status    per unit: done, queued, running, failed (with its log), missing
 # make reproduce-graph     each unit and the units it needs
@@ -169,14 +174,27 @@ REPRODUCE_ENV = REPRODUCE_RESULTS='$(RESULTS)' REPRODUCE_UNITS='$(strip $(REPROD
   REPRODUCE_VARS='SCALE=$(SCALE)$(if $(filter command line,$(origin B)), B=$(B))$(if $(filter command line,$(origin RESULTS)), RESULTS=$(RESULTS))' \
   SLURM_ARGS='$(SLURM_ARGS)' MAKE='$(MAKE)'
 .PHONY: reproduce-status reproduce-graph
+# One reproduce at a time per tree: the second refuses (exit 4, naming the
+# holder) instead of racing the first for the same results (build/reproduce.lock,
+# held by the recipe's shell and its children until the run ends).
+REPRODUCE_LOCK := build/reproduce.lock
 reproduce: deps
-	@$(MAKE) --no-print-directory $(CLI)
-	@if [ -z "$(strip $(REPRODUCE_UNITS))" ]; then echo "reproduce: no experiment registered yet"; \
+	@mkdir -p $(dir $(REPRODUCE_LOCK)); exec 9>>$(REPRODUCE_LOCK); \
+	 if ! flock -n 9; then echo "reproduce: another make reproduce is running in this tree ($(REPRODUCE_LOCK) held by pid $$(cat $(REPRODUCE_LOCK).pid 2>/dev/null || echo '?')): wait for it to end, or stop it" >&2; exit 4; fi; \
+	 echo $$$$ > $(REPRODUCE_LOCK).pid; \
+	 $(MAKE) --no-print-directory $(CLI) || exit $$?; \
+	 if [ -z "$(strip $(REPRODUCE_UNITS))" ]; then echo "reproduce: no experiment registered yet"; \
 	 else $(REPRODUCE_ENV) bash $(REPRODUCE_SH) $(ENGINE); fi
 reproduce-status:
 	@$(REPRODUCE_ENV) bash $(REPRODUCE_SH) status
 reproduce-graph:
 	@$(REPRODUCE_ENV) bash $(REPRODUCE_SH) graph
+# the experiments and units the manifest gives make (src/base/manifest.h)
+.PHONY: units
+units:
+	@echo "experiments: $(strip $(MANIFEST_EXPERIMENTS))"
+	@echo "reproduce: $(strip $(REPRODUCE_UNITS))"
+	@echo "verify-deep: $(strip $(DEEP_UNITS))"
 # ==== end of reproduce engines ==============================================
 
 # Copy finished full-scale results (tables, and the E3/E4 weights files) into
@@ -208,12 +226,12 @@ paper: $(CLI)
 	@if ! command -v pdflatex >/dev/null; then echo "paper: pdflatex not installed; run make deps-paper (Debian texlive packages)" >&2; exit 1; fi
 	@cd paper && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && echo "paper: wrote paper/main.pdf"
 
-# ---- fuzzing (issues 7, 15): libFuzzer on the parsers, FUZZ_SECONDS each ---------
+# ---- fuzzing (design.md §11): libFuzzer on the parsers, FUZZ_SECONDS each ---------
 # Needs clang with libFuzzer (Debian: clang, libclang-rt-14-dev); built with -DNN_NO_CLONES
 # (clang refuses nn.c's AVX-512 clones; the parsers do not need them). Seeds: the
 # committed frozen tables, gates, numbers.tex and a fresh smoke checkpoint.
 # A crash leaves its input in build/fuzz/<target>/crash-*; copy it into
-# tests/data/fuzz/ and add a regression case to tests/test_fuzz_regress.c.
+# tests/data/fuzz/ and add a regression case to the parser's cmocka tests.
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := tsv gate ckpt numbers gatemap aggr paper
 FUZZ_CC := clang

@@ -1,7 +1,7 @@
 # hero.gp — Fig. hero (design.md §7 E9): teacher canopies on hard-core stems
 # (c = 0.5, L = 36 m) at d = 3.0 ... 6.5 m, row beta_train (and row beta_field
 # when the E5 calibration has produced it); crown draws shared within a column.
-# Data: crownshy run fig-hero [--beta B_field].
+# Data: crownshy hero-figure [--beta B_field].
 # Usage: gnuplot figures/hero.gp   (dir='build/results' to draw unfrozen data)
 # data: frozen/hero/figure_poly_beta_train_3.0.tsv
 # data: frozen/hero/figure_poly_beta_train_6.5.tsv

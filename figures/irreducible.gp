@@ -3,7 +3,7 @@
 # stem spacing, with the preregistered 0.50 gate dashed. Right: response
 # magnitude under step refinement (circles) against the decay a
 # discretisation artefact would show, i.e. the step ratio (squares, dashed).
-# Data: crownshy run irreducibility-perturb / irreducibility-refine (beta_train).
+# Data: crownshy irreducibility-perturb / irreducibility-refine (beta_train).
 # Usage: gnuplot figures/irreducible.gp   (dir='build/results' for unfrozen data)
 # data: frozen/irreducibility/perturb_train.tsv
 # data: frozen/irreducibility/refine_train.tsv

@@ -1,7 +1,7 @@
 # mechanism.gp — Fig. mechanism (reference paper §3.2): coupling off,
 # abrasion off, both on; identical hard-core stems (c = 0.5, 3.5 m, L = 36 m)
 # and crown draws in the three panels; the median nearest-neighbour clearance
-# of the stand shown under each panel. Data: crownshy run fig-mechanism.
+# of the stand shown under each panel. Data: crownshy mechanism-figure.
 # Usage: gnuplot figures/mechanism.gp   (dir='build/results' to draw unfrozen data)
 # data: frozen/mechanism/figure_poly_coupling_off_3.5.tsv
 # data: frozen/mechanism/figure_poly_abrasion_off_3.5.tsv

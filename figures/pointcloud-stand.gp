@@ -3,7 +3,7 @@
 # (beta_train), and the uncoupled twin at 3 m (same stems and crown draws).
 # Stems are marked; each panel's caption gives the share of interior crowns
 # that made contact during growth and the median NN clearance.
-# Data: crownshy run fig-pointcloud.
+# Data: crownshy pointcloud-figure.
 # Usage: gnuplot figures/pointcloud-stand.gp   (dir='build/results' for unfrozen data)
 # data: frozen/pointcloud/figure_poly_coupled_5.0.tsv
 # data: frozen/pointcloud/figure_poly_coupled_4.0.tsv

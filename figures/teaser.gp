@@ -3,7 +3,7 @@
 # so the panel says so); (b)-(d) one 24-tree patch at 5.0 m stem spacing
 # (unseen in training): the teacher, the joint model and the independent arm
 # on the same stems, crowns shaded by height, gaps dark, crowns that run into
-# a neighbour ringed in red. Data: crownshy comp-run (src/exp/exp_comp.c).
+# a neighbour ringed in red. Data: crownshy comparison-run (src/exp/exp_comp.c).
 # Usage: gnuplot figures/teaser.gp   (dir='build/results' to draw unfrozen data)
 # data: frozen/comparison/patch_crowns.tsv
 # data: frozen/comparison/patch.tsv

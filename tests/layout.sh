@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The layout of src/ (issue 12): the pipeline is visible in its folders and
+# The layout of src/: the pipeline is visible in its folders and
 # imports only point down it. Checks, from the sources alone:
 #  1. no source file over 600 lines;
 #  2. the module import graph has no cycle (a module is a basename: x.c +
@@ -11,7 +11,14 @@
 #     forest and model do not import each other, exp and claims do not import
 #     each other, an experiment file imports no other experiment file (only
 #     exp_common), and nothing the claims reach (transitively) is the teacher
-#     or the model stage.
+#     or the model stage;
+#  4. the experiment manifest src/base/manifest.h is the one list of
+#     experiments: the files its rows name exist, every frozen/ folder has a
+#     row, every command is named <experiment>-... and has a handler, no
+#     command or unit is listed by hand in src/cli/cli.c, the Makefile or
+#     experiments.mk, and the README's experiment table is the generated one;
+#  5. every path a comment names (src/, tests/, figures/, audit/, gates/,
+#     paper/, frozen/) exists.
 # Prints cmocka-style lines so tests/run.sh counts it like a test binary.
 set -u
 cd "$(dirname "$0")/.."
@@ -94,6 +101,50 @@ reach=$(awk -v stages="$(for m in "${!STAGE[@]}"; do echo -n "$m=${STAGE[$m]} ";
   }' <<<"$edges" | sort | tr '\n' ' ')
 if [ -z "$reach" ]; then ok "the claims reach neither the teacher nor the model"
 else bad "the claims reach neither the teacher nor the model" "reached: $reach"; fi
+
+# 4. the experiment manifest (src/base/manifest.h) is the one list of experiments
+rows=$(bash src/base/manifest.sh rows)
+missing=""
+while IFS=$'\t' read -r kind name f1 f2 f3 f4 f5 f6 f7; do
+  [ "$kind" = EXPERIMENT ] || continue
+  for f in "$f2" "$f3" "$f4" "$f5"; do [ "$f" = - ] || [ -f "$f" ] || missing="$missing $name:$f"; done
+  case "$f6" in rerun|redraw|-) ;; *) missing="$missing $name:deep=$f6";; esac
+done <<<"$rows"
+if [ -z "$missing" ]; then ok "every file an experiment row names exists"; else bad "every file an experiment row names exists" "$missing"; fi
+exps=$(awk -F'\t' '$1 == "EXPERIMENT" {print $2}' <<<"$rows")
+orphan=""
+for d in frozen/*/; do e=$(basename "$d"); grep -qx "$e" <<<"$exps" || orphan="$orphan $e"; done
+if [ -z "$orphan" ]; then ok "every frozen/ folder is an experiment of the manifest"; else bad "every frozen/ folder is an experiment of the manifest" "$orphan"; fi
+badcmd=""
+while IFS=$'\t' read -r kind name cmd handler help; do
+  [ "$kind" = COMMAND ] || continue
+  [[ "$cmd" == "$name"-* ]] || badcmd="$badcmd $cmd(not $name-...)"
+  grep -qE "^int $handler\(int argc, char \*\*argv\)" src/cli/*.c src/exp/*.c || badcmd="$badcmd $cmd(no handler $handler)"
+  # nothing lists the command by hand: no table of src/cli, no rule outside the manifest
+  grep -q "\"$cmd\"" src/cli/cli.c && badcmd="$badcmd $cmd(listed in src/cli/cli.c)"
+  grep -E "\\\$\(CLI\) $cmd( |$)" Makefile src/exp/experiments.mk | grep -qE '\$\(RESULTS\)|\$@' && badcmd="$badcmd $cmd(a hand unit in the Makefile or experiments.mk)"
+done <<<"$rows"
+if [ -z "$badcmd" ]; then ok "every experiment command is named <experiment>-..., has its handler and is listed only in the manifest"
+else bad "every experiment command is named <experiment>-..., has its handler and is listed only in the manifest" "$badcmd"; fi
+hand=$(grep -nE '^\s*(REPRODUCE_UNITS|DEEP_UNITS|MANIFEST_EXPERIMENTS)\s*\+?=\s*\S' Makefile src/exp/experiments.mk)
+if [ -z "$hand" ]; then ok "no unit list by hand in the Makefile or experiments.mk"; else bad "no unit list by hand in the Makefile or experiments.mk" "$hand"; fi
+readme=$(awk '/^<!-- experiments: generated/ {on = 1; next} /^<!-- end of experiments -->/ {on = 0} on' README.md)
+if [ "$readme" = "$(bash src/base/manifest.sh readme)" ]; then ok "the README's experiment table is the manifest's"
+else bad "the README's experiment table is the manifest's" "regenerate it with: bash src/base/manifest.sh readme"; fi
+
+# 5. every path a comment names exists (C: lines with /*, * or //; shell,
+# make, gnuplot: after #). A pattern is written with <...>, * or %.
+# The pinned teacher and estimator change only with a re-pin and a re-freeze:
+# their comments are checked when they are next edited, not here.
+cpaths=$(for f in src/*/*.c src/*/*.h src/*/*.inc tests/*.c tests/*.h; do
+  case "$f" in src/forest/teacher.[ch]|src/forest/estimator.[ch]) continue;; esac
+  grep -nE '/\*|^\s*\*|//' "$f" | sed "s|^|$f:|"; done
+  for f in src/*/*.sh src/*/*.mk tests/*.sh Makefile .ci/run figures/*.gp; do
+  [ -f "$f" ] && grep -n '#' "$f" | sed 's/^\([0-9]*:\)[^#]*#/\1#/' | sed "s|^|$f:|"; done)
+stale=$(grep -oE '^[^:]+:[0-9]+:|(^|[^A-Za-z0-9_./<-])(src|tests|figures|audit|gates|paper|frozen)/[A-Za-z0-9_./<>*%{}-]*[A-Za-z0-9_>}*]' <<<"$cpaths" |
+  awk '/^[^ ]+:[0-9]+:$/ { where = $0; next } { sub(/^[^a-z]/, ""); print where " " $0 }' |
+  while read -r where p; do case "$p" in *[\<\*%{]*) continue;; esac; [ -e "$p" ] || echo "$where$p"; done | sort -u)
+if [ -z "$stale" ]; then ok "every path named in a comment exists"; else bad "every path named in a comment exists" "$(echo $stale)"; fi
 
 echo "[==========] layout tests run."
 echo "[  PASSED  ] $pass test(s)."

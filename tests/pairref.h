@@ -1,4 +1,4 @@
-/* Naive double-precision reference of pair-aware attention (src/pairattn.h):
+/* Naive double-precision reference of pair-aware attention (src/model/pairattn.h):
  * the pair features by trigonometry (atan2, cos, sin) instead of the
  * library's algebra, and the attention with its score bias and value term as
  * straight loops over (patch, head, i, j). Used for the forward agreement and

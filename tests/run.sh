@@ -3,6 +3,7 @@
 # and ends with one aggregate line "N passed, N failed". Binaries after a "--"
 # argument are the sanitizer build; they are counted the same way.
 # A binary that crashes or exits non-zero without a cmocka summary counts as one failure.
+# Test temporaries (build/test-tmp) are removed at the end unless KEEP_TEST_TMP=1.
 set -u
 passed=0; failed=0; label=""
 log_dir=${TEST_LOG_DIR:-build/test-logs}
@@ -28,5 +29,8 @@ for t in "$@"; do
   fi
   passed=$((passed + p)); failed=$((failed + f))
 done
+# the scratch copies of the tests (build/test-tmp, over 100 MB) go when the
+# run ends; KEEP_TEST_TMP=1 keeps them to look at a failure
+if [ "${KEEP_TEST_TMP:-0}" != 1 ]; then rm -rf build/test-tmp; fi
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

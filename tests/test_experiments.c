@@ -7,8 +7,8 @@
 
 static int run(const char *unit, const char *out)
 {
-    char *argv[] = {"run", (char *)unit, "--stands", "1", "--out", (char *)out, NULL};
-    return cli_cmd_run(6, argv);
+    char *argv[] = {"crownshy", (char *)unit, "--stands", "1", "--out", (char *)out, NULL};
+    return cli_main(6, argv);
 }
 
 static double cell(const tsv *t, size_t row, const char *col)
@@ -78,12 +78,14 @@ static void test_reduction_unit_reports_a_pooled_sigma(void **st)
 static void test_bad_usage_exits_2(void **st)
 {
     (void)st;
-    char *a1[] = {"run", "no-such-unit", NULL};
-    assert_int_equal(cli_cmd_run(2, a1), 2);
-    char *a2[] = {"run", "mechanism-sweep", "--stands", "0", NULL};
-    assert_int_equal(cli_cmd_run(4, a2), 2);
-    char *a3[] = {"run", "irreducibility-perturb", "--tag", "field", NULL};
-    assert_int_equal(cli_cmd_run(4, a3), 2);
+    char *a1[] = {"crownshy", "no-such-unit", NULL};
+    assert_int_equal(cli_main(2, a1), 2);
+    char *a2[] = {"crownshy", "mechanism-sweep", "--stands", "0", NULL};
+    assert_int_equal(cli_main(4, a2), 2);
+    char *a3[] = {"crownshy", "irreducibility-perturb", "--tag", "field", NULL};
+    assert_int_equal(cli_main(4, a3), 2);
+    char *a4[] = {"crownshy", "mechanism-figure", "--stands", "1", NULL};
+    assert_int_equal(cli_main(4, a4), 2); /* a figure unit has no stand count to set */
 }
 
 int main(void)

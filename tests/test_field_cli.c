@@ -11,8 +11,8 @@ static int run(const char *args) { return tu_run_cli("env -u FIELD_TABLE ", args
 static void test_help_exits_zero(void **s)
 {
     (void)s;
-    const char *cmds[] = {"field-summary", "field-calibrate", "field-beta", "field-heldout", "aniso-lattice",
-                          "aniso-hardcore", "aniso-jitter", "aniso-jitter-calibrate", "aniso-heldout", "field-diagnose"};
+    const char *cmds[] = {"field-summary", "field-calibrate", "field-beta", "field-heldout", "anisotropy-lattice",
+                          "anisotropy-hardcore", "anisotropy-jitter", "anisotropy-jitter-calibrate", "anisotropy-heldout", "field-diagnose"};
     for (size_t i = 0; i < sizeof cmds / sizeof *cmds; i++) {
         char a[96];
         snprintf(a, sizeof a, "%s --help", cmds[i]);
@@ -54,8 +54,8 @@ static void test_usage_errors(void **s)
     assert_non_null(strstr(out, "--out"));
     assert_int_equal(run("field-heldout --out build/test-tmp/x.tsv"), 2);
     assert_non_null(strstr(out, "--calibration"));
-    assert_int_equal(run("aniso-lattice --stands 0 --out build/test-tmp/x.tsv"), 2);
-    assert_int_equal(run("aniso-jitter --bogus 1 --out build/test-tmp/x.tsv"), 2);
+    assert_int_equal(run("anisotropy-lattice --stands 0 --out build/test-tmp/x.tsv"), 2);
+    assert_int_equal(run("anisotropy-jitter --bogus 1 --out build/test-tmp/x.tsv"), 2);
     assert_int_equal(run("field-beta"), 2);
 }
 
@@ -64,8 +64,8 @@ static void test_missing_inputs_are_input_errors(void **s)
     (void)s;
     assert_int_equal(run("field-beta build/test-tmp/no-such-calibration.tsv"), 3);
     assert_non_null(strstr(out, "no-such-calibration.tsv"));
-    assert_int_equal(run("aniso-jitter-calibrate --sweep build/test-tmp/no-such.tsv --out build/test-tmp/x.tsv"), 3);
-    assert_int_equal(run("aniso-heldout --calibration build/test-tmp/no-such.tsv --jitter-calibration x --out build/test-tmp/x.tsv"), 3);
+    assert_int_equal(run("anisotropy-jitter-calibrate --sweep build/test-tmp/no-such.tsv --out build/test-tmp/x.tsv"), 3);
+    assert_int_equal(run("anisotropy-heldout --calibration build/test-tmp/no-such.tsv --jitter-calibration x --out build/test-tmp/x.tsv"), 3);
 }
 
 int main(void)

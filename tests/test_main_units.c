@@ -1,4 +1,4 @@
-/* E3/E4 units at smoke scale (issue 14): a unit writes the clearance samples
+/* E3/E4 units at smoke scale (design.md §8): a unit writes the clearance samples
  * behind every W1 of its table and its final weights; `crownshy main-redraw`
  * draws the same samples from the weights alone, bit for bit; every W1 of the
  * table is est_w1 of its samples (claim_main_samples_check). Runs
@@ -51,10 +51,10 @@ static void test_unit_samples_redraw_bit_for_bit_and_recompute_w1(void **s)
                  dir, arm, a ? "joint" : "indep", dir);
         assert_int_equal(tu_run_cli("", args, out, sizeof out), 3);
     }
-    /* comp-dist on these two arms: every patch and source, the summary and the figure patch */
-    snprintf(args, sizeof args, "comp-dist --patches 5 --joint %s/main/weights_s03_joint.ckpt --indep %s/main/weights_s03_indep.ckpt --out %s",
+    /* comparison-dist on these two arms: every patch and source, the summary and the figure patch */
+    snprintf(args, sizeof args, "comparison-dist --patches 5 --joint %s/main/weights_s03_joint.ckpt --indep %s/main/weights_s03_indep.ckpt --out %s",
              dir, dir, dir);
-    if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("comp-dist: %s", out);
+    if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("comparison-dist: %s", out);
     {
         tsv *t;
         char p[600];

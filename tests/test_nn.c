@@ -276,6 +276,41 @@ static void test_fused_linear_backward_gelu_matches_unfused(void **s)
     same_bits(d1, d2, FM * FK, "dinp"); same_bits(dw1, dw2, FN * FK, "dw"); same_bits(db1, db2, FN, "db");
 }
 
+/* The fused qkv product against the unfused one: every column, or under
+ * self-only attention the v columns, the q and k columns left as they were
+ * (SENTINEL: nn.h, the v columns are all that mode reads). */
+#define SENTINEL 1234.5f
+static void same_qkv(const float *fused, const float *plain, size_t N, int C, nn_attn_mode mode)
+{
+    if (mode != NN_ATTN_SELF) { same_bits(fused, plain, N * 3 * C, "qkv"); return; }
+    for (size_t r = 0; r < N; r++) {
+        same_bits(fused + r * 3 * C + 2 * C, plain + r * 3 * C + 2 * C, C, "qkv (v)");
+        for (int j = 0; j < 2 * C; j++)
+            if (fused[r * 3 * C + j] != SENTINEL) fail_msg("qkv row %zu column %d (q or k) was written", r, j);
+    }
+}
+
+/* The qkv backward on the v block alone (self-only attention) gives the bits of
+ * the full product: dq and dk are zero there, and every chain they would join
+ * is +0 at that point (nn.h). Weight and bias gradients start from nonzero
+ * values, as they do after an earlier pass. */
+static void check_qkv_backward(const float *dqkv, const float *in, const float *w, int N, int C, nn_attn_mode mode,
+                               unsigned seed)
+{
+    const size_t C3 = 3 * (size_t)C;
+    float *d1 = malloc(sizeof(float) * N * C), *d2 = malloc(sizeof(float) * N * C);
+    float *w1 = malloc(sizeof(float) * C3 * C), *w2 = malloc(sizeof(float) * C3 * C);
+    float *b1 = malloc(sizeof(float) * C3), *b2 = malloc(sizeof(float) * C3);
+    tu_fill(w1, C3 * C, 1, &seed); tu_fill(b1, C3, 1, &seed);
+    memcpy(w2, w1, sizeof(float) * C3 * C); memcpy(b2, b1, sizeof(float) * C3);
+    nn_linear_backward_qkv(d1, w1, b1, dqkv, in, w, N, C, mode);
+    nn_linear_backward(d2, w2, b2, dqkv, in, w, N, C, (int)C3);
+    same_bits(d1, d2, (size_t)N * C, "qkv backward dinp");
+    same_bits(w1, w2, C3 * C, "qkv backward dw");
+    same_bits(b1, b2, C3, "qkv backward db");
+    free(d1); free(d2); free(w1); free(w2); free(b1); free(b2);
+}
+
 /* T = 5 puts patch ends inside the 6-row strips; T = 24 is the reference patch. */
 static void check_fused_attention(int B, int T, int C, int H, nn_attn_mode mode, unsigned seed)
 {
@@ -292,16 +327,18 @@ static void check_fused_attention(int B, int T, int C, int H, nn_attn_mode mode,
     float *db1 = calloc(C, sizeof(float)), *db2 = calloc(C, sizeof(float));
     tu_fill(in, N * C, 1, &seed); tu_fill(w, C3 * C, 1, &seed); tu_fill(b, C3, 1, &seed);
     tu_fill(wp, (size_t)C * C, 1, &seed); tu_fill(dout, N * C, 1, &seed);
+    for (size_t i = 0; i < N * C3; i++) q1[i] = SENTINEL;
     nn_linear_attention_forward(q1, o1, p1, in, w, b, B, T, C, H, mode, wt, scr);
     nn_linear_forward(q2, in, w, b, (int)N, C, (int)C3, wt);
     nn_attention_forward(o2, p2, q2, B, T, C, H, mode, scr);
-    same_bits(q1, q2, N * C3, "qkv"); same_bits(o1, o2, N * C, "attention out");
+    same_qkv(q1, q2, N, C, mode); same_bits(o1, o2, N * C, "attention out");
     if (mode == NN_ATTN_JOINT) same_bits(p1, p2, np, "probabilities");
     nn_linear_backward_attention(g1, da1, dw1, db1, dout, o1, wp, q1, p1, B, T, C, H, mode, scr);
     nn_linear_backward(da2, dw2, db2, dout, o2, wp, (int)N, C, C);
     nn_attention_backward(g2, da2, q2, p2, B, T, C, H, mode, scr);
     same_bits(g1, g2, N * C3, "dqkv"); same_bits(da1, da2, N * C, "datt");
     same_bits(dw1, dw2, (size_t)C * C, "dw"); same_bits(db1, db2, C, "db");
+    check_qkv_backward(g2, in, w, (int)N, C, mode, seed + 7);
     free(in); free(w); free(b); free(wp); free(dout); free(wt); free(scr); free(q1); free(q2);
     free(o1); free(o2); free(p1); free(p2); free(g1); free(g2); free(da1); free(da2);
     free(dw1); free(dw2); free(db1); free(db2);

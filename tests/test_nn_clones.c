@@ -1,8 +1,11 @@
 /* The hot kernels of src/model/nn.c and nn_attn.c are built as AVX2 and
- * baseline x86-64 clones picked at load time. This test compiles a second,
- * baseline-only copy of both (NN_NO_CLONES, symbols renamed) and checks that it gives bit-identical
- * results to the library's dispatched kernels on the reference shapes, so a
- * run does not depend on which clone the machine selects. */
+ * baseline x86-64 clones picked at load time, with AVX-512 forms of the GELU
+ * and of attention at the reference head shape taken on the AVX-512 gemm
+ * path. This test compiles a second, baseline-only copy of both
+ * (NN_NO_CLONES, symbols renamed) and checks that it gives bit-identical
+ * results to the library's kernels on every gemm path this CPU has, on the
+ * reference shapes, so a run does not depend on the machine's vector
+ * extensions. */
 #include "testutil.h"
 #define NN_NO_CLONES
 #define nn_expf base_expf
@@ -23,12 +26,12 @@
 #define nn_attention_scratch_len base_attention_scratch_len
 #define nn_attention_forward_biased base_attention_forward_biased
 #define nn_attention_backward_biased base_attention_backward_biased
-#define nn_product_gflops base_product_gflops
 #define nn_linear_bias_gelu_forward base_linear_bias_gelu_forward
 #define nn_linear_bias_residual_forward base_linear_bias_residual_forward
 #define nn_linear_backward_gelu base_linear_backward_gelu
 #define nn_linear_attention_forward base_linear_attention_forward
 #define nn_linear_backward_attention base_linear_backward_attention
+#define nn_linear_backward_qkv base_linear_backward_qkv
 #define nn_linear_forward_epi base_linear_forward_epi
 #define nn_linear_backward_epi base_linear_backward_epi
 #include "nn.c"
@@ -87,9 +90,12 @@ static void same(const float *a, const float *b, size_t n, const char *what)
     }
 }
 
-static void test_baseline_and_dispatched_kernels_agree_bitwise(void **s)
+/* The library's kernels on one gemm path (gemm_set_isa also chooses the layer
+ * kernels' AVX-512 or AVX2 forms, gemm.h) against the baseline copy. */
+static void check_path(gemm_isa isa)
 {
-    (void)s;
+    if (!gemm_isa_available(isa)) { print_message("path %d not on this CPU: skipped\n", (int)isa); return; }
+    gemm_isa before = gemm_set_isa(isa);
     enum { B = 4, T = 24, C = 64, H = 4, F = 256, N = B * T };
     unsigned st = 17;
     float *qkv = malloc(sizeof(float) * N * 3 * C), *dout = malloc(sizeof(float) * N * C);
@@ -110,7 +116,7 @@ static void test_baseline_and_dispatched_kernels_agree_bitwise(void **s)
     base_attention_backward(o2, dout, qkv, p1, B, T, C, H, NN_ATTN_JOINT, scr);
     same(o1, o2, (size_t)N * 3 * C, "attention backward");
 
-    /* the pair-aware forms (src/pairattn.h): score bias and dP term, and the
+    /* the pair-aware forms (src/model/pairattn.h): score bias and dP term, and the
      * dS left in the scratch by a one-patch backward */
     {
         float *sb = malloc(sizeof(float) * B * H * T * T), *dpx = malloc(sizeof(float) * B * H * T * T);
@@ -166,12 +172,19 @@ static void test_baseline_and_dispatched_kernels_agree_bitwise(void **s)
     same(o1, o2, (size_t)N * 3, "exp");
     free(qkv); free(dout); free(o1); free(o2); free(p1); free(p2); free(scr);
     free(h); free(g1); free(g2); free(s1); free(s2);
+    gemm_set_isa(before);
 }
+
+static void test_avx512_kernels_agree_with_baseline(void **s) { (void)s; check_path(GEMM_AVX512); }
+static void test_avx2_kernels_agree_with_baseline(void **s) { (void)s; check_path(GEMM_AVX2); }
+static void test_scalar_path_kernels_agree_with_baseline(void **s) { (void)s; check_path(GEMM_SCALAR); }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_baseline_and_dispatched_kernels_agree_bitwise),
+        cmocka_unit_test(test_avx512_kernels_agree_with_baseline),
+        cmocka_unit_test(test_avx2_kernels_agree_with_baseline),
+        cmocka_unit_test(test_scalar_path_kernels_agree_with_baseline),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,4 +1,4 @@
-/* Tests for src/pairattn.c (pair-aware attention, design.md §8 revision 2): the
+/* Tests for src/model/pairattn.c (pair-aware attention, design.md §8 revision 2): the
  * pair features against trigonometry and by hand, the standardisation, the
  * forward against a naive double reference (tests/pairref.h), every gradient
  * (qkv, score weights wb, value weights wv) against central finite
@@ -242,10 +242,17 @@ static void check_fused(int B, int T, int C, int H, nn_attn_mode mode, unsigned 
     tu_fill(in, (size_t)N * C, 1.f, &st); tu_fill(w, (size_t)C3 * C, 0.5f, &st); tu_fill(bias, C3, 0.3f, &st);
     tu_fill(pw, (size_t)C * C, 0.5f, &st); tu_fill(dy, (size_t)N * C, 1.f, &st);
     gemm_transpose(f.wvt, f.wv, C, Q);
+    for (size_t i = 0; i < (size_t)N * C3; i++) q1[i] = 1234.5f;
     pairattn_linear_forward(q1, o1, p1, F1, in, w, bias, f.phi, f.phit, f.wb, f.wvt, B, T, C, H, mode, wt, f.scr);
     nn_linear_forward(q2, in, w, bias, N, C, C3, wt);
     pairattn_forward(o2, p2, F2, q2, f.phi, f.phit, f.wb, NULL, f.wvt, B, T, C, H, mode, f.scr);
-    same_bits(q1, q2, (size_t)N * C3, "fused qkv");
+    if (mode == NN_ATTN_JOINT) same_bits(q1, q2, (size_t)N * C3, "fused qkv");
+    else /* self-only attention: the v columns only, q and k not written (nn.h) */
+        for (int r = 0; r < N; r++) {
+            same_bits(q1 + (size_t)r * C3 + 2 * C, q2 + (size_t)r * C3 + 2 * C, C, "fused qkv (v)");
+            for (int j = 0; j < 2 * C; j++)
+                if (q1[(size_t)r * C3 + j] != 1234.5f) fail_msg("fused qkv row %d column %d (q or k) was written", r, j);
+        }
     same_bits(o1, o2, (size_t)N * C, "fused pair attention out");
     same_bits(F1, F2, (size_t)B * H * T * Q, "fused pair mixes");
     pairattn_linear_backward(g1, da1, dpw1, dpb1, dwb1, dwv1, dy, o1, pw, q1, p1, F1, f.phi, f.phit, f.wv,

@@ -294,7 +294,7 @@ static void write_ckpt(const char *name, char *path, size_t n, train **t, patch_
     assert_int_equal(train_run(*t, 2, path, 0, NULL), CS_OK);
 }
 
-/* Issue 15: a unit killed between its last checkpoint and its table resumes
+/* A unit killed between its last checkpoint and its table resumes
  * at the last step and takes none; it must not report a final loss of 0. */
 static void test_resumed_at_last_step_reports_no_loss(void **s)
 {

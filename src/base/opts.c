@@ -29,6 +29,18 @@ static const char *metavar(opt_type t)
     return t == OPT_LONG ? "N" : t == OPT_DOUBLE ? "X" : t == OPT_STR ? "VALUE" : "";
 }
 
+/* "a|b|c" for a choice's metavar, "alias = word" pairs for its help. */
+static void choice_words(const opt_spec *o, char *words, size_t wn, char *aliases, size_t an)
+{
+    size_t w = 0, a = 0;
+    words[0] = aliases[0] = 0;
+    for (const char *const *c = o->choices; c && *c; c++) {
+        const char *eq = strchr(*c, '=');
+        if (!eq) w += (size_t)snprintf(words + w, w < wn ? wn - w : 0, "%s%s", w ? "|" : "", *c);
+        else a += (size_t)snprintf(aliases + a, a < an ? an - a : 0, "%s%.*s = %s", a ? ", " : "", (int)(eq - *c), *c, eq + 1);
+    }
+}
+
 void opts_help(const opts_cmd *c)
 {
     printf("usage: crownshy %s %s\n", c->cmd, c->synopsis ? c->synopsis : "");
@@ -40,11 +52,14 @@ void opts_help(const opts_cmd *c)
     fputs("\noptions:\n", stdout);
     for (size_t i = 0; i < c->nopts; i++) {
         const opt_spec *o = &c->opts[i];
-        char lhs[64];
-        snprintf(lhs, sizeof lhs, "--%s%s%s", o->name, o->type == OPT_FLAG ? "" : " ", metavar(o->type));
+        char lhs[160], words[128], aliases[128];
+        choice_words(o, words, sizeof words, aliases, sizeof aliases);
+        snprintf(lhs, sizeof lhs, "--%s%s%s", o->name, o->type == OPT_FLAG ? "" : " ", o->type == OPT_CHOICE ? words : metavar(o->type));
         printf("  %-24s %s", lhs, o->help ? o->help : "");
         if (o->type == OPT_LONG) printf(" [%.0f..%.0f]", o->min, o->max);
         else if (o->type == OPT_DOUBLE) printf(" [%g..%g]", o->min, o->max);
+        if (aliases[0]) printf(" (also: %s)", aliases);
+        if (o->required) printf(" (required)");
         fputc('\n', stdout);
     }
     printf("  %-24s %s\n", "-h, --help", "print this help");
@@ -56,6 +71,20 @@ static int set_value(const opts_cmd *c, const opt_spec *o, const char *v)
 {
     char *end;
     if (o->type == OPT_STR) { *(const char **)o->dst = v; return OPTS_OK; }
+    if (o->type == OPT_CHOICE) {
+        for (const char *const *c = o->choices; c && *c; c++) {
+            const char *eq = strchr(*c, '=');
+            size_t k = eq ? (size_t)(eq - *c) : strlen(*c);
+            if (strlen(v) != k || strncmp(v, *c, k)) continue;
+            if (!eq) { *(const char **)o->dst = *c; return OPTS_OK; }
+            for (const char *const *d = o->choices; *d; d++)
+                if (!strcmp(*d, eq + 1)) { *(const char **)o->dst = *d; return OPTS_OK; }
+        }
+        char words[128], aliases[128];
+        choice_words(o, words, sizeof words, aliases, sizeof aliases);
+        opts_usage_error(c->cmd, "--%s: must be %s, not '%s'", o->name, words, v);
+        return OPTS_USAGE;
+    }
     if (!v[0]) { opts_usage_error(c->cmd, "--%s: empty value", o->name); return OPTS_USAGE; }
     errno = 0;
     if (o->type == OPT_LONG) {
@@ -90,6 +119,7 @@ static int scan(const opts_cmd *c, int argc, char **argv, char **pos, int *npos_
     optind = 0;
     opterr = 0;
     int r = OPTS_OK, ch;
+    unsigned char seen[OPTS_MAX] = {0};
     while (r == OPTS_OK && (ch = getopt_long(argc, argv, ":h", lo, NULL)) != -1) {
         if (ch == 'h') { opts_help(c); return OPTS_HELP; }
         if (ch == ':') {
@@ -104,10 +134,16 @@ static int scan(const opts_cmd *c, int argc, char **argv, char **pos, int *npos_
             return OPTS_USAGE;
         }
         const opt_spec *o = &c->opts[ch - 256];
+        seen[ch - 256] = 1;
         if (o->type == OPT_FLAG) *(int *)o->dst = 1;
         else r = set_value(c, o, optarg);
     }
     if (r) return r;
+    for (size_t i = 0; i < n; i++)
+        if (c->opts[i].required && !seen[i]) {
+            opts_usage_error(c->cmd, "--%s is required", c->opts[i].name);
+            return OPTS_USAGE;
+        }
     int npos = argc - optind;
     if (npos < c->min_pos || (c->max_pos >= 0 && npos > c->max_pos)) {
         if (npos > 0 && c->max_pos >= 0 && npos > c->max_pos)

@@ -3,7 +3,8 @@
  * the same table parses argv, checks every value strictly and prints --help.
  *  - numbers parse in full (strtol / strtod): an empty, unparsable,
  *    non-finite or out-of-range value is a usage error naming the option;
- *  - unknown options and missing values are usage errors;
+ *  - unknown options, missing values, a required option left out and a
+ *    choice outside its list are usage errors;
  *  - long options only ("--name value" or "--name=value"), plus -h.
  * Library code: prints the help to stdout and errors to stderr, never exits;
  * the caller returns the exit code (0 after --help, 2 on a usage error). */
@@ -11,14 +12,19 @@
 #define OPTS_H
 #include <stddef.h>
 
-typedef enum { OPT_STR, OPT_LONG, OPT_DOUBLE, OPT_FLAG } opt_type;
+typedef enum { OPT_STR, OPT_LONG, OPT_DOUBLE, OPT_FLAG, OPT_CHOICE } opt_type;
 
 typedef struct {
     const char *name;  /* long name without "--" */
     opt_type type;
-    void *dst;         /* const char **, long *, double *, or int * (flag: set to 1) */
+    void *dst;         /* const char ** (string, choice), long *, double *, or int * (flag: set to 1) */
     double min, max;   /* inclusive range of a number (ignored for strings, flags) */
     const char *help;  /* one line: what it is, its default */
+    int required;      /* a usage error when absent; --help says "(required)" */
+    /* OPT_CHOICE: the accepted words, NULL-terminated; "alias=word" accepts
+     * alias and stores word (the entry "word" of the same list). --help
+     * prints the words and their aliases. */
+    const char *const *choices;
 } opt_spec;
 
 typedef struct {

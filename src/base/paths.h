@@ -24,6 +24,14 @@
 #define PATHS_GATE_MAP "audit/gate_map.tsv"
 /* Aggregate frozen tables and the per-run tables they are computed from. */
 #define PATHS_AGGREGATES "audit/aggregates.tsv"
+/* The design grid of every frozen table (its rows, block by block). */
+#define PATHS_GRIDS "audit/grids.tsv"
+/* The preregistered gates' hashes, written once at preregistration and never
+ * by `crownshy pin`: the gates' anchor where no .git is present. */
+#define PATHS_GATES_PREREG "audit/gates_prereg.sha256"
+/* The numbers the paper text may type: constants of the design, each with
+ * the file that fixes it. */
+#define PATHS_DESIGN_NUMBERS "audit/design_numbers.tsv"
 /* The claim-computing code, pinned file by file. */
 #define PATHS_CLAIMS_SRC_DIR "src/claims"
 #define PATHS_NUMBERS "paper/numbers.tex"

@@ -1,4 +1,4 @@
-/* audit_paper: the write-up against frozen/ (design.md §9 rev. 2): generated
+/* audit_paper: the write-up against frozen/ (design.md §9): generated
  * files equal a fresh generation; the hand-written .tex files (subfolders
  * too) use claim macros only. */
 #ifndef AUDIT_PAPER_H

@@ -1,7 +1,7 @@
 /* claim_main: computing functions for the E3 main and E4 extrapolation
  * claims (reference paper §5.1-§5.2; gates/main.gate, gates/extrapolation.gate),
  * from frozen/main/runs.tsv, frozen/main/baselines.tsv and
- * frozen/extrapolation/runs.tsv written by src/exp_main.c, or the same tables
+ * frozen/extrapolation/runs.tsv written by src/exp/exp_main.c, or the same tables
  * of another generator reading under its own root (<root>/main/...,
  * <root>/extrapolation/...: the runs and baselines of a claim are those of the
  * root of its source, and a macro's reading prefix, as in PairMainRel, is
@@ -22,7 +22,7 @@
 
 /* Per seed: k = 0 joint generated, 1 indep generated, 2 joint shuffled (the
  * three the gates judge, required), then the probes added after the first
- * verdict (issue 14): 3 indep shuffled, 4 joint rotated, 5 indep rotated
+ * verdict: 3 indep shuffled, 4 joint rotated, 5 indep rotated
  * (present for every seed or for none). */
 #define NK 6
 typedef struct { int n; double v[NK][MAXSEED]; int has[NK]; } main_runs;
@@ -211,7 +211,7 @@ cs_status claim_main_iso(const claim_row *row, claim_result *res)
     return CS_OK;
 }
 
-/* The probes added after the first verdict (issue 14; kind "probe", never
+/* The probes added after the first verdict (kind "probe", never
  * gated): medians over seeds of each arm's error under the shuffled and the
  * rotation probe, and their ratios to the arm's own error (median of the
  * probe error / median of the error, as MainGeomRatio). */
@@ -226,7 +226,7 @@ cs_status claim_main_probe(const claim_row *row, claim_result *res)
     };
     for (size_t i = 0; i < sizeof map / sizeof *map; i++) {
         if (strcmp(base_macro(row->macro), map[i].macro)) continue;
-        if (!r.has[map[i].k]) return cs_err(CS_EINPUT, "%s: no %s rows (runs made before the probes of issue 14)", row->source, kind_name(map[i].k));
+        if (!r.has[map[i].k]) return cs_err(CS_EINPUT, "%s: no %s rows (runs made without the probes)", row->source, kind_name(map[i].k));
         double v = med(r.v[map[i].k], r.n);
         if (map[i].ratio_of >= 0) v /= med(r.v[map[i].ratio_of], r.n);
         claim_set_value(row, res, v);

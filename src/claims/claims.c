@@ -380,7 +380,7 @@ cs_status claims_write_comparison(const char *path, const claims *c, const claim
     return afile_commit(&a);
 }
 
-/* Distance to the reference paper (issue 13): measured claims whose value
+/* Distance to the reference paper (design.md §9): measured claims whose value
  * was computed and whose reference is a plain non-zero number. */
 int claims_rel_diff(const claim_row *row, const claim_result *res, double *ref, double *rel)
 {
@@ -404,4 +404,27 @@ void claims_within(const claims *c, const claim_result *res, size_t *m, size_t *
         *in10 += fabs(rel) <= 0.10;
         *in25 += fabs(rel) <= 0.25;
     }
+}
+
+cs_status claims_function_file(const char *function, char *path, size_t pathsz, int *line)
+{
+    paths_list files;
+    if (paths_list_files(PATHS_CLAIMS_SRC_DIR, ".c", 0, &files)) return cs_err(CS_ENOMEM, "out of memory");
+    char want[160], buf[1024];
+    snprintf(want, sizeof want, "cs_status %s(", function);
+    cs_status st = cs_err(CS_EINPUT, "%s: no file of %s/ defines %s", PATHS_CLAIMS, PATHS_CLAIMS_SRC_DIR, function);
+    for (size_t i = 0; i < files.n && st; i++) {
+        FILE *f = fopen(files.p[i], "r");
+        for (int ln = 1; f && fgets(buf, sizeof buf, f); ln++)
+            if (!strncmp(buf, want, strlen(want))) {
+                snprintf(path, pathsz, "%s", files.p[i]);
+                *line = ln;
+                cs_errclear();
+                st = CS_OK;
+                break;
+            }
+        if (f) fclose(f);
+    }
+    paths_list_free(&files);
+    return st;
 }

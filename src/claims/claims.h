@@ -43,6 +43,10 @@ cs_status claims_load(const char *path, claims *out);
 cs_status claims_apply_gate_map(claims *c, const char *map_path);
 void claims_free(claims *c);
 const claim_row *claims_find(const claims *c, const char *macro);
+/* Where a computing function is defined: the file of src/claims/ holding its
+ * definition ("cs_status FN(" at the start of a line) and the line; CS_EINPUT
+ * when no file defines it. */
+cs_status claims_function_file(const char *function, char *path, size_t pathsz, int *line);
 /* The computing function named in a row, or NULL. */
 claim_fn claims_lookup_fn(const char *name);
 /* Names of every registered computing function (NULL-terminated). */
@@ -57,7 +61,7 @@ void claim_pending(claim_result *res, const char *fmt, ...) __attribute__((forma
  * for IN/OUT the key must hold two values. */
 void claim_judge(const claim_row *row, claim_result *res, gate_op op, double observed);
 /* The gate of CalibDiebackTrain: the sweep row at `beta` passes at every
- * spacing (src/claim_teacher.c, from frozen/mechanism/sweep.tsv). */
+ * spacing (src/claims/claim_teacher.c, from frozen/mechanism/sweep.tsv). */
 cs_status claim_mech_train_row(const claim_row *row, claim_result *res, double beta);
 /* Load gates/<file> named in the row's gate column (or `file` if given). */
 cs_status claim_gate_load(const char *file, gate **g);

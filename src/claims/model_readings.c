@@ -12,7 +12,7 @@
 #define MAXSEED 64
 
 static const struct { const char *reading, *role, *dir; } READ[] = {
-    {"paper", "gated", "paper"},
+    {"paper", "gated", "paper-reading"},
     {"pair", "extension", "extension-pair"},
     {"paper-fourier", "descriptive", "model-readings/paper-fourier"},
     {"plain", "descriptive", "model-readings/plain"},
@@ -85,7 +85,7 @@ static cs_status extrap_rel(const char *path, double *lo, double *hi)
 static double blind_level(const char *root)
 {
     char p[1024];
-    snprintf(p, sizeof p, "%s/paper/main/baselines.tsv", root);
+    snprintf(p, sizeof p, "%s/paper-reading/main/baselines.tsv", root);
     tsv *t;
     if (tsv_read(p, &t)) return NAN;
     double s = 0;

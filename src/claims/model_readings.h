@@ -3,14 +3,14 @@
  * run (paper, the reading the preregistered gates judge; pair, the extension
  * added after the first verdict; paper-fourier and plain, descriptive), each
  * recomputed from that reading's per-run tables under a results or frozen root:
- *   paper          <root>/paper/{main,extrapolation}/
+ *   paper          <root>/paper-reading/{main,extrapolation}/
  *   pair           <root>/extension-pair/{main,extrapolation}/
  *   paper-fourier  <root>/model-readings/paper-fourier/{main,extrapolation}/
  *   plain          <root>/model-readings/plain/{main,extrapolation}/
  * Columns: seeds; parameters (the `# model:` line of the seed-1 joint run);
  * median over seeds of the joint and independent errors (mean W1 over the
  * unseen spacings); the direction-blind error of the paper reading's
- * baselines (the same evaluation volume for every reading); the relative
+ * baselines (<root>/paper-reading/main/baselines.tsv; the same evaluation volume for every reading); the relative
  * improvement and the exact Wilcoxon p of the paired seeds (main.gate); the
  * shuffled-geometry ratio of each arm and the rotation ratio of the joint arm
  * (median probe error / median error); the relative improvement at each

@@ -1,5 +1,6 @@
 /* verify: the `make verify` driver and `crownshy trace` (design.md §9). */
 #include "verify.h"
+#include "study.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,6 +10,7 @@
 #include <unistd.h>
 #include "afile.h"
 #include "audit_data.h"
+#include "audit_evidence.h"
 
 cs_status verify_eval_all(const claims *c, claim_result **out)
 {
@@ -183,12 +185,45 @@ cs_status verify_load_eval(claims *c, claim_result **res)
     return st;
 }
 
+cs_status verify_preflight(void)
+{
+    char d[64];
+    snprintf(d, sizeof d, "build/preflight.%ld", (long)getpid());
+    if ((mkdir("build", 0777) && errno != EEXIST) || mkdir(d, 0777))
+        return cs_err(CS_EIO, "build/: cannot create %s (%s): the fresh generation and the figure redraws need a writable build/ (an environment error)", d, strerror(errno));
+    rmdir(d);
+    return CS_OK;
+}
+
+/* A claim that cannot be computed from an input the user supplied (FIELD_TABLE,
+ * CHM): an input error of this run, not an inconsistency of the package. */
+static int external_input_failed(const claim_row *row, const claim_result *res)
+{
+    if (res->status != VERDICT_FAIL || strcmp(row->kind, "needs-data")) return 0;
+    const char *env[] = {"FIELD_TABLE", "CHM"};
+    for (int k = 0; k < 2; k++) {
+        const char *v = getenv(env[k]);
+        if (v && v[0] && strstr(res->why, v)) return 1;
+    }
+    return 0;
+}
+
+cs_status verify_external_inputs(const claims *c, const claim_result *res, const char *who)
+{
+    size_t bad = 0;
+    for (size_t i = 0; i < c->n; i++)
+        if (external_input_failed(&c->rows[i], &res[i])) { fprintf(stderr, "crownshy %s: %s: %s\n", who, c->rows[i].macro, res[i].why); bad++; }
+    return bad ? cs_err(CS_EINPUT, "%zu claim(s) cannot be computed from the input given (FIELD_TABLE, CHM): a bad input, not an inconsistency of the package", bad) : CS_OK;
+}
+
 cs_status verify_run(const verify_opts *o)
 {
     claims c;
     claim_result *res;
-    cs_status st = verify_load_eval(&c, &res);
+    cs_status st = verify_preflight();
     if (st) return st;
+    if ((st = verify_load_eval(&c, &res))) return st;
+    if ((st = verify_external_inputs(&c, res, "verify"))) { free(res); claims_free(&c); return st; }
     numbers_tex nt;
     int have_nt = numbers_read(PATHS_NUMBERS, &nt) == CS_OK;
     char nterr[512];
@@ -211,6 +246,15 @@ cs_status verify_run(const verify_opts *o)
         verdict v = verify_consistent(&c.rows[i], &res[i], have_nt ? &nt : NULL, msg, sizeof msg);
         int gated = strcmp(c.rows[i].gate, "-") != 0;
         const char *label = verdict_name(v);
+        /* a table made by a superseded reading: its numbers are that reading's
+         * until re-run; never counted as reproduced (nor as not reproduced) */
+        if (v != VERDICT_FAIL && !strncmp(c.rows[i].source, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1) && audit_table_superseded(c.rows[i].source)) {
+            v = VERDICT_PENDING;
+            label = "PENDING";
+            snprintf(msg, sizeof msg, "%s was made by a superseded reading (%s): pending until its unit is re-run", c.rows[i].source, PATHS_PINS_SUPERSEDED);
+            if (gated) gpend++;
+            gated = 0;
+        }
         if (gated && v != VERDICT_FAIL) {
             if (res[i].gate == VERDICT_PASS) rep++;
             else if (res[i].gate == VERDICT_FAIL) {
@@ -281,7 +325,12 @@ cs_status verify_trace(const char *macro)
     printf("value        %s%s%s\n", r.status == VERDICT_PASS ? r.text : verdict_name(r.status), r.status == VERDICT_PASS ? "" : ": ", r.status == VERDICT_PASS ? "" : r.why);
     printf("numbers.tex  %s (paper/numbers.tex:%d)\n", have ? have : "(absent)", line);
     printf("source       %s\n", r.where);
-    printf("function     %s (src/claim_*.c)\n", row->function);
+    char fpath[512];
+    int fline = 0;
+    if (claims_function_file(row->function, fpath, sizeof fpath, &fline)) printf("function     %s (%s)\n", row->function, cs_errmsg());
+    else printf("function     %s (%s:%d)\n", row->function, fpath, fline);
+    const study_experiment *ex = study_of_path(row->source);
+    if (ex) printf("experiment   %s (%s): %s; run by %s\n", ex->name, ex->code, ex->what, ex->source);
     printf("gate         %s%s%s%s\n", row->gate, strcmp(row->gate, "-") ? " -> " : "", strcmp(row->gate, "-") ? verdict_name(r.gate) : "",
            r.gate_detail[0] ? "" : "");
     if (r.gate_detail[0]) printf("gate detail  %s\n", r.gate_detail);

@@ -19,11 +19,12 @@ int cli_cmd_figures(int argc, char **argv);
 int cli_cmd_train(int argc, char **argv);
 int cli_cmd_sample(int argc, char **argv);
 int cli_cmd_bench_model(int argc, char **argv);
-/* cli_run.c */
-int cli_cmd_run(int argc, char **argv);
+/* cli_run.c (and the teacher units' handlers, declared from src/base/manifest.h) */
 int cli_cmd_bench_teacher(int argc, char **argv);
-int cli_cmd_readings_summary(int argc, char **argv);
-int cli_cmd_model_readings(int argc, char **argv);
+
+/* The arms of the generator, one vocabulary for every command: joint, indep
+ * (independent is accepted for indep). An OPT_CHOICE list (opts.h). */
+extern const char *const CLI_ARMS[];
 
 /* The whole command line: dispatch argv[1] to its handler (cli.c). */
 int cli_main(int argc, char **argv);

@@ -35,7 +35,8 @@ int cli_cmd_verify(int argc, char **argv)
                         "the committed PNG, and print the package's consistency and the reference paper's gated\n"
                         "claims (reproduced, not reproduced, pending). A failing gate is a finding, not an error.\n"
                         "Exit 0: consistent (gate failures allowed); 1: any inconsistency (with --strict also any\n"
-                        "failing gate); 2: usage; 3: registry or gate map unreadable; 4: environment (I/O, memory).",
+                        "failing gate); 2: usage; 3: bad input (the registry or gate map unreadable, a FIELD_TABLE or\n"
+                        "CHM that cannot be read); 4: environment (a build/ that cannot be written, I/O, memory).",
                         spec, 2, 0, 0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
@@ -56,8 +57,8 @@ int cli_cmd_numbers(int argc, char **argv)
     if (r) return opts_exit_code(r);
     claims c;
     claim_result *res;
-    cs_status st = verify_load_eval(&c, &res);
-    if (st) return die(st);
+    cs_status st = verify_preflight();
+    if (st || (st = verify_load_eval(&c, &res))) return die(st);
     if (check) {
         checklist cl = {0};
         audit_generated(&c, res, &cl, 0);
@@ -111,8 +112,9 @@ int cli_cmd_audit(int argc, char **argv)
     if (r) return opts_exit_code(r);
     claims c;
     claim_result *res;
-    cs_status st = verify_load_eval(&c, &res);
-    if (st) return die(st);
+    cs_status st = verify_preflight();
+    if (st || (st = verify_load_eval(&c, &res))) return die(st);
+    if ((st = verify_external_inputs(&c, res, "audit"))) { free(res); claims_free(&c); return die(st); }
     checklist cl = {0};
     audit_run(&c, res, &cl);
     size_t count[3] = {0};

@@ -3,6 +3,11 @@
  * process dies. */
 #include "cli.h"
 #include "estimator.h"
+#include "mainrun.h"
+#include "gate.h"
+#include "mainset.h"
+#include "paths.h"
+#include "speed.h"
 #include "gemm.h"
 #include "model.h"
 #include "opts.h"
@@ -34,7 +39,7 @@ int cli_cmd_train(int argc, char **argv)
     long steps = 2000, batch = 64, width = 64, depth = 3, heads = 4, mlp = 256, seed = 1, stands = 8, every = 200, pair = 0;
     double lr = 2e-3, d = 4.5;
     const opt_spec o[] = {
-        {"arm", OPT_STR, &arm, 0, 0, "joint (attention across the patch) or independent (default joint)"},
+        {"arm", OPT_CHOICE, &arm, 0, 0, "joint (attention across the patch) or indep (each token alone; default joint)", .choices = CLI_ARMS},
         {"steps", OPT_LONG, &steps, 1, 1e9, "optimiser steps (default 2000)"},
         {"batch", OPT_LONG, &batch, 1, 4096, "patches per step (default 64)"},
         {"lr", OPT_DOUBLE, &lr, 1e-12, 10, "peak learning rate (default 2e-3)"},
@@ -42,18 +47,19 @@ int cli_cmd_train(int argc, char **argv)
         {"depth", OPT_LONG, &depth, 1, 64, "transformer blocks (default 3)"},
         {"heads", OPT_LONG, &heads, 1, 64, "attention heads (default 4)"},
         {"mlp", OPT_LONG, &mlp, 1, 16384, "MLP width (default 256)"},
-        {"pair", OPT_LONG, &pair, 0, 1, "1: pair-aware model with standardised features (design.md §8 revision 2; default 0)"},
+        {"pair", OPT_LONG, &pair, 0, 1, "1: pair-aware model with standardised features (design.md §8; default 0)"},
         {"seed", OPT_LONG, &seed, 0, 4294967295.0, "run seed: init/batch/noise streams use 3s+1, 3s+2, 3s+3 (default 1)"},
         {"stands", OPT_LONG, &stands, 1, 100000, "toy training stands, 64 patches each (default 8)"},
         {"spacing", OPT_DOUBLE, &d, 0.1, 100, "toy stand spacing in m (default 4.5)"},
         {"ckpt", OPT_STR, &ckpt, 0, 0, "checkpoint file; resumed from when it exists (default none)"},
         {"ckpt-every", OPT_LONG, &every, 0, 1e9, "steps between checkpoints (default 200)"},
     };
-    const opts_cmd c = {"train", "[options]", "Train the flow-matching generator on toy stands.", o, sizeof o / sizeof *o, 0, 0};
+    const opts_cmd c = {"train", "[options]", "Train the flow-matching generator on toy stands (lattice stands with circular\n"
+                        "crowns of a toy teacher, patch.h): a check of the trainer and its checkpoints. The\n"
+                        "study's training runs are the E3/E4 units (main-run).", o, sizeof o / sizeof *o, 0, 0};
     int rc = opts_parse(&c, argc, argv, NULL, NULL);
     if (rc) return opts_exit_code(rc);
-    int joint = !strcmp(arm, "joint") ? 1 : !strcmp(arm, "independent") ? 0 : -1;
-    if (joint < 0) { opts_usage_error("train", "--arm: must be joint or independent, not '%s'", arm); return 2; }
+    int joint = !strcmp(arm, "joint");
     model_cfg cfg = model_cfg_reference(PATCH_NCOND);
     cfg.C = (int)width; cfg.L = (int)depth; cfg.H = (int)heads; cfg.F = (int)mlp; cfg.joint = joint; cfg.pair = (int)pair;
     cs_status st = model_cfg_check(&cfg);
@@ -82,7 +88,7 @@ int cli_cmd_train(int argc, char **argv)
         fprintf(stderr, "resumed from %s at step %ld\n", ckpt, t->step);
     }
     fprintf(stderr, "train: %s arm, %zu parameters, %d patches (scale %.4g m), %ld steps of %d\n",
-            joint ? "joint" : "independent", t->m->nparams, ps->n, ps->scale, steps, t->B);
+            joint ? "joint" : "indep", t->m->nparams, ps->n, ps->scale, steps, t->B);
     st = train_run(t, steps, ckpt, every, stderr);
     double l = NAN;
     if (!st) st = train_eval_loss(t, ps, 4, 12345, &l);
@@ -148,49 +154,130 @@ int cli_cmd_sample(int argc, char **argv)
     return st ? cli_fail("sample", st) : 0;
 }
 
-int cli_cmd_bench_model(int argc, char **argv)
+/* ---- bench-model (design.md §10) ------------------------------------------------ */
+static void print_stat(const char *key, speed_stat s, const char *fmt)
 {
-    long repeats = 5, steps = 20, batch = 64;
-    const opt_spec o[] = {
-        {"repeats", OPT_LONG, &repeats, 1, 15, "timed repeats, the median is reported (default 5)"},
-        {"steps", OPT_LONG, &steps, 1, 1e9, "training steps per repeat (default 20)"},
-        {"batch", OPT_LONG, &batch, 1, 4096, "patches per step (default 64)"},
-    };
-    const opts_cmd c = {"bench-model", "[options]", "Trainer steps/s at the reference configuration of design.md §10 (set OPENBLAS_NUM_THREADS=1).",
-                        o, sizeof o / sizeof *o, 0, 0};
-    int rc = opts_parse(&c, argc, argv, NULL, NULL);
-    if (rc) return opts_exit_code(rc);
-    model_cfg cfg = model_cfg_reference(PATCH_NCOND);
-    train_bench_result r;
-    cs_status st = train_bench(&cfg, (int)batch, (int)steps, (int)repeats, &r);
+    printf("%s\t", key);
+    printf(fmt, s.med);
+    printf("\t[");
+    printf(fmt, s.lo);
+    printf(", ");
+    printf(fmt, s.hi);
+    printf("]\n");
+}
+
+/* Prints a goal and its verdict; returns 1 when it is met. */
+static int goal(const char *what, double value, double min, const char *fmt)
+{
+    char v[64], m[64];
+    snprintf(v, sizeof v, fmt, value);
+    snprintf(m, sizeof m, fmt, min);
+    printf("goal\t%s >= %s\t%s\t%s\n", what, m, v, value >= min ? "PASS" : "FAIL");
+    return value >= min;
+}
+
+/* E3+E4 as run by src/exp/experiments.mk: seeds x (joint, independent) pair-model
+ * units, each training epochs x steps per epoch and sampling every eval
+ * spacing under three probes; two units at a time on the 2-core machine. */
+static cs_status projection(const speed_result *r, double *wall_min, double *unit_j, double *unit_i, long *steps, int *nunits)
+{
+    mainrun_plan pl;
+    mainset_design ds;
+    double seeds;
+    cs_status st = mainrun_plan_get("full", &pl);
+    if (!st) st = mainset_design_get(&ds);
+    if (!st) st = gate_read_value(PATHS_GATE("main"), "seeds", 0, &seeds);
+    if (st) return st;
+    /* about 64 interior focal stems per training stand (mainrun.h); volume v1 */
+    const long npatch = 64L * pl.train_stands * (long)ds.ntrain;
+    *steps = (long)pl.epochs * ((npatch + pl.batch - 1) / pl.batch);
+    const double euler_calls = (double)(ds.nunseen + ds.nextrap) * MAINSET_NPROBE *
+                               ((pl.gen_patches + r->batch - 1) / r->batch) * pl.euler;
+    *unit_j = (*steps * r->ms[SPEED_PAIR].med + euler_calls * r->ms[SPEED_PAIR_SAMPLE].med) / 1e3;
+    *unit_i = (*steps * r->ms[SPEED_PAIR_INDEP].med + euler_calls * r->ms[SPEED_PAIR_INDEP_SAMPLE].med) / 1e3;
+    *nunits = 2 * (int)seeds;
+    *wall_min = seeds * (*unit_j + *unit_i) / 2.0 / 60.0;
+    return CS_OK;
+}
+
+static int bench_path(gemm_isa isa, const model_cfg *cfg, long batch, long rounds, long steps, int *failed)
+{
+    gemm_set_isa(isa);
+    speed_result r;
+    cs_status st = speed_run(cfg, (int)batch, (int)rounds, (int)steps, &r);
     if (st) return cli_fail("bench-model", st);
-    const char *thr = getenv("OPENBLAS_NUM_THREADS");
-    printf("model bench: 3 blocks, width 64, 4 heads, MLP 256, batch %ld x 24 tokens, OPENBLAS_NUM_THREADS=%s, median of %d\n",
-           batch, thr ? thr : "(unset)", r.repeats);
-    printf("trainer_steps_per_s\t%.2f\n", r.steps_per_s);
-    printf("trainer_step_ms\t%.3f\n", r.step_ms_median);
-    printf("model_gflops\t%.2f\n", r.model_gflops);
-    printf("sgemm_gflops\t%.2f\n", r.sgemm_gflops);
-    printf("gemm_fma_gflops\t%.2f\n", r.gemm_fma_gflops);
-    printf("gemm_path\t%s\n", gemm_isa_name());
-    printf("model_to_sgemm_ratio\t%.3f\n", r.ratio);
-    printf("goals: >= 55 steps/s, ratio >= 0.60: %s\n", r.steps_per_s >= 55 && r.ratio >= 0.6 ? "met" : "not met");
-    /* revision 2 (design.md §10): the pair-aware model at the same configuration,
-     * in the same run; its rate against the same run's gemm_fma rate (the
-     * fused product the model runs on) and sgemm rate */
-    train_bench_result rp;
-    cfg.pair = 1;
-    st = train_bench(&cfg, (int)batch, (int)steps, (int)repeats, &rp);
-    if (st) return cli_fail("bench-model", st);
-    printf("pair model bench: the same configuration with standardised features and pair-aware attention\n");
-    printf("pair_trainer_steps_per_s\t%.2f\n", rp.steps_per_s);
-    printf("pair_trainer_step_ms\t%.3f\n", rp.step_ms_median);
-    printf("pair_model_gflops\t%.2f\n", rp.model_gflops);
-    printf("pair_gemm_fma_gflops\t%.2f\n", rp.gemm_fma_gflops);
-    printf("pair_model_to_gemm_fma_ratio\t%.3f\n", rp.model_gflops / rp.gemm_fma_gflops);
-    printf("pair_model_to_sgemm_ratio\t%.3f\n", rp.ratio);
-    printf("pair_to_base_step_time\t%.3f\n", rp.step_ms_median / r.step_ms_median);
-    printf("goal: pair model >= 55 steps/s: %s\n", rp.steps_per_s >= 55 ? "met" : "not met");
+    printf("path\t%s\n", gemm_isa_name());
+    print_stat(isa == GEMM_AVX512 ? "fma_peak_gflops_512bit" : isa == GEMM_AVX2 ? "fma_peak_gflops_256bit" : "fma_peak_gflops_scalar", r.peak, "%.1f");
+    if (isa == GEMM_AVX512) print_stat("fma_peak_gflops_256bit", r.peak256, "%.1f");
+    for (int i = 0; i < SPEED_NITEMS; i++) {
+        char k[64];
+        snprintf(k, sizeof k, "%s_gflops", speed_name((speed_what)i));
+        print_stat(k, r.item[i].rate, "%.1f");
+        snprintf(k, sizeof k, "%s_of_peak", speed_name((speed_what)i));
+        print_stat(k, r.item[i].frac, "%.3f");
+        snprintf(k, sizeof k, "%s_ms", speed_name((speed_what)i));
+        print_stat(k, r.ms[i], "%.3f");
+    }
+    const double sps = 1e3 / r.ms[SPEED_PLAIN].med, psps = 1e3 / r.ms[SPEED_PAIR].med;
+    printf("plain_train_steps_per_s\t%.2f\npair_train_steps_per_s\t%.2f\n", sps, psps);
+    printf("pair_to_plain_step_time\t%.3f\n", r.ms[SPEED_PAIR].med / r.ms[SPEED_PLAIN].med);
+    const double vs_sgemm = r.item[SPEED_PLAIN].frac.med / r.item[SPEED_SGEMM].frac.med;
+    int ok = goal("own product, fraction of FMA peak", r.item[SPEED_PRODUCT].frac.med, 0.85, "%.3f");
+    ok &= goal("pair model training, fraction of FMA peak", r.item[SPEED_PAIR].frac.med, 0.75, "%.3f");
+    ok &= goal("plain model training, fraction of same-run sgemm", vs_sgemm, 0.60, "%.3f");
+    ok &= goal("plain model steps/s", sps, 55, "%.1f");
+    ok &= goal("pair model steps/s", psps, 55, "%.1f");
+    double wall, uj, ui;
+    long nsteps;
+    int nunits;
+    if ((st = projection(&r, &wall, &uj, &ui, &nsteps, &nunits))) return cli_fail("bench-model", st);
+    printf("projected E3+E4 on this path: %d pair-model units (%ld training steps + evaluation each; joint %.0f s, independent %.0f s), two at a time: %.1f min\n",
+           nunits, nsteps, uj, ui, wall);
+    ok &= goal("E3+E4 within 60 min on 2 cores (projected), minutes under the budget", 60 - wall, 0, "%.1f");
+    *failed += !ok;
     return 0;
 }
 
+int cli_cmd_bench_model(int argc, char **argv)
+{
+    long repeats = 7, steps = 4, batch = 64;
+    const char *path = "all";
+    const opt_spec o[] = {
+        {"repeats", OPT_LONG, &repeats, 1, 15, "rounds, medians and ranges over them are reported (default 7)"},
+        {"steps", OPT_LONG, &steps, 1, 1e9, "training or Euler steps per measurement (default 4)"},
+        {"batch", OPT_LONG, &batch, 1, 4096, "patches per step (default 64)"},
+        {"path", OPT_STR, &path, 0, 0, "all (every vector path this CPU has, widest first), avx512, avx2 or scalar (default all)"},
+    };
+    const opts_cmd c = {"bench-model", "[options]",
+                        "Model speed at the reference configuration of design.md §10 against the core's FMA peak\n"
+                        "measured beside every rate, on each gemm path (set OPENBLAS_NUM_THREADS=1).",
+                        o, sizeof o / sizeof *o, 0, 0};
+    int rc = opts_parse(&c, argc, argv, NULL, NULL);
+    if (rc) return opts_exit_code(rc);
+    gemm_isa list[3];
+    int n = 0;
+    if (!strcmp(path, "all")) {
+        if (gemm_isa_available(GEMM_AVX512)) list[n++] = GEMM_AVX512;
+        if (gemm_isa_available(GEMM_AVX2)) list[n++] = GEMM_AVX2;
+        if (!n) list[n++] = GEMM_SCALAR;
+    } else {
+        gemm_isa want = !strcmp(path, "avx512") ? GEMM_AVX512 : !strcmp(path, "avx2") ? GEMM_AVX2
+                      : !strcmp(path, "scalar") ? GEMM_SCALAR : GEMM_AUTO;
+        if (want == GEMM_AUTO) { opts_usage_error("bench-model", "--path: must be all, avx512, avx2 or scalar, not '%s'", path); return 2; }
+        if (!gemm_isa_available(want)) { opts_usage_error("bench-model", "--path %s: this CPU does not have it", path); return 2; }
+        list[n++] = want;
+    }
+    model_cfg cfg = model_cfg_reference(PATCH_NCOND);
+    const char *thr = getenv("OPENBLAS_NUM_THREADS");
+    printf("model bench: %d blocks, width %d, %d heads, MLP %d, batch %ld x %d tokens, OPENBLAS_NUM_THREADS=%s;\n"
+           "median [min, max] of %ld rounds; each rate as a fraction of the FMA peak measured just before and after it\n",
+           cfg.L, cfg.C, cfg.H, cfg.F, batch, cfg.T, thr ? thr : "(unset)", repeats);
+    int failed = 0;
+    for (int k = 0; k < n; k++) {
+        rc = bench_path(list[k], &cfg, batch, repeats, steps, &failed);
+        if (rc) return rc;
+    }
+    gemm_set_isa(GEMM_AUTO);
+    printf("bench-model: %d of %d paths meet every goal\n", n - failed, n);
+    return 0;
+}

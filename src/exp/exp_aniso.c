@@ -1,6 +1,6 @@
 /* exp_aniso: E6 anisotropy attribution (design.md §7 E6; reference paper §5.4):
- * the commands aniso-lattice, aniso-hardcore, aniso-jitter,
- * aniso-jitter-calibrate and aniso-heldout. Every E6 unit runs the teacher at
+ * the commands anisotropy-lattice, anisotropy-hardcore, anisotropy-jitter,
+ * anisotropy-jitter-calibrate and anisotropy-heldout. Every E6 unit runs the teacher at
  * beta_field, read from the E5 calibration table (--calibration).
  *
  * Stands as in E5 (exp_field.c; --layout r2: d = 4 m on 36 m, r1: 5 m on
@@ -31,19 +31,19 @@ int cmd_aniso_lattice(int argc, char **argv)
 {
     exp_field_opts o = {.stands_opt = 28};
     const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands (default 28)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout)};
-    const opts_cmd oc = {"aniso-lattice", "--calibration DIR/calibration.tsv --out DIR/lattice.tsv [--stands N]",
+    const opts_cmd oc = {"anisotropy-lattice", "--calibration DIR/calibration.tsv --out DIR/lattice.tsv [--stands N]",
                          "E6 (design.md §7): anisotropy on the controlled lattice (field layout, canonical jitter) at beta_field,\n"
                          "N stands (default 28).",
                          spec, sizeof spec / sizeof *spec, 0, 0};
     int rc = exp_field_parse(&oc, argc, argv, &o);
     if (rc) return opts_exit_code(rc);
     fs_calibration c;
-    if ((rc = exp_need_beta("aniso-lattice", &o, &c))) return rc;
+    if ((rc = exp_need_beta("anisotropy-lattice", &o, &c))) return rc;
     prov p;
     exp_prov_begin(&p, "anisotropy", &o.rd, argc, argv);
     double a;
     cs_status st = exp_canonical_jitter(&a);
-    if (st) return exp_fail("aniso-lattice", st);
+    if (st) return exp_fail("anisotropy-lattice", st);
     exp_field_job j = {"anisotropy/lattice", STAND_LATTICE, a, a, c.value, o.stands, 0, 0, o.rd};
     fs_trees acc;
     fs_trees_init(&acc);
@@ -56,10 +56,10 @@ int cmd_aniso_lattice(int argc, char **argv)
     if (!st) {
         fs_summary s;
         if (!fs_group(&acc, 1, a, &s))
-            printf("aniso-lattice: anisotropy median %.4f over %zu trees (%zu excluded) in %zu stands\n", s.f.aniso_median, s.f.aniso_trees, s.f.aniso_excluded, s.stands);
+            printf("anisotropy-lattice: anisotropy median %.4f over %zu trees (%zu excluded) in %zu stands\n", s.f.aniso_median, s.f.aniso_trees, s.f.aniso_excluded, s.stands);
     }
     fs_trees_free(&acc);
-    return st ? exp_fail("aniso-lattice", st) : 0;
+    return st ? exp_fail("anisotropy-lattice", st) : 0;
 }
 
 /* A family sweep: one job per level of `key` in anisotropy.gate. */
@@ -103,7 +103,7 @@ static int aniso_family(const char *cmd, const char *synopsis, const char *about
 
 int cmd_aniso_hardcore(int argc, char **argv)
 {
-    return aniso_family("aniso-hardcore", "--calibration DIR/calibration.tsv --out DIR/hardcore.tsv [--stands N]",
+    return aniso_family("anisotropy-hardcore", "--calibration DIR/calibration.tsv --out DIR/hardcore.tsv [--stands N]",
                         "E6 hard-core family (design.md §7): stems by random sequential addition with minimum distance c d,\n"
                         "c in anisotropy.gate hardcore_levels, N stands per level (default 12), teacher at beta_field.\n"
                         "A level whose stands cannot be built is recorded (stands_failed, trees 0), not a crash.",
@@ -113,7 +113,7 @@ int cmd_aniso_hardcore(int argc, char **argv)
 
 int cmd_aniso_jitter(int argc, char **argv)
 {
-    return aniso_family("aniso-jitter", "--calibration DIR/calibration.tsv --out DIR/jitter.tsv [--stands N]",
+    return aniso_family("anisotropy-jitter", "--calibration DIR/calibration.tsv --out DIR/jitter.tsv [--stands N]",
                         "E6 jitter family (design.md §7): controlled lattice with per-axis jitter sd a d, a in\n"
                         "anisotropy.gate jitter_levels, N stands per level (default 12), teacher at beta_field.",
                         argc, argv, STAND_LATTICE, "jitter_levels", "anisotropy/jitter",
@@ -127,25 +127,25 @@ int cmd_aniso_jitter_calibrate(int argc, char **argv)
         {"sweep", OPT_STR, &o.sweep, 0, 0, "E6 jitter sweep table DIR/jitter.tsv (required)"},
         EXP_OPT_OUT(o),
     };
-    const opts_cmd oc = {"aniso-jitter-calibrate", "--sweep DIR/jitter.tsv --out DIR/jitter_calibration.tsv",
+    const opts_cmd oc = {"anisotropy-jitter-calibrate", "--sweep DIR/jitter.tsv --out DIR/jitter_calibration.tsv",
                          "E6: the jitter sweep's median anisotropy per level (checked against the per-tree table) and\n"
                          "a* = linear interpolation to anisotropy.gate field_median, rounded to 0.01.",
                          spec, sizeof spec / sizeof *spec, 0, 0};
     int rc = exp_field_parse(&oc, argc, argv, &o);
     if (rc) return opts_exit_code(rc);
-    if (!o.sweep) { opts_usage_error("aniso-jitter-calibrate", "--sweep DIR/jitter.tsv is required"); return 2; }
+    if (!o.sweep) { opts_usage_error("anisotropy-jitter-calibrate", "--sweep DIR/jitter.tsv is required"); return 2; }
     prov p;
     exp_prov_begin(&p, "anisotropy", &o.rd, argc, argv);
     tsv *t;
     fs_trees tr;
     cs_status st = fs_load_checked(o.sweep, &t, &tr);
-    if (st) return exp_fail("aniso-jitter-calibrate", st);
+    if (st) return exp_fail("anisotropy-jitter-calibrate", st);
     fs_trees_free(&tr);
     tsv_writer *w;
-    if ((st = tsv_writer_open(&w, o.out))) { tsv_free(t); return exp_fail("aniso-jitter-calibrate", st); }
+    if ((st = tsv_writer_open(&w, o.out))) { tsv_free(t); return exp_fail("anisotropy-jitter-calibrate", st); }
     snprintf(p.seeds, sizeof p.seeds, "%s", tsv_meta(t, "seeds") ? tsv_meta(t, "seeds") : "-");
     p.worst_overlap_m = -1;
-    if ((st = prov_write(w, &p))) { tsv_writer_abort(w); tsv_free(t); return exp_fail("aniso-jitter-calibrate", st); }
+    if ((st = prov_write(w, &p))) { tsv_writer_abort(w); tsv_free(t); return exp_fail("anisotropy-jitter-calibrate", st); }
     tsv_writer_meta(w, "what", "E6 jitter calibration curve: median anisotropy per jitter level (from %s); a* = interpolation to the field median, rounded to 0.01 (fs_jitter_star)", o.sweep);
     tsv_writer_columns(w, "level\taniso_median\taniso_trees");
     for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
@@ -161,11 +161,11 @@ int cmd_aniso_jitter_calibrate(int argc, char **argv)
         tsv_writer_endrow(w);
     }
     tsv_free(t);
-    if (st) { tsv_writer_abort(w); return exp_fail("aniso-jitter-calibrate", st); }
-    if ((st = tsv_writer_commit(w))) return exp_fail("aniso-jitter-calibrate", st);
+    if (st) { tsv_writer_abort(w); return exp_fail("anisotropy-jitter-calibrate", st); }
+    if ((st = tsv_writer_commit(w))) return exp_fail("anisotropy-jitter-calibrate", st);
     fs_calibration c;
-    if ((st = fs_jitter_star(o.out, &c))) return exp_fail("aniso-jitter-calibrate", st);
-    printf("aniso-jitter-calibrate: field median %.3f, a interpolated %.6f, a* %.2f%s\n", c.target, c.interp, c.value,
+    if ((st = fs_jitter_star(o.out, &c))) return exp_fail("anisotropy-jitter-calibrate", st);
+    printf("anisotropy-jitter-calibrate: field median %.3f, a interpolated %.6f, a* %.2f%s\n", c.target, c.interp, c.value,
            c.bracketed ? "" : " (FIELD MEDIAN NOT BRACKETED by the sweep: nearest end)");
     return 0;
 }
@@ -180,7 +180,7 @@ int cmd_aniso_heldout(int argc, char **argv)
         EXP_OPT_STANDS(o, "stands (default 28)"),
         EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout),
     };
-    const opts_cmd oc = {"aniso-heldout",
+    const opts_cmd oc = {"anisotropy-heldout",
                          "--calibration DIR/calibration.tsv --jitter-calibration DIR/jitter_calibration.tsv\n"
                          "                              --out DIR/heldout.tsv [--stands N]",
                          "E6 held-out (design.md §7): N stands (default 28) at jitter a* on seeds disjoint from the sweep,\n"
@@ -188,11 +188,11 @@ int cmd_aniso_heldout(int argc, char **argv)
                          spec, sizeof spec / sizeof *spec, 0, 0};
     int rc = exp_field_parse(&oc, argc, argv, &o);
     if (rc) return opts_exit_code(rc);
-    if (!o.jitter_calibration) { opts_usage_error("aniso-heldout", "--jitter-calibration is required (a*)"); return 2; }
+    if (!o.jitter_calibration) { opts_usage_error("anisotropy-heldout", "--jitter-calibration is required (a*)"); return 2; }
     fs_calibration c, js;
-    if ((rc = exp_need_beta("aniso-heldout", &o, &c))) return rc;
+    if ((rc = exp_need_beta("anisotropy-heldout", &o, &c))) return rc;
     cs_status st = fs_jitter_star(o.jitter_calibration, &js);
-    if (st) return exp_fail("aniso-heldout", st);
+    if (st) return exp_fail("anisotropy-heldout", st);
     prov p;
     exp_prov_begin(&p, "anisotropy", &o.rd, argc, argv);
     exp_field_job j = {"anisotropy/heldout", STAND_LATTICE, js.value, js.value, c.value, o.stands, 0, 0, o.rd};
@@ -207,10 +207,10 @@ int cmd_aniso_heldout(int argc, char **argv)
     if (!st) {
         fs_summary s;
         if (!fs_group(&acc, 1, js.value, &s))
-            printf("aniso-heldout: a* %.2f: anisotropy median %.4f (%zu trees, %zu excluded), elongation %.4f, spread %.4f m; %zu of %u stands built\n",
+            printf("anisotropy-heldout: a* %.2f: anisotropy median %.4f (%zu trees, %zu excluded), elongation %.4f, spread %.4f m; %zu of %u stands built\n",
                    js.value, s.f.aniso_median, s.f.aniso_trees, s.f.aniso_excluded, s.elong_median, s.f.spread, s.stands, o.stands);
-        exp_print_spread_ratios("aniso-heldout", &acc, js.value, 0);
+        exp_print_spread_ratios("anisotropy-heldout", &acc, js.value, 0);
     }
     fs_trees_free(&acc);
-    return st ? exp_fail("aniso-heldout", st) : 0;
+    return st ? exp_fail("anisotropy-heldout", st) : 0;
 }

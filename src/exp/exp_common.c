@@ -236,7 +236,7 @@ cs_status exp_field_write(const char *out, prov *p, const fs_trees *acc, const e
     cs_status st = tsv_writer_open(&w, tp);
     if (st) return st;
     if ((st = prov_write(w, p))) { tsv_writer_abort(w); return st; }
-    tsv_writer_meta(w, "what", "one row per interior tree (>= 2 d from the edge): cardinal gaps E N W S (m) and crown elongation, all-axis (elong, design.md §5) and cardinal (elong_card, revision 1), canonical estimator");
+    tsv_writer_meta(w, "what", "one row per interior tree (>= 2 d from the edge): cardinal gaps E N W S (m) and crown elongation, all-axis (elong, design.md §5) and cardinal (elong_card, design.md §5), canonical estimator");
     tsv_writer_meta(w, "summary", "%s", out);
     fs_trees_write(w, acc);
     if ((st = tsv_writer_commit(w))) return st;
@@ -245,7 +245,7 @@ cs_status exp_field_write(const char *out, prov *p, const fs_trees *acc, const e
     tsv_writer_meta(w, "trees_table", "%s", tp);
     if (nj) tsv_writer_meta(w, "layout", "%s: field stands d = %g m on L = %g m (design.md §7 E5%s)", exp_layout_name(jobs[0].rd.layout),
                             exp_field_d(jobs[0].rd.layout), exp_field_L(jobs[0].rd.layout),
-                            jobs[0].rd.layout == EXP_LAYOUT_R1 ? ", revision 1 reading" : "");
+                            jobs[0].rd.layout == EXP_LAYOUT_R1 ? ", the first round's layout" : "");
     if (meta) meta(w, ctx);
     tsv_writer_columns(w, FS_SUMMARY_COLUMNS);
     for (size_t k = 0; k < nj && !st; k++)

@@ -33,14 +33,14 @@ cs_status exp_reading_parse(const char *teacher, const char *layout, exp_reading
  * teacher_params_default(&p); p.one_sided = rd.one_sided; (exp_common.h does
  * not include the teacher, so the include depth stays within the layout's). */
 /* prov_begin for a teacher unit, recording the reading's teacher_version
- * (not the pinned default) so a revision-1 run says which teacher made it. */
+ * (not the pinned default) so a teacher-1 run says which teacher made it. */
 void exp_prov_begin(prov *p, const char *experiment, const exp_reading *r, int argc, char **argv);
 /* Field stands of a layout: spacing and footprint (design.h). */
 double exp_field_d(exp_layout l);
 double exp_field_L(exp_layout l);
 const char *exp_layout_name(exp_layout l);
-#define EXP_OPT_TEACHER(var) {"teacher", OPT_STR, &(var), 0, 0, "teacher reading: teacher-2 (default, mutual abrasion) or teacher-1 (revision 1, one-sided)"}
-#define EXP_OPT_LAYOUT(var) {"layout", OPT_STR, &(var), 0, 0, "field layout: r2 (default, d = 4 m on L = 36 m) or r1 (revision 1, d = 5 m on L = 60 m)"}
+#define EXP_OPT_TEACHER(var) {"teacher", OPT_STR, &(var), 0, 0, "teacher reading: teacher-2 (default, mutual abrasion) or teacher-1 (one-sided die-back, design.md §4)"}
+#define EXP_OPT_LAYOUT(var) {"layout", OPT_STR, &(var), 0, 0, "field layout: r2 (default, d = 4 m on L = 36 m) or r1 (d = 5 m on L = 60 m, design.md §7 E0)"}
 
 typedef struct {
     const char *out;  /* results root, e.g. build/results */

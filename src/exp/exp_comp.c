@@ -65,22 +65,11 @@ static cs_status gen_radii(model *m, const patch_set *ps, int Bmax, uint64_t see
     return st;
 }
 
-int exp_comp_cmd_run(int argc, char **argv)
+cs_status exp_comp_run(const exp_comp_args *a)
 {
-    const char *cj = NULL, *ci = NULL, *dir = NULL;
-    const opt_spec spec[] = {
-        {"joint", OPT_STR, &cj, 0, 0, "joint-arm weights (or checkpoint) CKPT of E3 seed 1 (required)"},
-        {"indep", OPT_STR, &ci, 0, 0, "independent-arm weights (or checkpoint) CKPT of E3 seed 1 (required)"},
-        {"out", OPT_STR, &dir, 0, 0, "results root DIR (required)"},
-    };
-    const opts_cmd c = {"comp-run", "--joint CKPT --indep CKPT --out DIR",
-                        "E7: one 24-tree patch at 5.0 m (teacher, joint, independent arm) and the dart probe\n"
-                        "(joint model on hard-core stems); writes DIR/comparison/{patch,patch_crowns,dart_probe}.tsv.",
-                        spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = opts_parse(&c, argc, argv, NULL, NULL);
-    if (rc) return opts_exit_code(rc);
-    for (size_t i = 0; i < sizeof spec / sizeof *spec; i++)
-        if (!*(const char **)spec[i].dst) { opts_usage_error("comp-run", "--%s is required", spec[i].name); return 2; }
+    const char *cj = a->joint, *ci = a->indep, *dir = a->out;
+    const int argc = a->argc;
+    char **argv = a->argv;
     prov pv;
     prov_begin(&pv, "comparison", argc, argv);
     double beta = 0, jitter = 0;
@@ -93,7 +82,7 @@ int exp_comp_cmd_run(int argc, char **argv)
     if (!st && (!mj->cfg.joint || mi->cfg.joint)) st = cs_err(CS_EINPUT, "%s must be a joint-arm and %s an independent-arm checkpoint", cj, ci);
     if (!st && sj != si) st = cs_err(CS_EINPUT, "%s and %s were trained with different deviation scales", cj, ci);
     if (!st && mj->cfg.pair != mi->cfg.pair) st = cs_err(CS_EINPUT, "%s and %s are different models (pair %d vs %d)", cj, ci, mj->cfg.pair, mi->cfg.pair);
-    if (st) { fprintf(stderr, "crownshy: %s\n", cs_errmsg()); model_free(mj); model_free(mi); return cs_exit_code(st); }
+    if (st) { model_free(mj); model_free(mi); return st; }
 
     /* ---- the comparison patch ---- */
     const double d = DESIGN_GENCOMP_SPACING_M;
@@ -216,6 +205,5 @@ int exp_comp_cmd_run(int argc, char **argv)
     if (ps) patch_set_free(ps);
     if (sd) stand_free(sd);
     model_free(mj); model_free(mi);
-    if (st) { fprintf(stderr, "crownshy: %s\n", cs_errmsg()); return cs_exit_code(st); }
-    return 0;
+    return st;
 }

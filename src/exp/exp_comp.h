@@ -8,6 +8,15 @@
 #ifndef EXP_COMP_H
 #define EXP_COMP_H
 
-int exp_comp_cmd_run(int argc, char **argv);
+#include "cs.h"
+
+/* The entry point (argv table: src/cli/cli_main.c). */
+typedef struct {
+    const char *joint, *indep; /* E3 seed-1 weights (or checkpoints) of each arm */
+    const char *out;           /* results root: writes out/comparison/{patch,patch_crowns,dart_probe}.tsv */
+    int argc;                  /* the command line, for the provenance */
+    char **argv;
+} exp_comp_args;
+cs_status exp_comp_run(const exp_comp_args *a);
 
 #endif

@@ -6,7 +6,6 @@
 #include "estimator.h"
 #include "gate.h"
 #include "model.h"
-#include "opts.h"
 #include "patch.h"
 #include "paths.h"
 #include "prov.h"
@@ -172,25 +171,13 @@ static cs_status write_tables(const char *dir, prov *pv, const char *cj, const c
     return tsv_writer_commit(w);
 }
 
-int exp_compdist_cmd_run(int argc, char **argv)
+cs_status exp_compdist_run(const exp_compdist_args *a)
 {
-    const char *cj = NULL, *ci = NULL, *dir = NULL;
-    long np = 256;
-    const opt_spec spec[] = {
-        {"joint", OPT_STR, &cj, 0, 0, "joint-arm weights CKPT (required)"},
-        {"indep", OPT_STR, &ci, 0, 0, "independent-arm weights CKPT of the same seed (required)"},
-        {"out", OPT_STR, &dir, 0, 0, "results root DIR (required): writes DIR/comparison/dist_{patches,summary}.tsv"},
-        {"patches", OPT_LONG, &np, 1, 100000, "fresh patches per probe (default 256)"},
-    };
-    const opts_cmd c = {"comp-dist", "--joint CKPT --indep CKPT --out DIR [--patches N]",
-                        "E7 and the dart probe as distributions: N fresh patches at 5.0 m (lattice; hard-core for the dart\n"
-                        "probe), teacher, joint and independent arm; per-patch statistics, quantiles and the figure patch.",
-                        spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = opts_parse(&c, argc, argv, NULL, NULL);
-    if (rc) return opts_exit_code(rc);
-    if (!cj || !ci || !dir) { opts_usage_error("comp-dist", "--joint, --indep and --out are required"); return 2; }
+    const char *cj = a->joint, *ci = a->indep, *dir = a->out;
+    const long np = a->patches > 0 ? a->patches : 256;
+    if (!cj || !ci || !dir) return cs_err(CS_EUSAGE, "comparison-dist: --joint, --indep and --out are required");
     prov pv;
-    prov_begin(&pv, "comparison", argc, argv);
+    prov_begin(&pv, "comparison", a->argc, a->argv);
     double beta = 0, jitter = 0, sj = 0, si = 0;
     model *m[2] = {NULL, NULL};
     cs_status st = gate_read_value(PATHS_GATE("mechanism"), "dieback_train", 0, &beta);
@@ -222,6 +209,5 @@ int exp_compdist_cmd_run(int argc, char **argv)
     free(med); free(dmed); free(ovl); free(dovl);
     patch_set_free(ps); patch_set_free(dp);
     model_free(m[0]); model_free(m[1]);
-    if (st) { fprintf(stderr, "crownshy: %s\n", cs_errmsg()); return cs_exit_code(st); }
-    return 0;
+    return st;
 }

@@ -18,6 +18,15 @@
 #ifndef EXP_COMPDIST_H
 #define EXP_COMPDIST_H
 
-int exp_compdist_cmd_run(int argc, char **argv);
+#include "cs.h"
+
+typedef struct {
+    const char *joint, *indep, *out; /* the two arms' weights; results root */
+    int patches;                     /* fresh patches per probe (256 by default) */
+    int argc;
+    char **argv;
+} exp_compdist_args;
+/* DIR/comparison/dist_patches.tsv and dist_summary.tsv. */
+cs_status exp_compdist_run(const exp_compdist_args *a);
 
 #endif

@@ -22,7 +22,6 @@
 #include "mainrun.h"
 #include "mainset.h"
 #include "model.h"
-#include "opts.h"
 #include "patch.h"
 #include "paths.h"
 #include "prov.h"
@@ -45,37 +44,27 @@ static int file_exists(const char *p)
     return stat(p, &sb) == 0;
 }
 
-static int fail_with(cs_status st)
-{
-    fprintf(stderr, "crownshy: %s\n", cs_errmsg());
-    return cs_exit_code(st);
-}
-
 static const char *base_name(const char *p)
 {
     const char *s = strrchr(p, '/');
     return s ? s + 1 : p;
 }
 
-/* The options every unit command shares, parsed and checked. */
-typedef struct {
-    long seed, epochs, train_stands, pair;
-    const char *arm, *out, *scale, *ckpt, *samples, *weights, *reading, *volume, *trained;
-} unit_args;
+/* The arguments every unit entry point shares (exp_main.h). */
+typedef exp_main_run_args unit_args;
 
-static int unit_check(const char *cmd, const unit_args *a, int need_weights)
+static cs_status unit_check(const char *cmd, const unit_args *a, int need_weights)
 {
-    if (need_weights && !a->weights) { opts_usage_error(cmd, "--weights is required"); return 2; }
-    if (!a->seed) { opts_usage_error(cmd, "--seed is required"); return 2; }
-    if (!a->arm) { opts_usage_error(cmd, "--arm is required"); return 2; }
-    if (strcmp(a->arm, "joint") && strcmp(a->arm, "indep")) { opts_usage_error(cmd, "--arm: must be joint or indep, not '%s'", a->arm); return 2; }
-    if (!a->out) { opts_usage_error(cmd, "--out is required"); return 2; }
-    if (strcmp(a->scale, "full") && strcmp(a->scale, "smoke")) { opts_usage_error(cmd, "--scale: must be full or smoke, not '%s'", a->scale); return 2; }
-    if (a->volume && strcmp(a->volume, "v1") && strcmp(a->volume, "v2")) { opts_usage_error(cmd, "--volume: must be v1 or v2, not '%s'", a->volume); return 2; }
-    model_reading r;
-    if (a->reading && model_reading_parse(a->reading, &r)) { opts_usage_error(cmd, "--reading: %s", cs_errmsg()); return 2; }
-    if (a->reading && a->pair >= 0 && (r == MODEL_PAIR) != (a->pair == 1)) { opts_usage_error(cmd, "--pair %ld contradicts --reading %s", a->pair, a->reading); return 2; }
-    return 0;
+    if (need_weights && !a->weights) return cs_err(CS_EUSAGE, "%s: --weights is required", cmd);
+    if (!a->seed) return cs_err(CS_EUSAGE, "%s: --seed is required", cmd);
+    if (!a->arm || (strcmp(a->arm, "joint") && strcmp(a->arm, "indep"))) return cs_err(CS_EUSAGE, "%s: --arm must be joint or indep", cmd);
+    if (!a->out) return cs_err(CS_EUSAGE, "%s: --out is required", cmd);
+    if (!a->scale || (strcmp(a->scale, "full") && strcmp(a->scale, "smoke"))) return cs_err(CS_EUSAGE, "%s: --scale must be full or smoke", cmd);
+    if (a->volume && strcmp(a->volume, "v1") && strcmp(a->volume, "v2")) return cs_err(CS_EUSAGE, "%s: --volume must be v1 or v2, not '%s'", cmd, a->volume);
+    model_reading r = MODEL_PAIR;
+    if (a->reading && model_reading_parse(a->reading, &r)) return cs_err(CS_EUSAGE, "%s: --reading: %s", cmd, cs_errmsg());
+    if (a->reading && a->pair >= 0 && (r == MODEL_PAIR) != (a->pair == 1)) return cs_err(CS_EUSAGE, "%s: --pair %d contradicts --reading %s", cmd, a->pair, a->reading);
+    return CS_OK;
 }
 
 /* The reading of a training unit: --reading, else --pair (0 plain, 1 pair), else pair. */
@@ -202,17 +191,6 @@ static cs_status unit_evaluate_write(const unit_args *a, prov *pv, model *m, int
     return st;
 }
 
-#define UNIT_OPTS(a) \
-    {"seed", OPT_LONG, &(a).seed, 1, 4294967295.0, "model seed (required; zero-padded 01 is 1)"}, \
-    {"arm", OPT_STR, &(a).arm, 0, 0, "joint or indep (required)"}, \
-    {"scale", OPT_STR, &(a).scale, 0, 0, "full or smoke (default full)"}
-#define TRAIN_OPTS(a) \
-    {"ckpt", OPT_STR, &(a).ckpt, 0, 0, "checkpoint FILE, resumed from when it exists (default none)"}, \
-    {"epochs", OPT_LONG, &(a).epochs, 1, 1000000, "exploration override of the plan's epochs (default: the plan's)"}, \
-    {"train-stands", OPT_LONG, &(a).train_stands, 1, 10000, "exploration override of the plan's stands per training spacing (default: the plan's)"}, \
-    {"reading", OPT_STR, &(a).reading, 0, 0, "generator reading: plain, paper, paper-fourier or pair (design.md §8; default pair)"}, \
-    {"pair", OPT_LONG, &(a).pair, 0, 1, "1: the pair reading; 0: the plain reading (the form before --reading)"}
-
 /* Plan for a unit: scale, volume, exploration overrides. */
 static cs_status unit_plan(const unit_args *a, mainset_design *ds, mainrun_plan *pl)
 {
@@ -224,31 +202,17 @@ static cs_status unit_plan(const unit_args *a, mainset_design *ds, mainrun_plan 
     return st;
 }
 
-int exp_main_cmd_run(int argc, char **argv)
+cs_status exp_main_run(const exp_main_run_args *ap)
 {
-    unit_args a = {.scale = "full", .pair = -1};
-    const opt_spec spec[] = {
-        UNIT_OPTS(a), TRAIN_OPTS(a),
-        {"out", OPT_STR, &a.out, 0, 0, "output table FILE.tsv (required)"},
-        {"samples", OPT_STR, &a.samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
-        {"weights", OPT_STR, &a.weights, 0, 0, "also write the final weights to FILE (weights format, README; default none)"},
-        {"volume", OPT_STR, &a.volume, 0, 0, "evaluation volume v1 or v2 (mainrun.h; default v1)"},
-    };
-    const opts_cmd c = {"main-run", "--seed S --arm joint|indep --out FILE.tsv [--reading R] [--volume v1|v2] [--scale full|smoke] [--ckpt FILE] [--samples FILE.tsv] [--weights FILE]",
-                        "One (seed, arm) unit of E3/E4: build teacher data, train the flow model (resuming from\n"
-                        "--ckpt if it exists), evaluate W1 of focal nearest-neighbour clearances at the unseen and\n"
-                        "extrapolation spacings, as generated and under the shuffled-geometry and rotation probes,\n"
-                        "write FILE.tsv (and the samples and weights behind it).",
-                        spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = opts_parse(&c, argc, argv, NULL, NULL);
-    if (rc) return opts_exit_code(rc);
-    if ((rc = unit_check("main-run", &a, 0))) return rc;
+    const unit_args a = *ap;
+    cs_status st0 = unit_check("main-run", &a, 0);
+    if (st0) return st0;
     prov pv;
-    prov_begin(&pv, "main", argc, argv);
+    prov_begin(&pv, "main", a.argc, a.argv);
     mainset_design ds;
     mainrun_plan pl;
     cs_status st = unit_plan(&a, &ds, &pl);
-    if (st) return fail_with(st);
+    if (st) return st;
     double worst = 0.0;
     train *t = NULL;
     patch_set *tr = NULL;
@@ -265,32 +229,22 @@ int exp_main_cmd_run(int argc, char **argv)
     }
     train_free(t);
     patch_set_free(tr);
-    return st ? fail_with(st) : 0;
+    return st;
 }
 
 /* Train only: the weights and a one-row training table (what the readings
  * table reads: parameters, steps, final loss, training time, steps/s). */
-int exp_main_cmd_train(int argc, char **argv)
+cs_status exp_main_train(const exp_main_run_args *ap)
 {
-    unit_args a = {.scale = "full", .pair = -1};
-    const opt_spec spec[] = {
-        UNIT_OPTS(a), TRAIN_OPTS(a),
-        {"out", OPT_STR, &a.out, 0, 0, "output training table FILE.tsv (required)"},
-        {"weights", OPT_STR, &a.weights, 0, 0, "final weights FILE (weights format, README; required)"},
-    };
-    const opts_cmd c = {"main-train", "--seed S --arm joint|indep --weights FILE --out FILE.tsv [--reading R] [--scale full|smoke] [--ckpt FILE]",
-                        "Train one (seed, arm) unit of E3/E4 (resuming from --ckpt if it exists) and write its weights\n"
-                        "and a training table; `crownshy main-eval` evaluates the weights.",
-                        spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = opts_parse(&c, argc, argv, NULL, NULL);
-    if (rc) return opts_exit_code(rc);
-    if ((rc = unit_check("main-train", &a, 1))) return rc;
+    const unit_args a = *ap;
+    cs_status st0 = unit_check("main-train", &a, 1);
+    if (st0) return st0;
     prov pv;
-    prov_begin(&pv, "main", argc, argv);
+    prov_begin(&pv, "main", a.argc, a.argv);
     mainset_design ds;
     mainrun_plan pl;
     cs_status st = unit_plan(&a, &ds, &pl);
-    if (st) return fail_with(st);
+    if (st) return st;
     double worst = 0.0;
     train *t = NULL;
     patch_set *tr = NULL;
@@ -323,7 +277,7 @@ int exp_main_cmd_train(int argc, char **argv)
     }
     train_free(t);
     patch_set_free(tr);
-    return st ? fail_with(st) : 0;
+    return st;
 }
 
 /* Copy the training record of a unit (its training or run table): model and
@@ -369,28 +323,14 @@ static cs_status unit_load(const unit_args *a, const mainrun_plan *pl, model **m
 
 /* Evaluate frozen weights without training (design.md §9: frozen models are
  * re-evaluated from their weights): the run table and samples of main-run. */
-int exp_main_cmd_eval(int argc, char **argv)
+cs_status exp_main_eval(const exp_main_run_args *ap)
 {
-    unit_args a = {.scale = "full", .pair = -1};
-    const opt_spec spec[] = {
-        UNIT_OPTS(a),
-        {"weights", OPT_STR, &a.weights, 0, 0, "weights FILE written by main-run/main-train --weights (or its checkpoint) (required)"},
-        {"trained", OPT_STR, &a.trained, 0, 0, "the unit's training or run table, whose model, training, teacher and commit lines are recorded (required)"},
-        {"out", OPT_STR, &a.out, 0, 0, "output run table FILE.tsv (required)"},
-        {"samples", OPT_STR, &a.samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
-        {"volume", OPT_STR, &a.volume, 0, 0, "evaluation volume v1 or v2 (mainrun.h; default v1)"},
-        {"reading", OPT_STR, &a.reading, 0, 0, "the reading the weights must be (default: any)"},
-    };
-    const opts_cmd c = {"main-eval", "--weights FILE --trained TABLE --seed S --arm joint|indep --out FILE.tsv [--volume v1|v2] [--samples FILE.tsv] [--scale full|smoke]",
-                        "Evaluate one E3/E4 unit from its weights, without training: the run table and samples of\n"
-                        "main-run at the chosen volume (v1: the data rows of the unit's main-run table, bit for bit).",
-                        spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = opts_parse(&c, argc, argv, NULL, NULL);
-    if (rc) return opts_exit_code(rc);
-    if ((rc = unit_check("main-eval", &a, 1))) return rc;
-    if (!a.trained) { opts_usage_error("main-eval", "--trained is required"); return 2; }
+    const unit_args a = *ap;
+    cs_status st0 = unit_check("main-eval", &a, 1);
+    if (st0) return st0;
+    if (!a.trained) return cs_err(CS_EUSAGE, "main-eval: --trained is required");
     prov pv;
-    prov_begin(&pv, "main", argc, argv);
+    prov_begin(&pv, "main", a.argc, a.argv);
     mainset_design ds;
     mainrun_plan pl;
     model *m = NULL;
@@ -406,31 +346,18 @@ int exp_main_cmd_eval(int argc, char **argv)
     if (!st) st = prov_sha256_file(a.weights, wsha);
     if (!st) st = unit_evaluate_write(&a, &pv, m, pl.batch, &ds, &pl, scl, meta, nmeta, wsha, &worst);
     model_free(m);
-    return st ? fail_with(st) : 0;
+    return st;
 }
 
 /* Redraw the samples of one unit from its frozen weights alone (design.md §9
  * verify-deep): the same evaluation sets, seeds and sampler as main-run. */
-int exp_main_cmd_redraw(int argc, char **argv)
+cs_status exp_main_redraw(const exp_main_run_args *ap)
 {
-    unit_args a = {.scale = "full", .pair = -1};
-    const opt_spec spec[] = {
-        {"weights", OPT_STR, &a.weights, 0, 0, "weights FILE written by main-run --weights (or its checkpoint) (required)"},
-        {"seed", OPT_LONG, &a.seed, 1, 4294967295.0, "model seed of the unit (required)"},
-        {"arm", OPT_STR, &a.arm, 0, 0, "joint or indep (required; must match the weights)"},
-        {"out", OPT_STR, &a.out, 0, 0, "output samples FILE.tsv (required)"},
-        {"scale", OPT_STR, &a.scale, 0, 0, "full or smoke (default full)"},
-        {"volume", OPT_STR, &a.volume, 0, 0, "evaluation volume v1 or v2 (mainrun.h; default v1)"},
-    };
-    const opts_cmd c = {"main-redraw", "--weights FILE --seed S --arm joint|indep --out FILE.tsv [--volume v1|v2] [--scale full|smoke]",
-                        "Draw the clearance samples of one E3/E4 unit again from its weights, without training:\n"
-                        "the data rows of FILE.tsv equal those of the unit's samples_s<seed>_<arm>.tsv bit for bit.",
-                        spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = opts_parse(&c, argc, argv, NULL, NULL);
-    if (rc) return opts_exit_code(rc);
-    if ((rc = unit_check("main-redraw", &a, 1))) return rc;
+    const unit_args a = *ap;
+    cs_status st0 = unit_check("main-redraw", &a, 1);
+    if (st0) return st0;
     prov pv;
-    prov_begin(&pv, "main", argc, argv);
+    prov_begin(&pv, "main", a.argc, a.argv);
     mainset_design ds;
     mainrun_plan pl;
     model *m = NULL;
@@ -448,6 +375,6 @@ int exp_main_cmd_redraw(int argc, char **argv)
     if (!st) st = mainrun_samples_write(a.out, &pv, seed, a.arm, rows, nrows);
     mainrun_rows_free(rows, nrows);
     model_free(m);
-    return st ? fail_with(st) : 0;
+    return st;
 }
 

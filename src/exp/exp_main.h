@@ -1,13 +1,15 @@
 /* exp_main: the main experiment E3 and extrapolation E4 (reference paper
- * §4.3-§5.2; design.md §7 E3/E4, §8). One unit per (seed, arm): build the teacher
- * data, train the flow model (joint or independent arm), generate eval
- * patches at the unseen (4.0, 5.0, 6.0 m) and extrapolation (3.0, 7.5 m)
- * spacings, and measure W1 between generated and teacher focal nearest-
- * neighbour clearances; both arms are also probed with shuffled geometry (the
- * preregistered probe) and rotated geometry (added after the first verdict),
- * and each unit writes the clearance samples behind its W1 and its weights.
- * A baselines unit measures the direction-blind baseline and the split-half
- * noise floor; a summary unit gathers the runs into the frozen tables.
+ * §4.3-§5.2; design.md §7 E3/E4, §8). One unit per (reading, seed, arm): build
+ * the teacher data, train the flow model (joint or independent arm, one of
+ * the generator readings of model.h), generate eval patches at the unseen
+ * (4.0, 5.0, 6.0 m) and extrapolation (3.0, 7.5 m) spacings, and measure W1
+ * between generated and teacher focal nearest-neighbour clearances; both arms
+ * are also probed with shuffled geometry (the preregistered probe) and rotated
+ * geometry (added after the first verdict), and each unit writes the
+ * clearance samples behind its W1 and its weights. main-train trains only,
+ * main-eval evaluates weights without training (src/exp/mainrun.h: the
+ * evaluation volumes), main-redraw draws a unit's samples again; the
+ * baselines and the summary are in src/exp/mainsum.h.
  *
  * Data plan (ours; design.md §8 leaves it open): teacher at beta_train (from
  * gates/mechanism.gate) on the controlled lattice (jitter from
@@ -18,11 +20,34 @@
  * by construction and both arms of a seed share every seed. */
 #ifndef EXP_MAIN_H
 #define EXP_MAIN_H
+#include "cs.h"
 
-/* CLI entry points (return process exit codes; design.md §11). */
-int exp_main_cmd_run(int argc, char **argv);
-int exp_main_cmd_redraw(int argc, char **argv);
-int exp_main_cmd_train(int argc, char **argv);
-int exp_main_cmd_eval(int argc, char **argv);
+/* The entry points (argv tables: src/cli/cli_main.c). argc/argv are the
+ * command line, quoted in the provenance. */
+typedef struct {
+    unsigned seed;           /* model seed, >= 1 */
+    const char *arm;         /* "joint" or "indep" */
+    const char *out;         /* the run table (main-run) or the training table (main-train) */
+    const char *scale;       /* "full" or "smoke" */
+    const char *ckpt;        /* checkpoint, resumed from when it exists (NULL: none) */
+    const char *samples;     /* also the clearance samples behind every W1 (NULL: none) */
+    const char *weights;     /* also the final weights (NULL: none; main-train: required) */
+    const char *reading;     /* generator reading (model.h; NULL: from pair, else pair) */
+    const char *volume;      /* evaluation volume "v1" or "v2" (NULL: v1) */
+    const char *trained;     /* main-eval: the unit's training or run table */
+    long epochs;             /* 0: the plan's; else an exploration override */
+    long train_stands;       /* 0: the plan's; else an exploration override */
+    int pair;                /* -1 unset; 1 the pair reading, 0 the plain one (the form before reading) */
+    int argc;
+    char **argv;
+} exp_main_run_args;
+/* One (seed, arm) unit: train (resuming), evaluate, write the run table. */
+cs_status exp_main_run(const exp_main_run_args *a);
+/* Train only: the weights and a one-row training table. */
+cs_status exp_main_train(const exp_main_run_args *a);
+/* Evaluate frozen weights (a->weights, a->trained) without training. */
+cs_status exp_main_eval(const exp_main_run_args *a);
+/* A unit's samples drawn again from its weights alone (no training). */
+cs_status exp_main_redraw(const exp_main_run_args *a);
 
 #endif

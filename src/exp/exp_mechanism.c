@@ -9,7 +9,7 @@
  *                          spacing_m stands trees k1_m k2_m k3_m cover overlap_m
  *  mechanism/figure_stats.tsv  the ablation's columns, measured on the one
  *                          hard-core figure stand (the paper's "measured on the
- *                          stand shown": the Mech* macros, design.md §7 E1 rev. 2);
+ *                          stand shown": the Mech* macros, design.md §7 E1);
  *                          the gate stays judged on ablation.tsv (lattice)
  *  mechanism/figure_crowns.tsv, figure_poly_<panel>_<d>.tsv (exp_common.h) */
 #include "exp_mechanism.h"

@@ -22,8 +22,8 @@ cs_status mainrun_plan_get(const char *scale, mainrun_plan *p)
     if (!strcmp(scale, "full")) {
         p->scale = "full";
         p->train_stands = MAINRUN_TRAIN_STANDS; /* x 4 spacings x ~64 interior stems */
-        p->eval_stands = 16;   /* ~1024 teacher clearances per eval spacing */
-        p->gen_patches = 256;
+        p->eval_stands = MAINRUN_V1_EVAL_STANDS; /* ~1024 teacher clearances per eval spacing */
+        p->gen_patches = MAINRUN_V1_GEN_PATCHES;
         p->epochs = (int)epochs;
     } else if (!strcmp(scale, "smoke")) {
         p->scale = "smoke";
@@ -41,8 +41,8 @@ cs_status mainrun_plan_volume(mainrun_plan *p, const char *volume)
     const int full = !strcmp(p->scale, "full");
     if (!strcmp(volume, "v1")) {
         p->volume = "v1";
-        p->eval_stands = full ? 16 : 2;
-        p->gen_patches = full ? 256 : 32;
+        p->eval_stands = full ? MAINRUN_V1_EVAL_STANDS : 2;
+        p->gen_patches = full ? MAINRUN_V1_GEN_PATCHES : 32;
     } else if (!strcmp(volume, "v2")) {
         p->volume = "v2";
         p->eval_stands = full ? MAINRUN_V2_EVAL_STANDS : 4;

@@ -29,6 +29,8 @@
 /* Evaluation volume v2 at full scale (mainrun.h; design.md §8 "Readings of
  * the generator"): chosen from the split-half noise floor and its cost,
  * measured (README "Budgets"). */
+#define MAINRUN_V1_EVAL_STANDS 16
+#define MAINRUN_V1_GEN_PATCHES 256
 #define MAINRUN_V2_EVAL_STANDS 96
 #define MAINRUN_V2_GEN_PATCHES 1536
 

@@ -8,7 +8,6 @@
 #include "estimator.h"
 #include "mainrun.h"
 #include "mainset.h"
-#include "opts.h"
 #include "prov.h"
 #include "tsv.h"
 #include <math.h>
@@ -18,36 +17,17 @@
 
 #define MAXSP MAINSET_MAXSP
 
-static int fail_with(cs_status st)
-{
-    fprintf(stderr, "crownshy: %s\n", cs_errmsg());
-    return cs_exit_code(st);
-}
-
 static const char *base_name(const char *p)
 {
     const char *s = strrchr(p, '/');
     return s ? s + 1 : p;
 }
 
-int mainsum_cmd_baselines(int argc, char **argv)
+cs_status mainsum_baselines(const mainsum_baselines_args *a)
 {
-    const char *out = NULL, *scale = "full", *samples = NULL, *volume = "v1";
-    const opt_spec spec[] = {
-        {"out", OPT_STR, &out, 0, 0, "output table FILE.tsv (required)"},
-        {"scale", OPT_STR, &scale, 0, 0, "full or smoke (default full)"},
-        {"samples", OPT_STR, &samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
-        {"volume", OPT_STR, &volume, 0, 0, "evaluation volume v1 or v2 (mainrun.h; default v1)"},
-    };
-    const opts_cmd c = {"main-baselines", "--out FILE.tsv [--scale full|smoke] [--volume v1|v2] [--samples FILE.tsv]",
-                        "Direction-blind baseline (every crown replaced by its circular mean), split-half noise floor\n"
-                        "of the teacher, and the teacher's own crowns under the shuffled-geometry and rotation probes\n"
-                        "(added after the first verdict), as W1 of focal nearest-neighbour clearances per eval spacing.",
-                        spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = opts_parse(&c, argc, argv, NULL, NULL);
-    if (rc) return opts_exit_code(rc);
-    if (!out) { opts_usage_error("main-baselines", "--out is required"); return 2; }
-    if (strcmp(scale, "full") && strcmp(scale, "smoke")) { opts_usage_error("main-baselines", "--scale: must be full or smoke, not '%s'", scale); return 2; }
+    const char *out = a->out, *scale = a->scale ? a->scale : "full", *samples = a->samples, *volume = a->volume ? a->volume : "v1";
+    const int argc = a->argc;
+    char **argv = a->argv;
     prov pv;
     prov_begin(&pv, "main", argc, argv);
     mainset_design ds;
@@ -55,7 +35,7 @@ int mainsum_cmd_baselines(int argc, char **argv)
     cs_status st = mainset_design_get(&ds);
     if (!st) st = mainrun_plan_get(scale, &pl);
     if (!st) st = mainrun_plan_volume(&pl, volume);
-    if (st) return fail_with(st);
+    if (st) return st;
     double worst = 0.0, maxdiff = 0.0;
     size_t nall = ds.nunseen + ds.nextrap;
     /* per spacing: 0 teacher, 1 teacher shuffled, 2 teacher rotated, 3 direction-blind */
@@ -136,28 +116,16 @@ int mainsum_cmd_baselines(int argc, char **argv)
     if (w) tsv_writer_abort(w);
     for (size_t si = 0; si < nall; si++)
         for (int q = 0; q < 4; q++) free(smp[si][q]);
-    return st ? fail_with(st) : 0;
+    return st;
 }
 
 /* Gather the per-run tables into main/runs.tsv (error on unseen spacings and
  * the shuffled probe, per seed and arm) and extrapolation/runs.tsv. */
-int mainsum_cmd_summary(int argc, char **argv)
+cs_status mainsum_summary(const mainsum_summary_args *a)
 {
-    const char *dir = NULL;
-    long ns = 0;
-    const opt_spec spec[] = {
-        {"dir", OPT_STR, &dir, 0, 0, "results root RESULTS (required)"},
-        {"seeds", OPT_LONG, &ns, 1, 64, "seeds 1..N to gather (required)"},
-    };
-    const opts_cmd c = {"main-summary", "--dir RESULTS --seeds N",
-                        "Read RESULTS/main/run_s<seed>_<arm>.tsv for seeds 1..N and both arms; write\n"
-                        "RESULTS/main/runs.tsv (per-run errors) and RESULTS/extrapolation/runs.tsv.",
-                        spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = opts_parse(&c, argc, argv, NULL, NULL);
-    if (rc) return opts_exit_code(rc);
-    if (!dir) { opts_usage_error("main-summary", "--dir is required"); return 2; }
-    if (!ns) { opts_usage_error("main-summary", "--seeds is required"); return 2; }
-    int nseeds = (int)ns;
+    const char *dir = a->dir;
+    const int nseeds = a->seeds, argc = a->argc;
+    char **argv = a->argv;
     prov pv;
     prov_begin(&pv, "main", argc, argv);
     const char *arms[2] = {"joint", "indep"};
@@ -224,5 +192,5 @@ int mainsum_cmd_summary(int argc, char **argv)
         st = tsv_writer_commit(w);
     }
     free(rr);
-    return st ? fail_with(st) : 0;
+    return st;
 }

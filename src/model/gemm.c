@@ -186,6 +186,8 @@ gemm_isa gemm_set_isa(gemm_isa isa)
     return old;
 }
 
+gemm_isa gemm_get_isa(void) { return auto_isa == GEMM_AUTO ? best(GEMM_AUTO) : auto_isa; }
+
 const char *gemm_isa_name(void)
 {
     static const char *names[] = {"auto", "scalar", "avx2", "avx512"};
@@ -221,6 +223,60 @@ void gemm_fma(int M, int N, int K, const float *A, ptrdiff_t ars, ptrdiff_t aks,
               const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc, int accumulate)
 {
     gemm_fma_epi(M, N, K, A, ars, aks, B, ldb, C, ldc, accumulate, NULL, NULL);
+}
+
+/* ---- the FMA peak (gemm_peak_gflops) ---- */
+#include <time.h>
+static double now_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+/* NC chains a = a * x + y (x just below 1, so nothing overflows or goes
+ * subnormal): enough independent chains to cover the fma latency on every
+ * fma port, few enough to stay in registers with x and y (16 of the 32 zmm
+ * registers, 12 of the 16 ymm ones); the compiler cannot fold them. */
+#define PEAK_BODY(V, NC, SET1, FMA, ADD, STORE, LANES)                                \
+    V a[NC], x = SET1(0.999f), y = SET1(1e-3f);                                       \
+    for (int i = 0; i < NC; i++) a[i] = SET1((float)i);                               \
+    double t0 = now_s();                                                             \
+    for (long k = 0; k < iters; k++) {                                               \
+        _Pragma("GCC unroll 16") for (int i = 0; i < NC; i++) a[i] = FMA(a[i], x, y); \
+    }                                                                                \
+    double dt = now_s() - t0;                                                        \
+    for (int i = 1; i < NC; i++) a[0] = ADD(a[0], a[i]);                             \
+    float sink[LANES];                                                               \
+    STORE(sink, a[0]);                                                               \
+    peak_sink += sink[0];                                                            \
+    return dt > 0 ? 2.0 * NC * LANES * (double)iters / dt / 1e9 : 0;
+
+static volatile float peak_sink;
+#ifdef GEMM_X86
+__attribute__((target("avx512f"))) static double peak_avx512(long iters)
+{
+    PEAK_BODY(__m512, 16, _mm512_set1_ps, _mm512_fmadd_ps, _mm512_add_ps, _mm512_storeu_ps, 16)
+}
+__attribute__((target("avx2,fma"))) static double peak_avx2(long iters)
+{
+    PEAK_BODY(__m256, 12, _mm256_set1_ps, _mm256_fmadd_ps, _mm256_add_ps, _mm256_storeu_ps, 8)
+}
+#endif
+static float add1(float a, float b) { return a + b; }
+static void store1(float *p, float v) { *p = v; }
+static float set1(float v) { return v; }
+static double peak_scalar(long iters) { PEAK_BODY(float, 8, set1, fmaf, add1, store1, 1) }
+
+double gemm_peak_gflops(gemm_isa isa, long iters)
+{
+    switch (best(isa)) {
+#ifdef GEMM_X86
+    case GEMM_AVX512: return peak_avx512(iters);
+    case GEMM_AVX2: return peak_avx2(iters);
+#endif
+    default: return peak_scalar(iters);
+    }
 }
 
 #ifdef GEMM_X86

@@ -57,6 +57,16 @@ void gemm_fma_isa(gemm_isa isa, int M, int N, int K, const float *A, ptrdiff_t a
 gemm_isa gemm_set_isa(gemm_isa isa);
 /* 1 when this CPU can run the path. */
 int gemm_isa_available(gemm_isa isa);
+/* The path in use (gemm_set_isa, or the best this CPU has). The layer kernels
+ * of nn.c take their AVX-512 forms only when it is GEMM_AVX512, so a whole
+ * model can be run, tested and timed on each path. */
+gemm_isa gemm_get_isa(void);
+/* The core's fused multiply-add peak at the path's vector width (AVX-512:
+ * 512-bit, AVX2: 256-bit, scalar: fmaf) in GFLOP/s: 12-16 independent chains of
+ * `iters` fmas per lane, no loads or stores, timed in the calling thread's CPU
+ * time (the yardstick of `make bench`,
+ * design.md §10). An unavailable path falls back as gemm_fma_isa does. */
+double gemm_peak_gflops(gemm_isa isa, long iters);
 /* The path gemm_fma takes: "avx512", "avx2" or "scalar". */
 const char *gemm_isa_name(void);
 /* dst[K x N] = src[N x K]^T (weights stored [out x in] to a B operand). */

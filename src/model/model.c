@@ -411,7 +411,7 @@ static void backward(model *m, const float *dv, int zero)
         else
             nn_linear_backward_attention(m->dqkv, m->dtmp, g + o->proj_w, g + o->proj_b, m->dx, m->att[l],
                                          w + o->proj_w, m->qkv[l], m->prob[l], B, T, C, c->H, mode, m->ascr);
-        nn_linear_backward(m->dln, g + o->qkv_w, g + o->qkv_b, m->dqkv, m->ln1[l], w + o->qkv_w, N, C, 3 * C);
+        nn_linear_backward_qkv(m->dln, g + o->qkv_w, g + o->qkv_b, m->dqkv, m->ln1[l], w + o->qkv_w, N, C, mode);
         nn_layernorm_backward(m->dx, g + o->ln1_g, g + o->ln1_b, m->dln, m->x[l], m->mu1[l], m->rs1[l], w + o->ln1_g, N, C);
     }
     nn_linear_backward(NULL, g + m->tok_w, g + m->tok_b, m->dx, m->tin, w + m->tok_w, N, I, C);

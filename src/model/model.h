@@ -33,7 +33,7 @@ typedef struct {
     int H;     /* heads (C % H == 0) */
     int F;     /* MLP width */
     int joint; /* 1: attention across the patch; 0: each token attends only to itself */
-    int pair;  /* 1: pair-aware attention (src/pairattn.h) from features 0..2 =
+    int pair;  /* 1: pair-aware attention (src/model/pairattn.h) from features 0..2 =
                 * (x, y, rbar) / d (design.md §8 "Pair awareness"); 0: plain
                 * multi-head attention */
     int stdz;  /* token features standardised with the model's z-scores
@@ -48,7 +48,7 @@ enum { MODEL_STDZ_AUTO = 0, MODEL_STDZ_ON = 1, MODEL_STDZ_OFF = 2 };
 
 /* The readings of the generator (design.md §8 "Readings of the generator"):
  *  plain          the features as they are (position, size and the polar
- *                 Fourier basis of src/patch.h), plain attention;
+ *                 Fourier basis of src/model/patch.h), plain attention;
  *  paper          paper §4.2 as written: (p_i - p_focal)/d and rbar_i/d only,
  *                 standardised on the training data (a preprocessing the paper
  *                 neither states nor excludes), plain attention;

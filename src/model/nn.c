@@ -1,6 +1,5 @@
-/* nn: layer kernels (see nn.h). The matrix products go to gemm_fma (src/gemm.h:
- * bit-identical on every ISA); cblas_sgemm remains only as the benchmark's
- * yardstick (nn_product_gflops). Every other loop is written on 8-wide GCC/Clang vector types, because -O2 without fast-math
+/* nn: layer kernels (see nn.h). The matrix products go to gemm_fma (src/model/gemm.h:
+ * bit-identical on every ISA). Every other loop is written on 8-wide GCC/Clang vector types, because -O2 without fast-math
  * will not vectorise float reductions by itself (reassociation is forbidden).
  * The hot kernels are compiled twice (target_clones: AVX2 and baseline x86-64,
  * picked at load time); both clones execute the same lane-wise IEEE operations
@@ -11,11 +10,9 @@
 #include "nn.h"
 #include "nn_vec.h"
 #include "gemm.h"
-#include <cblas.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 HOT void nn_expf(float *y, const float *x, size_t n)
 {
@@ -64,33 +61,6 @@ void nn_linear_backward(float *dinp, float *dw, float *db, const float *dout,
                         const float *in, const float *w, int M, int K, int N)
 {
     nn_linear_backward_epi(dinp, dw, db, dout, in, w, M, K, N, NULL, NULL);
-}
-
-double nn_product_gflops(int M, const int *sizes, int n, int reps, int blas)
-{
-    int mx = 1;
-    for (int i = 0; i < n; i++) mx = sizes[i] > mx ? sizes[i] : mx;
-    float *A = malloc(sizeof(float) * M * mx), *W = malloc(sizeof(float) * mx * mx);
-    float *Cm = malloc(sizeof(float) * M * mx);
-    if (!A || !W || !Cm) { free(A); free(W); free(Cm); return 0; }
-    for (size_t i = 0; i < (size_t)M * mx; i++) A[i] = (float)((i % 17) * 0.01 - 0.08);
-    for (size_t i = 0; i < (size_t)mx * mx; i++) W[i] = (float)((i % 13) * 0.01 - 0.06);
-    double fl = 0;
-    struct timespec t0, t1;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
-    for (int a = 0; a < n; a++)
-        for (int b = 0; b < n; b++)
-            for (int k = 0; k < reps; k++) {
-                if (blas)
-                    cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasTrans, M, sizes[a], sizes[b], 1.f,
-                                A, sizes[b], W, sizes[b], 0.f, Cm, sizes[a]);
-                else /* W read as the transposed operand, as after nn_linear_forward's transpose */
-                    gemm_fma(M, sizes[a], sizes[b], A, sizes[b], 1, W, sizes[a], Cm, sizes[a], 0);
-                fl += 2.0 * M * sizes[a] * sizes[b];
-            }
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    free(A); free(W); free(Cm);
-    return fl / ((t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec)) / 1e9;
 }
 
 /* ---- layer norm ---------------------------------------------------------------- */
@@ -213,7 +183,7 @@ HOT void nn_gelu_backward_saved(float *dinp, const float *dout, const float *in,
                                 const float *sig, size_t n)
 {
 #ifdef NN_AVX512
-    if (gemm_isa_available(GEMM_AVX512)) { gelu_backward16(dinp, dout, in, sig, n); return; }
+    if (gemm_get_isa() == GEMM_AVX512) { gelu_backward16(dinp, dout, in, sig, n); return; }
 #endif
     size_t i = 0;
     for (; i + VL <= n; i += VL) st(dinp + i, ld(dout + i) * vgelu_grad(ld(in + i), ld(sig + i)));
@@ -275,7 +245,7 @@ __attribute__((target("avx512f"))) static void gelu_backward16(float *dinp, cons
 HOT void nn_bias_gelu_forward_save(float *h, float *sig, float *out, const float *b, int M, int N)
 {
 #ifdef NN_AVX512
-    if (gemm_isa_available(GEMM_AVX512)) { bias_gelu16(h, sig, out, b, M, N); return; }
+    if (gemm_get_isa() == GEMM_AVX512) { bias_gelu16(h, sig, out, b, M, N); return; }
 #endif
     for (int r = 0; r < M; r++) {
         float *hr = h + (size_t)r * N, *sr = sig + (size_t)r * N, *orow = out + (size_t)r * N;

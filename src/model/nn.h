@@ -83,7 +83,7 @@ void nn_attention_forward(float *out, float *prob, const float *qkv,
 void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
                            const float *prob, int B, int T, int C, int H,
                            nn_attn_mode mode, float *scratch);
-/* The same with additive terms for pair-aware attention (src/pairattn.h):
+/* The same with additive terms for pair-aware attention (src/model/pairattn.h):
  * sbias[B x H x T x T] (NULL: none) is added to the scaled scores before the
  * softmax; dpadd[B x H x T x T] (NULL: none) is added to dP = dO V^T before
  * the softmax backward. Both are ignored by NN_ATTN_SELF. After a backward
@@ -98,7 +98,9 @@ void nn_attention_backward_biased(float *dqkv, const float *dout, const float *q
 size_t nn_attention_scratch_len(int T, int C, int H);
 
 /* Attention fused with its neighbouring products (same values, better locality):
- * nn_linear_forward(qkv, in, w[3C x C], b) then nn_attention_forward(out, prob, qkv). */
+ * nn_linear_forward(qkv, in, w[3C x C], b) then nn_attention_forward(out, prob, qkv).
+ * Self-only attention (NN_ATTN_SELF) reads only v: the q and k columns of qkv
+ * are then neither computed nor written (design.md §10). */
 void nn_linear_attention_forward(float *qkv, float *out, float *prob, const float *in,
                                  const float *w, const float *b, int B, int T, int C, int H,
                                  nn_attn_mode mode, float *wt, float *scratch);
@@ -109,16 +111,19 @@ void nn_linear_backward_attention(float *dqkv, float *datt, float *dw, float *db
                                   const float *dout, const float *att, const float *w,
                                   const float *qkv, const float *prob, int B, int T, int C,
                                   int H, nn_attn_mode mode, float *scratch);
+/* The qkv projection's backward, nn_linear_backward(dinp, dw, db, dqkv, in, w,
+ * M, C, 3C). Under NN_ATTN_SELF the q and k columns of dqkv are zero (the
+ * output does not depend on them), so only the v block is multiplied: each
+ * skipped term would have added fma(+0, w, c) or 1 * +0 to a chain that is
+ * +0 there (the input gradient's chain over q and k comes before v's; the
+ * weight and bias gradients of q and k stay as they are), so the bits are
+ * those of the full product (tested). */
+void nn_linear_backward_qkv(float *dinp, float *dw, float *db, const float *dqkv,
+                            const float *in, const float *w, int M, int C, nn_attn_mode mode);
 
 /* y[i] = exp(x[i]) with a range-reduced polynomial (|rel err| < 4e-7 on
  * [-87, 88]; inputs are clamped to that range). Vectorised; used by softmax
  * and GELU so that neither depends on libm speed. */
 void nn_expf(float *y, const float *x, size_t n);
-
-/* GFLOP/s of cblas_sgemm (blas = 1; NoTrans x Trans) or of gemm_fma (blas = 0;
- * the product nn_linear_forward runs) over all shapes M x N x K with N, K in
- * sizes[0..n), each run `reps` times, timed together; 0 on allocation
- * failure. For the benchmark of design.md §10. */
-double nn_product_gflops(int M, const int *sizes, int n, int reps, int blas);
 
 #endif

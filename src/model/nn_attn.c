@@ -208,7 +208,7 @@ void nn_attention_forward_biased(float *out, float *prob, const float *qkv, cons
         return;
     }
 #ifdef NN_AVX512
-    if (T == 24 && hd == 16 && gemm_isa_available(GEMM_AVX512)) {
+    if (T == 24 && hd == 16 && gemm_get_isa() == GEMM_AVX512) {
         for (int b = 0; b < B; b++)
             attention_forward24(out + (size_t)b * T * C, prob + (size_t)b * H * T * T,
                                 qkv + (size_t)b * T * C3, C, H, scratch,
@@ -257,7 +257,7 @@ void nn_attention_backward_biased(float *dqkv, const float *dout, const float *q
     /* [H x T x T] dP then dS of every head; [hd x T] V^T of one head */
     float *ds = scratch, *vt = scratch + (size_t)H * T * T;
 #ifdef NN_AVX512
-    if (T == 24 && hd == 16 && gemm_isa_available(GEMM_AVX512)) {
+    if (T == 24 && hd == 16 && gemm_get_isa() == GEMM_AVX512) {
         for (int b = 0; b < B; b++)
             attention_backward24(dqkv + (size_t)b * T * C3, dout + (size_t)b * T * C,
                                  qkv + (size_t)b * T * C3, prob + (size_t)b * H * T * T, C, H, ds, vt,
@@ -332,6 +332,12 @@ void nn_linear_attention_forward(float *qkv, float *out, float *prob, const floa
     const int M = B * T, N = 3 * C;
     attn_ctx a = {.out = out, .prob = prob, .qkv = qkv, .T = T, .C = C, .H = H, .mode = mode,
                   .scratch = scratch};
+    if (mode == NN_ATTN_SELF) { /* only the v columns (see nn.h) */
+        if (w) gemm_transpose(wt, w, N, C);
+        gemm_fma_bias_epi(M, C, C, in, C, 1, wt + 2 * C, N, qkv + 2 * C, N, b ? b + 2 * C : NULL,
+                          epi_attention_forward, &a);
+        return;
+    }
     nn_linear_forward_epi(qkv, in, w, b, M, C, N, wt, epi_attention_forward, &a);
 }
 
@@ -344,4 +350,25 @@ void nn_linear_backward_attention(float *dqkv, float *datt, float *dw, float *db
     attn_ctx a = {.out = dqkv, .qkv = qkv, .dout = datt, .cprob = prob, .T = T, .C = C, .H = H,
                   .mode = mode, .scratch = scratch};
     nn_linear_backward_epi(datt, dw, db, dout, att, w, M, C, C, epi_attention_backward, &a);
+}
+
+/* db[0..n) += rows of x (row stride ldx), row after row: the additions of
+ * nn.c's column sums, on a strided block. */
+HOT static void colsum_add_strided(float *db, const float *x, ptrdiff_t ldx, int M, int n)
+{
+    for (int r = 0; r < M; r++) axpy(db, 1.f, x + (size_t)r * ldx, n);
+}
+
+void nn_linear_backward_qkv(float *dinp, float *dw, float *db, const float *dqkv,
+                            const float *in, const float *w, int M, int C, nn_attn_mode mode)
+{
+    if (mode != NN_ATTN_SELF) {
+        nn_linear_backward(dinp, dw, db, dqkv, in, w, M, C, 3 * C);
+        return;
+    }
+    const int N = 3 * C;
+    const float *dv = dqkv + 2 * C, *wv = w + (size_t)2 * C * C;
+    if (dinp) gemm_fma(M, C, C, dv, N, 1, wv, C, dinp, C, 0);
+    gemm_fma(C, C, M, dv, 1, N, in, C, dw + (size_t)2 * C * C, C, 1);
+    if (db) colsum_add_strided(db + 2 * C, dv, N, M, C);
 }

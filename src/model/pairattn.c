@@ -53,6 +53,98 @@ size_t pairattn_scratch_len(int T, int C, int H)
     return nn_attention_scratch_len(T, C, H) + (size_t)H * T * T + (size_t)H * T * Q;
 }
 
+/* ---- the two batched pair products on 8 lanes -------------------------------------- */
+/* Phi (a mix over j per row i) and dP's pair term (a product per row i) are
+ * T products of H rows each; one gemm_fma call per row keeps only H chains in
+ * flight and waits on the fma latency. Here 3 rows x 4 heads of chains (12
+ * ymm accumulators; one 8-lane vector is the Q = 8 features, or 8 keys j)
+ * run together, each still one fma chain in the gemm_fma order from +0, so
+ * the values are those of the per-row calls (test_pairattn compares every
+ * gemm path, whose scalar path takes the calls). AVX2 lanes on the AVX-512
+ * path too: at Q = 8 the 16-lane form would need two rows per register. */
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#define PAIR_VEC 1
+#define A256 __attribute__((target("avx2,fma"), always_inline)) static inline
+
+/* Phi[h][i][0..8) = sum_j prob[h][i][j] phi[i][j][0..8), rows i..i+2, heads h0..h0+3 */
+A256 void mix3x4(float *Phi, const float *prob, const float *phi, int T, int i, int h0)
+{
+    const size_t TT = (size_t)T * T;
+    __m256 c[3][4];
+    _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) c[u][v] = _mm256_setzero_ps();
+    for (int j = 0; j < T; j++) {
+        _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++) {
+            const __m256 b = _mm256_loadu_ps(phi + ((size_t)(i + u) * T + j) * Q);
+            _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++)
+                c[u][v] = _mm256_fmadd_ps(_mm256_broadcast_ss(prob + (h0 + v) * TT + (size_t)(i + u) * T + j), b, c[u][v]);
+        }
+    }
+    _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++)
+            _mm256_storeu_ps(Phi + ((size_t)(h0 + v) * T + i + u) * Q, c[u][v]);
+}
+
+/* dpx[h][i][j..j+8) = sum_q dPhi[h][i][q] phit[q][i*T + j..], row i, heads h0..h0+3, j < 24 */
+A256 void dpair1x4(float *dpx, const float *dPhi, const float *phit, int T, int i, int h0)
+{
+    const size_t TT = (size_t)T * T;
+    __m256 c[4][3];
+    _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++)
+        _Pragma("GCC unroll 3") for (int w = 0; w < 3; w++) c[v][w] = _mm256_setzero_ps();
+    for (int q = 0; q < Q; q++) {
+        const float *b = phit + (size_t)q * TT + (size_t)i * T;
+        const __m256 b0 = _mm256_loadu_ps(b), b1 = _mm256_loadu_ps(b + 8), b2 = _mm256_loadu_ps(b + 16);
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) {
+            const __m256 a = _mm256_broadcast_ss(dPhi + ((size_t)(h0 + v) * T + i) * Q + q);
+            c[v][0] = _mm256_fmadd_ps(a, b0, c[v][0]);
+            c[v][1] = _mm256_fmadd_ps(a, b1, c[v][1]);
+            c[v][2] = _mm256_fmadd_ps(a, b2, c[v][2]);
+        }
+    }
+    _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++)
+        _Pragma("GCC unroll 3") for (int w = 0; w < 3; w++)
+            _mm256_storeu_ps(dpx + (h0 + v) * TT + (size_t)i * T + 8 * w, c[v][w]);
+}
+
+__attribute__((target("avx2,fma"))) static void mix_avx2(float *Phi, const float *prob, const float *phi, int T, int H)
+{
+    for (int h0 = 0; h0 < H; h0 += 4)
+        for (int i = 0; i < T; i += 3) mix3x4(Phi, prob, phi, T, i, h0);
+}
+
+__attribute__((target("avx2,fma"))) static void dpair_avx2(float *dpx, const float *dPhi, const float *phit, int T, int H)
+{
+    for (int h0 = 0; h0 < H; h0 += 4)
+        for (int i = 0; i < T; i++) dpair1x4(dpx, dPhi, phit, T, i, h0);
+}
+#endif
+
+/* Phi[h][i][q] = sum_j a_hij phi_ijq (one gemm_fma call per row i, all heads). */
+static void pair_mix(float *Phi, const float *prob, const float *phi, int T, int H)
+{
+    const size_t TT = (size_t)T * T;
+#ifdef PAIR_VEC
+    if (T % 3 == 0 && H % 4 == 0 && gemm_get_isa() >= GEMM_AVX2) { mix_avx2(Phi, prob, phi, T, H); return; }
+#endif
+    for (int i = 0; i < T; i++)
+        gemm_fma(H, Q, T, prob + (size_t)i * T, TT, 1, phi + (size_t)i * T * Q, Q, Phi + (size_t)i * Q,
+                 (ptrdiff_t)T * Q, 0);
+}
+
+/* dpx[h][i][j] = dPhi_hi . phi_ij (one gemm_fma call per row i, all heads). */
+static void pair_dp(float *dpx, const float *dPhi, const float *phit, int T, int H)
+{
+    const size_t TT = (size_t)T * T;
+#ifdef PAIR_VEC
+    if (T == 24 && H % 4 == 0 && gemm_get_isa() >= GEMM_AVX2) { dpair_avx2(dpx, dPhi, phit, T, H); return; }
+#endif
+    for (int i = 0; i < T; i++)
+        gemm_fma(H, T, Q, dPhi + (size_t)i * Q, (ptrdiff_t)T * Q, 1, phit + (size_t)i * T, TT,
+                 dpx + (size_t)i * T, TT, 0);
+}
+
 /* One patch: out[T x C], prob[H x T x T], Phi[H x T x Q] from qkv[T x 3C]. */
 static void patch_forward(float *out, float *prob, float *Phi, const float *qkv, const float *phi,
                           const float *phit, const float *wb, const float *wvt, int T, int C, int H,
@@ -65,10 +157,7 @@ static void patch_forward(float *out, float *prob, float *Phi, const float *qkv,
         gemm_fma(H, TT, Q, wb, Q, 1, phit, TT, sb, TT, 0); /* beta[h][ij] = wb_h . phi_ij */
         for (size_t e = 0; e < (size_t)H * TT; e++) sb[e] = scale * sb[e];
         nn_attention_forward_biased(out, prob, qkv, sb, 1, T, C, H, mode, scratch);
-        /* Phi[h][i][q] = sum_j a_hij phi_ijq: all heads of row i per product */
-        for (int i = 0; i < T; i++)
-            gemm_fma(H, Q, T, prob + (size_t)i * T, TT, 1, phi + (size_t)i * T * Q, Q,
-                     Phi + (size_t)i * Q, (ptrdiff_t)T * Q, 0);
+        pair_mix(Phi, prob, phi, T, H); /* Phi[h][i][q] = sum_j a_hij phi_ijq */
     } else {
         nn_attention_forward(out, NULL, qkv, 1, T, C, H, mode, scratch);
         for (int h = 0; h < H; h++)
@@ -93,10 +182,7 @@ static void patch_backward(float *dqkv, float *dwb, float *dwv, const float *dO,
         gemm_fma(hd, Q, T, dO + h * hd, 1, C, Phi + (size_t)h * T * Q, Q, dwv + (size_t)h * hd * Q, Q, 1);
     }
     if (mode == NN_ATTN_JOINT) {
-        /* dP[h][i][j] gains dPhi_hi . phi_ij */
-        for (int i = 0; i < T; i++)
-            gemm_fma(H, T, Q, dPhi + (size_t)i * Q, (ptrdiff_t)T * Q, 1, phit + (size_t)i * T, TT,
-                     dpx + (size_t)i * T, TT, 0);
+        pair_dp(dpx, dPhi, phit, T, H); /* dP[h][i][j] gains dPhi_hi . phi_ij */
         nn_attention_backward_biased(dqkv, dO, qkv, prob, dpx, 1, T, C, H, mode, scratch);
         /* scratch holds dS = d/d(q.k), which is d/d(beta): dwb += dS phi */
         gemm_fma(H, Q, TT, scratch, TT, 1, phi, Q, dwb, Q, 1);
@@ -173,7 +259,11 @@ void pairattn_linear_forward(float *qkv, float *out, float *prob, float *Phi, co
     pair_ctx a = {.out = out, .prob = prob, .Phi = Phi, .qkv = qkv, .phi = phi, .phit = phit,
                   .wb = wb, .wv = wvt, .T = T, .C = C, .H = H, .mode = mode, .scratch = scratch};
     if (w) gemm_transpose(wt, w, N, C);
-    gemm_fma_bias_epi(M, N, C, in, C, 1, wt, N, qkv, N, b, epi_forward, &a);
+    if (mode == NN_ATTN_SELF) /* self-only attention reads only v (nn.h) */
+        gemm_fma_bias_epi(M, C, C, in, C, 1, wt + 2 * C, N, qkv + 2 * C, N, b ? b + 2 * C : NULL,
+                          epi_forward, &a);
+    else
+        gemm_fma_bias_epi(M, N, C, in, C, 1, wt, N, qkv, N, b, epi_forward, &a);
 }
 
 void pairattn_linear_backward(float *dqkv, float *datt, float *dpw, float *dpb, float *dwb,

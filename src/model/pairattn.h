@@ -38,7 +38,7 @@ enum { PAIRATTN_Q = 8 };
 
 /* Raw pair features f[T x T x Q] of one patch whose token i has position
  * (tok[i*stride], tok[i*stride + 1]) and mean radius tok[i*stride + 2], all
- * in units of the spacing d (the model's features 0..2, src/patch.h);
+ * in units of the spacing d (the model's features 0..2, src/model/patch.h);
  * computed in double and rounded to float. */
 void pairattn_features(float *f, const float *tok, int stride, int T);
 /* Standardised phi[T x T x Q] and phit[Q x T x T] of one patch:
@@ -63,7 +63,8 @@ void pairattn_backward(float *dqkv, float *dwb, float *dwv, const float *dout, c
 
 /* Fused with the neighbouring products as nn_linear_attention_forward /
  * nn_linear_backward_attention (same values as the unfused sequence):
- * qkv = in w^T + b (w[3C x C]; wt as in nn_linear_forward), then pairattn_forward. */
+ * qkv = in w^T + b (w[3C x C]; wt as in nn_linear_forward), then pairattn_forward;
+ * under NN_ATTN_SELF only the v columns of qkv (nn_linear_attention_forward). */
 void pairattn_linear_forward(float *qkv, float *out, float *prob, float *Phi, const float *in,
                              const float *w, const float *b, const float *phi, const float *phit,
                              const float *wb, const float *wvt, int B, int T, int C, int H,

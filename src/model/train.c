@@ -1,4 +1,4 @@
-/* train: trainer, checkpoints and benchmark (see train.h; paper §4.2, Eq. 2;
+/* train: trainer and checkpoints (see train.h; paper §4.2, Eq. 2;
  * design.md §8, §10, §11). */
 #include "train.h"
 #include "paths.h"
@@ -495,58 +495,5 @@ cs_status train_load_model(const char *path, model **out, int Bmax, double *scal
     if (scale) *scale = h.scale;
     free(p);
     *out = m;
-    return CS_OK;
-}
-
-/* ---- benchmark ---------------------------------------------------------------- */
-static int cmp_dbl(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-cs_status train_bench(const model_cfg *cfg, int B, int steps, int repeats, train_bench_result *r)
-{
-    memset(r, 0, sizeof *r);
-    if (repeats < 1) repeats = 1;
-    if (repeats > 15) repeats = 15;
-    /* toy data: two batches' worth of patches */
-    patch_set *ps = NULL;
-    cs_status st = patch_set_alloc(&ps, 2 * B);
-    if (!st) st = patch_set_add_toy(ps, (2 * B + 63) / 64, 4.5, 7);
-    if (!st) st = patch_set_standardise(ps, patch_set_rms(ps));
-    train *t = NULL;
-    train_opts o = train_opts_default();
-    o.batch = B;
-    o.steps = (long)(steps + 3) * repeats + 10;
-    if (!st) st = train_alloc(&t, cfg, ps, &o);
-    double ms[15];
-    for (int rep = 0; !st && rep < repeats; rep++) {
-        for (int w = 0; !st && w < 3; w++) st = train_step(t, NULL); /* warm caches */
-        double t0 = now_s();
-        for (int s = 0; !st && s < steps; s++) st = train_step(t, NULL);
-        ms[rep] = (now_s() - t0) * 1e3 / steps;
-    }
-    train_free(t);
-    patch_set_free(ps);
-    if (st) return st;
-    qsort(ms, repeats, sizeof *ms, cmp_dbl);
-    r->repeats = repeats;
-    r->step_ms_median = ms[repeats / 2];
-    r->steps_per_s = 1e3 / r->step_ms_median;
-    r->model_gflops = model_train_flops(cfg, B) / (r->step_ms_median * 1e6);
-    /* sgemm on the model's shapes: M = B*T tokens, N, K in {C, 3C, F} */
-    const int sz[3] = {cfg->C, 3 * cfg->C, cfg->F};
-    double rate[15], own[15];
-    for (int rep = 0; rep < repeats; rep++) {
-        rate[rep] = nn_product_gflops(B * cfg->T, sz, 3, 4, 1);
-        own[rep] = nn_product_gflops(B * cfg->T, sz, 3, 4, 0);
-        if (!(rate[rep] > 0) || !(own[rep] > 0)) return cs_err(CS_ENOMEM, "bench: out of memory");
-    }
-    qsort(rate, repeats, sizeof *rate, cmp_dbl);
-    qsort(own, repeats, sizeof *own, cmp_dbl);
-    r->sgemm_gflops = rate[repeats / 2];
-    r->gemm_fma_gflops = own[repeats / 2];
-    r->ratio = r->model_gflops / r->sgemm_gflops;
     return CS_OK;
 }

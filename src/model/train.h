@@ -1,7 +1,7 @@
 /* train: the flow-matching trainer (paper §4.2, Eq. 2; design.md §8): batches of
  * patches in an epoch-wise random order, AdamW with linear warm-up and cosine
- * decay, atomic checkpoints that resume bit-identically, progress lines, and
- * the trainer benchmark of design.md §10.
+ * decay, atomic checkpoints that resume bit-identically, and progress lines
+ * (the benchmark of design.md §10 times train_step: speed.h).
  *
  * Randomness: three explicitly seeded gsl_rng_mt19937 streams - init
  * (parameters), batch (epoch permutations), noise (t and x0 of Eq. 2) - never
@@ -86,20 +86,7 @@ cs_status train_load(train *t, const char *path);
 cs_status train_save_weights(const train *t, const char *path);
 /* Read the model (and its deviation scale) of a checkpoint or a weights file
  * (told apart by the magic) into a freshly allocated model with that config
- * (used by `crownshy sample`, comp-run and main-redraw). */
+ * (used by `crownshy sample`, comparison-run and main-redraw). */
 cs_status train_load_model(const char *path, model **out, int Bmax, double *scale);
-
-typedef struct {
-    double steps_per_s, model_gflops, sgemm_gflops, ratio;
-    double gemm_fma_gflops; /* the model's own product on the same shapes */
-    double step_ms_median;
-    int repeats;
-} train_bench_result;
-
-/* design.md §10: median over `repeats` timed runs of `steps` training steps at
- * cfg and batch B on toy data, and cblas_sgemm GFLOP/s on the model's shapes
- * (M = B*T, N, K in {C, 3C, F}) measured in the same run (ratio = model /
- * sgemm), and gemm_fma's GFLOP/s on those shapes. */
-cs_status train_bench(const model_cfg *cfg, int B, int steps, int repeats, train_bench_result *r);
 
 #endif

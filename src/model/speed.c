@@ -1,0 +1,234 @@
+/* speed: the model measurements of `make bench` (see speed.h; design.md §10).
+ * Toy data (patch.h) at the reference configuration; wall-clock times of the
+ * calling thread's process (CLOCK_MONOTONIC), one BLAS thread. */
+#include "speed.h"
+#include "gemm.h"
+#include "nn.h"
+#include "pairattn.h"
+#include "patch.h"
+#include "train.h"
+#include <cblas.h>
+#include <gsl/gsl_rng.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static double now_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+const char *speed_name(speed_what w)
+{
+    static const char *n[SPEED_NITEMS] = {"own_product", "sgemm", "plain_train", "pair_train",
+                                          "pair_indep_train", "plain_sample", "pair_sample",
+                                          "pair_indep_sample"};
+    return w >= 0 && w < SPEED_NITEMS ? n[w] : "?";
+}
+
+double speed_forward_flops(const model_cfg *c, int B)
+{
+    const double N = (double)B * c->T, C = c->C, F = c->F, T = c->T, hd = (double)c->C / c->H;
+    const double NI = c->P + c->nfeat, E = c->ncond + c->ntime, TT = T * T, Q = PAIRATTN_Q;
+    double gemm = 2 * N * (NI * C + 3 * C * C * c->L + C * C * c->L + 2 * C * F * c->L + C * c->P)
+                + 2.0 * B * (E * C + C * C);
+    double attn = c->joint ? 2.0 * B * c->H * TT * hd * 2 * c->L : 0;
+    double pair = !c->pair ? 0 : 2.0 * B * c->L * (c->joint ? 2 * c->H * TT * Q + T * C * Q : T * C * Q);
+    return gemm + attn + pair;
+}
+
+/* ---- the products of one training pass ------------------------------------- */
+/* Every linear layer of the model at a pass's MODEL_MICRO * T rows: forward
+ * (A row-major times the transposed weights), input gradient (all but the
+ * token layer) and weight gradient (A transposed, accumulating), as
+ * nn_linear_forward / nn_linear_backward call them. */
+typedef struct { int in, out, mult, dinp; } layer;
+typedef struct { float *a, *w, *c, *d, *dw; int R, n; layer l[6]; } pass_set;
+
+static cs_status pass_alloc(pass_set *p, const model_cfg *c)
+{
+    const int NI = c->P + c->nfeat, C = c->C, F = c->F, L = c->L;
+    const layer l[6] = {{NI, C, 1, 0}, {C, 3 * C, L, 1}, {C, C, L, 1}, {C, F, L, 1}, {F, C, L, 1}, {C, c->P, 1, 1}};
+    memcpy(p->l, l, sizeof l);
+    p->n = 6;
+    p->R = MODEL_MICRO * c->T;
+    int mx = 1;
+    for (int k = 0; k < p->n; k++) mx = l[k].in > mx ? l[k].in : l[k].out > mx ? l[k].out : mx;
+    const size_t ra = (size_t)p->R * mx, ww = (size_t)mx * mx;
+    p->a = malloc(sizeof(float) * ra);
+    p->c = malloc(sizeof(float) * ra);
+    p->d = malloc(sizeof(float) * ra);
+    p->w = malloc(sizeof(float) * ww);
+    p->dw = calloc(ww, sizeof(float));
+    if (!p->a || !p->c || !p->d || !p->w || !p->dw) return cs_err(CS_ENOMEM, "bench: out of memory");
+    for (size_t i = 0; i < ra; i++) p->a[i] = (float)((i % 17) * 0.01 - 0.08);
+    for (size_t i = 0; i < ww; i++) p->w[i] = (float)((i % 13) * 0.01 - 0.06);
+    return CS_OK;
+}
+
+static void pass_free(pass_set *p) { free(p->a); free(p->c); free(p->d); free(p->w); free(p->dw); }
+
+static double pass_flops(const pass_set *p)
+{
+    double f = 0;
+    for (int k = 0; k < p->n; k++)
+        f += 2.0 * p->R * p->l[k].in * p->l[k].out * p->l[k].mult * (2 + p->l[k].dinp);
+    return f;
+}
+
+static void pass_run(pass_set *p, int blas)
+{
+    const int R = p->R;
+    for (int k = 0; k < p->n; k++)
+        for (int m = 0; m < p->l[k].mult; m++) {
+            const int K = p->l[k].in, N = p->l[k].out;
+            if (blas) {
+                cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasNoTrans, R, N, K, 1.f, p->a, K, p->w, N, 0.f, p->c, N);
+                if (p->l[k].dinp)
+                    cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasNoTrans, R, K, N, 1.f, p->c, N, p->w, K, 0.f, p->d, K);
+                cblas_sgemm(CblasRowMajor, CblasTrans, CblasNoTrans, N, K, R, 1.f, p->c, N, p->a, K, 1.f, p->dw, K);
+            } else {
+                gemm_fma(R, N, K, p->a, K, 1, p->w, N, p->c, N, 0);
+                if (p->l[k].dinp) gemm_fma(R, K, N, p->c, N, 1, p->w, K, p->d, K, 0);
+                gemm_fma(N, K, R, p->c, 1, N, p->a, K, p->dw, K, 1);
+            }
+        }
+}
+
+/* ---- the models --------------------------------------------------------------- */
+typedef struct {
+    patch_set *ps;
+    train *t[3]; /* plain joint, pair joint, pair independent */
+    model_cfg cfg[3];
+    gsl_rng *noise;
+    float *x;
+    pass_set pass;
+    long peak_iters;
+} bench_ctx;
+
+static void ctx_free(bench_ctx *b)
+{
+    for (int k = 0; k < 3; k++) train_free(b->t[k]);
+    patch_set_free(b->ps);
+    if (b->noise) gsl_rng_free(b->noise);
+    free(b->x);
+    pass_free(&b->pass);
+}
+
+static cs_status ctx_alloc(bench_ctx *b, const model_cfg *ref, int B)
+{
+    memset(b, 0, sizeof *b);
+    cs_status st = patch_set_alloc(&b->ps, 2 * B);
+    if (!st) st = patch_set_add_toy(b->ps, (2 * B + 63) / 64, 4.5, 7);
+    if (!st) st = patch_set_standardise(b->ps, patch_set_rms(b->ps));
+    train_opts o = train_opts_default();
+    o.batch = B;
+    o.steps = 100000;
+    for (int k = 0; k < 3 && !st; k++) {
+        b->cfg[k] = *ref;
+        b->cfg[k].pair = k > 0;
+        b->cfg[k].joint = k < 2;
+        st = train_alloc(&b->t[k], &b->cfg[k], b->ps, &o);
+        for (int w = 0; !st && w < 2; w++) st = train_step(b->t[k], NULL); /* warm caches */
+    }
+    if (!st) st = pass_alloc(&b->pass, ref);
+    b->noise = gsl_rng_alloc(gsl_rng_mt19937);
+    b->x = malloc(sizeof(float) * (size_t)B * ref->T * ref->P);
+    if (!st && (!b->noise || !b->x)) st = cs_err(CS_ENOMEM, "bench: out of memory");
+    if (st) ctx_free(b);
+    return st;
+}
+
+/* Peak loop length of about 10 ms on this path. */
+static long peak_calibrate(void)
+{
+    long n = 1 << 16;
+    for (;;) {
+        double t0 = now_s();
+        gemm_peak_gflops(gemm_get_isa(), n);
+        if (now_s() - t0 > 0.01 || n > (1L << 34)) return n;
+        n *= 2;
+    }
+}
+
+enum { PASS_REPS = 48 };
+
+/* One measurement: ms per call and model FLOPs per call. */
+static cs_status measure(bench_ctx *b, speed_what w, int B, int steps, double *ms, double *flops)
+{
+    cs_status st = CS_OK;
+    const int k = w == SPEED_PLAIN || w == SPEED_PLAIN_SAMPLE ? 0
+                : w == SPEED_PAIR || w == SPEED_PAIR_SAMPLE ? 1 : 2;
+    double t0 = now_s();
+    int calls = 1;
+    if (w == SPEED_PRODUCT || w == SPEED_SGEMM) {
+        calls = PASS_REPS;
+        for (int r = 0; r < calls; r++) pass_run(&b->pass, w == SPEED_SGEMM);
+        *flops = pass_flops(&b->pass);
+    } else if (w <= SPEED_PAIR_INDEP) {
+        calls = steps;
+        for (int s = 0; s < calls && !st; s++) st = train_step(b->t[k], NULL);
+        *flops = model_train_flops(&b->cfg[k], B);
+    } else {
+        calls = steps;
+        st = model_sample(b->t[k]->m, b->noise, B, b->ps->feat, b->ps->cond, calls, b->x);
+        *flops = speed_forward_flops(&b->cfg[k], B);
+    }
+    *ms = (now_s() - t0) * 1e3 / calls;
+    return st;
+}
+
+static int cmp_dbl(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static speed_stat stat_of(double *v, int n)
+{
+    qsort(v, n, sizeof *v, cmp_dbl);
+    speed_stat s = {n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]), v[0], v[n - 1]};
+    return s;
+}
+
+cs_status speed_run(const model_cfg *ref, int B, int rounds, int steps, speed_result *r)
+{
+    memset(r, 0, sizeof *r);
+    rounds = rounds < 1 ? 1 : rounds > SPEED_MAX_ROUNDS ? SPEED_MAX_ROUNDS : rounds;
+    bench_ctx b;
+    cs_status st = ctx_alloc(&b, ref, B);
+    if (st) return st;
+    const gemm_isa isa = gemm_get_isa();
+    const long n = peak_calibrate();
+    double pk[SPEED_MAX_ROUNDS], p256[SPEED_MAX_ROUNDS];
+    double rate[SPEED_NITEMS][SPEED_MAX_ROUNDS], frac[SPEED_NITEMS][SPEED_MAX_ROUNDS], ms[SPEED_NITEMS][SPEED_MAX_ROUNDS];
+    for (int q = 0; q < rounds && !st; q++) {
+        double p0 = gemm_peak_gflops(isa, n);
+        pk[q] = p0;
+        p256[q] = gemm_peak_gflops(isa > GEMM_AVX2 ? GEMM_AVX2 : isa, n * (isa > GEMM_AVX2 ? 2 : 1));
+        for (int i = 0; i < SPEED_NITEMS && !st; i++) {
+            const speed_what w = (speed_what)((i + q) % SPEED_NITEMS); /* rotate the order */
+            double t, fl, p1;
+            st = measure(&b, w, B, steps < 1 ? 1 : steps, &t, &fl);
+            p1 = gemm_peak_gflops(isa, n);
+            ms[w][q] = t;
+            rate[w][q] = fl / (t * 1e6);
+            frac[w][q] = rate[w][q] / (0.5 * (p0 + p1));
+            p0 = p1;
+        }
+    }
+    ctx_free(&b);
+    if (st) return st;
+    r->rounds = rounds;
+    r->batch = B;
+    r->peak = stat_of(pk, rounds);
+    r->peak256 = stat_of(p256, rounds);
+    for (int i = 0; i < SPEED_NITEMS; i++) {
+        r->item[i].rate = stat_of(rate[i], rounds);
+        r->item[i].frac = stat_of(frac[i], rounds);
+        r->ms[i] = stat_of(ms[i], rounds);
+    }
+    return CS_OK;
+}

@@ -1,0 +1,166 @@
+#!/usr/bin/env bash
+# manifest.sh: a new experiment is added through the manifest alone. In a
+# scratch copy of the package (build/manifest-test/repo, its own git), adds a
+# toy experiment "toy" with exactly the files the README's "Adding an
+# experiment" section names (manifest rows, the experiment, its argv table,
+# a claim function, its list line, its registry row), then checks that
+#  - the number of hand-written files equals the README's count;
+#  - make lists its unit (`make units`: reproduce and verify-deep) and
+#    `make toy` runs it;
+#  - `crownshy --help` lists its command and `crownshy toy-run --help` works;
+#  - after `make freeze`-style steps (copy, hash-frozen, pin, numbers) its
+#    claim is computed from its frozen table, `crownshy trace` names it,
+#    the computing function's real file and the experiment, and
+#    `crownshy verify --no-figures` says the package is consistent.
+# Prints cmocka-style lines so tests/run.sh counts it like a test binary.
+set -u
+cd "$(dirname "$0")/.."
+pass=0; fail=0
+ok()  { echo "[       OK ] $1"; pass=$((pass + 1)); }
+bad() { echo "[  FAILED  ] $1: $2"; fail=$((fail + 1)); }
+finish() {
+    echo "[==========] manifest tests run."
+    echo "[  PASSED  ] $pass test(s)."
+    [ $fail -eq 0 ] || echo "[  FAILED  ] $fail test(s)."
+    [ $fail -eq 0 ]; exit $?
+}
+
+T=$PWD/build/manifest-test
+R=$T/repo
+rm -rf "$T"; mkdir -p "$R"
+if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+    git ls-files -co --exclude-standard | grep -v '^build/' | tar -cf - -T - | tar -xf - -C "$R"
+else
+    tar --exclude=./build -cf - . | tar -xf - -C "$R"
+fi
+cd "$R"
+G="git -c user.name=manifest-test -c user.email=manifest-test@localhost"
+$G init -q . && $G add -A && $G commit -qm "package before the toy experiment" || { bad "scratch copy" "git init failed"; finish; }
+
+# ---- the toy experiment, by the README's list -------------------------------
+cat >> src/base/manifest.h.new <<'EOF'
+EXPERIMENT(toy, "E99", "src/exp/exp_toy.c", "-", "src/claims/claim_toy.c", "-", "rerun", "a toy: five numbers and their mean")
+COMMAND(toy, "toy-run", cli_toy_run, "toy: write five numbers")
+UNIT(toy, "numbers.tsv", "", "$(CLI) toy-run --out $@", "top")
+EOF
+# the rows go before the closing #undef lines
+awk 'FNR == NR { add = add $0 "\n"; next } /^#undef EXPERIMENT/ && !done { printf "%s\n", add; done = 1 } { print }' \
+    src/base/manifest.h.new src/base/manifest.h > src/base/manifest.h.tmp && mv src/base/manifest.h.tmp src/base/manifest.h
+rm -f src/base/manifest.h.new
+
+cat > src/exp/exp_toy.h <<'EOF'
+/* exp_toy: a toy experiment (tests/manifest.sh): five numbers. */
+#ifndef EXP_TOY_H
+#define EXP_TOY_H
+#include "cs.h"
+
+typedef struct {
+    const char *out; /* the table */
+    int argc;        /* the command line, for the provenance */
+    char **argv;
+} exp_toy_args;
+
+cs_status exp_toy_run(const exp_toy_args *a);
+
+#endif
+EOF
+cat > src/exp/exp_toy.c <<'EOF'
+/* exp_toy: see exp_toy.h. */
+#include "exp_toy.h"
+#include "exp_common.h"
+
+cs_status exp_toy_run(const exp_toy_args *a)
+{
+    prov p;
+    exp_prov_begin(&p, "toy", NULL, a->argc, a->argv);
+    tsv_writer *w;
+    cs_status st = tsv_writer_open(&w, a->out);
+    if (st) return st;
+    if ((st = prov_write(w, &p))) { tsv_writer_abort(w); return st; }
+    tsv_writer_columns(w, "k\tvalue");
+    for (int k = 1; k <= 5; k++) {
+        tsv_writer_long(w, k);
+        tsv_writer_dbl(w, 0.5 * k);
+        tsv_writer_endrow(w);
+    }
+    return exp_finish(w, &p, a->out);
+}
+EOF
+cat > src/cli/cli_toy.c <<'EOF'
+/* cli_toy: the argv table of `crownshy toy-run`. */
+#include "cli.h"
+#include "exp_toy.h"
+#include "opts.h"
+
+int cli_toy_run(int argc, char **argv)
+{
+    exp_toy_args a = {.argc = argc, .argv = argv};
+    const opt_spec spec[] = {{"out", OPT_STR, &a.out, 0, 0, "output table (required)"}};
+    const opts_cmd c = {"toy-run", "--out FILE", "The toy experiment: five numbers.", spec, 1, 0, 0};
+    int r = opts_parse(&c, argc, argv, NULL, NULL);
+    if (r) return opts_exit_code(r);
+    if (!a.out) { opts_usage_error("toy-run", "--out is required"); return 2; }
+    cs_status st = exp_toy_run(&a);
+    return st ? cli_fail("toy-run", st) : 0;
+}
+EOF
+cat > src/claims/claim_toy.c <<'EOF'
+/* claim_toy: the toy experiment's claim, the mean of frozen/toy/numbers.tsv. */
+#include "claims.h"
+#include "tsv.h"
+#include <stdio.h>
+
+cs_status claim_toy_mean(const claim_row *row, claim_result *res)
+{
+    tsv *t;
+    cs_status st = tsv_read(row->source, &t);
+    if (st) return st;
+    double sum = 0, v;
+    size_t n = tsv_nrows(t);
+    for (size_t r = 0; r < n && !st; r++)
+        if (!(st = tsv_double(t, r, "value", &v))) sum += v;
+    if (!st && !n) st = cs_err(CS_EINPUT, "%s: no rows", row->source);
+    if (!st) {
+        snprintf(res->where, sizeof res->where, "%s (%zu rows)", row->source, n);
+        claim_set_value(row, res, sum / (double)n);
+    }
+    tsv_free(t);
+    return st;
+}
+EOF
+echo 'X(claim_toy_mean)' >> src/claims/claims_list.h
+printf 'ToyMean\tmeasured\tfrozen/toy/numbers.tsv\tclaim_toy_mean\t-\ttests/test_claims.c:claim_ToyMean\t-\t%%.2f\t-\n' >> audit/claims.tsv
+
+# ---- the count the README states --------------------------------------------
+want=$(sed -n 's/^A new experiment `X` needs \*\*\([0-9]*\) files\*\*.*/\1/p' README.md)
+have=$($G status --porcelain | wc -l)
+if [ -n "$want" ] && [ "$have" = "$want" ]; then ok "the toy experiment takes the $want files the README names"
+else bad "the toy experiment takes the files the README names" "README says '${want:-?}', the toy needed $have: $($G status --porcelain | tr '\n' ' ')"; fi
+
+# ---- make, the CLI -----------------------------------------------------------
+if ! make -s -j2 build/crownshy > "$T/build.log" 2>&1; then bad "the package builds with the toy" "$(tail -5 "$T/build.log")"; finish; fi
+units=$(make -s units 2>&1)
+if grep -q '^reproduce: .*build/results/toy/numbers.tsv' <<<"$units" && grep -q '^verify-deep: .*build/results/toy/numbers.tsv' <<<"$units" \
+   && grep -q '^experiments: .* toy' <<<"$units"; then ok "make lists the toy unit for reproduce and verify-deep"
+else bad "make lists the toy unit for reproduce and verify-deep" "$units"; fi
+if build/crownshy --help | grep -q '^  toy-run  *toy: write five numbers' && build/crownshy toy-run --help | grep -q 'usage: crownshy toy-run'; then
+    ok "crownshy --help lists toy-run, which has its own --help"
+else bad "crownshy --help lists toy-run" "$(build/crownshy --help | grep -n toy)"; fi
+if make -s toy > "$T/run.log" 2>&1 && [ -f build/results/toy/numbers.tsv ] && grep -q '^# experiment: toy' build/results/toy/numbers.tsv; then
+    ok "make toy runs the unit into build/results/toy/"
+else bad "make toy runs the unit" "$(tail -5 "$T/run.log")"; finish; fi
+
+# ---- freeze, the claim, trace, verify ----------------------------------------
+mkdir -p frozen/toy && cp build/results/toy/numbers.tsv frozen/toy/
+build/crownshy pin > /dev/null && build/crownshy hash-frozen > /dev/null && build/crownshy numbers > "$T/numbers.log" 2>&1
+if grep -q 'ToyMean}{1.50}' paper/numbers.tex; then ok "crownshy numbers computes the toy claim from frozen/toy/ (1.50)"
+else bad "crownshy numbers computes the toy claim" "$(grep Toy paper/numbers.tex; tail -3 "$T/numbers.log")"; fi
+tr=$(build/crownshy trace ToyMean 2>&1)
+if grep -q '^source *frozen/toy/numbers.tsv' <<<"$tr" && grep -q '^function *claim_toy_mean (src/claims/claim_toy.c:[0-9]*)' <<<"$tr" \
+   && grep -q '^experiment *toy (E99)' <<<"$tr"; then ok "crownshy trace ToyMean names the table, src/claims/claim_toy.c and the experiment"
+else bad "crownshy trace ToyMean" "$tr"; fi
+build/crownshy verify --no-figures > "$T/verify.log" 2>&1; rc=$?
+if [ $rc -eq 0 ] && grep -q '^package: consistent' "$T/verify.log" && grep -q 'PASS *ToyMean' "$T/verify.log"; then
+    ok "crownshy verify: the toy claim passes and the package is consistent"
+else bad "crownshy verify with the toy" "exit $rc: $(grep -E 'FAIL|ToyMean|package' "$T/verify.log" | head -5 | tr '\n' ' ')"; fi
+finish
