@@ -15,7 +15,7 @@ bad()  { echo "[  FAILED  ] $1: $2"; fail=$((fail + 1)); }
 
 fresh() {
   rm -rf "$scratch"; mkdir -p "$scratch"
-  (cd "$root" && tar cf - src gates frozen audit paper figures tests 2>/dev/null) | (cd "$scratch" && tar xf -)
+  (cd "$root" && tar cf - README.md LICENSE CITATION.cff src gates frozen audit paper figures tests 2>/dev/null) | (cd "$scratch" && tar xf -)
   mkdir -p "$scratch/build"
 }
 
@@ -70,10 +70,10 @@ out=$(cd "$scratch" && "$cli" numbers --check 2>&1); rc=$?
 if [ $rc -eq 1 ] && grep -q '^FAIL .*paper/numbers.tex:[0-9]* differs' <<<"$out"; then ok "numbers --check names the edited line"
 else bad "numbers --check names the edited line" "exit $rc: $out"; fi
 
-# 4. one frozen number (the first numeric data cell of the first hashed file)
+# 4. one frozen number (the first numeric data cell of the first hashed table)
 # (named with the claims of the file, or "(no claim)" for a figure-only table)
 fresh
-f=$(awk 'NR==1{print $2}' "$scratch/audit/frozen.sha256" 2>/dev/null)
+f=$(awk '$2 ~ /[.]tsv$/ {print $2; exit}' "$scratch/audit/frozen.sha256" 2>/dev/null)
 if [ -n "$f" ] && [ -f "$scratch/$f" ]; then
   # change the last digit of the first number in the first data row
   awk 'BEGIN{done=0} /^#/ || NR==hdr {print; next} { if (!seen) { seen=1; print; next } if (!done && match($0, /[0-9]/)) { n=split($0, a, "\t"); for (i=1;i<=n;i++) if (!done && a[i] ~ /^-?[0-9.]+(e-?[0-9]+)?$/) { c=substr(a[i], length(a[i]), 1); a[i]=substr(a[i],1,length(a[i])-1) ((c=="9")?"8":(c+1)); done=1 } s=a[1]; for(i=2;i<=n;i++) s=s "\t" a[i]; print s; next } print }' "$scratch/$f" > "$scratch/$f.new" && mv "$scratch/$f.new" "$scratch/$f"

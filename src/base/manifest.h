@@ -7,7 +7,7 @@
  *    list (src/base/manifest.sh make -> build/manifest.mk, included by the
  *    Makefile);
  *  - the CLI's command table and its --help groups (src/cli/cli.c);
- *  - the README's experiment table (src/base/manifest.sh readme);
+ *  - the experiment table of src/README.md (src/base/manifest.sh readme);
  *  - trace's experiment line (manifest.c).
  * tests/layout.sh fails when any of them is listed by hand elsewhere, when a
  * named file is missing, or when a frozen/ folder has no row here.
@@ -100,20 +100,20 @@ EXPERIMENT(extrapolation, "E4", "src/exp/exp_main.c", "gates/extrapolation.gate"
 UNIT(extrapolation, "runs.tsv", "@R@/main/runs.tsv", "", "side")
 
 EXPERIMENT(field, "E5", "src/exp/exp_field.c", "gates/field.gate", "src/claims/claim_field.c", "figures/field.gp", "rerun", "die-back calibrated to the field's median clearance, then held-out spread, elongation and the uncoupled control")
-COMMAND(field, "field-calibrate", cmd_field_calibrate, "E5: calibrate die-back beta to the field tree-mean median clearance")
-COMMAND(field, "field-beta", cmd_field_beta, "E5: print beta_field from a calibration table")
-COMMAND(field, "field-heldout", cmd_field_heldout, "E5: held-out spread, elongation and uncoupled control at beta_field")
-COMMAND(field, "field-summary", cmd_field_summary, "E5: summarise a raw field table (FIELD_TABLE) with the canonical estimator")
-COMMAND(field, "field-diagnose", cmd_field_diagnose, "E5/E6: diagnostics for the elongation and anisotropy verdicts")
+COMMAND(field, "field-calibrate", cli_field_calibrate, "E5: calibrate die-back beta to the field tree-mean median clearance")
+COMMAND(field, "field-beta", cli_field_beta, "E5: print beta_field from a calibration table")
+COMMAND(field, "field-heldout", cli_field_heldout, "E5: held-out spread, elongation and uncoupled control at beta_field")
+COMMAND(field, "field-summary", cli_field_summary, "E5: summarise a raw field table (FIELD_TABLE) with the canonical estimator")
+COMMAND(field, "field-diagnose", cli_field_diagnose, "E5/E6: diagnostics for the elongation and anisotropy verdicts")
 UNIT(field, "calibration.tsv", "", "$(CLI) field-calibrate @TEACHER@ @LAYOUT@ --out $@", "top readings")
 UNIT(field, "heldout.tsv", "@R@/field/calibration.tsv", "$(CLI) field-heldout @TEACHER@ @LAYOUT@ --calibration @R@/field/calibration.tsv --stands $(FIELD_STANDS) --out $@", "top readings")
 
 EXPERIMENT(anisotropy, "E6", "src/exp/exp_aniso.c", "gates/anisotropy.gate", "src/claims/claim_aniso.c", "figures/anisotropy.gp", "rerun", "what sets the gap anisotropy: the lattice, a hard-core and a jitter family, a* calibrated, held-out stands at a*")
-COMMAND(anisotropy, "anisotropy-lattice", cmd_aniso_lattice, "E6: anisotropy on the controlled lattice at beta_field")
-COMMAND(anisotropy, "anisotropy-hardcore", cmd_aniso_hardcore, "E6: hard-core stem family sweep")
-COMMAND(anisotropy, "anisotropy-jitter", cmd_aniso_jitter, "E6: jitter-amplitude family sweep")
-COMMAND(anisotropy, "anisotropy-jitter-calibrate", cmd_aniso_jitter_calibrate, "E6: calibrate the jitter a* to the field anisotropy median")
-COMMAND(anisotropy, "anisotropy-heldout", cmd_aniso_heldout, "E6: held-out stands at a*")
+COMMAND(anisotropy, "anisotropy-lattice", cli_anisotropy_lattice, "E6: anisotropy on the controlled lattice at beta_field")
+COMMAND(anisotropy, "anisotropy-hardcore", cli_anisotropy_hardcore, "E6: hard-core stem family sweep")
+COMMAND(anisotropy, "anisotropy-jitter", cli_anisotropy_jitter, "E6: jitter-amplitude family sweep")
+COMMAND(anisotropy, "anisotropy-jitter-calibrate", cli_anisotropy_jitter_calibrate, "E6: calibrate the jitter a* to the field anisotropy median")
+COMMAND(anisotropy, "anisotropy-heldout", cli_anisotropy_heldout, "E6: held-out stands at a*")
 UNIT(anisotropy, "lattice.tsv", "@R@/field/calibration.tsv", "$(CLI) anisotropy-lattice @TEACHER@ @LAYOUT@ --calibration @R@/field/calibration.tsv --stands $(FIELD_STANDS) --out $@", "top readings")
 UNIT(anisotropy, "hardcore.tsv", "@R@/field/calibration.tsv", "$(CLI) anisotropy-hardcore @TEACHER@ @LAYOUT@ --calibration @R@/field/calibration.tsv --stands $(ANISO_SWEEP_STANDS) --out $@", "top readings")
 UNIT(anisotropy, "jitter.tsv", "@R@/field/calibration.tsv", "$(CLI) anisotropy-jitter @TEACHER@ @LAYOUT@ --calibration @R@/field/calibration.tsv --stands $(ANISO_SWEEP_STANDS) --out $@", "top readings")

@@ -42,6 +42,14 @@
 #define PATHS_PAPER_DIR "paper"
 #define PATHS_FIGURES_DIR "figures"
 #define PATHS_FROZEN_DIR "frozen"
+/* The documentation pages the audit reads for typed numbers (design.md §9):
+ * README.md and every *.md under these folders; the changelog is history. */
+#define PATHS_README "README.md"
+#define PATHS_DOCS_DIRS {"audit", "frozen", "src", "tests", "paper", "figures", "gates", NULL}
+#define PATHS_CHANGELOG "paper/CHANGELOG.md"
+/* Design constants a documentation page may type although a measured value
+ * rounds to them, each with the source that holds it (beside PATHS_DESIGN_NUMBERS). */
+#define PATHS_DOC_NUMBERS "audit/doc_numbers.tsv"
 
 /* The pinned instrument (design.md §4, §5): its sources are hashed into every
  * frozen file's provenance and into audit/pins.tsv; the teacher header holds

@@ -11,6 +11,7 @@
 #include "afile.h"
 #include "audit_data.h"
 #include "audit_evidence.h"
+#include "audit_docs.h"
 
 cs_status verify_eval_all(const claims *c, claim_result **out)
 {
@@ -232,6 +233,7 @@ cs_status verify_run(const verify_opts *o)
     size_t count[3] = {0}; /* consistency checks by verdict: PASS, FAIL, PENDING */
     checklist cl = {0};
     audit_run(&c, res, &cl);
+    audit_docs(&c, res, &cl);
     printf("== audit (pins, frozen hashes and provenance, aggregates, registry and gate map, generated and written paper)\n");
     checklist_print(&cl, count);
     checklist_free(&cl);

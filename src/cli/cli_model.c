@@ -176,7 +176,7 @@ static int goal(const char *what, double value, double min, const char *fmt)
     return value >= min;
 }
 
-/* E3+E4 as run by src/exp/experiments.mk: seeds x (joint, independent) pair-model
+/* E3+E4 as run by the manifest's units (src/base/manifest.h): seeds x (joint, independent) pair-model
  * units, each training epochs x steps per epoch and sampling every eval
  * spacing under three probes; two units at a time on the 2-core machine. */
 static cs_status projection(const speed_result *r, double *wall_min, double *unit_j, double *unit_i, long *steps, int *nunits)

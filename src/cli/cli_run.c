@@ -34,7 +34,7 @@ static int teacher_unit_run(const teacher_unit *u, int argc, char **argv)
     opt_spec spec[5];
     size_t n = 0;
     spec[n++] = (opt_spec){"out", OPT_STR, &out, 0, 0, "results root; the unit writes DIR/<experiment>/<file>.tsv (default build/results)"};
-    spec[n++] = (opt_spec)EXP_OPT_TEACHER(teacher);
+    spec[n++] = (opt_spec)CLI_OPT_TEACHER(teacher);
     if (u->takes & U_STANDS) spec[n++] = (opt_spec){"stands", OPT_LONG, &stands, 1, 10000, "stands per cell (default 8)"};
     if (u->takes & U_BETA)
         spec[n++] = (opt_spec){"beta", OPT_DOUBLE, &beta, 0, 0.999,
@@ -131,7 +131,7 @@ int cli_cmd_bench_teacher(int argc, char **argv)
         double ms[3];
         const int n = k ? (int)(reps + 2) / 3 < 3 ? 3 : (int)(reps + 2) / 3 : (int)reps;
         cs_status st = stand_grow_bench(levels[k], n, ms);
-        if (st) { fprintf(stderr, "crownshy bench-teacher: %s\n", cs_errmsg()); return cs_exit_code(st); }
+        if (st) return cli_fail("bench-teacher", st);
         printf("teacher_ms_per_stand_N%d\t%.3f\t[%.3f, %.3f]\t(%d stands)\n", levels[k], ms[0], ms[1], ms[2], n);
     }
     return 0;
@@ -156,7 +156,7 @@ int cli_readings_summary(int argc, char **argv)
     if (!dir || !out) { opts_usage_error("readings-summary", "--dir and --out are required"); return 2; }
     claims cl;
     cs_status st = claims_load(PATHS_CLAIMS, &cl);
-    if (st) { fprintf(stderr, "crownshy readings-summary: %s\n", cs_errmsg()); return cs_exit_code(st); }
+    if (st) return cli_fail("readings-summary", st);
     size_t n = readings_count(), nr;
     readings_row *rows = calloc(n, sizeof *rows);
     st = rows ? readings_compute(&cl, dir, rows) : cs_err(CS_ENOMEM, "out of memory");
@@ -171,6 +171,6 @@ int cli_readings_summary(int argc, char **argv)
     }
     free(rows);
     claims_free(&cl);
-    if (st) { fprintf(stderr, "crownshy readings-summary: %s\n", cs_errmsg()); return cs_exit_code(st); }
+    if (st) return cli_fail("readings-summary", st);
     return 0;
 }

@@ -21,30 +21,25 @@
 #include "exp_common.h"
 #include "fieldsim.h"
 #include "gate.h"
-#include "opts.h"
 #include "paths.h"
 #include "prov.h"
 #include <stdio.h>
 #include <string.h>
 
-int cmd_aniso_lattice(int argc, char **argv)
+cs_status exp_aniso_lattice(const exp_field_opts *args)
 {
-    exp_field_opts o = {.stands_opt = 28};
-    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands (default 28)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout)};
-    const opts_cmd oc = {"anisotropy-lattice", "--calibration DIR/calibration.tsv --out DIR/lattice.tsv [--stands N]",
-                         "E6 (design.md §7): anisotropy on the controlled lattice (field layout, canonical jitter) at beta_field,\n"
-                         "N stands (default 28).",
-                         spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = exp_field_parse(&oc, argc, argv, &o);
-    if (rc) return opts_exit_code(rc);
+    exp_field_opts o = *args;
+    const int argc = args->argc;
+    char **argv = args->argv;
     fs_calibration c;
-    if ((rc = exp_need_beta("anisotropy-lattice", &o, &c))) return rc;
+    cs_status stb = fs_beta_field(o.calibration, &c);
+    if (stb) return stb;
     prov p;
     exp_prov_begin(&p, "anisotropy", &o.rd, argc, argv);
     double a;
     cs_status st = exp_canonical_jitter(&a);
-    if (st) return exp_fail("anisotropy-lattice", st);
-    exp_field_job j = {"anisotropy/lattice", STAND_LATTICE, a, a, c.value, o.stands, 0, 0, o.rd};
+    if (st) return st;
+    exp_field_job j = {.seed_exp = "anisotropy/lattice", .kind = STAND_LATTICE, .shape = a, .level = a, .beta = c.value, .nstands = o.stands, .rd = o.rd};
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
@@ -59,32 +54,31 @@ int cmd_aniso_lattice(int argc, char **argv)
             printf("anisotropy-lattice: anisotropy median %.4f over %zu trees (%zu excluded) in %zu stands\n", s.f.aniso_median, s.f.aniso_trees, s.f.aniso_excluded, s.stands);
     }
     fs_trees_free(&acc);
-    return st ? exp_fail("anisotropy-lattice", st) : 0;
+    return st;
 }
 
 /* A family sweep: one job per level of `key` in anisotropy.gate. */
-static int aniso_family(const char *cmd, const char *synopsis, const char *about, int argc, char **argv,
-                        stand_kind kind, const char *key, const char *seed_exp, const char *what)
+static cs_status aniso_family(const char *cmd, const exp_field_opts *args, stand_kind kind, const char *key, const char *seed_exp,
+                              const char *what)
 {
-    exp_field_opts o = {.stands_opt = 12};
-    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands per level (default 12)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout)};
-    const opts_cmd oc = {cmd, synopsis, about, spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = exp_field_parse(&oc, argc, argv, &o);
-    if (rc) return opts_exit_code(rc);
+    exp_field_opts o = *args;
+    const int argc = args->argc;
+    char **argv = args->argv;
     fs_calibration c;
-    if ((rc = exp_need_beta(cmd, &o, &c))) return rc;
+    cs_status stb = fs_beta_field(o.calibration, &c);
+    if (stb) return stb;
     prov p;
     exp_prov_begin(&p, "anisotropy", &o.rd, argc, argv);
     double lv[32];
     size_t nl;
     cs_status st = gate_read_values(PATHS_GATE("anisotropy"), key, lv, 32, &nl);
-    if (st) return exp_fail(cmd, st);
+    if (st) return st;
     exp_field_job jobs[32];
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
     for (size_t k = 0; k < nl && !st; k++) {
-        jobs[k] = (exp_field_job){seed_exp, kind, lv[k], lv[k], c.value, o.stands, 0, 0, o.rd};
+        jobs[k] = (exp_field_job){.seed_exp = seed_exp, .kind = kind, .shape = lv[k], .level = lv[k], .beta = c.value, .nstands = o.stands, .rd = o.rd};
         st = exp_field_run_job(&jobs[k], &acc, &worst);
         if (!st) {
             fs_summary s;
@@ -98,54 +92,38 @@ static int aniso_family(const char *cmd, const char *synopsis, const char *about
     exp_meta_ctx m = {c.value, 0, what};
     if (!st) st = exp_field_write(o.out, &p, &acc, jobs, nl, exp_meta_generic, &m);
     fs_trees_free(&acc);
-    return st ? exp_fail(cmd, st) : 0;
+    return st;
 }
 
-int cmd_aniso_hardcore(int argc, char **argv)
+cs_status exp_aniso_hardcore(const exp_field_opts *o)
 {
-    return aniso_family("anisotropy-hardcore", "--calibration DIR/calibration.tsv --out DIR/hardcore.tsv [--stands N]",
-                        "E6 hard-core family (design.md §7): stems by random sequential addition with minimum distance c d,\n"
-                        "c in anisotropy.gate hardcore_levels, N stands per level (default 12), teacher at beta_field.\n"
-                        "A level whose stands cannot be built is recorded (stands_failed, trees 0), not a crash.",
-                        argc, argv, STAND_HARDCORE, "hardcore_levels", "anisotropy/hardcore",
+    return aniso_family("anisotropy-hardcore", o, STAND_HARDCORE, "hardcore_levels", "anisotropy/hardcore",
                         "E6 hard-core family: n = (L/d)^2 stems, minimum distance c d (level = c), layout in the layout line, teacher at beta_field");
 }
 
-int cmd_aniso_jitter(int argc, char **argv)
+cs_status exp_aniso_jitter(const exp_field_opts *o)
 {
-    return aniso_family("anisotropy-jitter", "--calibration DIR/calibration.tsv --out DIR/jitter.tsv [--stands N]",
-                        "E6 jitter family (design.md §7): controlled lattice with per-axis jitter sd a d, a in\n"
-                        "anisotropy.gate jitter_levels, N stands per level (default 12), teacher at beta_field.",
-                        argc, argv, STAND_LATTICE, "jitter_levels", "anisotropy/jitter",
+    return aniso_family("anisotropy-jitter", o, STAND_LATTICE, "jitter_levels", "anisotropy/jitter",
                         "E6 jitter family: lattice (layout in the layout line), jitter sd a d (level = a), teacher at beta_field");
 }
 
-int cmd_aniso_jitter_calibrate(int argc, char **argv)
+cs_status exp_aniso_jitter_calibrate(const exp_field_opts *args)
 {
-    exp_field_opts o = {0};
-    const opt_spec spec[] = {
-        {"sweep", OPT_STR, &o.sweep, 0, 0, "E6 jitter sweep table DIR/jitter.tsv (required)"},
-        EXP_OPT_OUT(o),
-    };
-    const opts_cmd oc = {"anisotropy-jitter-calibrate", "--sweep DIR/jitter.tsv --out DIR/jitter_calibration.tsv",
-                         "E6: the jitter sweep's median anisotropy per level (checked against the per-tree table) and\n"
-                         "a* = linear interpolation to anisotropy.gate field_median, rounded to 0.01.",
-                         spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = exp_field_parse(&oc, argc, argv, &o);
-    if (rc) return opts_exit_code(rc);
-    if (!o.sweep) { opts_usage_error("anisotropy-jitter-calibrate", "--sweep DIR/jitter.tsv is required"); return 2; }
+    exp_field_opts o = *args;
+    const int argc = args->argc;
+    char **argv = args->argv;
     prov p;
     exp_prov_begin(&p, "anisotropy", &o.rd, argc, argv);
     tsv *t;
     fs_trees tr;
     cs_status st = fs_load_checked(o.sweep, &t, &tr);
-    if (st) return exp_fail("anisotropy-jitter-calibrate", st);
+    if (st) return st;
     fs_trees_free(&tr);
     tsv_writer *w;
-    if ((st = tsv_writer_open(&w, o.out))) { tsv_free(t); return exp_fail("anisotropy-jitter-calibrate", st); }
+    if ((st = tsv_writer_open(&w, o.out))) { tsv_free(t); return st; }
     snprintf(p.seeds, sizeof p.seeds, "%s", tsv_meta(t, "seeds") ? tsv_meta(t, "seeds") : "-");
     p.worst_overlap_m = -1;
-    if ((st = prov_write(w, &p))) { tsv_writer_abort(w); tsv_free(t); return exp_fail("anisotropy-jitter-calibrate", st); }
+    if ((st = prov_write(w, &p))) { tsv_writer_abort(w); tsv_free(t); return st; }
     tsv_writer_meta(w, "what", "E6 jitter calibration curve: median anisotropy per jitter level (from %s); a* = interpolation to the field median, rounded to 0.01 (fs_jitter_star)", o.sweep);
     tsv_writer_columns(w, "level\taniso_median\taniso_trees");
     for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
@@ -161,41 +139,28 @@ int cmd_aniso_jitter_calibrate(int argc, char **argv)
         tsv_writer_endrow(w);
     }
     tsv_free(t);
-    if (st) { tsv_writer_abort(w); return exp_fail("anisotropy-jitter-calibrate", st); }
-    if ((st = tsv_writer_commit(w))) return exp_fail("anisotropy-jitter-calibrate", st);
+    if (st) { tsv_writer_abort(w); return st; }
+    if ((st = tsv_writer_commit(w))) return st;
     fs_calibration c;
-    if ((st = fs_jitter_star(o.out, &c))) return exp_fail("anisotropy-jitter-calibrate", st);
+    if ((st = fs_jitter_star(o.out, &c))) return st;
     printf("anisotropy-jitter-calibrate: field median %.3f, a interpolated %.6f, a* %.2f%s\n", c.target, c.interp, c.value,
            c.bracketed ? "" : " (FIELD MEDIAN NOT BRACKETED by the sweep: nearest end)");
-    return 0;
+    return CS_OK;
 }
 
-int cmd_aniso_heldout(int argc, char **argv)
+cs_status exp_aniso_heldout(const exp_field_opts *args)
 {
-    exp_field_opts o = {.stands_opt = 28};
-    const opt_spec spec[] = {
-        EXP_OPT_CAL(o),
-        {"jitter-calibration", OPT_STR, &o.jitter_calibration, 0, 0, "E6 jitter calibration table DIR/jitter_calibration.tsv, gives a* (required)"},
-        EXP_OPT_OUT(o),
-        EXP_OPT_STANDS(o, "stands (default 28)"),
-        EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout),
-    };
-    const opts_cmd oc = {"anisotropy-heldout",
-                         "--calibration DIR/calibration.tsv --jitter-calibration DIR/jitter_calibration.tsv\n"
-                         "                              --out DIR/heldout.tsv [--stands N]",
-                         "E6 held-out (design.md §7): N stands (default 28) at jitter a* on seeds disjoint from the sweep,\n"
-                         "teacher at beta_field: anisotropy, elongation, spread; every stand must build.",
-                         spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = exp_field_parse(&oc, argc, argv, &o);
-    if (rc) return opts_exit_code(rc);
-    if (!o.jitter_calibration) { opts_usage_error("anisotropy-heldout", "--jitter-calibration is required (a*)"); return 2; }
+    exp_field_opts o = *args;
+    const int argc = args->argc;
+    char **argv = args->argv;
     fs_calibration c, js;
-    if ((rc = exp_need_beta("anisotropy-heldout", &o, &c))) return rc;
+    cs_status stb = fs_beta_field(o.calibration, &c);
+    if (stb) return stb;
     cs_status st = fs_jitter_star(o.jitter_calibration, &js);
-    if (st) return exp_fail("anisotropy-heldout", st);
+    if (st) return st;
     prov p;
     exp_prov_begin(&p, "anisotropy", &o.rd, argc, argv);
-    exp_field_job j = {"anisotropy/heldout", STAND_LATTICE, js.value, js.value, c.value, o.stands, 0, 0, o.rd};
+    exp_field_job j = {.seed_exp = "anisotropy/heldout", .kind = STAND_LATTICE, .shape = js.value, .level = js.value, .beta = c.value, .nstands = o.stands, .rd = o.rd};
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
@@ -212,5 +177,5 @@ int cmd_aniso_heldout(int argc, char **argv)
         exp_print_spread_ratios("anisotropy-heldout", &acc, js.value, 0);
     }
     fs_trees_free(&acc);
-    return st ? exp_fail("anisotropy-heldout", st) : 0;
+    return st;
 }

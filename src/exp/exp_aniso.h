@@ -1,13 +1,17 @@
-/* exp_aniso: CLI commands of E6 (anisotropy attribution), design.md §7; reference
- * paper §5.4. Each returns a process exit code (design.md §11); the table in
- * src/cli/cli.c lists them. They run at beta_field from E5's calibration. */
+/* exp_aniso: E6, what sets the gap anisotropy (design.md §7 E6; reference
+ * paper §5.4). The entry points of its commands (argv tables:
+ * src/cli/cli_field.c); each runs at beta_field from E5's calibration
+ * table (o->calibration) and returns a status. */
 #ifndef EXP_ANISO_H
 #define EXP_ANISO_H
+#include "exp_common.h"
 
-int cmd_aniso_lattice(int argc, char **argv);
-int cmd_aniso_hardcore(int argc, char **argv);
-int cmd_aniso_jitter(int argc, char **argv);
-int cmd_aniso_jitter_calibrate(int argc, char **argv);
-int cmd_aniso_heldout(int argc, char **argv);
+cs_status exp_aniso_lattice(const exp_field_opts *o);
+cs_status exp_aniso_hardcore(const exp_field_opts *o);
+cs_status exp_aniso_jitter(const exp_field_opts *o);
+/* a* from the jitter sweep o->sweep: o->out. */
+cs_status exp_aniso_jitter_calibrate(const exp_field_opts *o);
+/* Held-out stands at a* (o->jitter_calibration): o->out. */
+cs_status exp_aniso_heldout(const exp_field_opts *o);
 
 #endif

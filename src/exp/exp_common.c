@@ -186,25 +186,6 @@ cs_status exp_field_grow_append(const stand *sd, const exp_reading *rd, double b
 
 /* ------------------------------------------------ E5/E6 field stands ---- */
 
-int exp_fail(const char *cmd, cs_status st)
-{
-    fprintf(stderr, "crownshy %s: %s\n", cmd, cs_errmsg()[0] ? cs_errmsg() : cs_status_name(st));
-    return cs_exit_code(st);
-}
-
-/* opts_parse with the table of c (no positional arguments), then --out is
- * required when the table has it. An opts result: OPTS_OK, OPTS_HELP, OPTS_USAGE. */
-int exp_field_parse(const opts_cmd *c, int argc, char **argv, exp_field_opts *o)
-{
-    int r = opts_parse(c, argc, argv, NULL, NULL);
-    if (r) return r;
-    o->stands = (unsigned)o->stands_opt;
-    if (exp_reading_parse(o->teacher, o->layout, &o->rd)) { opts_usage_error(c->cmd, "%s", cs_errmsg()); return OPTS_USAGE; }
-    for (size_t i = 0; i < c->nopts; i++)
-        if (c->opts[i].dst == &o->out && !o->out) { opts_usage_error(c->cmd, "--out PATH is required"); return OPTS_USAGE; }
-    return OPTS_OK;
-}
-
 cs_status exp_field_run_job(exp_field_job *j, fs_trees *acc, double *worst)
 {
     double d = exp_field_d(j->rd.layout), L = exp_field_L(j->rd.layout);
@@ -264,15 +245,6 @@ cs_status exp_field_write(const char *out, prov *p, const fs_trees *acc, const e
 cs_status exp_canonical_jitter(double *a)
 {
     return gate_read_value(PATHS_GATE("anisotropy"), "canonical_jitter", 0, a);
-}
-
-/* beta_field from --calibration, or a usage/input error code. */
-int exp_need_beta(const char *cmd, const exp_field_opts *o, fs_calibration *c)
-{
-    if (!o->calibration) { opts_usage_error(cmd, "--calibration DIR/calibration.tsv is required (beta_field)"); return 2; }
-    cs_status st = fs_beta_field(o->calibration, c);
-    if (st) return exp_fail(cmd, st);
-    return 0;
 }
 
 void exp_meta_generic(tsv_writer *w, void *ctx)

@@ -14,7 +14,6 @@
 #define EXP_COMMON_H
 #include "cs.h"
 #include "fieldsim.h"
-#include "opts.h"
 #include "prov.h"
 #include "stand.h"
 #include "tsv.h"
@@ -39,8 +38,6 @@ void exp_prov_begin(prov *p, const char *experiment, const exp_reading *r, int a
 double exp_field_d(exp_layout l);
 double exp_field_L(exp_layout l);
 const char *exp_layout_name(exp_layout l);
-#define EXP_OPT_TEACHER(var) {"teacher", OPT_STR, &(var), 0, 0, "teacher reading: teacher-2 (default, mutual abrasion) or teacher-1 (one-sided die-back, design.md §4)"}
-#define EXP_OPT_LAYOUT(var) {"layout", OPT_STR, &(var), 0, 0, "field layout: r2 (default, d = 4 m on L = 36 m) or r1 (d = 5 m on L = 60 m, design.md §7 E0)"}
 
 typedef struct {
     const char *out;  /* results root, e.g. build/results */
@@ -96,27 +93,17 @@ cs_status exp_field_grow_append(const stand *sd, const exp_reading *rd, double b
  * on 60 m), teacher at N = 48, gamma = 1; each command's seeds and outputs
  * are described in its file. */
 
-/* The options of the E5/E6 commands; each command's table lists the ones it takes. */
+/* The arguments of the E5/E6 entry points (filled by src/cli/cli_field.c);
+ * each command uses the ones it needs. */
 typedef struct {
     const char *out, *calibration, *sweep, *jitter_calibration;
-    const char *teacher, *layout; /* --teacher, --layout (NULL: defaults) */
-    long stands_opt;  /* --stands, parsed */
-    unsigned stands;  /* the same, set by exp_field_parse */
-    exp_reading rd;   /* set by exp_field_parse from --teacher/--layout */
+    const char *teacher, *layout; /* --teacher, --layout as given (NULL: defaults) */
+    long stands_opt;  /* --stands as parsed */
+    unsigned stands;  /* stands per level */
+    exp_reading rd;   /* the reading from teacher and layout */
+    int argc;         /* the command line, for the provenance */
+    char **argv;
 } exp_field_opts;
-
-#define EXP_OPT_OUT(o) {"out", OPT_STR, &(o).out, 0, 0, "output table (required)"}
-#define EXP_OPT_CAL(o) {"calibration", OPT_STR, &(o).calibration, 0, 0, "E5 calibration table DIR/calibration.tsv, gives beta_field (required)"}
-#define EXP_OPT_STANDS(o, help) {"stands", OPT_LONG, &(o).stands_opt, 1, 10000, help}
-
-/* "crownshy CMD: <cs_errmsg>" on stderr; the exit code of st. */
-int exp_fail(const char *cmd, cs_status st);
-/* opts_parse with the table of c (no positional arguments), then --out is
- * required when the table has it. An opts result: OPTS_OK, OPTS_HELP, OPTS_USAGE. */
-int exp_field_parse(const opts_cmd *c, int argc, char **argv, exp_field_opts *o);
-/* beta_field from o->calibration: 0, or the exit code after printing the
- * usage error (no --calibration) or the input error. */
-int exp_need_beta(const char *cmd, const exp_field_opts *o, fs_calibration *c);
 /* The canonical jitter of the field stands (gates/anisotropy.gate). */
 cs_status exp_canonical_jitter(double *a);
 

@@ -243,21 +243,17 @@ static double territory(const stems *s, size_t i, double th)
 #define SIG_N 4001
 #define SIGMA(q) ((double)((q) - 1000) / 1000.0)
 
-cs_status exp_irred_reduction(const exp_opts *o, double beta)
+/* The reduction's inputs: per spacing a, the teacher radius, the target and
+ * the Voronoi territory of every interior sector of every stand, and the
+ * summed growth steps. */
+static cs_status reduction_gather(const exp_opts *o, double beta, const irred_cfg *c, exp_dvec rt[8], exp_dvec rs[8],
+                                  exp_dvec bb[8], double step_sum[8], double *worst)
 {
-    prov pv;
-    exp_prov_begin(&pv, "irreducibility", &o->rd, o->argc, o->argv);
-    irred_cfg c;
-    cs_status st = irred_cfg_load(&c);
-    if (st) return st;
-    /* Per spacing: triples (r_teacher, r*, b) of every interior sector. */
-    exp_dvec rt[8], rs[8], bb[8];
-    memset(rt, 0, sizeof rt); memset(rs, 0, sizeof rs); memset(bb, 0, sizeof bb);
-    double step_sum[8] = {0}, worst = 0.0;
-    for (size_t a = 0; a < c.nd && !st; a++)
+    cs_status st = CS_OK;
+    for (size_t a = 0; a < c->nd && !st; a++)
         for (int k = 0; k < o->stands && !st; k++) {
             stand *sd = NULL;
-            st = irred_stand(&sd, c.ds[a], k);
+            st = irred_stand(&sd, c->ds[a], k);
             if (st) break;
             double *r = malloc(sd->s->n * NS * sizeof *r);
             teacher_params p;
@@ -265,7 +261,7 @@ cs_status exp_irred_reduction(const exp_opts *o, double beta)
             p.one_sided = o->rd.one_sided;
             p.beta = beta;
             teacher_info inf;
-            st = r ? stand_grow(sd, &p, NULL, r, &inf, &worst) : cs_err(CS_ENOMEM, "experiments: out of memory");
+            st = r ? stand_grow(sd, &p, NULL, r, &inf, worst) : cs_err(CS_ENOMEM, "experiments: out of memory");
             if (!st) step_sum[a] += inf.step;
             for (size_t i = 0; i < sd->s->n && !st; i++) {
                 if (!stems_interior(sd->s, i)) continue;
@@ -278,6 +274,21 @@ cs_status exp_irred_reduction(const exp_opts *o, double beta)
             free(r);
             stand_free(sd);
         }
+    return st;
+}
+
+cs_status exp_irred_reduction(const exp_opts *o, double beta)
+{
+    prov pv;
+    exp_prov_begin(&pv, "irreducibility", &o->rd, o->argc, o->argv);
+    irred_cfg c;
+    cs_status st = irred_cfg_load(&c);
+    if (st) return st;
+    /* Per spacing: triples (r_teacher, r*, b) of every interior sector. */
+    exp_dvec rt[8], rs[8], bb[8];
+    memset(rt, 0, sizeof rt); memset(rs, 0, sizeof rs); memset(bb, 0, sizeof bb);
+    double step_sum[8] = {0}, worst = 0.0;
+    st = reduction_gather(o, beta, &c, rt, rs, bb, step_sum, &worst);
     /* miss[a][q]: summed |r_t - min(r*, b - sigma_q)| for spacing a. */
     double *miss = st ? NULL : calloc(c.nd * SIG_N, sizeof *miss);
     if (!st && !miss) st = cs_err(CS_ENOMEM, "experiments: out of memory");

@@ -35,7 +35,7 @@ cs_status crown_draw_n(gsl_rng *rng, size_t n, crown_draw *out)
         } while (h < 12.0 || h > 38.0);
         double z = gsl_ran_gaussian(rng, 1.0);
         out[i].h = h;
-        out[i].R = 4.0 * exp(0.15 * z);
+        out[i].R = 4.0 * exp(CROWN_R_LOG_SD * z);
         out[i].a = 0.2 * gsl_rng_uniform(rng);
         out[i].k = 2 + (int)gsl_rng_uniform_int(rng, 4);
         out[i].phi = 2.0 * CROWN_PI * gsl_rng_uniform(rng);

@@ -17,6 +17,7 @@
 #define CROWN_NSEC 24
 #define CROWN_PI 3.14159265358979323846
 #define CROWN_DTHETA (2.0 * CROWN_PI / CROWN_NSEC)
+#define CROWN_R_LOG_SD 0.15 /* sd of log R (R = 4 exp(0.15 z), design.md §3) */
 
 /* Radius of crown r at bearing theta (any real theta, wrapped periodically). */
 double crown_radius_at(const double r[CROWN_NSEC], double theta);
