@@ -36,7 +36,7 @@ TESTS := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_SRC))
 ASAN_TESTS := $(patsubst tests/%.c,$(B)/asan/tests/%,$(TEST_SRC))
 CLI := $(B)/crownshy
 
-.PHONY: all deps check check-fast verify verify-deep bench reproduce freeze figures paper deps-paper audit numbers trace fuzz clean
+.PHONY: all deps check check-fast verify verify-deep bench reproduce freeze figures paper deps-paper audit numbers trace fuzz clean dist dist-version
 .DELETE_ON_ERROR:
 
 all: $(CLI) $(TESTS)
@@ -92,19 +92,25 @@ $(B)/tests $(B)/asan/tests:
 # Every cmocka binary, then all of them again under ASan+UBSan; one aggregate line.
 check: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS) $(ASAN_TESTS)
-	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/manifest.sh -- $(ASAN_TESTS)
+	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/manifest.sh tests/citation.sh tests/docs.sh -- $(ASAN_TESTS)
 
 check-fast: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS)
-	@bash tests/run.sh $(TESTS) tests/layout.sh
+	@bash tests/run.sh $(TESTS) tests/layout.sh tests/citation.sh
 
 # ---- verification (the reviewer's job) --------------------------------------
-# Tier 1 (design.md §9 rev. 2): exit 0 when the package is consistent (a failing
+# Tier 1 (design.md §9): exit 0 when the package is consistent (a failing
 # preregistered gate is a finding, reported "not reproduced"); STRICT=1 also
 # fails on a failing gate.
+# GNU make itself exits 2 whenever a recipe fails; the recipe ends with
+# crownshy's own status (make prints it as "Error K") after one line naming its
+# kind: 1 inconsistency, 2 usage, 3 bad input, 4 environment (design.md §11).
+CS_STATUS = st=$$?; if [ $$st -ne 0 ]; then case $$st in 1) k=inconsistency;; 2) k=usage;; 3) k='bad input';; 4) k=environment;; *) k=other;; esac; \
+  echo "make $@: crownshy exited $$st ($$k)" >&2; fi; exit $$st
+# From clean the CLI is built on both cores unless make already runs parallel.
 verify: deps
-	@$(MAKE) --no-print-directory $(CLI)
-	@$(CLI) verify $(if $(STRICT),--strict)
+	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j2) $(CLI)
+	@$(CLI) verify $(if $(STRICT),--strict); $(CS_STATUS)
 
 # Tier 2 (design.md §9): rerun every unit of each experiment whose manifest
 # row says "rerun" (src/base/manifest.h; DEEP_UNITS is generated) into
@@ -118,15 +124,17 @@ verify-deep: deps
 
 audit: deps
 	@$(MAKE) --no-print-directory $(CLI)
-	@$(CLI) audit
+	@$(CLI) audit; $(CS_STATUS)
 
 figures: deps
 	@$(MAKE) --no-print-directory $(CLI)
 	@$(CLI) figures
 
-# Speed (design.md §10), measured here and never by a timed test: teacher ms per
-# 144-tree stand at N = 48 and 384; trainer steps/s, model and same-run sgemm
-# GFLOP/s at the reference configuration, and their ratio.
+# Speed (design.md §10), measured here and never by a timed test: teacher CPU ms
+# per 144-tree stand at N = 48 and 384; on every vector path of the CPU, the
+# core's FMA peak and, as fractions of it measured beside each, the own product,
+# sgemm, training and sampling of the plain and pair models, every goal judged,
+# and the projected wall time of E3+E4 (README "Speed").
 bench: deps
 	@$(MAKE) --no-print-directory $(CLI)
 	@$(CLI) bench-teacher
@@ -134,7 +142,7 @@ bench: deps
 
 numbers: deps
 	@$(MAKE) --no-print-directory $(CLI)
-	@$(CLI) numbers
+	@$(CLI) numbers; $(CS_STATUS)
 
 # ---- the full run of the study ----------------------------------------------
 # One make target per unit (seed, arm, experiment) writing into $(RESULTS);
@@ -151,7 +159,7 @@ DEEP_UNITS :=
 MANIFEST_EXPERIMENTS :=
 -include src/exp/experiments.mk
 
-# ==== reproduce engines (issue 16) ==========================================
+# ==== reproduce engines (design.md §13) ==========================================
 # make reproduce [ENGINE=local|slurm] [SCALE=smoke] [SLURM_ARGS='sbatch options']
 # make reproduce-status    per unit: done, queued, running, failed (with its log), missing
 # make reproduce-graph     each unit and the units it needs
@@ -169,9 +177,16 @@ REPRODUCE_ENV = REPRODUCE_RESULTS='$(RESULTS)' REPRODUCE_UNITS='$(strip $(REPROD
   REPRODUCE_VARS='SCALE=$(SCALE)$(if $(filter command line,$(origin B)), B=$(B))$(if $(filter command line,$(origin RESULTS)), RESULTS=$(RESULTS))' \
   SLURM_ARGS='$(SLURM_ARGS)' MAKE='$(MAKE)'
 .PHONY: reproduce-status reproduce-graph
+# One reproduce at a time per tree: the second refuses (exit 4, naming the
+# holder) instead of racing the first for the same results (build/reproduce.lock,
+# held by the recipe's shell and its children until the run ends).
+REPRODUCE_LOCK := build/reproduce.lock
 reproduce: deps
-	@$(MAKE) --no-print-directory $(CLI)
-	@if [ -z "$(strip $(REPRODUCE_UNITS))" ]; then echo "reproduce: no experiment registered yet"; \
+	@mkdir -p $(dir $(REPRODUCE_LOCK)); exec 9>>$(REPRODUCE_LOCK); \
+	 if ! flock -n 9; then echo "reproduce: another make reproduce is running in this tree ($(REPRODUCE_LOCK) held by pid $$(cat $(REPRODUCE_LOCK).pid 2>/dev/null || echo '?')): wait for it to end, or stop it" >&2; exit 4; fi; \
+	 echo $$$$ > $(REPRODUCE_LOCK).pid; \
+	 $(MAKE) --no-print-directory $(CLI) || exit $$?; \
+	 if [ -z "$(strip $(REPRODUCE_UNITS))" ]; then echo "reproduce: no experiment registered yet"; \
 	 else $(REPRODUCE_ENV) bash $(REPRODUCE_SH) $(ENGINE); fi
 reproduce-status:
 	@$(REPRODUCE_ENV) bash $(REPRODUCE_SH) status
@@ -202,6 +217,33 @@ freeze: deps
 trace: $(CLI)
 	@$(CLI) trace $(MACRO)
 
+# ---- the release archive ------------------------------------------------------
+# `make dist`: $(B)/dist/crownshy-VERSION.tar.gz (VERSION from CITATION.cff) with
+# its SHA-256 (printed, and in crownshy-VERSION.tar.gz.sha256). It holds the committed and new unignored files of the package
+# (git ls-files; without .git, the same folders less the ignored build outputs)
+# and no build/. Byte-reproducible for one tree: names sorted, owner 0, every
+# mtime the last commit's time (or SOURCE_DATE_EPOCH), gzip without a timestamp.
+# tests/dist.sh unpacks it without .git and runs `make verify` there.
+VERSION := $(shell sed -n 's/^version: *//p' CITATION.cff 2>/dev/null)
+DIST := crownshy-$(VERSION)
+DIST_PATHS := Makefile README.md LICENSE CITATION.cff .ci .gitignore src tests gates frozen audit paper figures
+dist-version:
+	@echo '$(VERSION)'
+dist:
+	@[ -n '$(VERSION)' ] || { echo "dist: no 'version:' line in CITATION.cff" >&2; exit 1; }
+	@mkdir -p $(B)/dist
+	@set -eo pipefail; \
+	if [ -e .git ]; then git ls-files -co --exclude-standard -- $(DIST_PATHS); \
+	else find $(DIST_PATHS) -type f ! -name '*.tmp*' ! -name '*.pdf' ! -path 'paper/*.aux' ! -path 'paper/*.log' ! -path 'paper/*.out'; fi \
+	  | LC_ALL=C sort -u > $(B)/dist/files; \
+	if [ -e .git ] && [ -n "$$(git status --porcelain -- $(DIST_PATHS))" ]; then echo "dist: note: uncommitted changes are included"; fi; \
+	epoch=$${SOURCE_DATE_EPOCH:-$$(git log -1 --format=%ct 2>/dev/null || echo 0)}; \
+	tar --transform 's,^,$(DIST)/,' --sort=name --owner=0 --group=0 --numeric-owner --mtime=@$$epoch \
+	  --no-recursion -T $(B)/dist/files -cf - | gzip -9n > $(B)/dist/$(DIST).tar.gz.tmp; \
+	mv $(B)/dist/$(DIST).tar.gz.tmp $(B)/dist/$(DIST).tar.gz; \
+	echo "dist: $(B)/dist/$(DIST).tar.gz ($$(wc -l < $(B)/dist/files) files, $$(du -h $(B)/dist/$(DIST).tar.gz | cut -f1))"; \
+	(cd $(B)/dist && sha256sum $(DIST).tar.gz | tee $(DIST).tar.gz.sha256)
+
 # ---- the write-up -------------------------------------------------------------
 deps-paper:
 	@if command -v pdflatex >/dev/null; then exit 0; fi; \
@@ -215,12 +257,12 @@ paper: $(CLI)
 	@if ! command -v pdflatex >/dev/null; then echo "paper: pdflatex not installed; run make deps-paper (Debian texlive packages)" >&2; exit 1; fi
 	@cd paper && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && echo "paper: wrote paper/main.pdf"
 
-# ---- fuzzing (issues 7, 15): libFuzzer on the parsers, FUZZ_SECONDS each ---------
+# ---- fuzzing (design.md §11): libFuzzer on the parsers, FUZZ_SECONDS each ---------
 # Needs clang with libFuzzer (Debian: clang, libclang-rt-14-dev); built with -DNN_NO_CLONES
 # (clang refuses nn.c's AVX-512 clones; the parsers do not need them). Seeds: the
 # committed frozen tables, gates, numbers.tex and a fresh smoke checkpoint.
 # A crash leaves its input in build/fuzz/<target>/crash-*; copy it into
-# tests/data/fuzz/ and add a regression case to tests/test_fuzz_regress.c.
+# tests/data/fuzz/ and add a regression case to the parser's cmocka tests.
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := tsv gate ckpt numbers gatemap aggr paper
 FUZZ_CC := clang

@@ -1,11 +1,11 @@
 # data: frozen/readings/summary.tsv
-# Figure readings (design.md §7 E0; issue 13): every quantity of the readings table
+# Figure readings (design.md §7 E0): every quantity of the readings table
 # under each reading, as our value over the reference paper's value (1 = the
-# paper's number; shaded: within 10 % and 25 %). Readings: rev1 = revision 1
+# paper's number; shaded: within 10 % and 25 %). Readings: rev1 = teacher-1 on layout r1
 # (teacher-1, 5 m on 60 m, cardinal elongation, Mech* on the lattice); t2-r1 =
 # teacher-2 only; t2-r1-axes = + all-axis elongation and Mech* on the figure
-# stand; t1-r2 = revision 2 with teacher-1; rev2 = revision 2 (adopted); arc =
-# rev2 with the contact arc s-1..s+1 dying back too (measured, not adopted).
+# stand; t1-r2 = teacher-1 on layout r2; rev2 = the adopted reading (teacher-2, r2);
+# arc = rev2 with the contact arc s-1..s+1 dying back too (measured, not adopted).
 # Rows of summary.tsv are quantity-major, six readings each (readings.c).
 # Reads only frozen files. Run from the repository root: gnuplot figures/readings.gp
 nr = 6

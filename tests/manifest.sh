@@ -1,15 +1,15 @@
 #!/usr/bin/env bash
 # manifest.sh: a new experiment is added through the manifest alone. In a
 # scratch copy of the package (build/manifest-test/repo, its own git), adds a
-# toy experiment "toy" with exactly the files the README's "Adding an
-# experiment" section names (manifest rows, the experiment, its argv table,
+# toy experiment "toy" with exactly the files the "Adding an
+# experiment" section of src/README.md names (manifest rows, the experiment, its argv table,
 # a claim function, its list line, its registry row), then checks that
-#  - the number of hand-written files equals the README's count;
+#  - the number of hand-written files equals the count src/README.md states;
 #  - make lists its unit (`make units`: reproduce and verify-deep) and
 #    `make toy` runs it;
 #  - `crownshy --help` lists its command and `crownshy toy-run --help` works;
 #  - after `make freeze`-style steps (copy, hash-frozen, pin, numbers) its
-#    claim is computed from frozen/toy/, `crownshy trace` names the table,
+#    claim is computed from its frozen table, `crownshy trace` names it,
 #    the computing function's real file and the experiment, and
 #    `crownshy verify --no-figures` says the package is consistent.
 # Prints cmocka-style lines so tests/run.sh counts it like a test binary.
@@ -37,7 +37,7 @@ cd "$R"
 G="git -c user.name=manifest-test -c user.email=manifest-test@localhost"
 $G init -q . && $G add -A && $G commit -qm "package before the toy experiment" || { bad "scratch copy" "git init failed"; finish; }
 
-# ---- the toy experiment, by the README's list -------------------------------
+# ---- the toy experiment, by src/README.md's list -------------------------------
 cat >> src/base/manifest.h.new <<'EOF'
 EXPERIMENT(toy, "E99", "src/exp/exp_toy.c", "-", "src/claims/claim_toy.c", "-", "rerun", "a toy: five numbers and their mean")
 COMMAND(toy, "toy-run", cli_toy_run, "toy: write five numbers")
@@ -67,7 +67,7 @@ EOF
 cat > src/exp/exp_toy.c <<'EOF'
 /* exp_toy: see exp_toy.h. */
 #include "exp_toy.h"
-#include "exp_common.h"
+#include "unit_out.h"
 
 cs_status exp_toy_run(const exp_toy_args *a)
 {
@@ -83,7 +83,7 @@ cs_status exp_toy_run(const exp_toy_args *a)
         tsv_writer_dbl(w, 0.5 * k);
         tsv_writer_endrow(w);
     }
-    return exp_finish(w, &p, a->out);
+    return unit_out_finish(w, &p, a->out);
 }
 EOF
 cat > src/cli/cli_toy.c <<'EOF'
@@ -131,11 +131,11 @@ EOF
 echo 'X(claim_toy_mean)' >> src/claims/claims_list.h
 printf 'ToyMean\tmeasured\tfrozen/toy/numbers.tsv\tclaim_toy_mean\t-\ttests/test_claims.c:claim_ToyMean\t-\t%%.2f\t-\n' >> audit/claims.tsv
 
-# ---- the count the README states --------------------------------------------
-want=$(sed -n 's/^A new experiment `X` needs \*\*\([0-9]*\) files\*\*.*/\1/p' README.md)
+# ---- the count src/README.md states --------------------------------------------
+want=$(sed -n 's/^A new experiment `X` needs \*\*\([0-9]*\) files\*\*.*/\1/p' src/README.md)
 have=$($G status --porcelain | wc -l)
 if [ -n "$want" ] && [ "$have" = "$want" ]; then ok "the toy experiment takes the $want files the README names"
-else bad "the toy experiment takes the files the README names" "README says '${want:-?}', the toy needed $have: $($G status --porcelain | tr '\n' ' ')"; fi
+else bad "the toy experiment takes the files src/README.md names" "src/README.md says '${want:-?}', the toy needed $have: $($G status --porcelain | tr '\n' ' ')"; fi
 
 # ---- make, the CLI -----------------------------------------------------------
 if ! make -s -j2 build/crownshy > "$T/build.log" 2>&1; then bad "the package builds with the toy" "$(tail -5 "$T/build.log")"; finish; fi

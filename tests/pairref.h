@@ -1,4 +1,4 @@
-/* Naive double-precision reference of pair-aware attention (src/pairattn.h):
+/* Naive double-precision reference of pair-aware attention (src/model/pairattn.h):
  * the pair features by trigonometry (atan2, cos, sin) instead of the
  * library's algebra, and the attention with its score bias and value term as
  * straight loops over (patch, head, i, j). Used for the forward agreement and
@@ -10,7 +10,7 @@
 
 enum { REF_PQ = 8 };
 
-/* f[T x T x 8]: dx, dy, dist, free, cos th, sin th, cos 2th, sin 2th (0 when i == j). */
+/* f[T x T x 8]: dx, dy, dist, free, cos th, sin th, cos 2th, sin 2th (the bearing terms 0 when i == j; free is then -2 rbar_i). */
 static void ref_pair_features(double *f, const double *tok, int stride, int T)
 {
     for (int i = 0; i < T; i++)

@@ -3,6 +3,7 @@
 # and ends with one aggregate line "N passed, N failed". Binaries after a "--"
 # argument are the sanitizer build; they are counted the same way.
 # A binary that crashes or exits non-zero without a cmocka summary counts as one failure.
+# Test temporaries (build/test-tmp) are removed at the end unless KEEP_TEST_TMP=1.
 set -u
 passed=0; failed=0; label=""
 log_dir=${TEST_LOG_DIR:-build/test-logs}
@@ -15,7 +16,8 @@ for t in "$@"; do
   name=$(basename "$t")$label
   suffix=""; [ -n "$label" ] && suffix="-asan"
   log="$log_dir/$(basename "$t")$suffix.log"
-  "$t" > "$log" 2>&1; rc=$?
+  # a shell test runs through bash whatever its file mode
+  case $t in *.sh) bash "$t" > "$log" 2>&1 ;; *) "$t" > "$log" 2>&1 ;; esac; rc=$?
   p=$(sed -n 's/^\[  PASSED  \] \([0-9]*\) test.*/\1/p' "$log" | tail -1)
   f=$(sed -n 's/^\[  FAILED  \] \([0-9]*\) test.*/\1/p' "$log" | tail -1)
   p=${p:-0}; f=${f:-0}
@@ -28,5 +30,8 @@ for t in "$@"; do
   fi
   passed=$((passed + p)); failed=$((failed + f))
 done
+# the scratch copies of the tests (build/test-tmp, over 100 MB) go when the
+# run ends; KEEP_TEST_TMP=1 keeps them to look at a failure
+if [ "${KEEP_TEST_TMP:-0}" != 1 ]; then rm -rf build/test-tmp; fi
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tests/slurm.sh: `make reproduce ENGINE=slurm` on a real single-node Slurm (issue 16).
+# tests/slurm.sh: `make reproduce ENGINE=slurm` on a real single-node Slurm (design.md §13).
 #
 # Run as root from the repository (CI does: .ci/run). It
 #   1. installs slurm-wlm and munge with apt-get when missing;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Tamper tests (design.md §9 rev. 2; issues 7 and 15): on a scratch copy of the
+# Tamper tests (design.md §9): on a scratch copy of the
 # repository, make one class of edit per case; each must make `crownshy verify`
 # exit 1 with a FAIL line naming the culprit file and the claims it feeds.
 # The untampered copy must exit 0 (a failing preregistered gate is a finding,
@@ -15,7 +15,7 @@ bad()  { echo "[  FAILED  ] $1: $2"; fail=$((fail + 1)); }
 
 fresh() {
   rm -rf "$scratch"; mkdir -p "$scratch"
-  (cd "$root" && tar cf - src gates frozen audit paper figures tests 2>/dev/null) | (cd "$scratch" && tar xf -)
+  (cd "$root" && tar cf - README.md LICENSE CITATION.cff src gates frozen audit paper figures tests 2>/dev/null) | (cd "$scratch" && tar xf -)
   mkdir -p "$scratch/build"
 }
 
@@ -70,10 +70,10 @@ out=$(cd "$scratch" && "$cli" numbers --check 2>&1); rc=$?
 if [ $rc -eq 1 ] && grep -q '^FAIL .*paper/numbers.tex:[0-9]* differs' <<<"$out"; then ok "numbers --check names the edited line"
 else bad "numbers --check names the edited line" "exit $rc: $out"; fi
 
-# 4. one frozen number (the first numeric data cell of the first hashed file)
+# 4. one frozen number (the first numeric data cell of the first hashed table)
 # (named with the claims of the file, or "(no claim)" for a figure-only table)
 fresh
-f=$(awk 'NR==1{print $2}' "$scratch/audit/frozen.sha256" 2>/dev/null)
+f=$(awk '$2 ~ /[.]tsv$/ {print $2; exit}' "$scratch/audit/frozen.sha256" 2>/dev/null)
 if [ -n "$f" ] && [ -f "$scratch/$f" ]; then
   # change the last digit of the first number in the first data row
   awk 'BEGIN{done=0} /^#/ || NR==hdr {print; next} { if (!seen) { seen=1; print; next } if (!done && match($0, /[0-9]/)) { n=split($0, a, "\t"); for (i=1;i<=n;i++) if (!done && a[i] ~ /^-?[0-9.]+(e-?[0-9]+)?$/) { c=substr(a[i], length(a[i]), 1); a[i]=substr(a[i],1,length(a[i])-1) ((c=="9")?"8":(c+1)); done=1 } s=a[1]; for(i=2;i<=n;i++) s=s "\t" a[i]; print s; next } print }' "$scratch/$f" > "$scratch/$f.new" && mv "$scratch/$f.new" "$scratch/$f"
@@ -92,11 +92,13 @@ sed -i "s/^# teacher_sha256: .*/# teacher_sha256: $fake/" "$scratch/$f"
 (cd "$scratch" && "$cli" hash-frozen >/dev/null 2>&1)
 expect "superseded reading unrecorded" "$f" "does not match the current pin"
 printf 'teacher_sha256\t%s\tsrc/forest/teacher.c\ttamper-test\n' "$fake" >> "$scratch/audit/pins_superseded.tsv"
+(cd "$scratch" && "$cli" pin >/dev/null 2>&1) # the record is pinned: a deliberate act (no .git here to show the hash is real)
+(cd "$scratch" && "$cli" numbers >/dev/null 2>&1) # its claims now pending: the generated README findings say so
 out=$(cd "$scratch" && "$cli" verify --no-figures 2>&1); rc=$?
 if [ $rc -eq 0 ] && grep -q 'PENDING .*frozen/mechanism/: 1 tables made by a superseded reading.*MechOn' <<<"$out"; then ok "superseded reading recorded: pending, named"
 else bad "superseded reading recorded: pending, named" "exit $rc: $(grep -E 'provenance|FAIL' <<<"$out" | head -3)"; fi
 
-# ---- issue 15: every editable input of a number or a picture ----
+# ---- every editable input of a number or a picture ----
 # 6. the registry's gate column (and numbers.tex regenerated): the pinned map decides
 fresh
 awk -F'\t' 'BEGIN{OFS="\t"} $1=="MainGeomRatio"{$5="-"} {print}' "$scratch/audit/claims.tsv" > "$scratch/x" && mv "$scratch/x" "$scratch/audit/claims.tsv"
@@ -175,6 +177,119 @@ expect "dotfile in frozen/" "frozen/field/.heldout.tsv" "Elong"
 fresh
 sed -i '$ d' "$scratch/frozen/field/heldout_trees.tsv"
 expect "per-tree table" "frozen/field/heldout_trees.tsv" "Elong"
+
+# ---- what a number rests on (design.md §9 rev. 3) ----
+# fresh_git: the scratch copy as a git clone of this repository's history
+# (sharing its objects) with the working tree's files laid over it
+fresh_git() {
+  rm -rf "$scratch"
+  git clone -q --shared "$root" "$scratch" 2>/dev/null || return 1
+  (cd "$root" && tar cf - src gates frozen audit paper figures tests 2>/dev/null) | (cd "$scratch" && tar xf -)
+  mkdir -p "$scratch/build"
+  (cd "$scratch" && git add -A >/dev/null 2>&1 && git -c user.name=t -c user.email=t@t commit -qm "working tree" >/dev/null 2>&1)
+  return 0
+}
+# the dishonest author's whole chain after an edit: re-pin, rewrite the gates
+# hash in every frozen provenance, reseal, regenerate the paper files
+launder() {
+  (cd "$scratch" && "$cli" pin >/dev/null 2>&1)
+  local g; g=$(awk -F'\t' '$1=="gates_sha256"{print $2}' "$scratch/audit/pins.tsv")
+  find "$scratch/frozen" -name '*.tsv' -exec sed -i "s/^# gates_sha256: .*/# gates_sha256: $g/" {} +
+  reseal; (cd "$scratch" && "$cli" numbers >/dev/null 2>&1)
+}
+have_git=0; git -C "$root" rev-parse --git-dir >/dev/null 2>&1 && have_git=1
+# 21. a preregistered threshold changed, laundered: no .git (the pinned copy of
+# the gates' hashes), then with .git (the preregistration commit) even with
+# the pinned copy rewritten and everything committed
+fresh
+sed -i 's/^rel_improvement_min             0.20/rel_improvement_min             0.10/' "$scratch/gates/main.gate"
+launder
+expect "gate changed, laundered (no .git)" "gates/main.gate" "differs from its pinned preregistered hash" "MainRel"
+if [ $have_git = 1 ] && fresh_git; then
+  sed -i 's/^rel_improvement_min             0.20/rel_improvement_min             0.10/' "$scratch/gates/main.gate"
+  h=$(sha256sum < "$scratch/gates/main.gate" | cut -d' ' -f1)
+  sed -i "s|^[0-9a-f]*  gates/main.gate|$h  gates/main.gate|" "$scratch/audit/gates_prereg.sha256"
+  launder
+  (cd "$scratch" && git add -A && git -c user.name=t -c user.email=t@t commit -qm "threshold" >/dev/null 2>&1)
+  expect "gate changed, laundered and committed (.git)" "gates/main.gate" "preregistration commit" "MainRel"
+else echo "[  SKIPPED ] gate changed (.git): no git history here"; fi
+# 22. the evidence of E3/E4, each edit resealed
+fresh
+printf '\x01' | dd of="$scratch/frozen/main/weights_s01_joint.ckpt" bs=1 seek=200 conv=notrunc status=none
+reseal
+expect "weights byte" "frozen/main/weights_s01_joint.ckpt" "MainRel"
+fresh
+f="$scratch/frozen/main/samples_s01_joint.tsv"
+awk -F'\t' 'BEGIN{OFS="\t"} !/^#/ && $4=="generated" && !d && $5+0==$5 {$5=$5+0.25; d=1} {print}' "$f" > "$scratch/x" && mv "$scratch/x" "$f"
+h=$(sha256sum < "$f" | cut -d' ' -f1)
+sed -i "s/^# samples: samples_s01_joint.tsv sha256 [0-9a-f]*/# samples: samples_s01_joint.tsv sha256 $h/" "$scratch/frozen/main/run_s01_joint.tsv"
+reseal
+expect "samples value (provenance hash rewritten too)" "W1 from samples" "run_s01_joint.tsv" "MainRel"
+fresh
+awk '!/^#/ && n++==1 {print} {print}' "$scratch/frozen/main/run_s02_joint.tsv" > "$scratch/x" && mv "$scratch/x" "$scratch/frozen/main/run_s02_joint.tsv"
+reseal
+expect "extra run-table row" "frozen/main/run_s02_joint.tsv" "repeats the grid point" "MainRel"
+fresh
+rm -f "$scratch/frozen/main/weights_s03_indep.ckpt" "$scratch/frozen/main/samples_s03_indep.tsv"
+reseal
+expect "weights and samples deleted together" "frozen/main/weights_s03_indep.ckpt" "missing" "MainRel"
+# 23. a table's rows against its design grid: a duplicated sweep row
+fresh
+awk '!/^#/ && n++==3 {print} {print}' "$scratch/frozen/mechanism/sweep.tsv" > "$scratch/x" && mv "$scratch/x" "$scratch/frozen/mechanism/sweep.tsv"
+reseal
+expect "duplicated sweep row (17 of a 4 x 4 design)" "frozen/mechanism/sweep.tsv" "repeats the grid point" "MechHits"
+# 24. superseded pins: the record is pinned; a made-up superseded teacher hash
+# is no past version (.git); a table of a superseded reading never counts as reproduced
+fake=00000000000000000000000000000000000000000000000000000000000000cd
+fresh
+printf 'teacher_sha256\t%s\tsrc/forest/teacher.c\ttamper-test\n' "$fake" >> "$scratch/audit/pins_superseded.tsv"
+expect "superseded record edited, not re-pinned" "audit/pins_superseded.tsv" "superseded reading"
+if [ $have_git = 1 ] && fresh_git; then
+  printf 'teacher_sha256\t%s\tsrc/forest/teacher.c\ttamper-test\n' "$fake" >> "$scratch/audit/pins_superseded.tsv"
+  find "$scratch/frozen/main" -name '*.tsv' -exec sed -i "s/^# teacher_sha256: .*/# teacher_sha256: $fake/" {} +
+  launder
+  expect "made-up superseded hash in frozen/main, re-pinned (.git)" "audit/pins_superseded.tsv" "no past version of src/forest/teacher.c"
+  out=$(cd "$scratch" && "$cli" verify --no-figures 2>&1)
+  if grep -q '^  PENDING MainRel .*superseded reading' <<<"$out" && ! grep -q '^  PASS    MainRel ' <<<"$out"; then ok "claims of a superseded table are pending, never reproduced"
+  else bad "claims of a superseded table are pending, never reproduced" "$(grep -E 'MainRel ' <<<"$out" | head -2)"; fi
+else echo "[  SKIPPED ] made-up superseded hash (.git): no git history here"; fi
+# 25. a design constant (no gate carries it)
+fresh
+sed -i 's/^#define DESIGN_FIELD_SPACING_M 4.0/#define DESIGN_FIELD_SPACING_M 5.0/' "$scratch/src/base/design.h"
+expect "design constant" "src/base/design.h" "design constants"
+# 26. the paper read as TeX reads it
+fresh
+sed -i 's/^\\input{numbers.tex}$/\\input{numbers.tex}\n\\expandafter\\def\\csname MainRelGate\\endcsname{PASS}/' "$scratch/paper/main.tex"
+expect "\\expandafter\\def\\csname" "paper/main.tex" "MainRel"
+fresh
+sed -i 's/^\\input{numbers.tex}$/\\input{numbers.tex}\n\\renewcommand\n  {\\MainPGate}{PASS}/' "$scratch/paper/main.tex"
+expect "definer split over two lines" "paper/main.tex" "MainP"
+fresh
+printf '\\def\\MechHits{13}\n' > "$scratch/paper/local.sty"
+sed -i 's/^\\input{numbers.tex}$/\\input{numbers.tex}\n\\usepackage{local}/' "$scratch/paper/main.tex"
+expect "a local .sty pulled in" "paper/local.sty" "MechHits"
+fresh
+printf 'Of the sweep, 14 of 16 rows pass.\n' > "$scratch/paper/extra.txt"
+sed -i 's/^\\input{comparison.tex}$/\\input{comparison.tex}\n\\input{extra.txt}/' "$scratch/paper/main.tex"
+expect "an \\input file not *.tex, a wrong typed integer" "paper/extra.txt:1" "'14'"
+fresh
+printf '\nThe median clearance was 0.37~m.\n' >> "$scratch/paper/main.tex"
+expect "a typed decimal that rounds no measured value" "paper/main.tex" "'0.37'"
+fresh
+printf '\nThe learning gate: \\verdict{PASS}.\n' >> "$scratch/paper/main.tex"
+expect "a literal \\verdict{PASS}" "paper/main.tex" "verdict{PASS}"
+# 27. the claim tests are pinned: one that returns early
+fresh
+sed -i 's/^    const claim_row \*row = \*state;$/    const claim_row *row = *state;\n    if (row) return;/' "$scratch/tests/test_claims.c"
+expect "claim test returns early" "tests/test_claims.c" "every claim whose test"
+# 28. regular files only in frozen/: a symlink (to a file, to a folder)
+fresh
+ln -s runs.tsv "$scratch/frozen/main/runs_link.tsv"
+expect "symlink in frozen/" "frozen/main/runs_link.tsv" "non-regular"
+if (cd "$scratch" && "$cli" hash-frozen >/dev/null 2>&1); then bad "hash-frozen refuses a symlink" "exit 0"; else ok "hash-frozen refuses a symlink"; fi
+fresh
+ln -s ../mechanism "$scratch/frozen/main/mech"
+expect "symlinked folder in frozen/" "frozen/main/mech" "non-regular"
 rm -rf "$scratch"
 echo "[==========] tamper tests run."
 echo "[  PASSED  ] $pass test(s)."

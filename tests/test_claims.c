@@ -26,7 +26,7 @@ static void claim_test(void **state)
 }
 
 /* Every W1 of the frozen E3/E4 run tables and of the baselines recomputed
- * from the frozen samples behind it (issue 14), bit for bit: 12 seeds x 2
+ * from the frozen samples behind it (design.md §8), bit for bit: 12 seeds x 2
  * arms x 5 spacings x 3 probes, and 5 spacings x 4 baseline W1. */
 static void frozen_samples_give_every_w1(void **state)
 {

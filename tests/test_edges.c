@@ -1,4 +1,4 @@
-/* Behaviour at the edges (design.md §11; issue 15): bad input never reaches
+/* Behaviour at the edges (design.md §11): bad input never reaches
  * paper/, non-finite values are named, directories and byte-order marks are
  * clear input errors or handled, the field table loads in O(n log n),
  * concurrent atomic writers never share a temp file, the gate map and the
@@ -9,6 +9,8 @@
 #include "audit_data.h"
 #include "claims.h"
 #include "field.h"
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 static char out[65536];
@@ -62,11 +64,137 @@ static void test_numbers_chm_1e300_never_writes_inf(void **s)
     tu_write(p, "ncols 1e300\nnrows 1e300\nxllcorner 0\nyllcorner 0\ncellsize 1e300\nNODATA_value -9999\n1 2\n");
     assert_int_equal(run_in(dir, "CHM=chm.asc", "numbers"), 3);
     assert_non_null(strstr(out, "RealChmSpan"));
-    assert_non_null(strstr(out, "not finite"));
+    assert_non_null(strstr(out, "field 'ncols'"));
     assert_paper_untouched(dir);
     /* a directory given as the CHM is an input error too, and writes nothing */
     assert_int_equal(run_in(dir, "CHM=frozen", "numbers"), 3);
     assert_paper_untouched(dir);
+}
+
+/* The CHM reader validates every header field and the value count: each bad
+ * grid is exit 3 naming its field, and nothing reaches paper/. */
+static void test_chm_header_and_values_validated(void **s)
+{
+    (void)s;
+    const char *dir = scratch("edges_chm_fields");
+    char p[1100];
+    snprintf(p, sizeof p, "%s/chm.asc", dir);
+    const char *hdr = "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 0.5\nNODATA_value -9999\n";
+    const char *bad[][2] = {
+        {"", "field 'nrows': 0 data rows"},                       /* a header with no data rows */
+        {"1 2\n3\n", "field 'ncols': 1 values on the row"},      /* a short row */
+        {"1 2\n3 4\n5 6\n", "more data rows than nrows"},
+        {"1 2\n3 x\n", "field 'column 2': 'x'"},
+        {"1 2\n3 nan\n", "field 'column 2': 'nan'"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        char text[512];
+        snprintf(text, sizeof text, "%s%s", hdr, bad[i][0]);
+        tu_write(p, text);
+        assert_int_equal(run_in(dir, "CHM=chm.asc", "numbers"), 3);
+        if (!strstr(out, bad[i][1])) fail_msg("case %zu: output lacks '%s': %s", i, bad[i][1], out);
+        assert_paper_untouched(dir);
+    }
+    const char *hbad[][2] = {
+        {"ncols nan\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n3 4\n", "field 'ncols': 'nan' is not one finite number"},
+        {"ncols 2.5\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n3 4\n", "field 'ncols': 2.5 is not a whole number"},
+        {"ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize -1\n1 2\n3 4\n", "field 'cellsize'"},
+        {"ncols 2\nnrows 2\nyllcorner 0\ncellsize 1\n1 2\n3 4\n", "field 'xllcorner': missing"},
+        {"ncols 2\nncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n3 4\n", "field 'ncols': given twice"},
+        {"ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\nbogus 3\n1 2\n3 4\n", "field 'bogus'"},
+    };
+    for (size_t i = 0; i < sizeof hbad / sizeof *hbad; i++) {
+        tu_write(p, hbad[i][0]);
+        assert_int_equal(run_in(dir, "CHM=chm.asc", "numbers"), 3);
+        if (!strstr(out, hbad[i][1])) fail_msg("header case %zu: output lacks '%s': %s", i, hbad[i][1], out);
+    }
+    assert_int_equal(run_in(dir, "CHM=frozen", "numbers"), 3);
+    assert_non_null(strstr(out, "frozen: is a directory"));
+    assert_null(strstr(out, "header incomplete"));
+    /* a good grid is computed: 2 x 2 cells of 0.5 m */
+    snprintf(p, sizeof p, "%s/good.asc", dir);
+    char text[512];
+    snprintf(text, sizeof text, "%s1 2\n3 4\n", hdr);
+    tu_write(p, text);
+    assert_int_equal(run_in(dir, "CHM=good.asc", "trace RealChmSpan"), 0);
+    assert_non_null(strstr(out, "value        1"));
+}
+
+/* Errors by kind (design.md §11), from crownshy and through make: an
+ * inconsistency 1, a bad FIELD_TABLE 3 (not "INCONSISTENT"), a build/ that
+ * cannot be written 4; make names crownshy's status and its kind. */
+static void test_exit_codes_by_kind(void **s)
+{
+    (void)s;
+    const char *dir = scratch("edges_exit");
+    char cmd[3000], root[1024];
+    assert_non_null(getcwd(root, sizeof root));
+    snprintf(cmd, sizeof cmd, "cp Makefile '%s/' && printf 'tree\tdirection\tclearance_m\nx\tE\tabc\n' > '%s/bad.tsv'", dir, dir);
+    assert_int_equal(system(cmd), 0);
+    assert_int_equal(run_in(dir, "FIELD_TABLE=bad.tsv", "verify --no-figures"), 3);
+    assert_non_null(strstr(out, "bad.tsv:2: field 'clearance_m'"));
+    assert_null(strstr(out, "INCONSISTENT"));
+    /* through make: GNU make exits 2; the recipe names crownshy's status */
+    char mk[1200];
+    snprintf(mk, sizeof mk, "make -s --no-print-directory verify B='%s/build'", root);
+    snprintf(cmd, sizeof cmd, "cd '%s' && env -u FIELD_TABLE -u CHM -u MAKEFLAGS -u MAKELEVEL", dir);
+    char args[1400];
+    snprintf(args, sizeof args, "--help >/dev/null; make -s --no-print-directory numbers FIELD_TABLE=bad.tsv B='%s/build'", root);
+    assert_int_not_equal(tu_run_cli(cmd, args, out, sizeof out), 0);
+    assert_non_null(strstr(out, "crownshy exited 3 (bad input)"));
+    snprintf(cmd, sizeof cmd, "cd '%s' && sed -i 's/^\\newcommand{\\MechRows}{16}/\\newcommand{\\MechRows}{17}/' paper/numbers.tex && env -u FIELD_TABLE -u CHM -u MAKEFLAGS -u MAKELEVEL %s > make.log 2>&1; echo $? >> make.log", dir, mk);
+    if (system(cmd) != 0) { /* the status is in make.log */ }
+    char p[1100], log[8192] = "";
+    snprintf(p, sizeof p, "%s/make.log", dir);
+    FILE *f = fopen(p, "r");
+    assert_non_null(f);
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    fseek(f, size > (long)sizeof log - 1 ? size - (long)sizeof log + 1 : 0, SEEK_SET); /* the end: summary, make's lines */
+    size_t n = fread(log, 1, sizeof log - 1, f);
+    log[n] = '\0';
+    fclose(f);
+    if (!strstr(log, "crownshy exited 1 (inconsistency)")) fail_msg("make verify does not name the inconsistency: %s", log + (n > 600 ? n - 600 : 0));
+    assert_non_null(strstr(log, "Error 1"));
+    /* a build/ that cannot be written (mkdir is refused in /sys, also to root) */
+    snprintf(cmd, sizeof cmd, "cd '%s' && rm -rf build && ln -s /sys build && env -u FIELD_TABLE -u CHM '%s/build/crownshy' verify --no-figures > out.log 2>&1; echo \"rc=$?\" >> out.log", dir, root);
+    if (system(cmd) != 0) { /* the status is in out.log */ }
+    snprintf(p, sizeof p, "%s/out.log", dir);
+    f = fopen(p, "r");
+    assert_non_null(f);
+    n = fread(log, 1, sizeof log - 1, f);
+    log[n] = '\0';
+    fclose(f);
+    if (!strstr(log, "rc=4") || !strstr(log, "build/: cannot create")) fail_msg("a read-only build/ is not an environment error: %s", log);
+    assert_null(strstr(log, "INCONSISTENT"));
+}
+
+/* One make reproduce per tree: while the lock is held a second refuses
+ * clearly (and never starts); released, the next one runs. */
+static void test_reproduce_lock(void **s)
+{
+    (void)s;
+    const char *dir = tu_tmpdir("edges_lock");
+    char cmd[3000], root[1024], p[1100];
+    assert_non_null(getcwd(root, sizeof root));
+    snprintf(cmd, sizeof cmd, "cp Makefile '%s/' && tar cf - src | (cd '%s' && tar xf -) && mkdir -p '%s/build'", dir, dir, dir);
+    assert_int_equal(system(cmd), 0);
+    snprintf(p, sizeof p, "%s/build/reproduce.lock", dir);
+    int fd = open(p, O_WRONLY | O_CREAT, 0666);
+    assert_true(fd >= 0);
+    assert_int_equal(flock(fd, LOCK_EX | LOCK_NB), 0);
+    snprintf(cmd, sizeof cmd, "cd '%s' && env -u MAKEFLAGS -u MAKELEVEL", dir);
+    char args[1400];
+    snprintf(args, sizeof args, "--help >/dev/null; make -s --no-print-directory reproduce ENGINE=none B='%s/build'", root);
+    assert_int_not_equal(tu_run_cli(cmd, args, out, sizeof out), 0);
+    assert_non_null(strstr(out, "another make reproduce is running in this tree"));
+    assert_null(strstr(out, "unknown ENGINE"));
+    flock(fd, LOCK_UN);
+    close(fd);
+    /* released: the run starts (and stops at the engine name, before any unit) */
+    assert_int_not_equal(tu_run_cli(cmd, args, out, sizeof out), 0);
+    assert_null(strstr(out, "another make reproduce"));
+    assert_non_null(strstr(out, "unknown ENGINE or mode 'none'"));
 }
 
 static void test_directory_as_input_is_input_error(void **s)
@@ -266,6 +394,9 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_numbers_bad_field_table_writes_nothing),
         cmocka_unit_test(test_numbers_chm_1e300_never_writes_inf),
+        cmocka_unit_test(test_chm_header_and_values_validated),
+        cmocka_unit_test(test_exit_codes_by_kind),
+        cmocka_unit_test(test_reproduce_lock),
         cmocka_unit_test(test_directory_as_input_is_input_error),
         cmocka_unit_test(test_utf8_bom_is_handled),
         cmocka_unit_test(test_huge_value_names_file_line_field),

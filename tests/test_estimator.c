@@ -1,7 +1,7 @@
 /* Tests for src/forest/estimator.c on hand-built stands: Eq. 5, k-NN, W1 (Eq. 6),
  * cover, cardinal gaps, anisotropy, elongation over all 12 axes (a square
  * reads sqrt 2 at 0, 15 and 30 degrees; a fine sweep agrees) beside the
- * revision-1 cardinal reading (the square reads 1), spread. */
+ * cardinal reading (the square reads 1), spread. */
 #include "testutil.h"
 #include "estimator.h"
 #include "crown.h"
@@ -212,14 +212,14 @@ static void square(double *r, double hw, double alpha)
     }
 }
 
-/* Revision 2 (design.md §5): elongation over the 12 axes r(theta_s) + r(theta_s + pi).
+/* design.md §5: elongation over the 12 axes r(theta_s) + r(theta_s + pi).
  * For a square the shortest axis is the side-to-side width 2 hw and the longest
  * the diagonal 2 sqrt(2) hw. At 0, 15 and 30 degrees both directions fall on
  * sector centres (they are 15 degrees apart): the diagonal at 45, 60, 75
  * degrees (sectors 3, 4, 5), the width at 0, 15, 30 (sectors 0, 1, 2). So the
  * all-axis reading is sqrt(2) up to rounding of cos/sin and two divisions
  * (a few ulp of ~1.4, i.e. < 1e-15); tolerance 1e-14. The two cardinal axes of
- * a square are equal at any rotation (90 degree symmetry): the revision-1
+ * a square are equal at any rotation (90 degree symmetry): the cardinal
  * reading is 1, same tolerance. */
 static void test_elongation_of_a_square_is_sqrt2_over_all_axes_and_1_over_the_cardinal_two(void **st)
 {

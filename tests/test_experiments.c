@@ -1,4 +1,4 @@
-/* Smoke tests for src/exp/ (exp_mechanism.c, exp_irred.c, exp_stands.c): units run at one stand per cell into a
+/* Smoke tests for src/exp/ (exp_mechanism.c, exp_irreducibility.c, exp_stands.c): units run at one stand per cell into a
  * scratch directory, write provenance and the documented columns, and keep the
  * ablation's ordering (coupling off interpenetrates, both on opens gaps). */
 #include "testutil.h"

@@ -161,7 +161,7 @@ static void test_trees_roundtrip_and_tamper(void **s)
     fs_trees t;
     fs_trees_init(&t);
     stand *sd;
-    assert_int_equal(stand_alloc(&sd, STAND_LATTICE, 5.0, 60.0, 0.04, "test/fieldsim", 0), CS_OK);
+    assert_int_equal(stand_alloc(&sd, stems_lattice, 5.0, 60.0, 0.04, "test/fieldsim", 0), CS_OK);
     double worst = 0;
     assert_int_equal(exp_field_grow_append(sd, NULL, 0.16, 1, 0.04, 0, &t, &worst), CS_OK);
     stand_free(sd);

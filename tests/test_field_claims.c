@@ -21,7 +21,7 @@ static int setup_heldout(void **s)
     fs_trees t;
     fs_trees_init(&t);
     stand *sd;
-    if (stand_alloc(&sd, STAND_LATTICE, 5.0, 60.0, 0.04, "test/field_claims", 0)) return -1;
+    if (stand_alloc(&sd, stems_lattice, 5.0, 60.0, 0.04, "test/field_claims", 0)) return -1;
     if (exp_field_grow_append(sd, NULL, 0.19, 1, 0.19, 0, &t, NULL) || exp_field_grow_append(sd, NULL, 0.19, 0, 0.19, 0, &t, NULL)) return -1;
     stand_free(sd);
     char tp[700];

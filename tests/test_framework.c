@@ -48,7 +48,7 @@ static void test_registry_rejects_bad_gate_reference(void **s)
     assert_non_null(strstr(cs_errmsg(), "'gate'"));
 }
 
-/* A probe row (issue 14) is measured but never gated. */
+/* A probe row is measured but never gated. */
 static void test_registry_rejects_gated_probe_row(void **s)
 {
     (void)s;
@@ -114,7 +114,7 @@ static void test_tampered_numbers_value_is_named(void **s)
 }
 
 /* A registered frozen file that is missing is a failure, never PENDING
- * (issue 15: deleting a failing experiment's files must not hide it). */
+ * (deleting a failing experiment's files must not hide it). */
 static void test_missing_registered_source_fails(void **s)
 {
     (void)s;

@@ -116,7 +116,7 @@ static void check_path(gemm_isa isa)
     base_attention_backward(o2, dout, qkv, p1, B, T, C, H, NN_ATTN_JOINT, scr);
     same(o1, o2, (size_t)N * 3 * C, "attention backward");
 
-    /* the pair-aware forms (src/pairattn.h): score bias and dP term, and the
+    /* the pair-aware forms (src/model/pairattn.h): score bias and dP term, and the
      * dS left in the scratch by a one-patch backward */
     {
         float *sb = malloc(sizeof(float) * B * H * T * T), *dpx = malloc(sizeof(float) * B * H * T * T);

@@ -9,13 +9,13 @@ static long n_stands;
 static double beta;
 static const char *out;
 static int flag;
-static const opt_spec SPEC[] = {
+static const opt_spec OPTS[] = {
     {"stands", OPT_LONG, &n_stands, 1, 10000, "stands per cell"},
     {"beta", OPT_DOUBLE, &beta, 0, 0.99, "die-back"},
     {"out", OPT_STR, &out, 0, 0, "output directory"},
     {"quiet", OPT_FLAG, &flag, 0, 0, "no progress"},
 };
-static const opts_cmd CMD = {"toy", "[options] UNIT", NULL, SPEC, 4, 1, 1};
+static const opts_cmd CMD = {"toy", "[options] UNIT", NULL, OPTS, 4, 1, 1};
 
 static void reset(void) { n_stands = 8; beta = -7.25; out = "none"; flag = 0; }
 

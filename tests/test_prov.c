@@ -84,7 +84,7 @@ static void test_gates_hash_changes_with_one_byte(void **s)
     assert_string_not_equal(h1, h2);
 }
 
-/* A result made by the revision-1 reading says so in its provenance. */
+/* A result made by the one-sided reading says so in its provenance. */
 static void test_provenance_names_the_teacher_reading(void **s)
 {
     (void)s;

@@ -1,4 +1,4 @@
-/* Claim tests of issue 13 (design.md §7 E0, E1 revision 2):
+/* Claim tests of the readings (design.md §7 E0, E1):
  *  - the Mech* macros come from the hard-core figure stand: the frozen
  *    figure_stats.tsv is regrown from its seeds (hard-core c = 0.5, 3.5 m,
  *    L = 36 m) and the claim's value equals the regrown stand's statistic
@@ -31,7 +31,7 @@ static void test_figure_stand_macros_come_from_the_hard_core_stand(void **s)
     assert_int_equal(r.status, VERDICT_PASS);
     /* the stand shown: hard-core, c = EXP_FIG_C, d = 3.5 m, L = 36 m, seed "fig/mechanism" */
     stand *sd;
-    assert_int_equal(stand_alloc(&sd, STAND_HARDCORE, 3.5, EXP_FIG_L, EXP_FIG_C, "fig/mechanism", 0), CS_OK);
+    assert_int_equal(stand_alloc(&sd, stems_hardcore, 3.5, EXP_FIG_L, EXP_FIG_C, "fig/mechanism", 0), CS_OK);
     double *rr = malloc(sd->s->n * CROWN_NSEC * sizeof *rr);
     teacher_params p;
     teacher_params_default(&p);
@@ -67,7 +67,7 @@ static void test_readings_summary_recomputes_from_the_run_tables(void **s)
     cs_status st = readings_check("frozen/readings/summary.tsv", rows, n);
     if (st) printf("%s\n", cs_errmsg());
     assert_int_equal(st, CS_OK);
-    /* revision 2 is the adopted reading: its Elong equals the claim's */
+    /* t2-r2 is the adopted reading: its Elong equals the claim's */
     const claim_row *row = claims_find(&c, "Elong");
     claim_result r;
     claims_eval(row, &r);

@@ -83,9 +83,9 @@ static void test_twins_share_stems_and_crown_draws(void **st)
 {
     (void)st;
     stand *a = NULL, *b = NULL, *c = NULL;
-    assert_int_equal(stand_alloc(&a, STAND_LATTICE, 5.5, 66.0, 0.04, "mechanism", 3), CS_OK);
-    assert_int_equal(stand_alloc(&b, STAND_LATTICE, 5.5, 66.0, 0.04, "mechanism", 3), CS_OK);
-    assert_int_equal(stand_alloc(&c, STAND_LATTICE, 5.5, 66.0, 0.04, "mechanism", 4), CS_OK);
+    assert_int_equal(stand_alloc(&a, stems_lattice, 5.5, 66.0, 0.04, "mechanism", 3), CS_OK);
+    assert_int_equal(stand_alloc(&b, stems_lattice, 5.5, 66.0, 0.04, "mechanism", 3), CS_OK);
+    assert_int_equal(stand_alloc(&c, stems_lattice, 5.5, 66.0, 0.04, "mechanism", 4), CS_OK);
     assert_int_equal(a->s->n, b->s->n);
     size_t n = a->s->n;
     assert_memory_equal(a->s->x, b->s->x, n * sizeof(double));
@@ -101,11 +101,31 @@ static void test_train_and_eval_stands_are_disjoint(void **st)
 {
     (void)st;
     stand *a = NULL, *b = NULL;
-    assert_int_equal(stand_alloc(&a, STAND_LATTICE, 4.5, 54.0, 0.04, "main/train", 0), CS_OK);
-    assert_int_equal(stand_alloc(&b, STAND_LATTICE, 4.5, 54.0, 0.04, "main/eval", 0), CS_OK);
+    assert_int_equal(stand_alloc(&a, stems_lattice, 4.5, 54.0, 0.04, "main/train", 0), CS_OK);
+    assert_int_equal(stand_alloc(&b, stems_lattice, 4.5, 54.0, 0.04, "main/eval", 0), CS_OK);
     assert_true(a->h[0] != b->h[0]);
     assert_true(a->s->x[0] != b->s->x[0]);
     stand_free(a); stand_free(b);
+}
+
+/* The stem processes are a table: found by name, and each type's alloc is
+ * the process it names (same stems as calling the alloc directly). */
+static void test_stem_types_are_a_table(void **st)
+{
+    (void)st;
+    assert_ptr_equal(stems_type_find("lattice"), stems_lattice);
+    assert_ptr_equal(stems_type_find("hardcore"), stems_hardcore);
+    assert_null(stems_type_find("poisson"));
+    size_t n = 0;
+    for (const stems_type *const *t = stems_types; *t; t++) n++;
+    assert_int_equal(n, 2);
+    stems *a = NULL, *b = NULL;
+    assert_int_equal(stems_hardcore->alloc(&a, 4.0, 36.0, 0.5, 7), CS_OK);
+    assert_int_equal(stems_hardcore_alloc(&b, 4.0, 36.0, 0.5, 7), CS_OK);
+    assert_int_equal(a->n, b->n);
+    for (size_t i = 0; i < a->n; i++) { ASSERT_EXACT(a->x[i], b->x[i]); ASSERT_EXACT(a->y[i], b->y[i]); }
+    stems_free(a);
+    stems_free(b);
 }
 
 int main(void)
@@ -118,6 +138,7 @@ int main(void)
         cmocka_unit_test(test_interior_is_two_spacings_from_the_edge),
         cmocka_unit_test(test_twins_share_stems_and_crown_draws),
         cmocka_unit_test(test_train_and_eval_stands_are_disjoint),
+        cmocka_unit_test(test_stem_types_are_a_table),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -39,7 +39,7 @@ static void test_coupling_off_equals_the_targets(void **st)
 {
     (void)st;
     stand *sd = NULL;
-    assert_int_equal(stand_alloc(&sd, STAND_LATTICE, 3.5, 42.0, 0.04, "test/teacher", 1), CS_OK);
+    assert_int_equal(stand_alloc(&sd, stems_lattice, 3.5, 42.0, 0.04, "test/teacher", 1), CS_OK);
     teacher_stand v;
     stand_view(sd, &v);
     double *r = malloc(v.n * CROWN_NSEC * sizeof *r);
@@ -103,8 +103,8 @@ static void test_no_overlap_at_every_spacing_and_dieback(void **st)
         for (int b = 0; b < 4; b++) {
             stand *sd = NULL;
             /* 8 d footprints (~64 trees) keep the test fast; hard-core on odd cells. */
-            stand_kind kind = ((a + b) & 1) ? STAND_HARDCORE : STAND_LATTICE;
-            double shape = kind == STAND_HARDCORE ? 0.5 : 0.04;
+            const stems_type *kind = ((a + b) & 1) ? stems_hardcore : stems_lattice;
+            double shape = kind == stems_hardcore ? 0.5 : 0.04;
             assert_int_equal(stand_alloc(&sd, kind, spacings[a], 8.0 * spacings[a], shape, "test/overlap", (unsigned)b), CS_OK);
             teacher_stand v;
             stand_view(sd, &v);
@@ -132,7 +132,7 @@ static void test_beta_zero_leaves_gaps_within_one_step(void **st)
 {
     (void)st;
     stand *sd = NULL;
-    assert_int_equal(stand_alloc(&sd, STAND_LATTICE, 3.5, 42.0, 0.04, "test/beta0", 0), CS_OK);
+    assert_int_equal(stand_alloc(&sd, stems_lattice, 3.5, 42.0, 0.04, "test/beta0", 0), CS_OK);
     teacher_stand v;
     stand_view(sd, &v);
     double *r = malloc(v.n * CROWN_NSEC * sizeof *r);
@@ -161,7 +161,7 @@ static void test_growth_is_bit_identical_on_repeat(void **st)
 {
     (void)st;
     stand *sd = NULL;
-    assert_int_equal(stand_alloc(&sd, STAND_HARDCORE, 4.5, 36.0, 0.5, "test/repeat", 2), CS_OK);
+    assert_int_equal(stand_alloc(&sd, stems_hardcore, 4.5, 36.0, 0.5, "test/repeat", 2), CS_OK);
     teacher_stand v;
     stand_view(sd, &v);
     size_t bytes = v.n * CROWN_NSEC * sizeof(double);
@@ -179,7 +179,7 @@ static void test_perturbation_keeps_hbar_and_moves_neighbours(void **st)
 {
     (void)st;
     stand *sd = NULL;
-    assert_int_equal(stand_alloc(&sd, STAND_LATTICE, 4.5, 54.0, 0.04, "test/perturb", 0), CS_OK);
+    assert_int_equal(stand_alloc(&sd, stems_lattice, 4.5, 54.0, 0.04, "test/perturb", 0), CS_OK);
     teacher_stand v;
     stand_view(sd, &v);
     size_t n = v.n, bytes = n * CROWN_NSEC * sizeof(double);
@@ -473,7 +473,7 @@ static void test_start_fraction_sets_the_starting_crowns(void **st)
     assert_string_equal(teacher_version(&p), "teacher-2");
 
     stand *sd = NULL;
-    assert_int_equal(stand_alloc(&sd, STAND_LATTICE, 3.5, 42.0, 0.04, "test/startfrac", 3), CS_OK);
+    assert_int_equal(stand_alloc(&sd, stems_lattice, 3.5, 42.0, 0.04, "test/startfrac", 3), CS_OK);
     teacher_stand v;
     stand_view(sd, &v);
     double *r1 = malloc(v.n * CROWN_NSEC * sizeof *r1), *r2 = malloc(v.n * CROWN_NSEC * sizeof *r2);
@@ -509,7 +509,7 @@ static void test_dieback_readings_never_overlap_on_full_stands(void **st)
         for (int b = 0; b < 2; b++)
             for (int kind = 0; kind < 2; kind++) {
                 stand *sd = NULL;
-                assert_int_equal(stand_alloc(&sd, kind ? STAND_HARDCORE : STAND_LATTICE, 3.5, 42.0,
+                assert_int_equal(stand_alloc(&sd, kind ? stems_hardcore : stems_lattice, 3.5, 42.0,
                                              kind ? 0.5 : 0.04, "test/dieback", (unsigned)b), CS_OK);
                 teacher_stand v;
                 stand_view(sd, &v);
@@ -538,7 +538,7 @@ static void test_mutual_abrasion_never_overlaps_on_full_stands(void **st)
         for (int b = 0; b < 4; b++)
             for (int kind = 0; kind < 2; kind++) {
                 stand *sd = NULL;
-                stand_kind sk = kind ? STAND_HARDCORE : STAND_LATTICE;
+                const stems_type *sk = kind ? stems_hardcore : stems_lattice;
                 double shape = kind ? 0.5 : 0.04;
                 assert_int_equal(stand_alloc(&sd, sk, spacings[a], 12.0 * spacings[a], shape, "test/mutual", (unsigned)b), CS_OK);
                 teacher_stand v;

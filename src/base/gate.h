@@ -1,7 +1,7 @@
 /* gate: preregistered thresholds (design.md §7). A gate file holds lines
  * "key value [value…]" with "#" comments; every value must be a number.
  * The files in gates/ are byte-for-byte copies of ../shared/gates and are
- * never edited; their joint SHA-256 is pinned in audit/pins. */
+ * never edited; their joint SHA-256 is pinned in audit/pins.tsv. */
 #ifndef GATE_H
 #define GATE_H
 #include "cs.h"

@@ -7,7 +7,7 @@
  *    list (src/base/manifest.sh make -> build/manifest.mk, included by the
  *    Makefile);
  *  - the CLI's command table and its --help groups (src/cli/cli.c);
- *  - the README's experiment table (src/base/manifest.sh readme);
+ *  - the experiment table of src/README.md (src/base/manifest.sh readme);
  *  - trace's experiment line (manifest.c).
  * tests/layout.sh fails when any of them is listed by hand elsewhere, when a
  * named file is missing, or when a frozen/ folder has no row here.
@@ -80,7 +80,7 @@ UNIT(mechanism, "ablation.tsv", "$(TEACHER_DEPS)", "$(CLI) mechanism-ablation @T
 UNIT(mechanism, "figure_crowns.tsv", "$(TEACHER_DEPS)", "$(CLI) mechanism-figure @TEACHER@ --out @R@", "top readings")
 UNIT(mechanism, "figure_stats.tsv", "@R@/mechanism/figure_crowns.tsv", "", "side")
 
-EXPERIMENT(irreducibility, "E2", "src/exp/exp_irred.c", "gates/irreducibility.gate", "src/claims/claim_teacher.c", "figures/irreducible.gp", "rerun", "no local rule reproduces the growth: response to a perturbed tree, refinement of N, best-fit Voronoi reduction, at beta_train and beta_field")
+EXPERIMENT(irreducibility, "E2", "src/exp/exp_irreducibility.c", "gates/irreducibility.gate", "src/claims/claim_teacher.c", "figures/irreducible.gp", "rerun", "no local rule reproduces the growth: response to a perturbed tree, refinement of N, best-fit Voronoi reduction, at beta_train and beta_field")
 COMMAND(irreducibility, "irreducibility-perturb", cli_irreducibility_perturb, "E2: one tree 30% taller, 5 spacings")
 COMMAND(irreducibility, "irreducibility-refine", cli_irreducibility_refine, "E2: growth resolution N in {48, 96, 192, 384}")
 COMMAND(irreducibility, "irreducibility-reduction", cli_irreducibility_reduction, "E2: best-fit Voronoi reduction")
@@ -96,6 +96,8 @@ COMMAND(main, "main-run", cli_main_run, "E3/E4: one (seed, arm) training + evalu
 COMMAND(main, "main-baselines", cli_main_baselines, "E3/E4: direction-blind baseline and noise floor")
 COMMAND(main, "main-summary", cli_main_summary, "E3/E4: gather the runs into the frozen tables")
 COMMAND(main, "main-redraw", cli_main_redraw, "E3/E4: draw a unit's clearance samples again from its frozen weights")
+COMMAND(main, "main-train", cli_main_train, "E3/E4: train one (seed, arm, reading) unit: weights and training table")
+COMMAND(main, "main-eval", cli_main_eval, "E3/E4: evaluate one unit from its weights, without training: run table and samples")
 UNIT(main, "run_s%_joint.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --seed $* --arm joint --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/main_s$*_joint.ckpt --samples @R@/main/samples_s$*_joint.tsv --weights @R@/main/weights_s$*_joint.ckpt --out $@", "-")
 UNIT(main, "run_s%_indep.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --seed $* --arm indep --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/main_s$*_indep.ckpt --samples @R@/main/samples_s$*_indep.tsv --weights @R@/main/weights_s$*_indep.ckpt --out $@", "-")
 UNIT(main, "baselines.tsv", "", "$(CLI) main-baselines --scale $(SCALE) --samples @R@/main/samples_baselines.tsv --out $@", "-")
@@ -105,20 +107,20 @@ EXPERIMENT(extrapolation, "E4", "src/exp/exp_main.c", "gates/extrapolation.gate"
 UNIT(extrapolation, "runs.tsv", "@R@/main/runs.tsv", "", "side")
 
 EXPERIMENT(field, "E5", "src/exp/exp_field.c", "gates/field.gate", "src/claims/claim_field.c", "figures/field.gp", "rerun", "die-back calibrated to the field's median clearance, then held-out spread, elongation and the uncoupled control")
-COMMAND(field, "field-calibrate", cmd_field_calibrate, "E5: calibrate die-back beta to the field tree-mean median clearance")
-COMMAND(field, "field-beta", cmd_field_beta, "E5: print beta_field from a calibration table")
-COMMAND(field, "field-heldout", cmd_field_heldout, "E5: held-out spread, elongation and uncoupled control at beta_field")
-COMMAND(field, "field-summary", cmd_field_summary, "E5: summarise a raw field table (FIELD_TABLE) with the canonical estimator")
-COMMAND(field, "field-diagnose", cmd_field_diagnose, "E5/E6: diagnostics for the elongation and anisotropy verdicts")
+COMMAND(field, "field-calibrate", cli_field_calibrate, "E5: calibrate die-back beta to the field tree-mean median clearance")
+COMMAND(field, "field-beta", cli_field_beta, "E5: print beta_field from a calibration table")
+COMMAND(field, "field-heldout", cli_field_heldout, "E5: held-out spread, elongation and uncoupled control at beta_field")
+COMMAND(field, "field-summary", cli_field_summary, "E5: summarise a raw field table (FIELD_TABLE) with the canonical estimator")
+COMMAND(field, "field-diagnose", cli_field_diagnose, "E5/E6: diagnostics for the elongation and anisotropy verdicts")
 UNIT(field, "calibration.tsv", "", "$(CLI) field-calibrate @TEACHER@ @LAYOUT@ --out $@", "top readings")
 UNIT(field, "heldout.tsv", "@R@/field/calibration.tsv", "$(CLI) field-heldout @TEACHER@ @LAYOUT@ --calibration @R@/field/calibration.tsv --stands $(FIELD_STANDS) --out $@", "top readings")
 
-EXPERIMENT(anisotropy, "E6", "src/exp/exp_aniso.c", "gates/anisotropy.gate", "src/claims/claim_aniso.c", "figures/anisotropy.gp", "rerun", "what sets the gap anisotropy: the lattice, a hard-core and a jitter family, a* calibrated, held-out stands at a*")
-COMMAND(anisotropy, "anisotropy-lattice", cmd_aniso_lattice, "E6: anisotropy on the controlled lattice at beta_field")
-COMMAND(anisotropy, "anisotropy-hardcore", cmd_aniso_hardcore, "E6: hard-core stem family sweep")
-COMMAND(anisotropy, "anisotropy-jitter", cmd_aniso_jitter, "E6: jitter-amplitude family sweep")
-COMMAND(anisotropy, "anisotropy-jitter-calibrate", cmd_aniso_jitter_calibrate, "E6: calibrate the jitter a* to the field anisotropy median")
-COMMAND(anisotropy, "anisotropy-heldout", cmd_aniso_heldout, "E6: held-out stands at a*")
+EXPERIMENT(anisotropy, "E6", "src/exp/exp_anisotropy.c", "gates/anisotropy.gate", "src/claims/claim_aniso.c", "figures/anisotropy.gp", "rerun", "what sets the gap anisotropy: the lattice, a hard-core and a jitter family, a* calibrated, held-out stands at a*")
+COMMAND(anisotropy, "anisotropy-lattice", cli_anisotropy_lattice, "E6: anisotropy on the controlled lattice at beta_field")
+COMMAND(anisotropy, "anisotropy-hardcore", cli_anisotropy_hardcore, "E6: hard-core stem family sweep")
+COMMAND(anisotropy, "anisotropy-jitter", cli_anisotropy_jitter, "E6: jitter-amplitude family sweep")
+COMMAND(anisotropy, "anisotropy-jitter-calibrate", cli_anisotropy_jitter_calibrate, "E6: calibrate the jitter a* to the field anisotropy median")
+COMMAND(anisotropy, "anisotropy-heldout", cli_anisotropy_heldout, "E6: held-out stands at a*")
 UNIT(anisotropy, "lattice.tsv", "@R@/field/calibration.tsv", "$(CLI) anisotropy-lattice @TEACHER@ @LAYOUT@ --calibration @R@/field/calibration.tsv --stands $(FIELD_STANDS) --out $@", "top readings")
 UNIT(anisotropy, "hardcore.tsv", "@R@/field/calibration.tsv", "$(CLI) anisotropy-hardcore @TEACHER@ @LAYOUT@ --calibration @R@/field/calibration.tsv --stands $(ANISO_SWEEP_STANDS) --out $@", "top readings")
 UNIT(anisotropy, "jitter.tsv", "@R@/field/calibration.tsv", "$(CLI) anisotropy-jitter @TEACHER@ @LAYOUT@ --calibration @R@/field/calibration.tsv --stands $(ANISO_SWEEP_STANDS) --out $@", "top readings")
@@ -127,7 +129,31 @@ UNIT(anisotropy, "heldout.tsv", "@R@/field/calibration.tsv @R@/anisotropy/jitter
 
 EXPERIMENT(comparison, "E7", "src/exp/exp_comp.c", "-", "src/claims/claim_comp.c", "figures/teaser.gp", "-", "a 24-tree patch at 5.0 m by the teacher, the joint and the independent model of seed 1, and the dart probe")
 COMMAND(comparison, "comparison-run", cli_comparison_run, "E7: comparison patch (teacher, joint, independent) and dart probe")
+COMMAND(comparison, "comparison-dist", cli_comparison_dist, "E7: the comparison patch and the dart probe as distributions over fresh patches")
 UNIT(comparison, "patch.tsv", "@R@/main/run_s01_joint.tsv @R@/main/run_s01_indep.tsv", "$(CLI) comparison-run --joint @R@/main/weights_s01_joint.ckpt --indep @R@/main/weights_s01_indep.ckpt --out @R@", "top")
+
+EXPERIMENT(paper-reading, "E3", "src/exp/exp_main.c", "gates/main.gate", "src/claims/claim_main.c", "-", "-", "the generator as the reference paper describes it (design.md §8 readings: tokens from the noisy profile, position and size, standardised; plain attention), 12 seeds x 2 arms at evaluation volume v2: the reading the preregistered main and extrapolation gates judge; its E7 distribution")
+UNIT(paper-reading, "main/run_s%_joint.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --reading paper --volume v2 --seed $* --arm joint --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/paper-main_s$*_joint.ckpt --samples @R@/paper-reading/main/samples_s$*_joint.tsv --weights @R@/paper-reading/main/weights_s$*_joint.ckpt --out $@", "-")
+UNIT(paper-reading, "main/run_s%_indep.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --reading paper --volume v2 --seed $* --arm indep --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/paper-main_s$*_indep.ckpt --samples @R@/paper-reading/main/samples_s$*_indep.tsv --weights @R@/paper-reading/main/weights_s$*_indep.ckpt --out $@", "-")
+UNIT(paper-reading, "main/baselines.tsv", "", "$(CLI) main-baselines --volume v2 --scale $(SCALE) --samples @R@/paper-reading/main/samples_baselines.tsv --out $@", "-")
+UNIT(paper-reading, "main/runs.tsv", "$(foreach s,$(MAIN_SEED_LIST),@R@/paper-reading/main/run_s$(s)_joint.tsv @R@/paper-reading/main/run_s$(s)_indep.tsv) @R@/paper-reading/main/baselines.tsv", "$(CLI) main-summary --dir @R@/paper-reading --seeds $(MAIN_NSEEDS)", "top")
+UNIT(paper-reading, "comparison/dist_summary.tsv", "@R@/paper-reading/main/run_s01_joint.tsv @R@/paper-reading/main/run_s01_indep.tsv", "$(CLI) comparison-dist --joint @R@/paper-reading/main/weights_s01_joint.ckpt --indep @R@/paper-reading/main/weights_s01_indep.ckpt --out @R@/paper-reading", "top")
+
+EXPERIMENT(extension-pair, "E3", "src/exp/exp_main.c", "-", "src/claims/claim_main.c", "-", "-", "the pair-aware generator (design.md §8, an extension added after the first verdict): E3's frozen pair units re-evaluated from their weights at volume v2, and its E7 distribution")
+UNIT(extension-pair, "main/run_s%_joint.tsv", "@R@/main/run_s%_joint.tsv", "$(CLI) main-eval --reading pair --volume v2 --seed $* --arm joint --scale $(SCALE) --weights @R@/main/weights_s$*_joint.ckpt --trained @R@/main/run_s$*_joint.tsv --samples @R@/extension-pair/main/samples_s$*_joint.tsv --out $@", "-")
+UNIT(extension-pair, "main/run_s%_indep.tsv", "@R@/main/run_s%_indep.tsv", "$(CLI) main-eval --reading pair --volume v2 --seed $* --arm indep --scale $(SCALE) --weights @R@/main/weights_s$*_indep.ckpt --trained @R@/main/run_s$*_indep.tsv --samples @R@/extension-pair/main/samples_s$*_indep.tsv --out $@", "-")
+UNIT(extension-pair, "main/runs.tsv", "$(foreach s,$(MAIN_SEED_LIST),@R@/extension-pair/main/run_s$(s)_joint.tsv @R@/extension-pair/main/run_s$(s)_indep.tsv)", "$(CLI) main-summary --dir @R@/extension-pair --seeds $(MAIN_NSEEDS)", "top")
+UNIT(extension-pair, "comparison/dist_summary.tsv", "@R@/main/run_s01_joint.tsv @R@/main/run_s01_indep.tsv", "$(CLI) comparison-dist --joint @R@/main/weights_s01_joint.ckpt --indep @R@/main/weights_s01_indep.ckpt --out @R@/extension-pair", "top")
+
+EXPERIMENT(model-readings, "E3", "src/claims/model_readings.c", "-", "src/claims/model_readings.c", "-", "-", "the intermediate generator readings (plain, paper-fourier; 4 seeds, volume v2, descriptive) and the readings table beside the paper reading and the pair extension")
+COMMAND(model-readings, "model-readings-summary", cli_model_readings_summary, "E3/E4: the generator readings table from the runs under --dir")
+UNIT(model-readings, "plain/main/run_s%_joint.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --reading plain --volume v2 --seed $* --arm joint --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/plain-main_s$*_joint.ckpt --samples @R@/model-readings/plain/main/samples_s$*_joint.tsv --weights @R@/model-readings/plain/main/weights_s$*_joint.ckpt --out $@", "-")
+UNIT(model-readings, "plain/main/run_s%_indep.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --reading plain --volume v2 --seed $* --arm indep --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/plain-main_s$*_indep.ckpt --samples @R@/model-readings/plain/main/samples_s$*_indep.tsv --weights @R@/model-readings/plain/main/weights_s$*_indep.ckpt --out $@", "-")
+UNIT(model-readings, "paper-fourier/main/run_s%_joint.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --reading paper-fourier --volume v2 --seed $* --arm joint --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/paper-fourier-main_s$*_joint.ckpt --samples @R@/model-readings/paper-fourier/main/samples_s$*_joint.tsv --weights @R@/model-readings/paper-fourier/main/weights_s$*_joint.ckpt --out $@", "-")
+UNIT(model-readings, "paper-fourier/main/run_s%_indep.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --reading paper-fourier --volume v2 --seed $* --arm indep --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/paper-fourier-main_s$*_indep.ckpt --samples @R@/model-readings/paper-fourier/main/samples_s$*_indep.tsv --weights @R@/model-readings/paper-fourier/main/weights_s$*_indep.ckpt --out $@", "-")
+UNIT(model-readings, "plain/main/runs.tsv", "$(foreach s,$(READING_SEED_LIST),@R@/model-readings/plain/main/run_s$(s)_joint.tsv @R@/model-readings/plain/main/run_s$(s)_indep.tsv)", "$(CLI) main-summary --dir @R@/model-readings/plain --seeds $(READING_NSEEDS)", "-")
+UNIT(model-readings, "paper-fourier/main/runs.tsv", "$(foreach s,$(READING_SEED_LIST),@R@/model-readings/paper-fourier/main/run_s$(s)_joint.tsv @R@/model-readings/paper-fourier/main/run_s$(s)_indep.tsv)", "$(CLI) main-summary --dir @R@/model-readings/paper-fourier --seeds $(READING_NSEEDS)", "-")
+UNIT(model-readings, "summary.tsv", "@R@/paper-reading/main/runs.tsv @R@/extension-pair/main/runs.tsv @R@/model-readings/plain/main/runs.tsv @R@/model-readings/paper-fourier/main/runs.tsv", "$(CLI) model-readings-summary --dir @R@ --out $@", "top")
 
 EXPERIMENT(pointcloud, "E8", "src/exp/exp_stands.c", "-", "src/claims/claim_teacher.c", "figures/pointcloud-stand.gp", "rerun", "hard-core stands at 5, 4 and 3 m: crowns contacting a neighbour, coupled vs uncoupled clearance")
 COMMAND(pointcloud, "pointcloud-figure", cli_pointcloud_figure, "E8: point-cloud stands (5/4/3 m and uncoupled) and pointcloud/stats.tsv")

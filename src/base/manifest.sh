@@ -4,7 +4,7 @@
 #   manifest.sh make     the make rules of every unit, REPRODUCE_UNITS,
 #                        DEEP_UNITS and one phony target per experiment
 #                        (the Makefile includes it as build/manifest.mk)
-#   manifest.sh readme   the README's experiment table (markdown)
+#   manifest.sh readme   the experiment table of src/README.md (markdown)
 #   manifest.sh rows     every row as tab-separated fields: KIND name fields...
 # The rows are read line by line: an X-macro row is one line whose fields
 # after the name are string literals without embedded quotes.

@@ -46,7 +46,7 @@ static cs_status walk(const char *dir, const char *suffix, int recursive, int al
         char p[1024];
         snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
         struct stat sb;
-        if (stat(p, &sb) != 0) continue;
+        if (lstat(p, &sb) != 0) continue; /* a symlink is listed (all) as itself, never followed */
         if (S_ISDIR(sb.st_mode)) { if (recursive) st = walk(p, suffix, recursive, all, out); }
         else if ((S_ISREG(sb.st_mode) || all) && ends_with(e->d_name, suffix)) st = paths_list_add(out, p);
     }

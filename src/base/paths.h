@@ -24,6 +24,14 @@
 #define PATHS_GATE_MAP "audit/gate_map.tsv"
 /* Aggregate frozen tables and the per-run tables they are computed from. */
 #define PATHS_AGGREGATES "audit/aggregates.tsv"
+/* The design grid of every frozen table (its rows, block by block). */
+#define PATHS_GRIDS "audit/grids.tsv"
+/* The preregistered gates' hashes, written once at preregistration and never
+ * by `crownshy pin`: the gates' anchor where no .git is present. */
+#define PATHS_GATES_PREREG "audit/gates_prereg.sha256"
+/* The numbers the paper text may type: constants of the design, each with
+ * the file that fixes it. */
+#define PATHS_DESIGN_NUMBERS "audit/design_numbers.tsv"
 /* The claim-computing code, pinned file by file. */
 #define PATHS_CLAIMS_SRC_DIR "src/claims"
 #define PATHS_NUMBERS "paper/numbers.tex"
@@ -37,6 +45,14 @@
 #define PATHS_PAPER_DIR "paper"
 #define PATHS_FIGURES_DIR "figures"
 #define PATHS_FROZEN_DIR "frozen"
+/* The documentation pages the audit reads for typed numbers (design.md §9):
+ * README.md and every *.md under these folders; the changelog is history. */
+#define PATHS_README "README.md"
+#define PATHS_DOCS_DIRS {"audit", "frozen", "src", "tests", "paper", "figures", "gates", NULL}
+#define PATHS_CHANGELOG "paper/CHANGELOG.md"
+/* Design constants a documentation page may type although a measured value
+ * rounds to them, each with the source that holds it (beside PATHS_DESIGN_NUMBERS). */
+#define PATHS_DOC_NUMBERS "audit/doc_numbers.tsv"
 
 /* The pinned instrument (design.md §4, §5): its sources are hashed into every
  * frozen file's provenance and into audit/pins.tsv; the teacher header holds

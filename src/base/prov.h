@@ -3,7 +3,7 @@
  * teacher/estimator/gates SHA-256,
  * git commit, seeds, date, wall time, worst overlap. Hashes are computed from
  * the source files at run time (the pinned sources named in paths.h, gates/
- * *.gate in name order), so the audit can compare them with audit/pins. The
+ * *.gate in name order), so the audit can compare them with audit/pins.tsv. The
  * teacher version is the one the pinned teacher header declares; a run of
  * another reading of the teacher overwrites p->teacher_version. */
 #ifndef PROV_H
@@ -31,7 +31,7 @@ cs_status prov_write(tsv_writer *w, prov *p);
 /* The version string the pinned teacher header declares
  * (#define TEACHER_VERSION "..."); CS_EINPUT naming file and line if absent. */
 cs_status prov_teacher_version(char *out, size_t n);
-/* The revision-1 reading's string (#define TEACHER_VERSION_ONE_SIDED "..."),
+/* The one-sided reading's string (#define TEACHER_VERSION_ONE_SIDED "..."),
  * which the readings (design.md §7 E0) record under frozen/readings/. */
 cs_status prov_teacher_version_one_sided(char *out, size_t n);
 /* SHA-256 of a file as 64 lowercase hex chars (+NUL). */

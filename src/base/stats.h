@@ -1,7 +1,7 @@
 /* stats: the study's statistics (design.md §6). Exact two-sided Wilcoxon
  * signed-rank with zeros dropped and average ranks for ties; Spearman rho and
  * quantiles via GSL on sorted copies. W1 lives in the pinned estimator
- * (src/estimator.c, est_w1) because it is part of the instrument. */
+ * (src/forest/estimator.c, est_w1) because it is part of the instrument. */
 #ifndef STATS_H
 #define STATS_H
 #include "cs.h"

@@ -44,27 +44,72 @@ static size_t split_tabs(char *s, char **out, size_t max)
     return n;
 }
 
-cs_status tsv_read(const char *path, tsv **out)
+/* The whole file into t->buf (NUL-terminated), refusing a non-regular,
+ * unreadable or binary file; *size receives its length. */
+static cs_status slurp(const char *path, tsv *t, long *size)
 {
-    *out = NULL;
-    cs_status ist = paths_input_file(path);
-    if (ist) return ist;
     FILE *f = fopen(path, "rb");
     if (!f) return cs_err(CS_EINPUT, "%s: cannot open: %s", path, strerror(errno));
     if (fseek(f, 0, SEEK_END) != 0) { fclose(f); return cs_err(CS_EINPUT, "%s: cannot seek", path); }
     long sz = ftell(f);
     rewind(f);
-    tsv *t = calloc(1, sizeof *t);
-    if (!t) { fclose(f); return cs_err(CS_ENOMEM, "%s: out of memory", path); }
     t->path = strdup(path);
     t->buf = malloc((size_t)sz + 1);
-    if (!t->path || !t->buf) { fclose(f); tsv_free(t); return cs_err(CS_ENOMEM, "%s: out of memory", path); }
+    if (!t->path || !t->buf) { fclose(f); return cs_err(CS_ENOMEM, "%s: out of memory", path); }
     size_t got = fread(t->buf, 1, (size_t)sz, f);
     fclose(f);
-    if (got != (size_t)sz) { tsv_free(t); return cs_err(CS_EINPUT, "%s: short read", path); }
+    if (got != (size_t)sz) return cs_err(CS_EINPUT, "%s: short read", path);
     t->buf[sz] = '\0';
-    if (memchr(t->buf, '\0', (size_t)sz)) { tsv_free(t); return cs_err(CS_EINPUT, "%s: binary data (NUL byte)", path); }
+    if (memchr(t->buf, '\0', (size_t)sz)) return cs_err(CS_EINPUT, "%s: binary data (NUL byte)", path);
+    *size = sz;
+    return CS_OK;
+}
 
+/* One line of the table: a provenance line, the header row or a data row. */
+static cs_status parse_line(tsv *t, char *line, int lineno, size_t nlines, size_t *row)
+{
+    const char *path = t->path;
+    if (line[0] == '#') {
+        if (t->cols) return cs_err(CS_EINPUT, "%s:%d: provenance line after the header row", path, lineno);
+        char *sep = strstr(line, ": ");
+        if (line[1] != ' ' || !sep || sep == line + 2)
+            return cs_err(CS_EINPUT, "%s:%d: malformed provenance line (expected '# key: value')", path, lineno);
+        *sep = '\0';
+        t->mkey[t->nmeta] = line + 2;
+        t->mval[t->nmeta] = sep + 2;
+        t->nmeta++;
+        return CS_OK;
+    }
+    if (line[0] == '\0') return cs_err(CS_EINPUT, "%s:%d: empty line", path, lineno);
+    if (!t->cols) {
+        size_t nc = 1;
+        for (const char *c = line; *c; c++) nc += (*c == '\t');
+        t->cols = calloc(nc, sizeof *t->cols);
+        if (!t->cols) return cs_err(CS_ENOMEM, "%s: out of memory", path);
+        t->ncols = split_tabs(line, t->cols, nc);
+        for (size_t c = 0; c < t->ncols; c++)
+            if (!t->cols[c][0]) return cs_err(CS_EINPUT, "%s:%d: header column %zu has an empty name", path, lineno, c + 1);
+        t->cells = calloc(nlines * t->ncols + 1, sizeof *t->cells);
+        if (!t->cells) return cs_err(CS_ENOMEM, "%s: out of memory", path);
+        return CS_OK;
+    }
+    size_t n = split_tabs(line, t->cells + *row * t->ncols, t->ncols);
+    if (n < t->ncols)
+        return cs_err(CS_EINPUT, "%s:%d: field '%s' missing (truncated line: %zu of %zu fields)", path, lineno, t->cols[n], n, t->ncols);
+    if (n > t->ncols) return cs_err(CS_EINPUT, "%s:%d: %zu fields, header has %zu", path, lineno, n, t->ncols);
+    t->lines[(*row)++] = lineno;
+    return CS_OK;
+}
+
+cs_status tsv_read(const char *path, tsv **out)
+{
+    *out = NULL;
+    cs_status st = paths_input_file(path);
+    if (st) return st;
+    tsv *t = calloc(1, sizeof *t);
+    if (!t) return cs_err(CS_ENOMEM, "%s: out of memory", path);
+    long sz = 0;
+    if ((st = slurp(path, t, &sz))) { tsv_free(t); return st; }
     size_t nlines = 0;
     for (long i = 0; i < sz; i++) if (t->buf[i] == '\n') nlines++;
     if (sz > 0 && t->buf[sz - 1] != '\n') {
@@ -75,61 +120,22 @@ cs_status tsv_read(const char *path, tsv **out)
     t->mval = calloc(nlines + 1, sizeof *t->mval);
     t->lines = calloc(nlines + 1, sizeof *t->lines);
     if (!t->mkey || !t->mval || !t->lines) { tsv_free(t); return cs_err(CS_ENOMEM, "%s: out of memory", path); }
-
     char *p = t->buf;
     /* a UTF-8 byte-order mark (spreadsheet exports) is not part of the first field */
     if (sz >= 3 && !memcmp(p, "\xef\xbb\xbf", 3)) p += 3;
     int lineno = 0;
     size_t row = 0;
-    while (*p) {
+    while (*p && !st) {
         char *nl = strchr(p, '\n');
         *nl = '\0';
         if (nl > p && nl[-1] == '\r') nl[-1] = '\0';
-        lineno++;
         char *line = p;
         p = nl + 1;
-        if (line[0] == '#') {
-            if (t->cols) { tsv_free(t); return cs_err(CS_EINPUT, "%s:%d: provenance line after the header row", path, lineno); }
-            char *sep = strstr(line, ": ");
-            if (line[1] != ' ' || !sep || sep == line + 2) {
-                tsv_free(t);
-                return cs_err(CS_EINPUT, "%s:%d: malformed provenance line (expected '# key: value')", path, lineno);
-            }
-            *sep = '\0';
-            t->mkey[t->nmeta] = line + 2;
-            t->mval[t->nmeta] = sep + 2;
-            t->nmeta++;
-            continue;
-        }
-        if (line[0] == '\0') { tsv_free(t); return cs_err(CS_EINPUT, "%s:%d: empty line", path, lineno); }
-        if (!t->cols) {
-            size_t nc = 1;
-            for (const char *c = line; *c; c++) nc += (*c == '\t');
-            t->cols = calloc(nc, sizeof *t->cols);
-            if (!t->cols) { tsv_free(t); return cs_err(CS_ENOMEM, "%s: out of memory", path); }
-            t->ncols = split_tabs(line, t->cols, nc);
-            for (size_t c = 0; c < t->ncols; c++)
-                if (!t->cols[c][0]) { tsv_free(t); return cs_err(CS_EINPUT, "%s:%d: header column %zu has an empty name", path, lineno, c + 1); }
-            t->cells = calloc(nlines * t->ncols + 1, sizeof *t->cells);
-            if (!t->cells) { tsv_free(t); return cs_err(CS_ENOMEM, "%s: out of memory", path); }
-            continue;
-        }
-        size_t n = split_tabs(line, t->cells + row * t->ncols, t->ncols);
-        if (n < t->ncols) {
-            cs_status st = cs_err(CS_EINPUT, "%s:%d: field '%s' missing (truncated line: %zu of %zu fields)",
-                                  path, lineno, t->cols[n], n, t->ncols);
-            tsv_free(t);
-            return st;
-        }
-        if (n > t->ncols) {
-            /* message first: it reads the table (a use-after-free found by make fuzz) */
-            cs_status st = cs_err(CS_EINPUT, "%s:%d: %zu fields, header has %zu", path, lineno, n, t->ncols);
-            tsv_free(t);
-            return st;
-        }
-        t->lines[row++] = lineno;
+        /* the message is made before tsv_free: it reads the table (a use-after-free found by make fuzz) */
+        st = parse_line(t, line, ++lineno, nlines, &row);
     }
-    if (!t->cols) { tsv_free(t); return cs_err(CS_EINPUT, "%s: no header row", path); }
+    if (!st && !t->cols) st = cs_err(CS_EINPUT, "%s: no header row", path);
+    if (st) { tsv_free(t); return st; }
     t->nrows = row;
     *out = t;
     return CS_OK;

@@ -1,4 +1,4 @@
-/* audit: traceability checks (design.md §9; issue 7). Messages always name the
+/* audit: traceability checks (design.md §9). Messages always name the
  * file and the claims it feeds, so a tampered byte points at its culprit. */
 #include "audit.h"
 #include "afile.h"
@@ -15,6 +15,7 @@
 #include "paths.h"
 #include "audit_data.h"
 #include "audit_paper.h"
+#include "audit_evidence.h"
 
 static int file_exists(const char *p) { struct stat sb; return stat(p, &sb) == 0; }
 
@@ -70,6 +71,11 @@ static void registry_row_pins(pin *p, size_t *k)
     if (f) fclose(f);
 }
 
+/* The design constants no gate carries (design.md §2, §3, §7) and the claim
+ * tests (the registry's test column names tests/test_claims.c). */
+static const char *const design_files[] = {"src/base/design.h", "src/forest/crown.h", NULL};
+static const char *const claim_tests[] = {"tests/test_claims.c", "tests/test_field_claims.c", "tests/testutil.h", "tests/tamper.sh", NULL};
+
 /* Every pin of the instrument as it is now; *n entries (at most MAXPINS). */
 static void current_pins(pin *p, size_t *n)
 {
@@ -95,6 +101,15 @@ static void current_pins(pin *p, size_t *n)
     add_file_pin(p, &k, "registry_sha256", PATHS_CLAIMS);
     registry_row_pins(p, &k);
     add_file_pin(p, &k, "aggregates_sha256", PATHS_AGGREGATES);
+    /* what else a number rests on: the record of superseded readings, the
+     * design grids and the preregistered gates' hashes, the design constants
+     * no gate carries (and the list the paper may type), the claim tests */
+    add_file_pin(p, &k, "superseded_sha256", PATHS_PINS_SUPERSEDED);
+    add_file_pin(p, &k, "grids_sha256", PATHS_GRIDS);
+    add_file_pin(p, &k, "gates_prereg_sha256", PATHS_GATES_PREREG);
+    add_file_pin(p, &k, "design_numbers_sha256", PATHS_DESIGN_NUMBERS);
+    for (size_t i = 0; design_files[i]; i++) add_file_pin(p, &k, "design_sha256", design_files[i]);
+    for (size_t i = 0; claim_tests[i]; i++) add_file_pin(p, &k, "claim_test_sha256", claim_tests[i]);
     *n = k;
 }
 
@@ -199,6 +214,7 @@ cs_status audit_pin(void)
     current_pins(p, &n);
     cs_status st = supersede(p, n);
     if (st) return st;
+    current_pins(p, &n); /* the superseded record is pinned as supersede left it */
     tsv_writer *w;
     st = tsv_writer_open(&w, PATHS_PINS);
     if (st) return st;
@@ -256,6 +272,16 @@ static void check_pins(const claims *c, checklist *cl)
                 for (size_t i = 0; i < c->n && off < sizeof affected - 40; i++)
                     if (!strcmp(c->rows[i].kind, "measured") || !strcmp(c->rows[i].kind, "probe")) off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
                 if (!cnt) snprintf(affected, sizeof affected, "every measured claim");
+            } else if (!strcmp(key, "design_sha256") || !strcmp(key, "design_numbers_sha256")) {
+                snprintf(affected, sizeof affected, "every claim resting on the design constants (%s)", path);
+            } else if (!strcmp(key, "claim_test_sha256")) {
+                snprintf(affected, sizeof affected, "every claim whose test is in %s", path);
+            } else if (!strcmp(key, "superseded_sha256")) {
+                snprintf(affected, sizeof affected, "every claim of a table made by a superseded reading (%s)", path);
+            } else if (!strcmp(key, "grids_sha256")) {
+                snprintf(affected, sizeof affected, "every claim of a table with a design grid (%s)", path);
+            } else if (!strcmp(key, "gates_prereg_sha256")) {
+                snprintf(affected, sizeof affected, "every gated claim (%s)", path);
             } else snprintf(affected, sizeof affected, "(gates as a whole)");
             checklist_add(cl, VERDICT_FAIL, name, "%s changed: %s is %.16s…, pinned %.16s… (%s:%d); claims affected: %s",
                           path, key, m->value, val, PATHS_PINS, tsv_line(t, r), affected);
@@ -279,8 +305,8 @@ cs_status audit_hash_frozen(void)
     /* a temporary or hidden file is never sealed as a result */
     for (size_t i = 0; i < l.n; i++) {
         struct stat sb;
-        if (paths_is_hidden_or_tmp(l.p[i]) || stat(l.p[i], &sb) != 0 || !S_ISREG(sb.st_mode)) {
-            st = cs_err(CS_EINPUT, "%s: a hidden, temporary or non-regular file in %s/ is not a frozen result: remove it before sealing", l.p[i], PATHS_FROZEN_DIR);
+        if (paths_is_hidden_or_tmp(l.p[i]) || lstat(l.p[i], &sb) != 0 || !S_ISREG(sb.st_mode)) {
+            st = cs_err(CS_EINPUT, "%s: a hidden, temporary or non-regular file (a symlink, a folder link, a device) in %s/ is not a frozen result: remove it before sealing", l.p[i], PATHS_FROZEN_DIR);
             paths_list_free(&l);
             return st;
         }
@@ -342,7 +368,7 @@ static void check_frozen(const claims *c, checklist *cl, paths_list *frozen_file
     paths_list_every(PATHS_FROZEN_DIR, 1, &every);
     for (size_t i = 0; i < every.n; i++) {
         struct stat sb;
-        int reg = stat(every.p[i], &sb) == 0 && S_ISREG(sb.st_mode);
+        int reg = lstat(every.p[i], &sb) == 0 && S_ISREG(sb.st_mode); /* a symlink is not a result */
         if (!paths_is_hidden_or_tmp(every.p[i]) && reg) continue;
         int sealed = 0;
         for (size_t j = 0; j < listed.n && !sealed; j++) sealed = !strcmp(listed.p[j], every.p[i]);
@@ -355,7 +381,7 @@ static void check_frozen(const claims *c, checklist *cl, paths_list *frozen_file
         if (tmp) *tmp = '\0';
         claims_of(c, shadow, NULL, affected, sizeof affected);
         checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s: a %s file in %s/%s is not a frozen result (a half-written or hand-placed file): remove it; it shadows %s; claims affected: %s",
-                      every.p[i], reg ? "hidden or temporary" : "non-regular", PATHS_FROZEN_DIR, sealed ? " (sealed in " PATHS_FROZEN_HASHES " by hand)" : "", shadow, affected);
+                      every.p[i], reg ? "hidden or temporary" : "non-regular (symlink or other)", PATHS_FROZEN_DIR, sealed ? " (sealed in " PATHS_FROZEN_HASHES " by hand)" : "", shadow, affected);
         bad++;
     }
     paths_list_free(&every);
@@ -402,7 +428,7 @@ static void check_provenance(const claims *c, checklist *cl, const paths_list *f
                 for (size_t j = 0; j < n; j++) if (!strcmp(cur[j].key, keys[k])) want = cur[j].value;
                 if (v && want && !strcmp(v, want)) continue;
                 /* The readings (design.md §7 E0) run the pinned teacher under its
-                 * revision-1 switch and its other die-back readings too (the
+                 * one-sided switch and its other die-back readings too (the
                  * sensitivity's dieback units as well): under frozen/readings/
                  * and frozen/sensitivity/ those version strings (teacher_version():
                  * the pinned or the one-sided version, optionally "-arc" or
@@ -502,6 +528,10 @@ cs_status audit_run(const claims *c, const claim_result *res, checklist *out)
     check_provenance(c, out, &frozen_files);
     paths_list_free(&frozen_files);
     audit_aggregates(c, out);
+    audit_evidence(c, out);
+    audit_grids(c, out);
+    audit_gates_prereg(c, out);
+    audit_superseded_real(out);
     check_registry(c, out);
     audit_generated(c, res, out, 0);
     audit_paper_text(c, res, out);

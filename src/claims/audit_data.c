@@ -1,6 +1,6 @@
 /* audit_data: aggregate frozen tables against the per-run tables they are
  * computed from, the lineage "this per-run table feeds these claims", and
- * the git ledger of pinned files (design.md §9 rev. 2; issue 15).
+ * the git ledger of pinned files (design.md §9).
  *
  * audit/aggregates.tsv (pinned) has one row per aggregate column:
  *   aggregate   frozen table, e.g. frozen/main/runs.tsv

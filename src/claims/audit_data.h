@@ -1,5 +1,5 @@
 /* audit_data: aggregates vs their per-run tables, lineage of per-run tables
- * to claims, and the git ledger of pinned files (design.md §9 rev. 2). */
+ * to claims, and the git ledger of pinned files (design.md §9). */
 #ifndef AUDIT_DATA_H
 #define AUDIT_DATA_H
 #include "checklist.h"

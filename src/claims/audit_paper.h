@@ -1,4 +1,4 @@
-/* audit_paper: the write-up against frozen/ (design.md §9 rev. 2): generated
+/* audit_paper: the write-up against frozen/ (design.md §9): generated
  * files equal a fresh generation; the hand-written .tex files (subfolders
  * too) use claim macros only. */
 #ifndef AUDIT_PAPER_H
@@ -20,6 +20,9 @@ void audit_generated(const claims *c, const claim_result *res, checklist *cl, in
 /* Every non-generated .tex under paper/: claim macros registered, none
  * (re)defined, no measured number typed in any rounding, no exemption comment. */
 void audit_paper_text(const claims *c, const claim_result *res, checklist *cl);
+/* The design constants of audit/design_numbers.tsv, each checked at its
+ * source (a failing row is added to cl); *out is malloc'd, the count returned. */
+size_t audit_design_numbers(checklist *cl, double **out);
 /* One hand-written file: FAIL items for unregistered, defined or hand-typed
  * claims (vals/who: the nv measured values and their macros) and exemption
  * comments; returns how many, adds claim-macro uses to *used. */

@@ -1,8 +1,11 @@
 /* claim_comp: computing functions for E7 (reference paper Fig. teaser b-d,
  * Limitations) from frozen/comparison/{patch,dart_probe}.tsv written by
- * src/exp_comp.c, and the lidar span of teaser panel a (needs CHM=path). */
+ * src/exp/exp_comp.c, and the lidar span of teaser panel a (needs CHM=path). */
 #include "claims.h"
+#include "paths.h"
 #include "tsv.h"
+#include <ctype.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -40,9 +43,86 @@ cs_status claim_comp_dart(const claim_row *row, claim_result *res)
     return source_value(row, res, strstr(row->macro, "Teach") ? "teacher" : "joint", "median_focal_nn_clearance_m");
 }
 
-/* Span of the lidar window (teaser panel a): side of the CHM grid in metres,
- * capped at the panel's window. Needs a canopy height model supplied as
- * CHM=path (ESRI ASCII grid); this machine has none. */
+/* One number of a CHM file: the whole token, finite. */
+static int chm_number(const char *tok, double *v)
+{
+    char *end;
+    *v = strtod(tok, &end);
+    return end != tok && !*end && isfinite(*v);
+}
+
+/* The ESRI ASCII header: ncols, nrows (positive integers), xllcorner or
+ * xllcenter, yllcorner or yllcenter (finite), cellsize (finite, > 0) and an
+ * optional NODATA_value, each once, in any order, before the first data row. */
+typedef struct { double ncols, nrows, cell; int line; } chm_header;
+
+static cs_status chm_header_read(FILE *f, const char *path, chm_header *h, char *first, size_t fn, int *lineno)
+{
+    static const char *keys[] = {"ncols", "nrows", "xllcorner", "yllcorner", "cellsize", "nodata_value", "xllcenter", "yllcenter"};
+    double val[8];
+    int seen[8] = {0};
+    char line[4096];
+    first[0] = '\0';
+    while (fgets(line, sizeof line, f)) {
+        (*lineno)++;
+        if (!strchr(line, '\n') && !feof(f)) return cs_err(CS_EINPUT, "%s:%d: line too long for a header", path, *lineno);
+        char key[64], vs[128], extra[8];
+        int nt = sscanf(line, "%63s %127s %7s", key, vs, extra);
+        if (nt <= 0) continue;
+        double d;
+        if (chm_number(key, &d)) { snprintf(first, fn, "%s", line); break; } /* the first data row */
+        for (char *c = key; *c; c++) *c = (char)tolower((unsigned char)*c);
+        int k = 0;
+        while (k < 8 && strcmp(keys[k], key)) k++;
+        if (k == 8) return cs_err(CS_EINPUT, "%s:%d: field '%s': not an ESRI ASCII header field", path, *lineno, key);
+        if (seen[k]) return cs_err(CS_EINPUT, "%s:%d: field '%s': given twice", path, *lineno, key);
+        if (nt != 2 || !chm_number(vs, &val[k])) return cs_err(CS_EINPUT, "%s:%d: field '%s': '%s' is not one finite number", path, *lineno, key, nt >= 2 ? vs : "");
+        seen[k] = *lineno;
+    }
+    if (seen[2] && seen[6]) return cs_err(CS_EINPUT, "%s:%d: field 'xllcenter': xllcorner given too", path, seen[6]);
+    if (seen[3] && seen[7]) return cs_err(CS_EINPUT, "%s:%d: field 'yllcenter': yllcorner given too", path, seen[7]);
+    const char *miss = !seen[0] ? "ncols" : !seen[1] ? "nrows" : !(seen[2] || seen[6]) ? "xllcorner" : !(seen[3] || seen[7]) ? "yllcorner" : !seen[4] ? "cellsize" : NULL;
+    if (miss) return cs_err(CS_EINPUT, "%s: field '%s': missing from the ESRI ASCII header", path, miss);
+    for (int k = 0; k < 2; k++)
+        if (val[k] < 1 || val[k] > 1e6 || val[k] != floor(val[k])) return cs_err(CS_EINPUT, "%s:%d: field '%s': %g is not a whole number of cells in 1..1000000", path, seen[k], keys[k], val[k]);
+    if (val[4] <= 0) return cs_err(CS_EINPUT, "%s:%d: field 'cellsize': %g is not positive", path, seen[4], val[4]);
+    h->ncols = val[0];
+    h->nrows = val[1];
+    h->cell = val[4];
+    h->line = *lineno;
+    return CS_OK;
+}
+
+/* The data: nrows lines of ncols finite numbers each, nothing after them. */
+static cs_status chm_data_check(FILE *f, const char *path, const chm_header *h, const char *first, int lineno)
+{
+    char line[1 << 16];
+    long rows = 0;
+    int have = first[0] != '\0';
+    if (have) snprintf(line, sizeof line, "%s", first);
+    while (have || fgets(line, sizeof line, f)) {
+        if (!have) lineno++;
+        have = 0;
+        if (!strchr(line, '\n') && !feof(f)) return cs_err(CS_EINPUT, "%s:%d: line longer than %zu bytes", path, lineno, sizeof line);
+        long cols = 0;
+        for (char *save = NULL, *tok = strtok_r(line, " \t\r\n", &save); tok; tok = strtok_r(NULL, " \t\r\n", &save)) {
+            double v;
+            cols++;
+            if (!chm_number(tok, &v)) return cs_err(CS_EINPUT, "%s:%d: field 'column %ld': '%s' is not a finite number", path, lineno, cols, tok);
+        }
+        if (!cols) continue;
+        if (++rows > (long)h->nrows) return cs_err(CS_EINPUT, "%s:%d: more data rows than nrows = %.0f", path, lineno, h->nrows);
+        if (cols != (long)h->ncols) return cs_err(CS_EINPUT, "%s:%d: field 'ncols': %ld values on the row, the header says %.0f", path, lineno, cols, h->ncols);
+    }
+    if (rows != (long)h->nrows)
+        return cs_err(CS_EINPUT, "%s: field 'nrows': %ld data rows after the header (line %d), the header says %.0f", path, rows, h->line, h->nrows);
+    return CS_OK;
+}
+
+/* Span of the lidar window (teaser panel a): side of the CHM grid in metres.
+ * Needs a canopy height model supplied as CHM=path (ESRI ASCII grid); this
+ * machine has none. The whole file is validated: every header field, and
+ * exactly ncols x nrows finite values. */
 cs_status claim_chm_span(const claim_row *row, claim_result *res)
 {
     const char *path = getenv("CHM");
@@ -50,20 +130,19 @@ cs_status claim_chm_span(const claim_row *row, claim_result *res)
         claim_pending(res, "lidar canopy height model (Swinfield et al. 2020, doi:10.5281/zenodo.4020697) not on this machine: set CHM=path to an ESRI ASCII grid");
         return CS_OK;
     }
+    cs_status st = paths_input_file(path);
+    if (st) return st;
     FILE *f = fopen(path, "r");
     if (!f) return cs_err(CS_EINPUT, "%s: cannot open (CHM)", path);
-    char key[64];
-    double v, ncols = -1, nrows = -1, cell = -1;
-    for (int line = 1; line <= 6 && fscanf(f, "%63s %lf", key, &v) == 2; line++) {
-        for (char *c = key; *c; c++) *c = (char)(*c | 0x20);
-        if (!strcmp(key, "ncols")) ncols = v;
-        else if (!strcmp(key, "nrows")) nrows = v;
-        else if (!strcmp(key, "cellsize")) cell = v;
-    }
+    chm_header h = {0};
+    char first[1 << 16];
+    int lineno = 0;
+    st = chm_header_read(f, path, &h, first, sizeof first, &lineno);
+    if (!st) st = chm_data_check(f, path, &h, first, lineno);
     fclose(f);
-    if (ncols <= 0 || nrows <= 0 || cell <= 0) return cs_err(CS_EINPUT, "%s: field 'ncols'/'nrows'/'cellsize': ESRI ASCII header incomplete", path);
-    double side = (ncols < nrows ? ncols : nrows) * cell;
-    snprintf(res->where, sizeof res->where, "%s (ESRI ASCII header)", path);
+    if (st) return st;
+    double side = (h.ncols < h.nrows ? h.ncols : h.nrows) * h.cell;
+    snprintf(res->where, sizeof res->where, "%s (ESRI ASCII grid, %.0f x %.0f cells of %g m)", path, h.ncols, h.nrows, h.cell);
     claim_set_value(row, res, side);
     return CS_OK;
 }

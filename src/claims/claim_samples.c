@@ -1,5 +1,5 @@
 /* claim_samples: every W1 of the E3/E4 run tables and of the baselines
- * recomputed from the frozen clearance samples behind it (issue 14; README
+ * recomputed from the frozen clearance samples behind it (design.md §8; README
  * "Frozen samples and weights") with est_w1, the pinned estimator's W1, and
  * compared bit for bit. run_s<NN>_<arm>.tsv: W1(spacing, probe) =
  * est_w1(generated values of that spacing and probe, teacher values of that

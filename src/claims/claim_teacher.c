@@ -1,7 +1,7 @@
 /* claim_teacher: computing functions for the teacher claims — E1 mechanism
  * (paper §3.2; gates/mechanism.gate), E2 irreducibility (§3.3;
  * gates/irreducibility.gate), the hero figure (E9) and the point-cloud figure
- * (E8) — from the frozen tables written by src/experiments.c. Row verdicts are
+ * (E8) — from the frozen tables written by src/exp/exp_mechanism.c, exp_irreducibility.c and exp_stands.c. Row verdicts are
  * recomputed from the clearances and the gate thresholds, never read from a
  * stored pass column. */
 #include "claims.h"
@@ -30,10 +30,10 @@ static void where_row(claim_result *res, const tsv *t, size_t row, const char *c
 /* ---- E1 mechanism ---- */
 
 /* The Mech* macros are "measured on the stand shown" (paper Fig. mechanism
- * caption; design.md §7 E1 revision 2): the row's source is the figure stand's
+ * caption; design.md §7 E1): the row's source is the figure stand's
  * mechanism/figure_stats.tsv. The gate stays judged on the lattice ablation,
  * mechanism/ablation.tsv in the same folder; both values appear in the
- * verify line. A source named ablation.tsv (revision 1) is value and gate. */
+ * verify line. A source named ablation.tsv (the lattice reading) is value and gate. */
 static void lattice_path(const char *source, char *out, size_t n)
 {
     const char *slash = strrchr(source, '/');

@@ -346,7 +346,7 @@ void claims_tex_escape(const char *in, char *out, size_t n)
     out[o] = '\0';
 }
 
-/* Distance to the reference paper (issue 13): measured claims whose value
+/* Distance to the reference paper (design.md §9): measured claims whose value
  * was computed and whose reference is a plain non-zero number. */
 int claims_rel_diff(const claim_row *row, const claim_result *res, double *ref, double *rel)
 {

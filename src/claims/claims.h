@@ -61,7 +61,7 @@ void claim_pending(claim_result *res, const char *fmt, ...) __attribute__((forma
  * for IN/OUT the key must hold two values. */
 void claim_judge(const claim_row *row, claim_result *res, gate_op op, double observed);
 /* The gate of CalibDiebackTrain: the sweep row at `beta` passes at every
- * spacing (src/claim_teacher.c, from frozen/mechanism/sweep.tsv). */
+ * spacing (src/claims/claim_teacher.c, from frozen/mechanism/sweep.tsv). */
 cs_status claim_mech_train_row(const claim_row *row, claim_result *res, double beta);
 /* Load gates/<file> named in the row's gate column (or `file` if given). */
 cs_status claim_gate_load(const char *file, gate **g);

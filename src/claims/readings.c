@@ -35,7 +35,7 @@ const char *const *readings_quantities(size_t *n) { *n = NQ; return QUANT; }
 const char *const *readings_runs(size_t *n) { *n = NRUNS; return RUNS; }
 size_t readings_count(void) { return NREAD * NQ; }
 
-/* The cardinal (revision-1) elongation median of the coupled row of a
+/* The cardinal elongation median of the coupled row of a
  * held-out summary, recomputed from its per-tree table (fieldsim). */
 static cs_status elong_cardinal(const char *path, double *v)
 {

@@ -1,5 +1,5 @@
-/* readings: the E0 readings table (design.md §7 E0; issue 13). Where the
- * reference paper's text allows more than one reading and revision 1 chose
+/* readings: the E0 readings table (design.md §7 E0). Where the
+ * reference paper's text allows more than one reading and the first round chose
  * differently, the cheap experiments are run under each reading (the same
  * experiment units, switched by --teacher and --layout, never copied files)
  * into <dir>/<run>/..., and this module computes one row per (quantity,
@@ -11,10 +11,10 @@
  * layout r1|r2; the die-back by beta of the target length cannot be
  * calibrated on the field grid, so it runs as a sensitivity unit, sens.h).
  * Readings (rows): a run plus two choices that need no rerun,
- * read from the same tables: the elongation (cardinal, revision 1, or all
+ * read from the same tables: the elongation (cardinal, or all
  * axes, paper §5.3 "the ratio of the longest to shortest crown axis") and
  * the stand the Mech* numbers are measured on (the lattice ablation,
- * revision 1, or the figure stand, paper: "measured on the stand shown").
+ * the lattice, or the figure stand, paper: "measured on the stand shown").
  * The claim test recomputes the frozen summary from the frozen run tables. */
 #ifndef READINGS_H
 #define READINGS_H
@@ -25,7 +25,7 @@
 typedef struct {
     const char *name;      /* e.g. "rev1" */
     const char *run;       /* directory under <dir> */
-    int elong_all_axes;    /* 1: all-axis elongation; 0: cardinal (revision 1) */
+    int elong_all_axes;    /* 1: all-axis elongation; 0: cardinal */
     int figure_stand;      /* 1: Mech* on mechanism/figure_stats.tsv; 0: mechanism/ablation.tsv */
     const char *what;
 } readings_def;

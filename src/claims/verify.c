@@ -11,6 +11,8 @@
 #include <unistd.h>
 #include "afile.h"
 #include "audit_data.h"
+#include "audit_evidence.h"
+#include "audit_docs.h"
 
 cs_status verify_eval_all(const claims *c, claim_result **out)
 {
@@ -185,12 +187,96 @@ cs_status verify_load_eval(claims *c, claim_result **res)
     return st;
 }
 
+cs_status verify_preflight(void)
+{
+    char d[64];
+    snprintf(d, sizeof d, "build/preflight.%ld", (long)getpid());
+    if ((mkdir("build", 0777) && errno != EEXIST) || mkdir(d, 0777))
+        return cs_err(CS_EIO, "build/: cannot create %s (%s): the fresh generation and the figure redraws need a writable build/ (an environment error)", d, strerror(errno));
+    rmdir(d);
+    return CS_OK;
+}
+
+/* A claim that cannot be computed from an input the user supplied (FIELD_TABLE,
+ * CHM): an input error of this run, not an inconsistency of the package. */
+static int external_input_failed(const claim_row *row, const claim_result *res)
+{
+    if (res->status != VERDICT_FAIL || strcmp(row->kind, "needs-data")) return 0;
+    const char *env[] = {"FIELD_TABLE", "CHM"};
+    for (int k = 0; k < 2; k++) {
+        const char *v = getenv(env[k]);
+        if (v && v[0] && strstr(res->why, v)) return 1;
+    }
+    return 0;
+}
+
+cs_status verify_external_inputs(const claims *c, const claim_result *res, const char *who)
+{
+    size_t bad = 0;
+    for (size_t i = 0; i < c->n; i++)
+        if (external_input_failed(&c->rows[i], &res[i])) { fprintf(stderr, "crownshy %s: %s: %s\n", who, c->rows[i].macro, res[i].why); bad++; }
+    return bad ? cs_err(CS_EINPUT, "%zu claim(s) cannot be computed from the input given (FIELD_TABLE, CHM): a bad input, not an inconsistency of the package", bad) : CS_OK;
+}
+
+/* What the gated claims say about the reference paper, tallied by print_claims. */
+typedef struct { size_t rep, notrep, gpend; char notrep_list[1024]; } gate_tally;
+
+/* One line per claim: consistent or not, and its gate's verdict (a table
+ * made by a superseded reading is pending, never reproduced nor not). */
+static void print_claims(const claims *c, const claim_result *res, const numbers_tex *nt, const attrib_data *at,
+                         size_t count[3], gate_tally *t)
+{
+    for (size_t i = 0; i < c->n; i++) {
+        char msg[1200];
+        verdict v = verify_consistent(&c->rows[i], &res[i], nt, msg, sizeof msg);
+        int gated = strcmp(c->rows[i].gate, "-") != 0;
+        const char *label = verdict_name(v);
+        /* a table made by a superseded reading: its numbers are that reading's
+         * until re-run; never counted as reproduced (nor as not reproduced) */
+        if (v != VERDICT_FAIL && !strncmp(c->rows[i].source, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1) && audit_table_superseded(c->rows[i].source)) {
+            v = VERDICT_PENDING;
+            label = "PENDING";
+            snprintf(msg, sizeof msg, "%s was made by a superseded reading (%s): pending until its unit is re-run", c->rows[i].source, PATHS_PINS_SUPERSEDED);
+            if (gated) t->gpend++;
+            gated = 0;
+        }
+        if (gated && v != VERDICT_FAIL) {
+            if (res[i].gate == VERDICT_PASS) t->rep++;
+            else if (res[i].gate == VERDICT_FAIL) {
+                t->notrep++;
+                size_t l = strlen(t->notrep_list);
+                snprintf(t->notrep_list + l, sizeof t->notrep_list - l, "%s%s", l ? ", " : "", c->rows[i].macro);
+                /* consistent: the write-up states this very verdict */
+                label = "NOTREP";
+                snprintf(msg, sizeof msg, "%s = %s does not reproduce: fails its preregistered gate %s: %s (%s); numbers.tex states FAIL",
+                         c->rows[i].macro, res[i].text, c->rows[i].gate, res[i].gate_detail, c->rows[i].source);
+            } else t->gpend++;
+        }
+        const char *val = res[i].status == VERDICT_PASS ? res[i].text : "-";
+        const char *g = gated ? verdict_name(res[i].gate) : "-";
+        double ref, rel;
+        char dist[400] = "";
+        if (claims_rel_diff(&c->rows[i], &res[i], &ref, &rel))
+        {
+            attrib_result ar;
+            attrib_judge(at, &c->rows[i], &res[i], &ar);
+            snprintf(dist, sizeof dist, " [paper %s: %+.1f %%%s%.240s]", c->rows[i].reference, 100.0 * rel,
+                     ar.kind == ATTRIB_EXPLAINED ? "; reached by " : ar.kind == ATTRIB_UNEXPLAINED ? "; unexplained"
+                     : ar.kind == ATTRIB_UNTESTED ? "; unexplained, not varied" : "", ar.kind == ATTRIB_EXPLAINED ? ar.by : "");
+        }
+        printf("  %-7s %-19s %-12s %-10s %-8s %s%s\n", label, c->rows[i].macro, val, c->rows[i].kind, g, msg, dist);
+        count[v]++;
+    }
+}
+
 cs_status verify_run(const verify_opts *o)
 {
     claims c;
     claim_result *res;
-    cs_status st = verify_load_eval(&c, &res);
+    cs_status st = verify_preflight();
     if (st) return st;
+    if ((st = verify_load_eval(&c, &res))) return st;
+    if ((st = verify_external_inputs(&c, res, "verify"))) { free(res); claims_free(&c); return st; }
     numbers_tex nt;
     int have_nt = numbers_read(PATHS_NUMBERS, &nt) == CS_OK;
     char nterr[512];
@@ -199,6 +285,7 @@ cs_status verify_run(const verify_opts *o)
     size_t count[3] = {0}; /* consistency checks by verdict: PASS, FAIL, PENDING */
     checklist cl = {0};
     audit_run(&c, res, &cl);
+    audit_docs(&c, res, &cl);
     printf("== audit (pins, frozen hashes and provenance, aggregates, registry and gate map, generated and written paper)\n");
     checklist_print(&cl, count);
     checklist_free(&cl);
@@ -206,42 +293,13 @@ cs_status verify_run(const verify_opts *o)
     printf("\n== claims (recomputed from frozen/ and compared with paper/numbers.tex; a failing gate is a finding: NOTREP)\n");
     printf("  %-7s %-19s %-12s %-10s %-8s %s\n", "status", "macro", "value", "kind", "gate", "source / reason");
     if (!have_nt) { printf("  FAIL    paper/numbers.tex unreadable: %s\n", nterr); count[VERDICT_FAIL]++; }
-    size_t rep = 0, notrep = 0, gpend = 0;
-    char notrep_list[1024] = "";
+    gate_tally gt = {0};
     /* the attribution of each difference (attrib.h), from the frozen summaries */
     attrib_data at = {0};
     int at_ok = attrib_load(PATHS_READINGS_SUMMARY, PATHS_SENS_SUMMARY, &at) == CS_OK;
-    for (size_t i = 0; i < c.n; i++) {
-        char msg[1200];
-        verdict v = verify_consistent(&c.rows[i], &res[i], have_nt ? &nt : NULL, msg, sizeof msg);
-        int gated = strcmp(c.rows[i].gate, "-") != 0;
-        const char *label = verdict_name(v);
-        if (gated && v != VERDICT_FAIL) {
-            if (res[i].gate == VERDICT_PASS) rep++;
-            else if (res[i].gate == VERDICT_FAIL) {
-                notrep++;
-                size_t l = strlen(notrep_list);
-                snprintf(notrep_list + l, sizeof notrep_list - l, "%s%s", l ? ", " : "", c.rows[i].macro);
-                /* consistent: the write-up states this very verdict */
-                label = "NOTREP";
-                snprintf(msg, sizeof msg, "%s = %s does not reproduce: fails its preregistered gate %s: %s (%s); numbers.tex states FAIL",
-                         c.rows[i].macro, res[i].text, c.rows[i].gate, res[i].gate_detail, c.rows[i].source);
-            } else gpend++;
-        }
-        const char *val = res[i].status == VERDICT_PASS ? res[i].text : "-";
-        const char *g = gated ? verdict_name(res[i].gate) : "-";
-        double ref, rel;
-        char dist[400] = "";
-        if (claims_rel_diff(&c.rows[i], &res[i], &ref, &rel)) {
-            attrib_result ar;
-            attrib_judge(&at, &c.rows[i], &res[i], &ar);
-            snprintf(dist, sizeof dist, " [paper %s: %+.1f %%%s%.240s]", c.rows[i].reference, 100.0 * rel,
-                     ar.kind == ATTRIB_EXPLAINED ? "; reached by " : ar.kind == ATTRIB_UNEXPLAINED ? "; unexplained"
-                     : ar.kind == ATTRIB_UNTESTED ? "; unexplained, not varied" : "", ar.kind == ATTRIB_EXPLAINED ? ar.by : "");
-        }
-        printf("  %-7s %-19s %-12s %-10s %-8s %s%s\n", label, c.rows[i].macro, val, c.rows[i].kind, g, msg, dist);
-        count[v]++;
-    }
+    print_claims(&c, res, have_nt ? &nt : NULL, &at, count, &gt);
+    const size_t rep = gt.rep, notrep = gt.notrep, gpend = gt.gpend;
+    const char *notrep_list = gt.notrep_list;
 
     if (!o->no_figures) {
         checklist fl = {0};

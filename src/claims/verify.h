@@ -9,11 +9,18 @@
 /* strict: a failing preregistered gate (a finding) also fails verify. */
 typedef struct { int quiet; int no_figures; int strict; } verify_opts;
 
-/* design.md §9 rev. 2: CS_OK when every number, verdict, table, figure and
+/* design.md §9: CS_OK when every number, verdict, table, figure and
  * sentence follows from frozen/ and the pinned code (a failing gate is a
  * finding, "not reproduced"); CS_EFAIL on any inconsistency, or with strict
  * on any failing gate; another status on a broken installation. */
 cs_status verify_run(const verify_opts *o);
+/* build/ is writable (the fresh generation and the redraws go there):
+ * CS_EIO naming it otherwise, an environment error. */
+cs_status verify_preflight(void);
+/* CS_EINPUT (each failing claim printed to stderr, prefixed "crownshy who")
+ * when a claim cannot be computed from an input the user supplied
+ * (FIELD_TABLE, CHM): a bad input, not an inconsistency. */
+cs_status verify_external_inputs(const claims *c, const claim_result *res, const char *who);
 /* Evaluate every claim (res has c->n entries, caller frees). */
 cs_status verify_eval_all(const claims *c, claim_result **res);
 /* Load the registry (PATHS_CLAIMS) and evaluate every claim; on success the

@@ -1,13 +1,14 @@
 /* crownshy: the one command-line entry point (design.md §11): the table of
  * commands, grouped by who runs them. The experiments' commands come from the
- * manifest (src/base/manifest.h), the others are listed here. Handlers live
- * in cli_audit.c (reviewing and maintaining), cli_model.c (the generator),
- * cli_run.c (the teacher units, bench-teacher, readings-summary) and, until
- * their argv tables move here, with their experiment (exp_main, exp_comp,
- * exp_field, exp_aniso). Only the CLI decides how the process dies; library
- * calls return a cs_status. */
+ * manifest (src/base/manifest.h), the others are listed here. Every argv
+ * table is in src/cli: cli_audit.c (reviewing and maintaining), cli_model.c
+ * (the generator), cli_run.c (the teacher units, bench-teacher,
+ * readings-summary), cli_main.c (E3/E4, E7), cli_field.c (E5, E6). Only the
+ * CLI decides how the process dies, and cli_fail is its one failure printer;
+ * library calls return a cs_status. */
 #include "cli.h"
 #include "opts.h"
+#include "teacher.h"
 #include <stdio.h>
 #include <string.h>
 
@@ -20,6 +21,9 @@ typedef enum { G_REVIEW, G_STUDY, G_MAINTAIN } cmd_group;
 typedef struct { const char *name; cmd_fn fn; cmd_group group; const char *help; } cli_cmd;
 
 const char *const CLI_ARMS[] = {"joint", "indep", "independent=indep", NULL};
+const char *const CLI_TEACHERS[] = {TEACHER_VERSION, TEACHER_VERSION_ONE_SIDED, TEACHER_VERSION "-arc", TEACHER_VERSION "-target",
+                                     TEACHER_VERSION_ONE_SIDED "-arc", TEACHER_VERSION_ONE_SIDED "-target", NULL};
+const char *const CLI_LAYOUTS[] = {"r2", "r1", NULL};
 
 int cli_fail(const char *cmd, cs_status st)
 {

@@ -12,16 +12,11 @@
 #include "tsv.h"
 #include "verify.h"
 #include "audit_paper.h"
+#include "audit_docs.h"
 #include <unistd.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int die(cs_status st)
-{
-    fprintf(stderr, "crownshy: %s\n", cs_errmsg()[0] ? cs_errmsg() : cs_status_name(st));
-    return cs_exit_code(st);
-}
 
 int cli_cmd_verify(int argc, char **argv)
 {
@@ -35,29 +30,31 @@ int cli_cmd_verify(int argc, char **argv)
                         "the committed PNG, and print the package's consistency and the reference paper's gated\n"
                         "claims (reproduced, not reproduced, pending). A failing gate is a finding, not an error.\n"
                         "Exit 0: consistent (gate failures allowed); 1: any inconsistency (with --strict also any\n"
-                        "failing gate); 2: usage; 3: registry or gate map unreadable; 4: environment (I/O, memory).",
+                        "failing gate); 2: usage; 3: bad input (the registry or gate map unreadable, a FIELD_TABLE or\n"
+                        "CHM that cannot be read); 4: environment (a build/ that cannot be written, I/O, memory).",
                         spec, 2, 0, 0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     cs_status st = verify_run(&o);
-    if (st && st != CS_EFAIL) return die(st);
+    if (st && st != CS_EFAIL) return cli_fail("verify", st);
     return cs_exit_code(st);
 }
 
 int cli_cmd_numbers(int argc, char **argv)
 {
     int check = 0;
-    const opt_spec spec[] = {{"check", OPT_FLAG, &check, 0, 0, "only compare paper/numbers.tex with a fresh generation"}};
+    const opt_spec spec[] = {{"check", OPT_FLAG, &check, 0, 0, "only compare the three files with a fresh generation (write nothing)"}};
     const opts_cmd oc = {"numbers", "[--check]", "Regenerate paper/numbers.tex, paper/comparison.tex and paper/readings.tex from frozen/:\n"
                         "all three are generated into build/ first and moved into paper/ only when every claim\n"
-                        "was computed (exit 3 naming the claim and its input otherwise, writing nothing).\n"
+                        "was computed (exit 3 naming the claim and its input otherwise, writing nothing); then the\n"
+                        "generated regions (<!--Macro-->value<!--/-->, <!-- findings -->) of README.md and the *.md pages.\n"
                         "--check: compare the three with a fresh generation (exit 1 naming the first differing line).", spec, 1, 0, 0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     claims c;
     claim_result *res;
-    cs_status st = verify_load_eval(&c, &res);
-    if (st) return die(st);
+    cs_status st = verify_preflight();
+    if (st || (st = verify_load_eval(&c, &res))) return cli_fail("numbers", st);
     if (check) {
         checklist cl = {0};
         audit_generated(&c, res, &cl, 0);
@@ -101,9 +98,11 @@ int cli_cmd_numbers(int argc, char **argv)
     for (size_t i = 0; i < c.n; i++) pend += res[i].status != VERDICT_PASS;
     if (!st) printf("wrote %s, %s%s%s: %zu claims (%zu pending)\n", PATHS_NUMBERS, PATHS_COMPARISON, readings & 1 ? ", " PATHS_READINGS_TEX : "",
                     readings & 2 ? ", " PATHS_SENS_TEX : "", c.n, pend);
+    size_t pages = 0; /* the generated regions of the documentation pages */
+    if (!st && !(st = docs_refresh(&c, res, &pages)) && pages) printf("refreshed the generated regions of %zu documentation page(s)\n", pages);
     free(res);
     claims_free(&c);
-    return st ? die(st) : 0;
+    return st ? cli_fail("numbers", st) : 0;
 }
 
 int cli_cmd_audit(int argc, char **argv)
@@ -114,8 +113,9 @@ int cli_cmd_audit(int argc, char **argv)
     if (r) return opts_exit_code(r);
     claims c;
     claim_result *res;
-    cs_status st = verify_load_eval(&c, &res);
-    if (st) return die(st);
+    cs_status st = verify_preflight();
+    if (st || (st = verify_load_eval(&c, &res))) return cli_fail("audit", st);
+    if ((st = verify_external_inputs(&c, res, "audit"))) { free(res); claims_free(&c); return cli_fail("audit", st); }
     checklist cl = {0};
     audit_run(&c, res, &cl);
     size_t count[3] = {0};
@@ -134,7 +134,7 @@ int cli_cmd_trace(int argc, char **argv)
     int r = opts_parse(&oc, argc, argv, pos, NULL);
     if (r) return opts_exit_code(r);
     cs_status st = verify_trace(pos[0]);
-    return st ? die(st) : 0;
+    return st ? cli_fail("trace", st) : 0;
 }
 
 int cli_cmd_pin(int argc, char **argv)
@@ -144,7 +144,7 @@ int cli_cmd_pin(int argc, char **argv)
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     cs_status st = audit_pin();
-    if (st) return die(st);
+    if (st) return cli_fail("pin", st);
     printf("wrote %s\n", PATHS_PINS);
     return 0;
 }
@@ -155,7 +155,7 @@ int cli_cmd_hash_frozen(int argc, char **argv)
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     cs_status st = audit_hash_frozen();
-    if (st) return die(st);
+    if (st) return cli_fail("hash-frozen", st);
     printf("wrote %s\n", PATHS_FROZEN_HASHES);
     return 0;
 }
@@ -171,17 +171,17 @@ int cli_cmd_gates(int argc, char **argv)
     if (r) return opts_exit_code(r);
     paths_list files;
     if (npos == 0) {
-        if (paths_list_files(PATHS_GATES_DIR, ".gate", 0, &files)) return die(CS_ENOMEM);
+        if (paths_list_files(PATHS_GATES_DIR, ".gate", 0, &files)) return cli_fail("gates", cs_err(CS_ENOMEM, "out of memory"));
         if (!files.n) { fprintf(stderr, "crownshy gates: %s/: no .gate files\n", PATHS_GATES_DIR); paths_list_free(&files); return 3; }
     } else {
         memset(&files, 0, sizeof files);
         for (int i = 0; i < npos; i++)
-            if (paths_list_add(&files, pos[i])) { paths_list_free(&files); return die(CS_ENOMEM); }
+            if (paths_list_add(&files, pos[i])) { paths_list_free(&files); return cli_fail("gates", cs_err(CS_ENOMEM, "out of memory")); }
     }
     int rc = 0;
     for (size_t i = 0; i < files.n; i++) {
         gate *g;
-        if (gate_load(files.p[i], &g)) { fprintf(stderr, "crownshy: %s\n", cs_errmsg()); rc = 3; continue; }
+        if (gate_load(files.p[i], &g)) { cli_fail("gates", CS_EINPUT); rc = 3; continue; }
         printf("%s: ok\n", files.p[i]);
         gate_free(g);
     }
@@ -202,14 +202,14 @@ int cli_cmd_check_tsv(int argc, char **argv)
     int rc = 0;
     for (int i = 0; i < npos; i++) {
         tsv *t;
-        if (tsv_read(pos[i], &t)) { fprintf(stderr, "crownshy: %s\n", cs_errmsg()); rc = 3; continue; }
+        if (tsv_read(pos[i], &t)) { cli_fail("check-tsv", CS_EINPUT); rc = 3; continue; }
         int bad = 0;
         for (size_t c = 0; c < tsv_ncols(t) && !bad && tsv_nrows(t) > 0; c++) {
             double v;
             const char *col = tsv_colname(t, c);
             if (tsv_double_nf(t, 0, col, &v)) continue; /* a text column */
             for (size_t r = 1; r < tsv_nrows(t) && !bad; r++)
-                if (tsv_double_nf(t, r, col, &v)) { fprintf(stderr, "crownshy: %s\n", cs_errmsg()); bad = 1; }
+                if (tsv_double_nf(t, r, col, &v)) { cli_fail("check-tsv", CS_EINPUT); bad = 1; }
         }
         if (bad) rc = 3;
         else printf("%s: ok (%zu rows, %zu columns)\n", pos[i], tsv_nrows(t), tsv_ncols(t));

@@ -3,7 +3,7 @@
  * process dies. */
 #include "cli.h"
 #include "estimator.h"
-#include "exp_main.h"
+#include "mainrun.h"
 #include "gate.h"
 #include "mainset.h"
 #include "paths.h"
@@ -47,7 +47,7 @@ int cli_cmd_train(int argc, char **argv)
         {"depth", OPT_LONG, &depth, 1, 64, "transformer blocks (default 3)"},
         {"heads", OPT_LONG, &heads, 1, 64, "attention heads (default 4)"},
         {"mlp", OPT_LONG, &mlp, 1, 16384, "MLP width (default 256)"},
-        {"pair", OPT_LONG, &pair, 0, 1, "1: pair-aware model with standardised features (design.md §8 revision 2; default 0)"},
+        {"pair", OPT_LONG, &pair, 0, 1, "1: pair-aware model with standardised features (design.md §8; default 0)"},
         {"seed", OPT_LONG, &seed, 0, 4294967295.0, "run seed: init/batch/noise streams use 3s+1, 3s+2, 3s+3 (default 1)"},
         {"stands", OPT_LONG, &stands, 1, 100000, "toy training stands, 64 patches each (default 8)"},
         {"spacing", OPT_DOUBLE, &d, 0.1, 100, "toy stand spacing in m (default 4.5)"},
@@ -176,19 +176,19 @@ static int goal(const char *what, double value, double min, const char *fmt)
     return value >= min;
 }
 
-/* E3+E4 as run by src/exp/experiments.mk: seeds x (joint, independent) pair-model
+/* E3+E4 as run by the manifest's units (src/base/manifest.h): seeds x (joint, independent) pair-model
  * units, each training epochs x steps per epoch and sampling every eval
  * spacing under three probes; two units at a time on the 2-core machine. */
 static cs_status projection(const speed_result *r, double *wall_min, double *unit_j, double *unit_i, long *steps, int *nunits)
 {
-    exp_main_plan pl;
+    mainrun_plan pl;
     mainset_design ds;
     double seeds;
-    cs_status st = exp_main_plan_get("full", &pl);
+    cs_status st = mainrun_plan_get("full", &pl);
     if (!st) st = mainset_design_get(&ds);
     if (!st) st = gate_read_value(PATHS_GATE("main"), "seeds", 0, &seeds);
     if (st) return st;
-    /* about 64 interior focal stems per training stand (exp_main.h) */
+    /* about 64 interior focal stems per training stand (mainrun.h); volume v1 */
     const long npatch = 64L * pl.train_stands * (long)ds.ntrain;
     *steps = (long)pl.epochs * ((npatch + pl.batch - 1) / pl.batch);
     const double euler_calls = (double)(ds.nunseen + ds.nextrap) * MAINSET_NPROBE *

@@ -3,7 +3,7 @@
  * bench-teacher` and `crownshy readings-summary`. Only the CLI decides how the
  * process dies. */
 #include "cli.h"
-#include "exp_irred.h"
+#include "exp_irreducibility.h"
 #include "exp_mechanism.h"
 #include "exp_stands.h"
 #include "gate.h"
@@ -34,8 +34,8 @@ static int teacher_unit_run(const teacher_unit *u, int argc, char **argv)
     opt_spec spec[6];
     size_t n = 0;
     spec[n++] = (opt_spec){"out", OPT_STR, &out, 0, 0, "results root; the unit writes DIR/<experiment>/<file>.tsv (default build/results)"};
-    spec[n++] = (opt_spec)EXP_OPT_TEACHER(teacher);
-    spec[n++] = (opt_spec)EXP_OPT_VARY(vary);
+    spec[n++] = (opt_spec)CLI_OPT_TEACHER(teacher);
+    spec[n++] = (opt_spec)CLI_OPT_VARY(vary);
     if (u->takes & U_STANDS) spec[n++] = (opt_spec){"stands", OPT_LONG, &stands, 1, 10000, "stands per cell (default 8)"};
     if (u->takes & U_BETA)
         spec[n++] = (opt_spec){"beta", OPT_DOUBLE, &beta, 0, 0.999,
@@ -85,21 +85,21 @@ int cli_mechanism_figure(int argc, char **argv)
 int cli_irreducibility_perturb(int argc, char **argv)
 {
     static const teacher_unit u = {"irreducibility-perturb", "E2: one tree 30% taller, 5 spacings -> DIR/irreducibility/perturb_<tag>.tsv",
-                                   U_STANDS | U_BETA | U_TAG, NULL, exp_irred_perturb};
+                                   U_STANDS | U_BETA | U_TAG, NULL, exp_irreducibility_perturb};
     return teacher_unit_run(&u, argc, argv);
 }
 
 int cli_irreducibility_refine(int argc, char **argv)
 {
     static const teacher_unit u = {"irreducibility-refine", "E2: N in {48,96,192,384} -> DIR/irreducibility/refine_<tag>.tsv",
-                                   U_STANDS | U_BETA | U_TAG, NULL, exp_irred_refine};
+                                   U_STANDS | U_BETA | U_TAG, NULL, exp_irreducibility_refine};
     return teacher_unit_run(&u, argc, argv);
 }
 
 int cli_irreducibility_reduction(int argc, char **argv)
 {
     static const teacher_unit u = {"irreducibility-reduction", "E2: best-fit Voronoi reduction -> DIR/irreducibility/reduction_<tag>.tsv",
-                                   U_STANDS | U_BETA | U_TAG, NULL, exp_irred_reduction};
+                                   U_STANDS | U_BETA | U_TAG, NULL, exp_irreducibility_reduction};
     return teacher_unit_run(&u, argc, argv);
 }
 
@@ -119,19 +119,21 @@ int cli_pointcloud_figure(int argc, char **argv)
 
 int cli_cmd_bench_teacher(int argc, char **argv)
 {
-    long reps = 10;
-    const opt_spec spec[] = {{"reps", OPT_LONG, &reps, 1, 10000, "stands timed at N = 48 (a quarter of them at N = 384; default 10)"}};
+    long reps = 11;
+    const opt_spec spec[] = {{"reps", OPT_LONG, &reps, 1, 10000, "stands timed at N = 48 (a third of them, at least 3, at N = 384; default 11)"}};
     const opts_cmd c = {"bench-teacher", "[--reps N]",
-                        "Teacher ms per 144-tree controlled-lattice stand (d = 3.5 m, beta 0.06) at N = 48 and N = 384 (design.md §10).",
+                        "Teacher CPU ms per 144-tree controlled-lattice stand (d = 3.5 m, beta 0.06) at N = 48 and N = 384,\n"
+                        "median [fastest, slowest] over stands each timed alone (design.md §10).",
                         spec, 1, 0, 0};
     int r = opts_parse(&c, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     const int levels[2] = {48, 384};
     for (int k = 0; k < 2; k++) {
-        double ms = 0.0;
-        cs_status st = stand_grow_bench(levels[k], k ? (int)(reps + 3) / 4 : (int)reps, &ms);
-        if (st) { fprintf(stderr, "crownshy bench-teacher: %s\n", cs_errmsg()); return cs_exit_code(st); }
-        printf("teacher_ms_per_stand_N%d\t%.3f\n", levels[k], ms);
+        double ms[3];
+        const int n = k ? (int)(reps + 2) / 3 < 3 ? 3 : (int)(reps + 2) / 3 : (int)reps;
+        cs_status st = stand_grow_bench(levels[k], n, ms);
+        if (st) return cli_fail("bench-teacher", st);
+        printf("teacher_ms_per_stand_N%d\t%.3f\t[%.3f, %.3f]\t(%d stands)\n", levels[k], ms[0], ms[1], ms[2], n);
     }
     return 0;
 }
@@ -155,7 +157,7 @@ int cli_readings_summary(int argc, char **argv)
     if (!dir || !out) { opts_usage_error("readings-summary", "--dir and --out are required"); return 2; }
     claims cl;
     cs_status st = claims_load(PATHS_CLAIMS, &cl);
-    if (st) { fprintf(stderr, "crownshy readings-summary: %s\n", cs_errmsg()); return cs_exit_code(st); }
+    if (st) return cli_fail("readings-summary", st);
     size_t n = readings_count(), nr;
     readings_row *rows = calloc(n, sizeof *rows);
     st = rows ? readings_compute(&cl, dir, rows) : cs_err(CS_ENOMEM, "out of memory");
@@ -170,6 +172,6 @@ int cli_readings_summary(int argc, char **argv)
     }
     free(rows);
     claims_free(&cl);
-    if (st) { fprintf(stderr, "crownshy readings-summary: %s\n", cs_errmsg()); return cs_exit_code(st); }
+    if (st) return cli_fail("readings-summary", st);
     return 0;
 }

@@ -1,10 +1,9 @@
-/* exp_common: what the experiments' units share (design.md §7, §9): the output
- * path and atomic commit of a unit's table, the metadata lines every unit
- * writes, pooled interior-tree clearances and cover, the crown and outline
- * tables of the canopy figures (design.md §12), and the field stands, options and
- * tables of E5 (exp_field.c, reference paper §5.3) and E6 (exp_aniso.c,
- * §5.4). Limits: no command lives here and no experiment's choices (seeds,
- * levels, stand counts) are made here; each experiment's file records its own. */
+/* exp_common: what every experiment shares (design.md §7): the readings (the
+ * teacher rule and the field layout a unit runs under, and the provenance
+ * that names them), growing a field stand under a reading, and pooled
+ * interior-tree clearances and cover. Writing a unit's tables is unit_out.c,
+ * the E5/E6 field stands fieldrun.c. Limits: no command lives here and no
+ * experiment's choices (seeds, levels, stand counts) are made here. */
 #include "exp_common.h"
 #include "estimator.h"
 #include "figdata.h"
@@ -21,22 +20,9 @@
 
 #define NS CROWN_NSEC
 
-/* Growable double array. */
-cs_status exp_dvec_push(exp_dvec *a, double x)
-{
-    if (a->n == a->cap) {
-        size_t c = a->cap ? 2 * a->cap : 256;
-        double *nv = realloc(a->v, c * sizeof *nv);
-        if (!nv) return cs_err(CS_ENOMEM, "experiments: out of memory");
-        a->v = nv;
-        a->cap = c;
-    }
-    a->v[a->n++] = x;
-    return CS_OK;
-}
 
 /* k = 1..3 NN clearances of the interior trees, appended to g[0..2]; interior cover. */
-cs_status exp_stand_metrics(const stand *sd, const double *r, exp_dvec g[3], double *cover, size_t *ntrees)
+cs_status exp_stand_metrics(const stand *sd, const double *r, dvec g[3], double *cover, size_t *ntrees)
 {
     const stems *s = sd->s;
     cs_status st = CS_OK;
@@ -47,7 +33,7 @@ cs_status exp_stand_metrics(const stand *sd, const double *r, exp_dvec g[3], dou
         for (int k = 1; k <= 3 && !st; k++) {
             double v;
             st = est_knn_clearance(s->x, s->y, r, s->n, i, k, &v);
-            if (!st) st = exp_dvec_push(&g[k - 1], v);
+            if (!st) st = dvec_push(&g[k - 1], v);
         }
     }
     if (ntrees) *ntrees += m;
@@ -56,74 +42,11 @@ cs_status exp_stand_metrics(const stand *sd, const double *r, exp_dvec g[3], dou
     return est_cover(s->x, s->y, r, s->n, lo, lo, hi, hi, cover);
 }
 
-cs_status exp_open_out(const exp_opts *o, const char *experiment, const char *file, tsv_writer **w,
-                          char *path, size_t pathsz)
-{
-    snprintf(path, pathsz, "%s/%s/%s", o->out, experiment, file);
-    return tsv_writer_open(w, path);
-}
-
-cs_status exp_finish(tsv_writer *w, prov *pv, const char *path)
-{
-    cs_status st = tsv_writer_commit(w);
-    if (!st) fprintf(stderr, "wrote %s (%.1f s)\n", path, prov_now() - pv->t0);
-    return st;
-}
-
-/* Metadata lines shared by all units (after the provenance block). */
-void exp_common_meta(tsv_writer *w, const exp_opts *o)
-{
-    tsv_writer_meta(w, "stands_per_cell", "%d", o->stands);
-    tsv_writer_meta(w, "teacher_resolution", "N = %d unless a column says otherwise; gamma = 1", exp_nres(&o->rd));
-    exp_variant_meta(w, &o->rd);
-}
-
-/* Crowns of one panel: one row per tree: panel, tree, x, y, h, interior, r0..r23. */
-void exp_write_crowns(tsv_writer *w, const char *panel, double d, const stand *sd, const double *r)
-{
-    for (size_t i = 0; i < sd->s->n; i++) {
-        tsv_writer_str(w, panel);
-        tsv_writer_dbl(w, d);
-        tsv_writer_long(w, (long)i);
-        tsv_writer_dbl(w, sd->s->x[i]);
-        tsv_writer_dbl(w, sd->s->y[i]);
-        tsv_writer_dbl(w, sd->h[i]);
-        tsv_writer_long(w, stems_interior(sd->s, i));
-        for (int s = 0; s < NS; s++) tsv_writer_dbl(w, r[i * NS + s]);
-        tsv_writer_endrow(w);
-    }
-}
-
-void exp_crown_columns(tsv_writer *w)
-{
-    char cols[1024];
-    int off = snprintf(cols, sizeof cols, "panel\tspacing_m\ttree\tx_m\ty_m\th_m\tinterior");
-    for (int s = 0; s < NS; s++) off += snprintf(cols + off, sizeof cols - (size_t)off, "\tr%d", s);
-    tsv_writer_columns(w, cols);
-}
-
-cs_status exp_write_polygons(const exp_opts *o, prov *pv, const char *experiment, const char *panel, double d,
-                                const stand *sd, const double *r, double k1)
-{
-    char file[128], path[512];
-    snprintf(file, sizeof file, "figure_poly_%s_%.1f.tsv", panel, d);
-    tsv_writer *w = NULL;
-    cs_status st = exp_open_out(o, experiment, file, &w, path, sizeof path);
-    if (st) return st;
-    st = prov_write(w, pv);
-    if (st) { tsv_writer_abort(w); return st; }
-    size_t n = sd->s->n;
-    tsv_writer_meta(w, "panel", "%s, spacing %.2f m, footprint %.0f m, %zu trees, %d rows per tree", panel, d, sd->s->L, n, FIGDATA_ROWS);
-    tsv_writer_meta(w, "k1_median_m", "%.3f", k1);
-    st = figdata_write_polygons(w, n, sd->s->x, sd->s->y, sd->h, r, NULL, NULL);
-    if (st) { tsv_writer_abort(w); return st; }
-    return tsv_writer_commit(w);
-}
 
 /* Median k1 clearance of the interior trees of one stand. */
 double exp_stand_k1(const stand *sd, const double *r)
 {
-    exp_dvec g[3] = {{0}, {0}, {0}};
+    dvec g[3] = {{0}, {0}, {0}};
     double med = NAN;
     if (!exp_stand_metrics(sd, r, g, NULL, NULL)) est_median(g[0].v, g[0].n, &med);
     for (int k = 0; k < 3; k++) free(g[k].v);
@@ -206,7 +129,7 @@ cs_status exp_reading_vary(const char *vary, exp_reading *r)
 
 static void exp_teacher_params(const exp_reading *r, teacher_params *p) { EXP_TEACHER_PARAMS(r, p); }
 
-cs_status exp_stand_alloc(const exp_reading *r, stand **out, stand_kind kind, double d, double L, double shape,
+cs_status exp_stand_alloc(const exp_reading *r, stand **out, const stems_type *kind, double d, double L, double shape,
                           const char *experiment, unsigned index)
 {
     return stand_alloc_dist(out, kind, d, L, shape, experiment, index, r && r->varied ? &r->var.crowns : NULL);
@@ -265,125 +188,3 @@ cs_status exp_field_grow_append(const stand *sd, const exp_reading *rd, double b
     return st;
 }
 
-/* ------------------------------------------------ E5/E6 field stands ---- */
-
-int exp_fail(const char *cmd, cs_status st)
-{
-    fprintf(stderr, "crownshy %s: %s\n", cmd, cs_errmsg()[0] ? cs_errmsg() : cs_status_name(st));
-    return cs_exit_code(st);
-}
-
-/* opts_parse with the table of c (no positional arguments), then --out is
- * required when the table has it. An opts result: OPTS_OK, OPTS_HELP, OPTS_USAGE. */
-int exp_field_parse(const opts_cmd *c, int argc, char **argv, exp_field_opts *o)
-{
-    int r = opts_parse(c, argc, argv, NULL, NULL);
-    if (r) return r;
-    o->stands = (unsigned)o->stands_opt;
-    if (exp_reading_parse(o->teacher, o->layout, &o->rd) || exp_reading_vary(o->vary, &o->rd)) { opts_usage_error(c->cmd, "%s", cs_errmsg()); return OPTS_USAGE; }
-    for (size_t i = 0; i < c->nopts; i++)
-        if (c->opts[i].dst == &o->out && !o->out) { opts_usage_error(c->cmd, "--out PATH is required"); return OPTS_USAGE; }
-    return OPTS_OK;
-}
-
-cs_status exp_field_run_job(exp_field_job *j, fs_trees *acc, double *worst)
-{
-    double d = exp_field_d(&j->rd), L = exp_field_L(&j->rd);
-    j->failed = 0;
-    for (unsigned s = 0; s < j->nstands; s++) {
-        stand *sd;
-        cs_status st = exp_stand_alloc(&j->rd, &sd, j->kind, d, L, j->shape, j->seed_exp, s);
-        if (st == CS_EINPUT && j->kind == STAND_HARDCORE && strstr(cs_errmsg(), "unbuildable")) {
-            /* A level the stem process cannot reach is a finding, not a crash. */
-            j->failed++;
-            continue;
-        }
-        if (st) return st;
-        st = exp_field_grow_append(sd, &j->rd, j->beta, 1, j->level, s, acc, worst);
-        if (!st && j->twins) st = exp_field_grow_append(sd, &j->rd, j->beta, 0, j->level, s, acc, NULL);
-        stand_free(sd);
-        if (st) return st;
-    }
-    return CS_OK;
-}
-
-/* Write X_trees.tsv then X.tsv (one summary row per job and arm). */
-cs_status exp_field_write(const char *out, prov *p, const fs_trees *acc, const exp_field_job *jobs, size_t nj,
-                          exp_field_meta_fn meta, void *ctx)
-{
-    char tp[600];
-    fs_trees_path(out, tp, sizeof tp);
-    tsv_writer *w;
-    cs_status st = tsv_writer_open(&w, tp);
-    if (st) return st;
-    if ((st = prov_write(w, p))) { tsv_writer_abort(w); return st; }
-    tsv_writer_meta(w, "what", "one row per interior tree (>= 2 d from the edge): cardinal gaps E N W S (m) and crown elongation, all-axis (elong, design.md §5) and cardinal (elong_card, revision 1), canonical estimator");
-    tsv_writer_meta(w, "summary", "%s", out);
-    fs_trees_write(w, acc);
-    if ((st = tsv_writer_commit(w))) return st;
-    if ((st = tsv_writer_open(&w, out))) return st;
-    if ((st = prov_write(w, p))) { tsv_writer_abort(w); return st; }
-    tsv_writer_meta(w, "trees_table", "%s", tp);
-    if (nj) tsv_writer_meta(w, "layout", "%s: field stands d = %g m on L = %g m (design.md §7 E5%s)", exp_layout_name(jobs[0].rd.layout),
-                            exp_field_d(&jobs[0].rd), exp_field_L(&jobs[0].rd),
-                            jobs[0].rd.layout == EXP_LAYOUT_R1 ? ", revision 1 reading" : "");
-    if (nj) exp_variant_meta(w, &jobs[0].rd);
-    if (meta) meta(w, ctx);
-    tsv_writer_columns(w, FS_SUMMARY_COLUMNS);
-    for (size_t k = 0; k < nj && !st; k++)
-        for (int arm = 1; arm >= (jobs[k].twins ? 0 : 1) && !st; arm--) {
-            fs_summary s;
-            memset(&s, 0, sizeof s);
-            size_t have = 0;
-            for (size_t i = 0; i < acc->n; i++) have += acc->coupled[i] == arm && acc->level[i] == jobs[k].level;
-            if (have) st = fs_group(acc, arm, jobs[k].level, &s);
-            if (!st) fs_summary_write_row(w, arm, jobs[k].level, jobs[k].beta, jobs[k].failed, &s);
-        }
-    if (st) { tsv_writer_abort(w); return st; }
-    return tsv_writer_commit(w);
-}
-
-cs_status exp_canonical_jitter(double *a)
-{
-    return gate_read_value(PATHS_GATE("anisotropy"), "canonical_jitter", 0, a);
-}
-
-/* beta_field from --calibration, or a usage/input error code. */
-int exp_need_beta(const char *cmd, const exp_field_opts *o, fs_calibration *c)
-{
-    if (!o->calibration) { opts_usage_error(cmd, "--calibration DIR/calibration.tsv is required (beta_field)"); return 2; }
-    cs_status st = fs_beta_field(o->calibration, c);
-    if (st) return exp_fail(cmd, st);
-    return 0;
-}
-
-void exp_meta_generic(tsv_writer *w, void *ctx)
-{
-    exp_meta_ctx *m = ctx;
-    tsv_writer_meta(w, "what", "%s", m->what);
-    tsv_writer_meta(w, "beta_field", "%.17g", m->beta_field);
-}
-
-/* With FIELD_TABLE: print sim/field spread ratios (informational; the claims
- * recompute them from the frozen table and the same field table). */
-void exp_print_spread_ratios(const char *cmd, const fs_trees *acc, double level, int twins)
-{
-    const char *path = field_table_env();
-    if (!path) {
-        printf("%s: spread ratio PENDING: needs the raw field table (%s=path), not on this machine\n", cmd, FIELD_TABLE_ENV);
-        return;
-    }
-    field_table ft;
-    field_summary fsum;
-    if (field_table_load(path, &ft) || field_summarize((const double (*)[4])ft.gap, ft.n, &fsum)) {
-        printf("%s: spread ratio not computed: %s\n", cmd, cs_errmsg());
-        field_table_free(&ft);
-        return;
-    }
-    field_table_free(&ft);
-    for (int arm = 1; arm >= (twins ? 0 : 1); arm--) {
-        fs_summary s;
-        if (!fs_group(acc, arm, level, &s))
-            printf("%s: %s spread %.4f m / field spread %.4f m = %.3f\n", cmd, arm ? "coupled" : "uncoupled", s.f.spread, fsum.spread, s.f.spread / fsum.spread);
-    }
-}

@@ -13,8 +13,8 @@
 #ifndef EXP_COMMON_H
 #define EXP_COMMON_H
 #include "cs.h"
+#include "dvec.h"
 #include "fieldsim.h"
-#include "opts.h"
 #include "prov.h"
 #include "stand.h"
 #include "tsv.h"
@@ -63,7 +63,7 @@ cs_status exp_reading_vary(const char *vary, exp_reading *r);
         } \
     } while (0)
 /* stand_alloc_dist with the reading's crown draws (r may be NULL). */
-cs_status exp_stand_alloc(const exp_reading *r, stand **out, stand_kind kind, double d, double L, double shape,
+cs_status exp_stand_alloc(const exp_reading *r, stand **out, const stems_type *kind, double d, double L, double shape,
                           const char *experiment, unsigned index);
 /* Hard-core level of the figure stands (EXP_FIG_C unless varied). */
 double exp_fig_c(const exp_reading *r);
@@ -72,16 +72,13 @@ int exp_nres(const exp_reading *r);
 /* Provenance/metadata line of a varied reading ("-" for the design). */
 void exp_variant_meta(tsv_writer *w, const exp_reading *r);
 /* prov_begin for a teacher unit, recording the reading's teacher_version
- * (not the pinned default) so a revision-1 run says which teacher made it. */
+ * (not the pinned default) so a teacher-1 run says which teacher made it. */
 void exp_prov_begin(prov *p, const char *experiment, const exp_reading *r, int argc, char **argv);
 /* Field stands of a reading: its layout's spacing and footprint (design.h),
  * or the varied ones. */
 double exp_field_d(const exp_reading *r);
 double exp_field_L(const exp_reading *r);
 const char *exp_layout_name(exp_layout l);
-#define EXP_OPT_TEACHER(var) {"teacher", OPT_STR, &(var), 0, 0, "teacher reading: teacher-2 (default, mutual abrasion) or teacher-1 (revision 1, one-sided), each with -arc or -target for the other die-back readings"}
-#define EXP_OPT_VARY(var) {"vary", OPT_STR, &(var), 0, 0, "sensitivity: NAME=VALUE changes one unstated choice (crownshy sens-run --help lists them)"}
-#define EXP_OPT_LAYOUT(var) {"layout", OPT_STR, &(var), 0, 0, "field layout: r2 (default, d = 4 m on L = 36 m) or r1 (revision 1, d = 5 m on L = 60 m)"}
 
 typedef struct {
     const char *out;  /* results root, e.g. build/results */
@@ -99,93 +96,16 @@ typedef struct {
 #define EXP_FIG_L 36.0
 #define EXP_FIG_C 0.5
 
-/* Growable double array. */
-typedef struct { double *v; size_t n, cap; } exp_dvec;
-cs_status exp_dvec_push(exp_dvec *a, double x);
-
 /* k = 1..3 NN clearances of the interior trees, appended to g[0..2];
  * interior cover (cover may be NULL); *ntrees (may be NULL) += interior trees. */
-cs_status exp_stand_metrics(const stand *sd, const double *r, exp_dvec g[3], double *cover, size_t *ntrees);
+cs_status exp_stand_metrics(const stand *sd, const double *r, dvec g[3], double *cover, size_t *ntrees);
 /* Median k1 clearance of the interior trees of one stand (NAN on failure). */
 double exp_stand_k1(const stand *sd, const double *r);
-
-/* Open <o->out>/<experiment>/<file> for an atomic write; path receives it. */
-cs_status exp_open_out(const exp_opts *o, const char *experiment, const char *file, tsv_writer **w,
-                       char *path, size_t pathsz);
-/* Commit and report "wrote PATH (s)". */
-cs_status exp_finish(tsv_writer *w, prov *pv, const char *path);
-/* Metadata lines shared by all units (after the provenance block). */
-void exp_common_meta(tsv_writer *w, const exp_opts *o);
-
-/* Figure crowns: columns panel spacing_m tree x_m y_m h_m interior r0..r23,
- * one row per tree of one panel. */
-void exp_crown_columns(tsv_writer *w);
-void exp_write_crowns(tsv_writer *w, const char *panel, double d, const stand *sd, const double *r);
-/* <experiment>/figure_poly_<panel>_<d>.tsv: the outlines of one panel. */
-cs_status exp_write_polygons(const exp_opts *o, prov *pv, const char *experiment, const char *panel, double d,
-                             const stand *sd, const double *r, double k1);
 
 /* E5/E6: grow stand sd with the teacher (beta; coupled or the uncoupled
  * twin) and append its interior trees tagged (coupled, level, stand index).
  * *worst (may be NULL) is raised to the self-check overlap of the growth. */
 cs_status exp_field_grow_append(const stand *sd, const exp_reading *rd, double beta, int coupled, double level,
                                 unsigned index, fs_trees *acc, double *worst);
-
-/* ---- E5/E6 (exp_field.c, exp_aniso.c): field stands, options and tables ----
- * Field stands: the controlled lattice (or a hard-core family) at
- * d = exp_field_d(layout), L = exp_field_L(layout) (r2: 4 m on 36 m; r1: 5 m
- * on 60 m), teacher at N = 48, gamma = 1; each command's seeds and outputs
- * are described in its file. */
-
-/* The options of the E5/E6 commands; each command's table lists the ones it takes. */
-typedef struct {
-    const char *out, *calibration, *sweep, *jitter_calibration;
-    const char *teacher, *layout, *vary; /* --teacher, --layout, --vary (NULL: defaults) */
-    long stands_opt;  /* --stands, parsed */
-    unsigned stands;  /* the same, set by exp_field_parse */
-    exp_reading rd;   /* set by exp_field_parse from --teacher/--layout */
-} exp_field_opts;
-
-#define EXP_OPT_OUT(o) {"out", OPT_STR, &(o).out, 0, 0, "output table (required)"}
-#define EXP_OPT_CAL(o) {"calibration", OPT_STR, &(o).calibration, 0, 0, "E5 calibration table DIR/calibration.tsv, gives beta_field (required)"}
-#define EXP_OPT_STANDS(o, help) {"stands", OPT_LONG, &(o).stands_opt, 1, 10000, help}
-
-/* "crownshy CMD: <cs_errmsg>" on stderr; the exit code of st. */
-int exp_fail(const char *cmd, cs_status st);
-/* opts_parse with the table of c (no positional arguments), then --out is
- * required when the table has it. An opts result: OPTS_OK, OPTS_HELP, OPTS_USAGE. */
-int exp_field_parse(const opts_cmd *c, int argc, char **argv, exp_field_opts *o);
-/* beta_field from o->calibration: 0, or the exit code after printing the
- * usage error (no --calibration) or the input error. */
-int exp_need_beta(const char *cmd, const exp_field_opts *o, fs_calibration *c);
-/* The canonical jitter of the field stands (gates/anisotropy.gate). */
-cs_status exp_canonical_jitter(double *a);
-
-/* One group of stands: `nstands` stands of one stem process at one level. */
-typedef struct {
-    const char *seed_exp;
-    stand_kind kind;
-    double shape, level, beta;
-    unsigned nstands;
-    int twins;          /* also grow the uncoupled twin of each stand */
-    size_t failed;      /* out: stands that could not be built (hard-core "unbuildable") */
-    exp_reading rd;     /* teacher rule and layout (zero: teacher-2, r2) */
-} exp_field_job;
-
-/* Grow the stands of j (and their uncoupled twins) and append their interior
- * trees to acc; a hard-core stand that cannot be built counts in j->failed. */
-cs_status exp_field_run_job(exp_field_job *j, fs_trees *acc, double *worst);
-
-typedef void (*exp_field_meta_fn)(tsv_writer *w, void *ctx);
-/* Write X_trees.tsv then X.tsv (one summary row per job and arm); meta (may
- * be NULL) adds the metadata lines of the summary. */
-cs_status exp_field_write(const char *out, prov *p, const fs_trees *acc, const exp_field_job *jobs, size_t nj,
-                          exp_field_meta_fn meta, void *ctx);
-/* The metadata of most E5/E6 tables ("what", "beta_field"): ctx is an exp_meta_ctx. */
-typedef struct { double beta_field, a; const char *what; } exp_meta_ctx;
-void exp_meta_generic(tsv_writer *w, void *ctx);
-/* With FIELD_TABLE: print sim/field spread ratios (informational; the claims
- * recompute them from the frozen table and the same field table). */
-void exp_print_spread_ratios(const char *cmd, const fs_trees *acc, double level, int twins);
 
 #endif

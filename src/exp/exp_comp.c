@@ -92,7 +92,7 @@ cs_status exp_comp_run(const exp_comp_args *a)
     double px[PATCH_T], py[PATCH_T], ph[PATCH_T], med[3];
     int ovl[3], flag[3][PATCH_T];
     if (!rg) st = cs_err(CS_ENOMEM, "out of memory");
-    if (!st) st = stand_alloc(&sd, STAND_LATTICE, d, 12.0 * d, jitter, "comparison", 0);
+    if (!st) st = stand_alloc(&sd, stems_lattice, d, 12.0 * d, jitter, "comparison", 0);
     if (!st && !(rt = malloc(sd->s->n * CROWN_NSEC * sizeof *rt))) st = cs_err(CS_ENOMEM, "out of memory");
     if (!st) st = grow(sd, beta, rt);
     patch_stand pst;
@@ -123,7 +123,7 @@ cs_status exp_comp_run(const exp_comp_args *a)
     if (!st) st = patch_set_alloc(&dp, 400);
     for (unsigned k = 0; k < COMP_DART_STANDS && !st; k++) {
         stand *hs;
-        st = stand_alloc(&hs, STAND_HARDCORE, d, 12.0 * d, COMP_HARDCORE_C, "comparison-dart", k);
+        st = stand_alloc(&hs, stems_hardcore, d, 12.0 * d, COMP_HARDCORE_C, "comparison-dart", k);
         double *rh = st ? NULL : malloc(hs->s->n * CROWN_NSEC * sizeof *rh);
         if (!st && !rh) st = cs_err(CS_ENOMEM, "out of memory");
         if (!st) st = grow(hs, beta, rh);

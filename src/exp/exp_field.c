@@ -1,11 +1,11 @@
 /* exp_field: E5 field validation (design.md §7 E5; reference paper §5.3): the
  * commands field-summary, field-calibrate, field-beta, field-heldout and
- * field-diagnose (E6, the anisotropy commands, is exp_aniso.c).
+ * field-diagnose (E6, the anisotropy commands, is exp_anisotropy.c).
  *
- * Field stands (--layout, exp_common.h): r2 (default, design.md §7 E5 revision 2)
+ * Field stands (--layout, exp_common.h): r2 (default, design.md §7 E5)
  * the controlled lattice at d = 4 m on L = 36 m (9 x 9 stems, interior trees
  * >= 2 d from the edge, ~25 per stand: the paper's 731 trees in 28 stands);
- * r1 (revision 1) d = 5 m on L = 60 m; canonical jitter (anisotropy.gate
+ * r1 (a reading, design.md §7 E0) d = 5 m on L = 60 m; canonical jitter (anisotropy.gate
  * canonical_jitter); teacher (--teacher, default teacher-2) at N = 48,
  * gamma = 1. Seeds: seed_derive(<seed experiment>, d, stand,
  * "stems"/"crowns") with one seed-experiment string per role, so that
@@ -22,11 +22,10 @@
  * spread ratios against the field need the raw field table (FIELD_TABLE),
  * which is not shipped. */
 #include "exp_field.h"
-#include "exp_common.h"
+#include "fieldrun.h"
 #include "design.h"
 #include "fieldsim.h"
 #include "gate.h"
-#include "opts.h"
 #include "paths.h"
 #include "prov.h"
 #include "estimator.h"
@@ -36,31 +35,19 @@
 #include <stdlib.h>
 #include <string.h>
 
-int cmd_field_summary(int argc, char **argv)
+cs_status exp_field_summary(const char *table)
 {
-    const opts_cmd oc = {"field-summary", "[TABLE.tsv]",
-                         "Summarise a raw field table (default: $FIELD_TABLE): trees, measurements, tree-mean\n"
-                         "median clearance, spread (IQR of all cardinal gaps), anisotropy median (+ excluded),\n"
-                         "with the canonical estimator's functions, next to the published figures of\n"
-                         "frozen/field/reference.tsv. Columns: tree, direction (E/N/W/S or east/north/west/south),\n"
-                         "clearance_m; each tree needs each direction exactly once. Exit 3 on a bad table.",
-                         NULL, 0, 0, 1};
-    char *pos[argc > 0 ? argc : 1];
-    int npos = 0, rc = opts_parse(&oc, argc, argv, pos, &npos);
-    if (rc) return opts_exit_code(rc);
-    const char *path = npos ? pos[0] : field_table_env();
-    if (!path) {
-        fprintf(stderr, "crownshy field-summary: no table given and %s is not set; the raw field table "
-                        "(Dryad doi:10.5061/dryad.34tmpg4hk) is not on this machine\n", FIELD_TABLE_ENV);
-        return 3;
-    }
+    const char *path = table ? table : field_table_env();
+    if (!path)
+        return cs_err(CS_EINPUT, "no table given and %s is not set; the raw field table "
+                                 "(Dryad doi:10.5061/dryad.34tmpg4hk) is not on this machine", FIELD_TABLE_ENV);
     field_table ft;
     cs_status st = field_table_load(path, &ft);
-    if (st) return exp_fail("field-summary", st);
+    if (st) return st;
     field_summary s;
     st = field_summarize((const double (*)[4])ft.gap, ft.n, &s);
     field_table_free(&ft);
-    if (st) return exp_fail("field-summary", st);
+    if (st) return st;
     double ref;
     printf("table\t%s\n", path);
     printf("trees\t%zu", s.trees);
@@ -72,7 +59,7 @@ int cmd_field_summary(int argc, char **argv)
     printf("\nspread_iqr_m\t%.17g\naniso_median\t%.17g", s.spread, s.aniso_median);
     if (!field_reference_get(FIELD_REFERENCE_PATH, "aniso_median", &ref, NULL)) printf("\t(published %g)", ref);
     printf("\naniso_trees\t%zu\naniso_excluded\t%zu\n", s.aniso_trees, s.aniso_excluded);
-    return 0;
+    return CS_OK;
 }
 
 static void meta_calibration(tsv_writer *w, void *ctx)
@@ -82,18 +69,11 @@ static void meta_calibration(tsv_writer *w, void *ctx)
     tsv_writer_meta(w, "rule", "beta_field = linear interpolation of the curve to gates/field.gate calibration_target_m, rounded to the grid step (fs_beta_field)");
 }
 
-int cmd_field_calibrate(int argc, char **argv)
+cs_status exp_field_calibrate(const exp_field_opts *args)
 {
-    exp_field_opts o = {0};
-    const opt_spec spec[] = {EXP_OPT_OUT(o), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout), EXP_OPT_VARY(o.vary)};
-    const opts_cmd oc = {"field-calibrate", "--out DIR/calibration.tsv",
-                         "E5 calibration (design.md §7): grow the calibration stands (gates/field.gate calibration_seeds)\n"
-                         "at every beta of dieback_grid, record the median tree-mean clearance per beta, and print\n"
-                         "beta_field (interpolated to calibration_target_m, rounded to the grid). Also writes\n"
-                         "DIR/calibration_trees.tsv.",
-                         spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = exp_field_parse(&oc, argc, argv, &o);
-    if (rc) return opts_exit_code(rc);
+    exp_field_opts o = *args;
+    const int argc = args->argc;
+    char **argv = args->argv;
     prov p;
     exp_prov_begin(&p, "field", &o.rd, argc, argv);
     double lo, hi, step, seeds, a;
@@ -101,112 +81,91 @@ int cmd_field_calibrate(int argc, char **argv)
     if (!st) st = gate_read_value(PATHS_GATE("field"), "dieback_grid", 1, &hi);
     if (!st) st = gate_read_value(PATHS_GATE("field"), "dieback_grid", 2, &step);
     if (!st) st = gate_read_value(PATHS_GATE("field"), "calibration_seeds", 0, &seeds);
-    if (!st) st = exp_canonical_jitter(&a);
-    if (st) return exp_fail("field-calibrate", st);
+    if (!st) st = fieldrun_canonical_jitter(&a);
+    if (st) return st;
     size_t nb = (size_t)lround((hi - lo) / step) + 1;
-    exp_field_job *jobs = calloc(nb, sizeof *jobs);
+    fieldrun_job *jobs = calloc(nb, sizeof *jobs);
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
     for (size_t k = 0; k < nb && !st; k++) {
         double beta = fs_round_step(lo + (double)k * step, step);
-        jobs[k] = (exp_field_job){"field/calibration", STAND_LATTICE, a, beta, beta, (unsigned)seeds, 0, 0, o.rd};
-        st = exp_field_run_job(&jobs[k], &acc, &worst);
+        jobs[k] = (fieldrun_job){.seed_exp = "field/calibration", .kind = stems_lattice, .shape = a, .level = beta, .beta = beta, .nstands = (unsigned)seeds, .rd = o.rd};
+        st = fieldrun_run(&jobs[k], &acc, &worst);
         if (!st && (k % 7 == 0 || k + 1 == nb)) fprintf(stderr, "field-calibrate: beta %.2f done (%zu/%zu)\n", beta, k + 1, nb);
     }
     snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/calibration\", %g, s, stems|crowns), s = 0..%u at every beta", exp_field_d(&o.rd), (unsigned)seeds - 1);
     p.worst_overlap_m = worst;
-    if (!st) st = exp_field_write(o.out, &p, &acc, jobs, nb, meta_calibration, NULL);
+    if (!st) st = fieldrun_write(o.out, &p, &acc, jobs, nb, meta_calibration, NULL);
     fs_trees_free(&acc);
     free(jobs);
-    if (st) return exp_fail("field-calibrate", st);
+    if (st) return st;
     fs_calibration c;
-    if ((st = fs_beta_field(o.out, &c))) return exp_fail("field-calibrate", st);
+    if ((st = fs_beta_field(o.out, &c))) return st;
     printf("field-calibrate: target %.3f m, beta interpolated %.6f, beta_field %.2f%s\n", c.target, c.interp, c.value,
            c.bracketed ? "" : " (TARGET NOT BRACKETED by the grid: nearest end)");
-    return 0;
+    return CS_OK;
 }
 
-int cmd_field_beta(int argc, char **argv)
+cs_status exp_field_beta(const char *calibration)
 {
-    const opts_cmd oc = {"field-beta", "DIR/calibration.tsv",
-                         "Print beta_field (%.17g) recomputed from an E5 calibration table (used by the make units\n"
-                         "that rerun E2 at the field operating point).",
-                         NULL, 0, 1, 1};
-    char *pos[argc > 0 ? argc : 1];
-    int rc = opts_parse(&oc, argc, argv, pos, NULL);
-    if (rc) return opts_exit_code(rc);
     fs_calibration c;
-    cs_status st = fs_beta_field(pos[0], &c);
-    if (st) return exp_fail("field-beta", st);
-    printf("%.17g\n", c.value);
-    return 0;
+    cs_status st = fs_beta_field(calibration, &c);
+    if (!st) printf("%.17g\n", c.value);
+    return st;
 }
-int cmd_field_heldout(int argc, char **argv)
+cs_status exp_field_heldout(const exp_field_opts *args)
 {
-    exp_field_opts o = {.stands_opt = 28};
-    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_OUT(o), EXP_OPT_STANDS(o, "stands (default 28)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout), EXP_OPT_VARY(o.vary)};
-    const opts_cmd oc = {"field-heldout", "--calibration DIR/calibration.tsv --out DIR/heldout.tsv [--stands N]",
-                         "E5 held-out (design.md §7): N stands (default 28) on seeds disjoint from the calibration, grown at\n"
-                         "beta_field coupled and as the uncoupled twin: tree-mean median, spread, elongation, anisotropy.\n"
-                         "The spread ratios need the raw field table (FIELD_TABLE=path); without it they are pending.",
-                         spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = exp_field_parse(&oc, argc, argv, &o);
-    if (rc) return opts_exit_code(rc);
+    exp_field_opts o = *args;
+    const int argc = args->argc;
+    char **argv = args->argv;
     fs_calibration c;
-    if ((rc = exp_need_beta("field-heldout", &o, &c))) return rc;
+    cs_status stb = fs_beta_field(o.calibration, &c);
+    if (stb) return stb;
     prov p;
     exp_prov_begin(&p, "field", &o.rd, argc, argv);
     double a;
-    cs_status st = exp_canonical_jitter(&a);
-    if (st) return exp_fail("field-heldout", st);
-    exp_field_job j = {"field/heldout", STAND_LATTICE, a, c.value, c.value, o.stands, 1, 0, o.rd};
+    cs_status st = fieldrun_canonical_jitter(&a);
+    if (st) return st;
+    fieldrun_job j = {.seed_exp = "field/heldout", .kind = stems_lattice, .shape = a, .level = c.value, .beta = c.value, .nstands = o.stands, .twins = 1, .rd = o.rd};
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
-    st = exp_field_run_job(&j, &acc, &worst);
+    st = fieldrun_run(&j, &acc, &worst);
     snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/heldout\", %g, s, stems|crowns), s = 0..%u; uncoupled twin = same stand", exp_field_d(&o.rd), o.stands - 1);
     p.worst_overlap_m = worst;
-    exp_meta_ctx m = {c.value, a, "E5 held-out: controlled lattice (layout in the layout line), canonical jitter, teacher at beta_field; coupled stands and their uncoupled twins (same stems and crown draws)"};
-    if (!st) st = exp_field_write(o.out, &p, &acc, &j, 1, exp_meta_generic, &m);
+    fieldrun_meta_ctx m = {c.value, a, "E5 held-out: controlled lattice (layout in the layout line), canonical jitter, teacher at beta_field; coupled stands and their uncoupled twins (same stems and crown draws)"};
+    if (!st) st = fieldrun_write(o.out, &p, &acc, &j, 1, fieldrun_meta_generic, &m);
     if (!st) {
         fs_summary s;
         if (!fs_group(&acc, 1, c.value, &s))
             printf("field-heldout: beta_field %.2f, %zu stands, %zu trees: tree-mean median %.4f m, elongation median %.4f, spread %.4f m\n",
                    c.value, s.stands, s.f.trees, s.f.tree_mean_median, s.elong_median, s.f.spread);
-        exp_print_spread_ratios("field-heldout", &acc, c.value, 1);
+        fieldrun_print_spread_ratios("field-heldout", &acc, c.value, 1);
     }
     fs_trees_free(&acc);
-    return st ? exp_fail("field-heldout", st) : 0;
+    return st;
 }
 /* -------------------------------------------------------- diagnosis ---- */
 
 /* Why the elongation and anisotropy gates fail (printed, not frozen): the
  * open-grown crown targets (design.md §3) and the two knobs' reach. */
-int cmd_field_diagnose(int argc, char **argv)
+cs_status exp_field_diagnose(const exp_field_opts *args)
 {
-    exp_field_opts o = {.stands_opt = 12};
-    const opt_spec spec[] = {EXP_OPT_CAL(o), EXP_OPT_STANDS(o, "stands of the perfect lattice (default 12)"), EXP_OPT_TEACHER(o.teacher), EXP_OPT_LAYOUT(o.layout), EXP_OPT_VARY(o.vary)};
-    const opts_cmd oc = {"field-diagnose", "--calibration DIR/calibration.tsv [--stands N]",
-                         "Print diagnostics for the E5/E6 verdicts: elongation of the open-grown crown targets\n"
-                         "(by lobe count k), the reach of beta over the calibration grid (elongation, anisotropy),\n"
-                         "and the anisotropy of a perfect lattice (a = 0) at beta_field (N stands, default 12,\n"
-                         "seeds 'field/diagnose'). Nothing is written.",
-                         spec, sizeof spec / sizeof *spec, 0, 0};
-    int rc = exp_field_parse(&oc, argc, argv, &o);
-    if (rc) return opts_exit_code(rc);
+    exp_field_opts o = *args;
     fs_calibration c;
-    if ((rc = exp_need_beta("field-diagnose", &o, &c))) return rc;
+    cs_status stb = fs_beta_field(o.calibration, &c);
+    if (stb) return stb;
     double d = exp_field_d(&o.rd), L = exp_field_L(&o.rd), a;
-    cs_status st = exp_canonical_jitter(&a);
-    if (st) return exp_fail("field-diagnose", st);
+    cs_status st = fieldrun_canonical_jitter(&a);
+    if (st) return st;
     /* 1. open-grown target elongation on the E5 held-out stands' draws */
     size_t n[6] = {0}, ge[6] = {0}, tot = 0, totge = 0;
     double emax = 0, lo;
-    if ((st = gate_read_value(PATHS_GATE("field"), "elongation_band", 0, &lo))) return exp_fail("field-diagnose", st);
+    if ((st = gate_read_value(PATHS_GATE("field"), "elongation_band", 0, &lo))) return st;
     for (unsigned s = 0; s < o.stands && !st; s++) {
         stand *sd;
-        if ((st = exp_stand_alloc(&o.rd, &sd, STAND_LATTICE, d, L, a, "field/heldout", s))) break;
+        if ((st = exp_stand_alloc(&o.rd, &sd, stems_lattice, d, L, a, "field/heldout", s))) break;
         for (size_t i = 0; i < sd->s->n; i++) {
             double e = est_elongation(sd->rstar + i * CROWN_NSEC);
             int k = sd->draw[i].k;
@@ -216,14 +175,14 @@ int cmd_field_diagnose(int argc, char **argv)
         }
         stand_free(sd);
     }
-    if (st) return exp_fail("field-diagnose", st);
+    if (st) return st;
     printf("open-grown targets (%zu crowns): max elongation %.4f; share >= %.2f: %.4f\n", tot, emax, lo, (double)totge / (double)tot);
     for (int k = 2; k <= 5; k++)
         printf("  lobe count k = %d: %zu crowns, share >= %.2f: %.4f\n", k, n[k], lo, n[k] ? (double)ge[k] / (double)n[k] : 0.0);
     /* 2. reach of beta: calibration grid */
     tsv *t;
     fs_trees tr;
-    if ((st = fs_load_checked(o.calibration, &t, &tr))) return exp_fail("field-diagnose", st);
+    if ((st = fs_load_checked(o.calibration, &t, &tr))) return st;
     fs_trees_free(&tr);
     double emx = 0, amn = INFINITY, bea = 0, baa = 0;
     for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
@@ -233,19 +192,19 @@ int cmd_field_diagnose(int argc, char **argv)
         if (an < amn) { amn = an; baa = b; }
     }
     tsv_free(t);
-    if (st) return exp_fail("field-diagnose", st);
+    if (st) return st;
     printf("calibration grid: largest median elongation %.4f (beta %.2f); smallest median anisotropy %.4f (beta %.2f)\n", emx, bea, amn, baa);
     /* 3. a perfect lattice at beta_field */
     fs_trees acc;
     fs_trees_init(&acc);
-    exp_field_job j = {"field/diagnose", STAND_LATTICE, 0.0, 0.0, c.value, o.stands, 0, 0, o.rd};
+    fieldrun_job j = {.seed_exp = "field/diagnose", .kind = stems_lattice, .shape = 0.0, .level = 0.0, .beta = c.value, .nstands = o.stands, .rd = o.rd};
     double worst = 0;
-    st = exp_field_run_job(&j, &acc, &worst);
+    st = fieldrun_run(&j, &acc, &worst);
     fs_summary sm;
     if (!st) st = fs_group(&acc, 1, 0.0, &sm);
     fs_trees_free(&acc);
-    if (st) return exp_fail("field-diagnose", st);
+    if (st) return st;
     printf("perfect lattice (a = 0) at beta_field %.2f, %u stands: median anisotropy %.4f (%zu trees), tree-mean median %.4f m, elongation %.4f\n",
            c.value, o.stands, sm.f.aniso_median, sm.f.aniso_trees, sm.f.tree_mean_median, sm.elong_median);
-    return 0;
+    return CS_OK;
 }

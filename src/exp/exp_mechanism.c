@@ -9,11 +9,12 @@
  *                          spacing_m stands trees k1_m k2_m k3_m cover overlap_m
  *  mechanism/figure_stats.tsv  the ablation's columns, measured on the one
  *                          hard-core figure stand (the paper's "measured on the
- *                          stand shown": the Mech* macros, design.md §7 E1 rev. 2);
+ *                          stand shown": the Mech* macros, design.md §7 E1);
  *                          the gate stays judged on ablation.tsv (lattice)
  *  mechanism/figure_crowns.tsv, figure_poly_<panel>_<d>.tsv (exp_common.h) */
 #include "exp_mechanism.h"
 #include "exp_common.h"
+#include "unit_out.h"
 #include "estimator.h"
 #include "gate.h"
 #include "paths.h"
@@ -29,7 +30,7 @@ typedef struct { double k[3], cover, overlap; size_t trees; } cell_result;
 
 /* One grown stand's share of a cell: its interior trees' k = 1..3 clearances
  * appended to g, its interior cover and its worst overlap. */
-static cs_status stand_stats(const stand *sd, const double *r, exp_dvec g[3], double *cov, double *w, size_t *trees)
+static cs_status stand_stats(const stand *sd, const double *r, dvec g[3], double *cov, double *w, size_t *trees)
 {
     cs_status st = exp_stand_metrics(sd, r, g, cov, trees);
     if (!st) st = teacher_worst_overlap(sd->s->x, sd->s->y, r, sd->s->n, w);
@@ -37,7 +38,7 @@ static cs_status stand_stats(const stand *sd, const double *r, exp_dvec g[3], do
 }
 
 /* A cell's result from its pooled clearances (freed here) after status st. */
-static cs_status cell_close(exp_dvec g[3], double cover, double overlap, size_t trees, cs_status st, cell_result *res)
+static cs_status cell_close(dvec g[3], double cover, double overlap, size_t trees, cs_status st, cell_result *res)
 {
     for (int k = 0; k < 3 && !st; k++) st = est_median(g[k].v, g[k].n, &res->k[k]);
     res->cover = cover;
@@ -48,10 +49,10 @@ static cs_status cell_close(exp_dvec g[3], double cover, double overlap, size_t 
 }
 
 /* One (stem process, d, params) cell over o->stands stands of key `key`. */
-static cs_status run_cell(const exp_opts *o, const char *key, stand_kind kind, double d, double shape,
+static cs_status run_cell(const exp_opts *o, const char *key, const stems_type *kind, double d, double shape,
                           const teacher_params *p, cell_result *res, double *worst)
 {
-    exp_dvec g[3] = {{0}, {0}, {0}};
+    dvec g[3] = {{0}, {0}, {0}};
     double cov_sum = 0.0, ovl = 0.0;
     size_t trees = 0;
     cs_status st = CS_OK;
@@ -94,20 +95,20 @@ cs_status exp_mechanism_sweep(const exp_opts *o)
             teacher_params p;
             EXP_TEACHER_PARAMS(&o->rd, &p);
             p.beta = betas[b];
-            st = run_cell(o, "mechanism", STAND_LATTICE, ds[a], 0.04, &p, &res[a * nb + b], &worst);
+            st = run_cell(o, "mechanism", stems_lattice, ds[a], 0.04, &p, &res[a * nb + b], &worst);
             if (!st) fprintf(stderr, "mechanism sweep: d=%.1f beta=%.2f k1=%+.3f k2=%+.3f k3=%+.3f cover=%.3f\n",
                              ds[a], betas[b], res[a * nb + b].k[0], res[a * nb + b].k[1],
                              res[a * nb + b].k[2], res[a * nb + b].cover);
         }
     tsv_writer *w = NULL;
     char path[512];
-    if (!st) st = exp_open_out(o, "mechanism", "sweep.tsv", &w, path, sizeof path);
+    if (!st) st = unit_out_open(o, "mechanism", "sweep.tsv", &w, path, sizeof path);
     if (st) { free(res); return st; }
     pv.worst_overlap_m = worst;
     snprintf(pv.seeds, sizeof pv.seeds, "seed_derive(mechanism,d,k,stems|crowns) k=0..%d", o->stands - 1);
     st = prov_write(w, &pv);
     if (st) { tsv_writer_abort(w); free(res); return st; }
-    exp_common_meta(w, o);
+    unit_out_meta(w, o);
     tsv_writer_meta(w, "stems", "controlled lattice a = 0.04, L = 12 d");
     tsv_writer_meta(w, "statistic", "k-th NN clearance: median over interior trees pooled over stands; cover: mean over stands");
     tsv_writer_columns(w, "beta\tspacing_m\tstands\ttrees\tk1_m\tk2_m\tk3_m\tcover\tworst_overlap_m\tpass\ttrain_row");
@@ -127,7 +128,7 @@ cs_status exp_mechanism_sweep(const exp_opts *o)
             tsv_writer_endrow(w);
         }
     free(res);
-    return exp_finish(w, &pv, path);
+    return unit_out_finish(w, &pv, path);
 }
 
 /* The E1 ablation's three arms (coupling off, abrasion off, both on) at the
@@ -154,11 +155,11 @@ static cs_status write_ablation(const exp_opts *o, prov *pv, const char *file, c
 {
     tsv_writer *w = NULL;
     char path[512];
-    cs_status st = exp_open_out(o, "mechanism", file, &w, path, sizeof path);
+    cs_status st = unit_out_open(o, "mechanism", file, &w, path, sizeof path);
     if (st) return st;
     st = prov_write(w, pv);
     if (st) { tsv_writer_abort(w); return st; }
-    exp_common_meta(w, o);
+    unit_out_meta(w, o);
     tsv_writer_meta(w, "stems", "%s", stems);
     tsv_writer_meta(w, "statistic", "k-th NN clearance: median over interior trees pooled over stands; cover: mean over stands of the interior-square cover");
     tsv_writer_meta(w, "overlap", "worst overlap of the final crowns (teacher self-check measure), m");
@@ -175,13 +176,13 @@ static cs_status write_ablation(const exp_opts *o, prov *pv, const char *file, c
         tsv_writer_dbl(w, res[a].overlap);
         tsv_writer_endrow(w);
     }
-    return exp_finish(w, pv, path);
+    return unit_out_finish(w, pv, path);
 }
 
 /* The statistics of one grown stand (the figure stand) as a cell. */
 static cs_status stand_cell(const stand *sd, const double *r, cell_result *res)
 {
-    exp_dvec g[3] = {{0}, {0}, {0}};
+    dvec g[3] = {{0}, {0}, {0}};
     double cov = 0.0, w = 0.0;
     size_t trees = 0;
     cs_status st = stand_stats(sd, r, g, &cov, &w, &trees);
@@ -204,7 +205,7 @@ cs_status exp_mechanism_ablation(const exp_opts *o)
         EXP_TEACHER_PARAMS(&o->rd, &p);
         p.coupled = coupled[a];
         p.beta = beta[a];
-        st = run_cell(o, "mechanism", STAND_LATTICE, d, 0.04, &p, &res[a], &worst);
+        st = run_cell(o, "mechanism", stems_lattice, d, 0.04, &p, &res[a], &worst);
         if (!st) fprintf(stderr, "mechanism ablation: %s k1=%+.3f k2=%+.3f k3=%+.3f cover=%.3f overlap=%.3g\n",
                          arms[a], res[a].k[0], res[a].k[1], res[a].k[2], res[a].cover, res[a].overlap);
     }
@@ -224,7 +225,7 @@ cs_status exp_mechanism_figure(const exp_opts *o)
     cs_status st = ablation_gate(&d, beta);
     if (st) return st;
     stand *sd = NULL;
-    st = exp_stand_alloc(&o->rd, &sd, STAND_HARDCORE, d, EXP_FIG_L, exp_fig_c(&o->rd), "fig/mechanism", 0);
+    st = exp_stand_alloc(&o->rd, &sd, stems_hardcore, d, EXP_FIG_L, exp_fig_c(&o->rd), "fig/mechanism", 0);
     if (st) return st;
     size_t n = sd->s->n;
     double *r = malloc(3 * n * NS * sizeof *r);
@@ -255,7 +256,7 @@ cs_status exp_mechanism_figure(const exp_opts *o)
     }
     tsv_writer *w = NULL;
     char path[512];
-    if (!st) st = exp_open_out(o, "mechanism", "figure_crowns.tsv", &w, path, sizeof path);
+    if (!st) st = unit_out_open(o, "mechanism", "figure_crowns.tsv", &w, path, sizeof path);
     if (!st) {
         pv.worst_overlap_m = worst;
         snprintf(pv.seeds, sizeof pv.seeds, "seed_derive(fig/mechanism,%.1f,0,stems|crowns)", d);
@@ -267,13 +268,13 @@ cs_status exp_mechanism_figure(const exp_opts *o)
         /* NN clearance on the stand shown (interior trees), for the panel captions. */
         for (int a = 0; a < 3; a++)
             tsv_writer_meta(w, arms[a], "median k1 clearance %.3f m", exp_stand_k1(sd, r + (size_t)a * n * NS));
-        exp_crown_columns(w);
-        for (int a = 0; a < 3; a++) exp_write_crowns(w, arms[a], d, sd, r + (size_t)a * n * NS);
+        unit_out_crown_columns(w);
+        for (int a = 0; a < 3; a++) unit_out_crowns(w, arms[a], d, sd, r + (size_t)a * n * NS);
         for (int a = 0; a < 3 && !st; a++)
-            st = exp_write_polygons(o, &pv, "mechanism", arms[a], d, sd, r + (size_t)a * n * NS,
+            st = unit_out_polygons(o, &pv, "mechanism", arms[a], d, sd, r + (size_t)a * n * NS,
                                 exp_stand_k1(sd, r + (size_t)a * n * NS));
         if (st) tsv_writer_abort(w);
-        else st = exp_finish(w, &pv, path);
+        else st = unit_out_finish(w, &pv, path);
     }
     free(r);
     stand_free(sd);

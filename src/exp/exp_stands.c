@@ -6,6 +6,7 @@
  * overlap_fraction_coupled overlap_fraction_uncoupled k1_coupled_m k1_uncoupled_m. */
 #include "exp_stands.h"
 #include "exp_common.h"
+#include "unit_out.h"
 #include "estimator.h"
 #include "gate.h"
 #include "paths.h"
@@ -28,7 +29,7 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
     exp_prov_begin(&pv, experiment, &o->rd, o->argc, o->argv);
     tsv_writer *w = NULL;
     char path[512];
-    cs_status st = exp_open_out(o, experiment, "figure_crowns.tsv", &w, path, sizeof path);
+    cs_status st = unit_out_open(o, experiment, "figure_crowns.tsv", &w, path, sizeof path);
     if (st) return st;
     /* Grow everything first (the provenance needs the worst overlap). */
     size_t total = nd * (nrows + (size_t)with_uncoupled);
@@ -37,7 +38,7 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
     double worst = 0.0;
     if (!sds || !rs) st = cs_err(CS_ENOMEM, "experiments: out of memory");
     for (size_t a = 0; a < nd && !st; a++) {
-        st = exp_stand_alloc(&o->rd, &sds[a], STAND_HARDCORE, ds[a], EXP_FIG_L, exp_fig_c(&o->rd), key, 0);
+        st = exp_stand_alloc(&o->rd, &sds[a], stems_hardcore, ds[a], EXP_FIG_L, exp_fig_c(&o->rd), key, 0);
         for (size_t b = 0; b < nrows + (size_t)with_uncoupled && !st; b++) {
             double *r = malloc(sds[a]->s->n * NS * sizeof *r);
             rs[a * (nrows + (size_t)with_uncoupled) + b] = r;
@@ -57,18 +58,18 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
     if (!st) {
         tsv_writer_meta(w, "stems", "hard-core Poisson c = %.2f, L = %.0f m; crown draws shared within a column", exp_fig_c(&o->rd), EXP_FIG_L);
         for (size_t b = 0; b < nrows; b++) tsv_writer_meta(w, rows[b], "dieback %.17g", betas[b]);
-        exp_crown_columns(w);
+        unit_out_crown_columns(w);
         for (size_t a = 0; a < nd; a++)
             for (size_t b = 0; b < nrows + (size_t)with_uncoupled; b++)
-                exp_write_crowns(w, b < nrows ? rows[b] : "uncoupled", ds[a], sds[a], rs[a * (nrows + (size_t)with_uncoupled) + b]);
+                unit_out_crowns(w, b < nrows ? rows[b] : "uncoupled", ds[a], sds[a], rs[a * (nrows + (size_t)with_uncoupled) + b]);
         for (size_t a = 0; a < nd && !st; a++)
             for (size_t b = 0; b < nrows + (size_t)with_uncoupled && !st; b++) {
                 const double *r = rs[a * (nrows + (size_t)with_uncoupled) + b];
-                st = exp_write_polygons(o, &pv, experiment, b < nrows ? rows[b] : "uncoupled", ds[a], sds[a], r,
+                st = unit_out_polygons(o, &pv, experiment, b < nrows ? rows[b] : "uncoupled", ds[a], sds[a], r,
                                     exp_stand_k1(sds[a], r));
             }
         if (st) tsv_writer_abort(w);
-        else st = exp_finish(w, &pv, path);
+        else st = unit_out_finish(w, &pv, path);
     } else if (w) tsv_writer_abort(w);
     for (size_t a = 0; sds && a < nd; a++) stand_free(sds[a]);
     for (size_t k = 0; rs && k < total; k++) free(rs[k]);
@@ -90,7 +91,7 @@ static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size
     cs_status st = CS_OK;
     for (size_t a = 0; a < nd && !st; a++) {
         stand *sd = NULL;
-        st = exp_stand_alloc(&o->rd, &sd, STAND_HARDCORE, ds[a], EXP_FIG_L, exp_fig_c(&o->rd), "fig/pointcloud", 0);
+        st = exp_stand_alloc(&o->rd, &sd, stems_hardcore, ds[a], EXP_FIG_L, exp_fig_c(&o->rd), "fig/pointcloud", 0);
         if (st) break;
         size_t n = sd->s->n;
         double *rc = malloc(n * NS * sizeof *rc), *ru = malloc(n * NS * sizeof *ru);
@@ -134,7 +135,7 @@ static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size
     }
     tsv_writer *w = NULL;
     char path[512];
-    if (!st) st = exp_open_out(o, "pointcloud", "stats.tsv", &w, path, sizeof path);
+    if (!st) st = unit_out_open(o, "pointcloud", "stats.tsv", &w, path, sizeof path);
     if (st) return st;
     pv.worst_overlap_m = worst;
     snprintf(pv.seeds, sizeof pv.seeds, "seed_derive(fig/pointcloud,d,0,stems|crowns)");
@@ -154,7 +155,7 @@ static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size
         tsv_writer_dbl(w, rows[a].k1_u);
         tsv_writer_endrow(w);
     }
-    return exp_finish(w, &pv, path);
+    return unit_out_finish(w, &pv, path);
 }
 
 

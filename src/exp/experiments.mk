@@ -15,6 +15,13 @@ else
 MAIN_NSEEDS := $(shell awk '$$1=="seeds"{print $$2}' gates/main.gate)
 endif
 MAIN_SEED_LIST := $(shell seq -f '%02g' 1 $(MAIN_NSEEDS))
+# the intermediate generator readings (plain, paper-fourier; design.md §8): descriptive rows
+ifeq ($(SCALE),smoke)
+READING_NSEEDS := 1
+else
+READING_NSEEDS := 4
+endif
+READING_SEED_LIST := $(shell seq -f '%02g' 1 $(READING_NSEEDS))
 
 # E1, E2, E8, E9 (teacher): 8 stands per cell at full scale, 1 at smoke scale.
 ifeq ($(SCALE),smoke)

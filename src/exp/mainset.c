@@ -44,7 +44,7 @@ static cs_status add_stand_patches(const mainset_design *ds, const char *exp, do
                                    patch_set *ps, int *added, double *worst)
 {
     stand *sd;
-    cs_status st = stand_alloc_dist(&sd, STAND_LATTICE, d, 12.0 * d, ds->jitter, exp, k, &ds->crowns);
+    cs_status st = stand_alloc_dist(&sd, stems_lattice, d, 12.0 * d, ds->jitter, exp, k, &ds->crowns);
     if (st) return st;
     size_t n = sd->s->n;
     double *r = malloc(n * CROWN_NSEC * sizeof *r);

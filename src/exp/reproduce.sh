@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# reproduce.sh: the engines behind `make reproduce` (issue 16, design.md §13).
+# reproduce.sh: the engines behind `make reproduce` (design.md §13).
 #
 #   make reproduce [ENGINE=local] [SCALE=smoke]   make -jN on the units, with progress and ETA
 #   make reproduce ENGINE=slurm [SLURM_ARGS=...]  one Slurm job per unit that is not up to date

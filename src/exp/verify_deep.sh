@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
-# verify_deep.sh: the second tier of verification (design.md §9 rev. 2; issue 15),
+# verify_deep.sh: the second tier of verification (design.md §9),
 # behind `make verify-deep`. Reruns every teacher experiment unit (E1, E2, the
 # teacher figure data, E5, E6, the E0 readings and sensitivity) into $DEEP with make -j$JOBS,
 # printing progress (units done of total, elapsed, ETA), then compares every
 # table it wrote with its frozen/ counterpart bit for bit: the data rows (the
 # header and every row after the "# key: value" lines); provenance lines
 # (date, wall time, git commit, command paths) are expected to differ.
-# The model part: for each frozen weights file, `crownshy main-redraw` (issue 14)
+# The model part: for each frozen weights file, `crownshy main-redraw`
 # redraws the unit's clearance samples and they are compared the same way.
-# Exit 0: every rerun table equals frozen/; 1: a difference or a failed unit.
+# Exit 0: every rerun table equals frozen/; 1: a difference, a missing model or a
+# failed unit. The last line is always the summary, with the exit status.
 # Called from the Makefile with DEEP, JOBS, CLI, MAKE and DEEP_UNITS set.
 set -uo pipefail
 : "${DEEP:?}" "${CLI:?}" "${DEEP_UNITS:?}"
@@ -65,15 +66,24 @@ done < <(find "$DEEP" -name '*.tsv' ! -name '*.tmp*' ! -name '.*' | sort)
 echo "verify-deep: teacher part: $same tables bit-identical to frozen/, $differ differ, $missing not frozen, $skipped figure tables not frozen by design"
 [ $((differ + missing)) -eq 0 ] || status=1
 
-# ---- the model part (issue 14): redraw samples from the frozen weights ----
-# Every frozen/main/weights_sNN_ARM.ckpt is loaded by `crownshy main-redraw`,
+# ---- the model part: redraw samples from the frozen weights ----
+# Every frozen/main/weights_s<seed>_<arm>.ckpt is loaded by `crownshy main-redraw`,
 # which draws the unit's clearance samples again (no training) into
-# $DEEP/model/; each must equal frozen/main/samples_sNN_ARM.tsv (data rows).
+# $DEEP/model/; each must equal frozen/main/samples_s<seed>_<arm>.tsv (data rows).
 # Two redraws run at a time (about 40 s each on one core).
-mapfile -t weights < <(find frozen/main -name 'weights_s*_*.ckpt' 2>/dev/null | sort)
-if [ ${#weights[@]} -eq 0 ]; then
-    echo "verify-deep: model part pending: frozen/main holds no weights file"
-else
+# The list comes from the design (gates/main.gate seeds x the two arms), not
+# from the files that happen to exist: a deleted weights/samples pair fails.
+nseeds=$(awk '$1 == "seeds" {print $2}' gates/main.gate 2>/dev/null)
+weights=() absent=0 redrawn=0 redraw_bad=0
+for ((s = 1; s <= ${nseeds:-0}; s++)); do
+    for a in joint indep; do
+        w=$(printf 'frozen/main/weights_s%02d_%s.ckpt' "$s" "$a")
+        if [ -f "$w" ]; then weights+=("$w"); else echo "  FAIL    $w: missing (the design has seed $s, arm $a; gates/main.gate)"; absent=$((absent + 1)); fi
+    done
+done
+if [ -z "$nseeds" ]; then
+    echo "  FAIL    gates/main.gate: no 'seeds' line: the model part cannot be listed"; status=1
+elif [ ${#weights[@]} -gt 0 ]; then
     mkdir -p "$DEEP/model"
     echo "verify-deep: redrawing the samples of ${#weights[@]} frozen models (2 at a time)"
     redraw() {
@@ -88,8 +98,12 @@ else
         echo "  PASS    $fz: redrawn from $w, bit-identical"
     }
     export -f redraw; export DEEP CLI
-    if ! printf '%s\n' "${weights[@]}" | xargs -P "$JOBS" -I{} bash -c 'redraw "$@"' _ {}; then status=1; fi
+    printf '%s\n' "${weights[@]}" | xargs -P "$JOBS" -I{} bash -c 'redraw "$@"' _ {} | tee "$DEEP/model/redraw.log"
+    redrawn=$(grep -c '^  PASS ' "$DEEP/model/redraw.log" || true)
+    redraw_bad=$(( ${#weights[@]} - redrawn ))
 fi
-echo "verify-deep: $((SECONDS - t0)) s in all"
-if [ $status -eq 0 ]; then echo "verify-deep: every rerun teacher table and every redrawn model sample equals frozen/ bit for bit (data rows)"; fi
+[ $((absent + redraw_bad)) -eq 0 ] || status=1
+failed_units=$([ $rc -ne 0 ] && echo "a unit failed (make exit $rc, $log)" || echo "every unit ran")
+verdict=PASS; [ $status -eq 0 ] || verdict=FAIL
+echo "verify-deep: $verdict: teacher part $same of $((same + differ + missing)) tables bit-identical ($differ differ, $missing not frozen; $failed_units); model part $redrawn of $(( ${nseeds:-0} * 2 )) models redrawn bit-identical ($redraw_bad differ or failed, $absent missing); $((SECONDS - t0)) s; exit $status"
 exit $status

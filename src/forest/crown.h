@@ -17,6 +17,7 @@
 #define CROWN_NSEC 24
 #define CROWN_PI 3.14159265358979323846
 #define CROWN_DTHETA (2.0 * CROWN_PI / CROWN_NSEC)
+#define CROWN_R_LOG_SD 0.15 /* sd of log R (R = 4 exp(0.15 z), design.md §3) */
 
 /* Radius of crown r at bearing theta (any real theta, wrapped periodically). */
 double crown_radius_at(const double r[CROWN_NSEC], double theta);
@@ -42,7 +43,7 @@ typedef struct {
     double R_lnsd;
     double a_max;          /* lobing amplitude a ~ U[0, a_max] */
 } crown_dist;
-#define CROWN_DIST_DEFAULT {25.0, 4.0, 12.0, 38.0, 4.0, 0.15, 0.2}
+#define CROWN_DIST_DEFAULT {25.0, 4.0, 12.0, 38.0, 4.0, CROWN_R_LOG_SD, 0.2}
 void crown_dist_default(crown_dist *c);
 
 /* Lobed target r*_s = R (1 + a cos(k theta_s + phi)) (paper Eq. 1). */

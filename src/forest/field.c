@@ -51,6 +51,57 @@ static int by_first_row(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* Number the trees of the rows in order of first appearance (the file's
+ * order) in O(n log n): sort the row indices by (id, row), give the first row
+ * of each group a provisional index, then rank the groups by that row.
+ * tree_of[r] receives row r's tree, out->id the ids, out->n the count. */
+static cs_status group_trees(const char *path, const char **ids, size_t nr, size_t *ord, size_t *tree_of, field_table *out)
+{
+    cs_status st = CS_OK;
+    sort_ids = ids;
+    qsort(ord, nr, sizeof *ord, by_id_then_row);
+    /* first row of each group gets a provisional index; trees are then
+     * numbered by the row of their first appearance (the file's order) */
+    size_t *first = malloc(nr * sizeof *first), ng = 0;
+    if (!first) st = cs_err(CS_ENOMEM, "%s: out of memory", path);
+    for (size_t k = 0; !st && k < nr; k++) {
+        if (k == 0 || strcmp(ids[ord[k]], ids[ord[k - 1]])) first[ng++] = ord[k];
+        tree_of[ord[k]] = ng - 1;
+    }
+    if (!st) {
+        /* rank groups by first row: first[] sorted ascending gives the order */
+        size_t *rank = malloc(ng * sizeof *rank), *gorder = malloc(ng * sizeof *gorder);
+        if (!rank || !gorder) st = cs_err(CS_ENOMEM, "%s: out of memory", path);
+        for (size_t g = 0; !st && g < ng; g++) gorder[g] = g;
+        if (!st) { sort_first = first; qsort(gorder, ng, sizeof *gorder, by_first_row); }
+        for (size_t g = 0; !st && g < ng; g++) rank[gorder[g]] = g;
+        for (size_t r = 0; !st && r < nr; r++) tree_of[r] = rank[tree_of[r]];
+        for (size_t g = 0; !st && g < ng; g++) {
+            strcpy(out->id[g], ids[first[gorder[g]]]);
+            for (int q = 0; q < 4; q++) out->gap[g][q] = NAN;
+        }
+        if (!st) out->n = ng;
+        free(rank); free(gorder);
+    }
+    free(first);
+    return st;
+}
+
+/* Every tree has each of the four directions (seen[i][c]: the line of it, 0 = none). */
+static cs_status check_complete(const char *path, const field_table *out, int (*seen)[4])
+{
+    static const char *names[4] = {"E", "N", "W", "S"};
+    for (size_t i = 0; i < out->n; i++)
+        for (int c = 0; c < 4; c++)
+            if (!seen[i][c]) {
+                int first = 0;
+                for (int q = 0; q < 4; q++) if (seen[i][q] && (!first || seen[i][q] < first)) first = seen[i][q];
+                return cs_err(CS_EINPUT, "%s:%d: field 'direction': tree '%s' has no %s measurement (each tree needs E, N, W and S exactly once)",
+                              path, first, out->id[i], names[c]);
+            }
+    return CS_OK;
+}
+
 cs_status field_table_load(const char *path, field_table *out)
 {
     memset(out, 0, sizeof *out);
@@ -86,34 +137,7 @@ cs_status field_table_load(const char *path, field_table *out)
         ord[r] = r;
         ids[r] = id;
     }
-    if (!st) {
-        sort_ids = ids;
-        qsort(ord, nr, sizeof *ord, by_id_then_row);
-        /* first row of each group gets a provisional index; trees are then
-         * numbered by the row of their first appearance (the file's order) */
-        size_t *first = malloc(nr * sizeof *first), ng = 0;
-        if (!first) st = cs_err(CS_ENOMEM, "%s: out of memory", path);
-        for (size_t k = 0; !st && k < nr; k++) {
-            if (k == 0 || strcmp(ids[ord[k]], ids[ord[k - 1]])) first[ng++] = ord[k];
-            tree_of[ord[k]] = ng - 1;
-        }
-        if (!st) {
-            /* rank groups by first row: first[] sorted ascending gives the order */
-            size_t *rank = malloc(ng * sizeof *rank), *gorder = malloc(ng * sizeof *gorder);
-            if (!rank || !gorder) st = cs_err(CS_ENOMEM, "%s: out of memory", path);
-            for (size_t g = 0; !st && g < ng; g++) gorder[g] = g;
-            if (!st) { sort_first = first; qsort(gorder, ng, sizeof *gorder, by_first_row); }
-            for (size_t g = 0; !st && g < ng; g++) rank[gorder[g]] = g;
-            for (size_t r = 0; !st && r < nr; r++) tree_of[r] = rank[tree_of[r]];
-            for (size_t g = 0; !st && g < ng; g++) {
-                strcpy(out->id[g], ids[first[gorder[g]]]);
-                for (int q = 0; q < 4; q++) out->gap[g][q] = NAN;
-            }
-            if (!st) out->n = ng;
-            free(rank); free(gorder);
-        }
-        free(first);
-    }
+    if (!st) st = group_trees(path, ids, nr, ord, tree_of, out);
     for (size_t r = 0; r < nr && !st; r++) {
         int line = tsv_line(t, r);
         const char *id = tsv_str(t, r, "tree"), *dir = tsv_str(t, r, "direction");
@@ -136,15 +160,7 @@ cs_status field_table_load(const char *path, field_table *out)
     free(tree_of);
     free(ord);
     free(ids);
-    static const char *names[4] = {"E", "N", "W", "S"};
-    for (size_t i = 0; i < out->n && !st; i++)
-        for (int c = 0; c < 4 && !st; c++)
-            if (!seen[i][c]) {
-                int first = 0;
-                for (int q = 0; q < 4; q++) if (seen[i][q] && (!first || seen[i][q] < first)) first = seen[i][q];
-                st = cs_err(CS_EINPUT, "%s:%d: field 'direction': tree '%s' has no %s measurement (each tree needs E, N, W and S exactly once)",
-                            path, first, out->id[i], names[c]);
-            }
+    if (!st) st = check_complete(path, out, seen);
     free(seen);
     tsv_free(t);
     if (st) field_table_free(out);

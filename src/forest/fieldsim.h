@@ -19,8 +19,8 @@ typedef struct {
     double *level;
     unsigned *stand, *tree;
     double (*gap)[4];   /* E, N, W, S, m */
-    double *elong;      /* all-axis elongation (design.md §5, revision 2) */
-    double *elong_card; /* cardinal elongation (revision 1; the readings, design.md §7 E0) */
+    double *elong;      /* all-axis elongation (design.md §5) */
+    double *elong_card; /* cardinal elongation (the readings, design.md §7 E0) */
 } fs_trees;
 
 void fs_trees_init(fs_trees *t);
@@ -35,7 +35,7 @@ cs_status fs_trees_push(fs_trees *t, int coupled, double level, unsigned stand, 
 typedef struct {
     field_summary f;      /* trees, tree-mean median, spread, anisotropy median (+ excluded) */
     double elong_median;  /* median crown elongation (all-axis) over the group's trees */
-    double elong_card_median; /* the same, cardinal reading (revision 1) */
+    double elong_card_median; /* the same, cardinal reading */
     size_t stands;        /* distinct stand indices present */
 } fs_summary;
 

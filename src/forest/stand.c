@@ -44,20 +44,19 @@ cs_status stand_from_stems_dist(stand **out, stems *s, uint64_t crown_seed, cons
     return CS_OK;
 }
 
-cs_status stand_alloc(stand **out, stand_kind kind, double d, double L, double shape,
+cs_status stand_alloc(stand **out, const stems_type *kind, double d, double L, double shape,
                       const char *experiment, unsigned index)
 {
     return stand_alloc_dist(out, kind, d, L, shape, experiment, index, NULL);
 }
 
-cs_status stand_alloc_dist(stand **out, stand_kind kind, double d, double L, double shape,
+cs_status stand_alloc_dist(stand **out, const stems_type *kind, double d, double L, double shape,
                            const char *experiment, unsigned index, const crown_dist *cd)
 {
     *out = NULL;
     stems *s = NULL;
     uint64_t ss = seed_derive(experiment, d, index, "stems");
-    cs_status st = kind == STAND_LATTICE ? stems_lattice_alloc(&s, d, L, shape, ss)
-                                         : stems_hardcore_alloc(&s, d, L, shape, ss);
+    cs_status st = kind->alloc(&s, d, L, shape, ss);
     if (st) return st;
     return stand_from_stems_dist(out, s, seed_derive(experiment, d, index, "crowns"), cd);
 }

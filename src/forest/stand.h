@@ -18,20 +18,18 @@ typedef struct {
     const double *rstar;  /* targets, n x CROWN_NSEC */
 } stand_arrays;
 
-typedef enum { STAND_LATTICE, STAND_HARDCORE } stand_kind;
-
 typedef struct {
     stems *s;
     crown_draw *draw;
     double *h, *R, *rstar;   /* n, n, n x CROWN_NSEC */
 } stand;
 
-/* shape: jitter a (lattice) or hard-core c. Crowns from the default distribution. */
-cs_status stand_alloc(stand **out, stand_kind kind, double d, double L, double shape,
+/* Stems of process kind (stems.h: its shape parameter), then crowns. */
+cs_status stand_alloc(stand **out, const stems_type *kind, double d, double L, double shape,
                       const char *experiment, unsigned index);
 /* The same with crowns from distribution cd (NULL: the default, bit-identical
  * to stand_alloc); the sensitivity runs (design.md §7 E0) change cd. */
-cs_status stand_alloc_dist(stand **out, stand_kind kind, double d, double L, double shape,
+cs_status stand_alloc_dist(stand **out, const stems_type *kind, double d, double L, double shape,
                            const char *experiment, unsigned index, const crown_dist *cd);
 /* Crowns drawn with seed `crown_seed` on given stems (takes ownership of s). */
 cs_status stand_from_stems(stand **out, stems *s, uint64_t crown_seed);

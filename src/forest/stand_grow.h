@@ -18,8 +18,9 @@ cs_status stand_grow(const stand *sd, const teacher_params *p, const double *h, 
 
 /* Bench (design.md §10): CPU ms (one core) per 144-tree controlled-lattice stand at
  * d = 3.5 m, beta 0.06 (the default teacher reading), for resolution nres,
- * averaged over `reps` stands; process CPU time, which stays comparable when
- * other jobs share the machine. */
-cs_status stand_grow_bench(int nres, int reps, double *ms_per_stand);
+ * over `reps` stands (seeds 0..reps-1), each timed alone: ms[0] the median,
+ * ms[1] and ms[2] the fastest and slowest; process CPU time, which stays
+ * comparable when other jobs share the machine. */
+cs_status stand_grow_bench(int nres, int reps, double ms[3]);
 
 #endif

@@ -4,6 +4,7 @@
 #include "seed.h"
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 #include <gsl/gsl_rng.h>
 #include <gsl/gsl_randist.h>
 
@@ -155,4 +156,17 @@ cs_status stems_focal(const stems *s, size_t *focal)
         if (dd < best) { best = dd; *focal = i; found = 1; }
     }
     return found ? CS_OK : cs_err(CS_EINPUT, "stems: no interior stem (d = %g m, L = %g m)", s->d, s->L);
+}
+
+static const stems_type LATTICE = {"lattice", "jitter sd a", stems_lattice_alloc};
+static const stems_type HARDCORE = {"hardcore", "minimum distance c", stems_hardcore_alloc};
+const stems_type *const stems_lattice = &LATTICE;
+const stems_type *const stems_hardcore = &HARDCORE;
+const stems_type *const stems_types[] = {&LATTICE, &HARDCORE, NULL};
+
+const stems_type *stems_type_find(const char *name)
+{
+    for (const stems_type *const *t = stems_types; *t; t++)
+        if (!strcmp((*t)->name, name)) return *t;
+    return NULL;
 }

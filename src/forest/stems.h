@@ -22,6 +22,20 @@ typedef struct {
 
 cs_status stems_lattice_alloc(stems **out, double d, double L, double jitter_a, uint64_t seed);
 cs_status stems_hardcore_alloc(stems **out, double d, double L, double c, uint64_t seed);
+/* A stem process as a type, in the manner of GSL's random-number types: its
+ * name, what its one shape parameter is, and its alloc. A new process is a new
+ * alloc and one entry of stems_types (stems.c). */
+typedef struct {
+    const char *name;  /* "lattice", "hardcore" */
+    const char *shape; /* the shape parameter, in units of d */
+    cs_status (*alloc)(stems **out, double d, double L, double shape, uint64_t seed);
+} stems_type;
+extern const stems_type *const stems_lattice;  /* the controlled lattice; shape: jitter sd a (design.md §2) */
+extern const stems_type *const stems_hardcore; /* hard-core Poisson; shape: minimum distance c */
+/* Every stem process, NULL-terminated. */
+extern const stems_type *const stems_types[];
+/* The process called name, or NULL. */
+const stems_type *stems_type_find(const char *name);
 /* A stand from given coordinates (copied); for tests and hand-built cases. */
 cs_status stems_from_xy(stems **out, size_t n, const double *x, const double *y, double d, double L);
 void stems_free(stems *s);

@@ -51,9 +51,10 @@ void gemm_fma_heads(int H, int M, int n, int K, const float *A, ptrdiff_t ahs, p
 void gemm_fma_isa(gemm_isa isa, int M, int N, int K, const float *A, ptrdiff_t ars,
                   ptrdiff_t aks, const float *B, ptrdiff_t ldb, float *C, ptrdiff_t ldc,
                   int accumulate, const float *bias, gemm_epilogue epi, void *ctx);
-/* Make gemm_fma use `isa` (or the best available below it) from now on;
- * returns the path used before. For tests that run a whole model on each
- * path, and for benchmarks; results do not depend on it. */
+/* Make gemm_fma use `isa` (or the best available below it) from now on, and
+ * the layer kernels follow it (gemm_get_isa); returns the path used before.
+ * For tests that run a whole model on each path, and for benchmarks
+ * (`crownshy bench-model --path`); results do not depend on it. */
 gemm_isa gemm_set_isa(gemm_isa isa);
 /* 1 when this CPU can run the path. */
 int gemm_isa_available(gemm_isa isa);

@@ -1,4 +1,4 @@
-/* nn: layer kernels (see nn.h). The matrix products go to gemm_fma (src/gemm.h:
+/* nn: layer kernels (see nn.h). The matrix products go to gemm_fma (src/model/gemm.h:
  * bit-identical on every ISA). Every other loop is written on 8-wide GCC/Clang vector types, because -O2 without fast-math
  * will not vectorise float reductions by itself (reassociation is forbidden).
  * The hot kernels are compiled twice (target_clones: AVX2 and baseline x86-64,

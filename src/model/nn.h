@@ -13,6 +13,7 @@
  * naive double-precision references for every kernel. */
 #ifndef NN_H
 #define NN_H
+#include "gemm.h"
 #include <stddef.h>
 
 typedef enum { NN_ATTN_JOINT = 0, NN_ATTN_SELF = 1 } nn_attn_mode;
@@ -83,7 +84,7 @@ void nn_attention_forward(float *out, float *prob, const float *qkv,
 void nn_attention_backward(float *dqkv, const float *dout, const float *qkv,
                            const float *prob, int B, int T, int C, int H,
                            nn_attn_mode mode, float *scratch);
-/* The same with additive terms for pair-aware attention (src/pairattn.h):
+/* The same with additive terms for pair-aware attention (src/model/pairattn.h):
  * sbias[B x H x T x T] (NULL: none) is added to the scaled scores before the
  * softmax; dpadd[B x H x T x T] (NULL: none) is added to dP = dO V^T before
  * the softmax backward. Both are ignored by NN_ATTN_SELF. After a backward
@@ -125,5 +126,17 @@ void nn_linear_backward_qkv(float *dinp, float *dw, float *db, const float *dqkv
  * [-87, 88]; inputs are clamped to that range). Vectorised; used by softmax
  * and GELU so that neither depends on libm speed. */
 void nn_expf(float *y, const float *x, size_t n);
+
+/* The linear layers with an epilogue on each finished strip (the fused
+ * kernels of nn.c and nn_attn.c use them). */
+/* out = in w^T (+ b), then epi on each finished strip (may be NULL); w == NULL
+ * means wt already holds the transpose. Every forward linear layer. */
+void nn_linear_forward_epi(float *out, const float *in, const float *w, const float *b,
+                           int M, int K, int N, float *wt, gemm_epilogue epi, void *ctx);
+/* dinp = dout w with epi on its strips (both skipped when dinp == NULL),
+ * dw += dout^T in, db += column sums; every backward linear layer. */
+void nn_linear_backward_epi(float *dinp, float *dw, float *db, const float *dout,
+                            const float *in, const float *w, int M, int K, int N,
+                            gemm_epilogue epi, void *ctx);
 
 #endif

@@ -20,8 +20,8 @@
 #endif
 #define INL static inline __attribute__((always_inline))
 /* AVX-512 forms of the GELU and of attention at the reference head shape,
- * taken at run time where the CPU has AVX-512F (absent from the baseline copy
- * that test_nn_clones compares them with). */
+ * taken at run time on the AVX-512 gemm path (gemm_get_isa; absent from the
+ * baseline copy that test_nn_clones compares them with). */
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(NN_NO_CLONES)
 #define NN_AVX512 1
 #endif
@@ -149,14 +149,5 @@ INL vf16 splat16(float a) { vf16 z = {0}; return z + a; }
 DEF_VEXP(vexp16, vf16, vi16, splat16)
 #endif
 
-/* out = in w^T (+ b), then epi on each finished strip (may be NULL); w == NULL
- * means wt already holds the transpose. Every forward linear layer. */
-void nn_linear_forward_epi(float *out, const float *in, const float *w, const float *b,
-                           int M, int K, int N, float *wt, gemm_epilogue epi, void *ctx);
-/* dinp = dout w with epi on its strips (both skipped when dinp == NULL),
- * dw += dout^T in, db += column sums; every backward linear layer. */
-void nn_linear_backward_epi(float *dinp, float *dw, float *db, const float *dout,
-                            const float *in, const float *w, int M, int K, int N,
-                            gemm_epilogue epi, void *ctx);
 
 #endif

@@ -1,4 +1,4 @@
-/* exp_irred: E2 irreducibility (design.md §7 E2; reference paper §3.3, Eq. 4),
+/* exp_irreducibility: E2 irreducibility (design.md §7 E2; reference paper §3.3, Eq. 4),
  * writing frozen/irreducibility at one die-back (beta_train, or beta_field
  * with --tag field). Choices the spec leaves open:
  *  - focal tree: the interior stem nearest the footprint centre (stems_focal);
@@ -16,8 +16,9 @@
  *                          magnitude_ratio   (pooled rows first; gate on pooled N=384)
  *  irreducibility/reduction_<tag>.tsv scope spacing_m sectors sigma_m miss_m step_m
  *                          miss_steps own_sigma_m own_miss_m (pooled row first) */
-#include "exp_irred.h"
+#include "exp_irreducibility.h"
 #include "exp_common.h"
+#include "unit_out.h"
 #include "estimator.h"
 #include "gate.h"
 #include "paths.h"
@@ -87,7 +88,7 @@ static cs_status irred_cfg_load(irred_cfg *c)
 
 static void irred_meta(tsv_writer *w, const exp_opts *o, double beta)
 {
-    exp_common_meta(w, o);
+    unit_out_meta(w, o);
     tsv_writer_meta(w, "dieback", "%.17g (%s)", beta, o->tag);
     tsv_writer_meta(w, "stems", "controlled lattice a = 0.04, L = 12 d");
     tsv_writer_meta(w, "focal", "interior stem nearest the footprint centre, height x 1.30, stand mean height kept");
@@ -97,7 +98,7 @@ static void irred_meta(tsv_writer *w, const exp_opts *o, double beta)
 /* Stand k of the E2 design at spacing d: controlled lattice, a = 0.04, L = 12 d. */
 static cs_status irred_stand(const exp_reading *rd, stand **sd, double d, int k)
 {
-    return exp_stand_alloc(rd, sd, STAND_LATTICE, d, 12.0 * d, 0.04, "irreducibility", (unsigned)k);
+    return exp_stand_alloc(rd, sd, stems_lattice, d, 12.0 * d, 0.04, "irreducibility", (unsigned)k);
 }
 
 /* Open irreducibility/<prefix>_<tag>.tsv and write the provenance block and
@@ -107,7 +108,7 @@ static cs_status irred_open(const exp_opts *o, const char *prefix, double beta, 
 {
     char file[64];
     snprintf(file, sizeof file, "%s_%s.tsv", prefix, o->tag);
-    cs_status st = exp_open_out(o, "irreducibility", file, w, path, pathsz);
+    cs_status st = unit_out_open(o, "irreducibility", file, w, path, pathsz);
     if (st) return st;
     pv->worst_overlap_m = worst;
     snprintf(pv->seeds, sizeof pv->seeds, "seed_derive(irreducibility,d,k,stems|crowns) k=0..%d", o->stands - 1);
@@ -117,7 +118,7 @@ static cs_status irred_open(const exp_opts *o, const char *prefix, double beta, 
     return CS_OK;
 }
 
-cs_status exp_irred_perturb(const exp_opts *o, double beta)
+cs_status exp_irreducibility_perturb(const exp_opts *o, double beta)
 {
     prov pv;
     exp_prov_begin(&pv, "irreducibility", &o->rd, o->argc, o->argv);
@@ -154,10 +155,10 @@ cs_status exp_irred_perturb(const exp_opts *o, double beta)
         tsv_writer_dbl(w, acc[a].step_sum / (double)acc[a].stands);
         tsv_writer_endrow(w);
     }
-    return exp_finish(w, &pv, path);
+    return unit_out_finish(w, &pv, path);
 }
 
-cs_status exp_irred_refine(const exp_opts *o, double beta)
+cs_status exp_irreducibility_refine(const exp_opts *o, double beta)
 {
     prov pv;
     exp_prov_begin(&pv, "irreducibility", &o->rd, o->argc, o->argv);
@@ -216,7 +217,7 @@ cs_status exp_irred_refine(const exp_opts *o, double beta)
                 tsv_writer_dbl(w, mag / mag0);
                 tsv_writer_endrow(w);
             }
-    return exp_finish(w, &pv, path);
+    return unit_out_finish(w, &pv, path);
 }
 
 /* Voronoi territory distance b_i(theta): along theta to the nearest
@@ -242,7 +243,40 @@ static double territory(const stems *s, size_t i, double th)
 #define SIG_N 4001
 #define SIGMA(q) ((double)((q) - 1000) / 1000.0)
 
-cs_status exp_irred_reduction(const exp_opts *o, double beta)
+/* The reduction's inputs: per spacing a, the teacher radius, the target and
+ * the Voronoi territory of every interior sector of every stand, and the
+ * summed growth steps. */
+static cs_status reduction_gather(const exp_opts *o, double beta, const irred_cfg *c, dvec rt[8], dvec rs[8],
+                                  dvec bb[8], double step_sum[8], double *worst)
+{
+    cs_status st = CS_OK;
+    for (size_t a = 0; a < c->nd && !st; a++)
+        for (int k = 0; k < o->stands && !st; k++) {
+            stand *sd = NULL;
+            st = irred_stand(&o->rd, &sd, c->ds[a], k);
+            if (st) break;
+            double *r = malloc(sd->s->n * NS * sizeof *r);
+            teacher_params p;
+            EXP_TEACHER_PARAMS(&o->rd, &p);
+            p.beta = beta;
+            teacher_info inf;
+            st = r ? stand_grow(sd, &p, NULL, r, &inf, worst) : cs_err(CS_ENOMEM, "experiments: out of memory");
+            if (!st) step_sum[a] += inf.step;
+            for (size_t i = 0; i < sd->s->n && !st; i++) {
+                if (!stems_interior(sd->s, i)) continue;
+                for (int s = 0; s < NS && !st; s++) {
+                    st = dvec_push(&rt[a], r[i * NS + s]);
+                    if (!st) st = dvec_push(&rs[a], sd->rstar[i * NS + s]);
+                    if (!st) st = dvec_push(&bb[a], territory(sd->s, i, crown_theta(s)));
+                }
+            }
+            free(r);
+            stand_free(sd);
+        }
+    return st;
+}
+
+cs_status exp_irreducibility_reduction(const exp_opts *o, double beta)
 {
     prov pv;
     exp_prov_begin(&pv, "irreducibility", &o->rd, o->argc, o->argv);
@@ -250,32 +284,10 @@ cs_status exp_irred_reduction(const exp_opts *o, double beta)
     cs_status st = irred_cfg_load(&c);
     if (st) return st;
     /* Per spacing: triples (r_teacher, r*, b) of every interior sector. */
-    exp_dvec rt[8], rs[8], bb[8];
+    dvec rt[8], rs[8], bb[8];
     memset(rt, 0, sizeof rt); memset(rs, 0, sizeof rs); memset(bb, 0, sizeof bb);
     double step_sum[8] = {0}, worst = 0.0;
-    for (size_t a = 0; a < c.nd && !st; a++)
-        for (int k = 0; k < o->stands && !st; k++) {
-            stand *sd = NULL;
-            st = irred_stand(&o->rd, &sd, c.ds[a], k);
-            if (st) break;
-            double *r = malloc(sd->s->n * NS * sizeof *r);
-            teacher_params p;
-            EXP_TEACHER_PARAMS(&o->rd, &p);
-            p.beta = beta;
-            teacher_info inf;
-            st = r ? stand_grow(sd, &p, NULL, r, &inf, &worst) : cs_err(CS_ENOMEM, "experiments: out of memory");
-            if (!st) step_sum[a] += inf.step;
-            for (size_t i = 0; i < sd->s->n && !st; i++) {
-                if (!stems_interior(sd->s, i)) continue;
-                for (int s = 0; s < NS && !st; s++) {
-                    st = exp_dvec_push(&rt[a], r[i * NS + s]);
-                    if (!st) st = exp_dvec_push(&rs[a], sd->rstar[i * NS + s]);
-                    if (!st) st = exp_dvec_push(&bb[a], territory(sd->s, i, crown_theta(s)));
-                }
-            }
-            free(r);
-            stand_free(sd);
-        }
+    st = reduction_gather(o, beta, &c, rt, rs, bb, step_sum, &worst);
     /* miss[a][q]: summed |r_t - min(r*, b - sigma_q)| for spacing a. */
     double *miss = st ? NULL : calloc(c.nd * SIG_N, sizeof *miss);
     if (!st && !miss) st = cs_err(CS_ENOMEM, "experiments: out of memory");
@@ -328,7 +340,7 @@ cs_status exp_irred_reduction(const exp_opts *o, double beta)
             }
         fprintf(stderr, "irreducibility reduction (%s): sigma=%.3f miss=%.4f m = %.2f steps\n", o->tag, sig,
                 best / (double)ntot, best / (double)ntot / step_mean);
-        st = exp_finish(w, &pv, path);
+        st = unit_out_finish(w, &pv, path);
     }
     free(miss);
     for (size_t a = 0; a < 8; a++) { free(rt[a].v); free(rs[a].v); free(bb[a].v); }

@@ -1,0 +1,522 @@
+/* audit_evidence: the evidence behind the numbers, checked cheaply in tier 1
+ * (design.md §9 rev. 3). See audit_evidence.h.
+ *
+ * audit/grids.tsv (pinned) has one row per block of a table's design grid:
+ *   table    a frozen table, or a glob of them (frozen/main/run_s*_*.tsv)
+ *   filter   "col=value;col=value" selecting the block's rows, or "-"
+ *   columns  comma-separated key columns
+ *   values   one source per column, ';'-separated: "gate FILE:KEY" (the
+ *            values of a gate key), "seq FILE:KEY" (1..value), "range
+ *            FILE:KEY" (lo hi step), or "list a,b,c" (fixed by the design)
+ * A table's rows are exactly the union of its blocks, each block the full
+ * product of its columns' values, every combination once. */
+#include "audit_evidence.h"
+#include "audit_data.h"
+#include "gate.h"
+#include "prov.h"
+#include "sha256.h"
+#include "tsv.h"
+#include <glob.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+
+/* ---- files named by provenance, weights seals, W1 from samples ---- */
+
+/* "NAME sha256 HEX ..." in a provenance value: 1 and the two parts. */
+static int named_file(const char *v, char *name, size_t nn, char hex[65])
+{
+    char a[256], b[16], h[80];
+    if (sscanf(v, "%255s %15s %79s", a, b, h) != 3 || strcmp(b, "sha256") || strlen(h) != 64) return 0;
+    for (const char *p = h; *p; p++) if (!strchr("0123456789abcdef", *p)) return 0;
+    snprintf(name, nn, "%s", a);
+    memcpy(hex, h, 65);
+    return 1;
+}
+
+static size_t check_named_files(const claims *c, const char *p, checklist *cl, size_t *checked)
+{
+    /* provenance is "# key: value" lines at the top; scan them as text (tsv
+     * keeps only the first of a repeated key) */
+    FILE *f = fopen(p, "r");
+    if (!f) return 0;
+    char line[4096], dir[1024];
+    snprintf(dir, sizeof dir, "%.*s", (int)(strrchr(p, '/') ? strrchr(p, '/') - p : 0), p);
+    size_t bad = 0;
+    int lineno = 0;
+    while (fgets(line, sizeof line, f) && line[0] == '#') {
+        lineno++;
+        char *colon = strstr(line, ": "), name[256], hex[65], cur[65], file[1400], affected[600];
+        if (!colon || !named_file(colon + 2, name, sizeof name, hex)) continue;
+        snprintf(file, sizeof file, "%s/%s", dir, name);
+        (*checked)++;
+        struct stat sb;
+        int missing = lstat(file, &sb) != 0 || !S_ISREG(sb.st_mode);
+        if (!missing && !prov_sha256_file(file, cur) && !strcmp(cur, hex)) continue;
+        audit_feeds(c, p, affected, sizeof affected);
+        checklist_add(cl, VERDICT_FAIL, "provenance files", "%s:%d names %s (sha256 %.16s…), which is %s; claims affected: %s", p, lineno, file, hex,
+                      missing ? "missing" : "different (its sha256 differs)", affected);
+        bad++;
+    }
+    fclose(f);
+    return bad;
+}
+
+/* The seal of a weights file (format 1, src/model/train.h): magic "CSHYWGTS",
+ * version 1, and the 64-bit FNV-1a checksum of everything before it in its
+ * last 8 bytes. Read here byte for byte, so the claims need not reach the model. */
+static int weights_sealed(const char *path, char *why, size_t wn)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) { snprintf(why, wn, "cannot open"); return 0; }
+    unsigned char buf[1 << 16], tail[8], head[12];
+    uint64_t h = 14695981039346656037ull;
+    size_t n, total = 0, have = 0;
+    /* hash every byte but the last 8, which are kept back until the end */
+    while ((n = fread(buf, 1, sizeof buf, f)) > 0) {
+        for (size_t i = 0; i < n; i++, total++) {
+            if (total < 12) head[total] = buf[i];
+            if (have == 8) { h ^= tail[0]; h *= 1099511628211ull; memmove(tail, tail + 1, 7); have = 7; }
+            tail[have++] = buf[i];
+        }
+    }
+    fclose(f);
+    uint32_t ver = 0;
+    if (total >= 12) memcpy(&ver, head + 8, 4);
+    if (total < 20 || memcmp(head, "CSHYWGTS", 8)) { snprintf(why, wn, "not a weights file (magic)"); return 0; }
+    if (ver != 1) { snprintf(why, wn, "weights format version %u, expected 1", ver); return 0; }
+    uint64_t sum = 0;
+    for (int i = 7; i >= 0; i--) sum = (sum << 8) | tail[i]; /* little-endian */
+    if (sum != h) { snprintf(why, wn, "checksum seal broken (corrupt or tampered)"); return 0; }
+    return 1;
+}
+
+void audit_evidence(const claims *c, checklist *cl)
+{
+    paths_list l = {0};
+    paths_list_files(PATHS_FROZEN_DIR, "", 1, &l);
+    size_t bad = 0, named = 0, seals = 0;
+    for (size_t i = 0; i < l.n; i++) {
+        size_t n = strlen(l.p[i]);
+        if (n > 4 && !strcmp(l.p[i] + n - 4, ".tsv")) bad += check_named_files(c, l.p[i], cl, &named);
+        if (n > 5 && !strcmp(l.p[i] + n - 5, ".ckpt")) {
+            char why[128];
+            if (!weights_sealed(l.p[i], why, sizeof why)) {
+                char affected[600];
+                audit_feeds(c, l.p[i], affected, sizeof affected);
+                checklist_add(cl, VERDICT_FAIL, "weights seals", "%s: %s; claims affected: %s", l.p[i], why, affected);
+                bad++;
+            } else seals++;
+        }
+    }
+    paths_list_free(&l);
+    double seeds = 0;
+    char msg[2048];
+    int nw1 = 0;
+    cs_status st = gate_read_value(PATHS_GATE("main"), "seeds", 0, &seeds);
+    if (!st) st = claim_main_samples_check(PATHS_FROZEN_DIR, (int)seeds, msg, sizeof msg, &nw1);
+    else snprintf(msg, sizeof msg, "%s", cs_errmsg());
+    if (st) {
+        char affected[600], table[1024];
+        snprintf(table, sizeof table, "%.*s", (int)strcspn(msg, ":"), msg);
+        audit_feeds(c, table, affected, sizeof affected);
+        checklist_add(cl, VERDICT_FAIL, "W1 from samples", "%s; claims affected: %s", msg, affected);
+        bad++;
+    }
+    if (!bad)
+        checklist_add(cl, VERDICT_PASS, "evidence", "%zu files named by provenance exist with their hashes; %zu weights files sealed; %d W1 recomputed from their samples, bit for bit",
+                      named, seals, nw1);
+}
+
+/* ---- design grids ---- */
+#define GRID_MAXV 64
+#define GRID_MAXC 4
+typedef struct { char v[GRID_MAXV][48]; size_t n; } grid_axis;
+
+/* The values of one source ("gate F:K", "seq F:K", "range F:K", "list a,b"). */
+static cs_status grid_source(const char *src, grid_axis *ax, const char *where)
+{
+    ax->n = 0;
+    if (!strncmp(src, "list ", 5)) {
+        char buf[1024];
+        snprintf(buf, sizeof buf, "%s", src + 5);
+        for (char *s = NULL, *t = strtok_r(buf, ",", &s); t && ax->n < GRID_MAXV; t = strtok_r(NULL, ",", &s)) snprintf(ax->v[ax->n++], 48, "%s", t);
+        return ax->n ? CS_OK : cs_err(CS_EINPUT, "%s: field 'values': empty list", where);
+    }
+    char kind[8], file[128], key[64];
+    if (sscanf(src, "%7s %127[^:]:%63s", kind, file, key) != 3) return cs_err(CS_EINPUT, "%s: field 'values': '%s' is not 'gate|seq|range FILE:KEY' or 'list a,b'", where, src);
+    char path[300];
+    snprintf(path, sizeof path, PATHS_GATES_DIR "/%s", file);
+    double v[GRID_MAXV];
+    size_t n;
+    cs_status st = gate_read_values(path, key, v, GRID_MAXV, &n);
+    if (st) return st;
+    if (!strcmp(kind, "gate")) for (size_t i = 0; i < n; i++) snprintf(ax->v[ax->n++], 48, "%.17g", v[i]);
+    else if (!strcmp(kind, "seq") && n == 1 && v[0] >= 1 && v[0] <= GRID_MAXV) for (int i = 1; i <= (int)v[0]; i++) snprintf(ax->v[ax->n++], 48, "%d", i);
+    else if (!strcmp(kind, "range") && n == 3 && v[2] > 0) {
+        long m = lround((v[1] - v[0]) / v[2]);
+        for (long i = 0; i <= m && ax->n < GRID_MAXV; i++) snprintf(ax->v[ax->n++], 48, "%.17g", v[0] + (double)i * v[2]);
+    } else return cs_err(CS_EINPUT, "%s: field 'values': '%s' does not fit %s:%s", where, src, file, key);
+    return CS_OK;
+}
+
+/* Same grid value: numerically when both are numbers, else as text. */
+static int grid_same(const char *a, const char *b)
+{
+    char *ea, *eb;
+    double x = strtod(a, &ea), y = strtod(b, &eb);
+    if (ea != a && !*ea && eb != b && !*eb) return fabs(x - y) <= 1e-9 * fmax(1.0, fabs(x));
+    return !strcmp(a, b);
+}
+
+static int grid_filter_keeps(const tsv *t, size_t r, const char *filter)
+{
+    if (!strcmp(filter, "-")) return 1;
+    char f[256];
+    snprintf(f, sizeof f, "%s", filter);
+    for (char *s = NULL, *tok = strtok_r(f, ";", &s); tok; tok = strtok_r(NULL, ";", &s)) {
+        char *eq = strchr(tok, '=');
+        if (!eq) return 0;
+        *eq = '\0';
+        const char *v = tsv_str(t, r, tok);
+        if (!v || !grid_same(v, eq + 1)) return 0;
+    }
+    return 1;
+}
+
+/* One block of one table: FAIL items for a missing, repeated or extra row;
+ * covered[r] marks the rows the block owns. Returns the failures. */
+static size_t grid_block(const claims *c, const tsv *t, const char *filter, const char *cols, const char *vals, int gline, char *covered, checklist *cl)
+{
+    char where[128], names[GRID_MAXC][64], cbuf[256], vbuf[1024], affected[600];
+    snprintf(where, sizeof where, PATHS_GRIDS ":%d", gline);
+    audit_feeds(c, tsv_path(t), affected, sizeof affected);
+    static grid_axis ax[GRID_MAXC];
+    size_t nc = 0;
+    snprintf(cbuf, sizeof cbuf, "%s", cols);
+    snprintf(vbuf, sizeof vbuf, "%s", vals);
+    char *s1 = NULL, *s2 = NULL, *cn = strtok_r(cbuf, ",", &s1), *vs = strtok_r(vbuf, ";", &s2);
+    for (; cn && vs && nc < GRID_MAXC; nc++, cn = strtok_r(NULL, ",", &s1), vs = strtok_r(NULL, ";", &s2)) {
+        snprintf(names[nc], 64, "%s", cn);
+        if (grid_source(vs, &ax[nc], where)) { checklist_add(cl, VERDICT_FAIL, "design grids", "%s", cs_errmsg()); return 1; }
+    }
+    if (!nc || cn || vs) { checklist_add(cl, VERDICT_FAIL, "design grids", "%s: fields 'columns'/'values': one source per column (at most %d)", where, GRID_MAXC); return 1; }
+    size_t total = 1, bad = 0;
+    for (size_t k = 0; k < nc; k++) total *= ax[k].n;
+    int *seen = calloc(total, sizeof *seen), *first = calloc(total, sizeof *first);
+    for (size_t r = 0; seen && first && r < tsv_nrows(t); r++) {
+        if (!grid_filter_keeps(t, r, filter)) continue;
+        size_t idx = 0, k = 0;
+        for (; k < nc; k++) {
+            const char *v = tsv_str(t, r, names[k]);
+            size_t j = 0;
+            while (v && j < ax[k].n && !grid_same(v, ax[k].v[j])) j++;
+            if (!v || j == ax[k].n) break;
+            idx = idx * ax[k].n + j;
+        }
+        covered[r] = 1;
+        if (k < nc) {
+            const char *v = tsv_str(t, r, names[k]);
+            checklist_add(cl, VERDICT_FAIL, "design grids", "%s:%d: field '%s' = %s is not in its design grid (%s); claims affected: %s", tsv_path(t), tsv_line(t, r), names[k], v ? v : "(missing)", where, affected);
+            bad++;
+        } else if (seen[idx]++) {
+            checklist_add(cl, VERDICT_FAIL, "design grids", "%s:%d repeats the grid point of line %d (%s: one row per point); claims affected: %s", tsv_path(t), tsv_line(t, r), first[idx], where, affected);
+            bad++;
+        } else first[idx] = tsv_line(t, r);
+    }
+    for (size_t i = 0; seen && i < total; i++) {
+        if (seen[i]) continue;
+        char pt[256] = "";
+        size_t o = 0, rem = i, div = total;
+        for (size_t k = 0; k < nc; k++) { div /= ax[k].n; o += (size_t)snprintf(pt + o, sizeof pt - o, "%s%s=%s", k ? ", " : "", names[k], ax[k].v[(rem / div) % ax[k].n]); }
+        checklist_add(cl, VERDICT_FAIL, "design grids", "%s lacks the grid point %s%s%s (%s); claims affected: %s", tsv_path(t), pt, strcmp(filter, "-") ? " of " : "", strcmp(filter, "-") ? filter : "", where, affected);
+        bad++;
+    }
+    free(seen);
+    free(first);
+    return bad;
+}
+
+static size_t grid_table(const claims *c, const char *path, const tsv *spec, const char *pattern, checklist *cl)
+{
+    tsv *t;
+    if (tsv_read(path, &t)) { checklist_add(cl, VERDICT_FAIL, "design grids", "%s", cs_errmsg()); return 1; }
+    char *covered = calloc(tsv_nrows(t) + 1, 1);
+    size_t bad = 0;
+    for (size_t r = 0; covered && r < tsv_nrows(spec); r++) {
+        if (strcmp(tsv_str(spec, r, "table"), pattern)) continue;
+        bad += grid_block(c, t, tsv_str(spec, r, "filter"), tsv_str(spec, r, "columns"), tsv_str(spec, r, "values"), tsv_line(spec, r), covered, cl);
+    }
+    for (size_t r = 0; covered && r < tsv_nrows(t); r++)
+        if (!covered[r]) {
+            char affected[600];
+            audit_feeds(c, path, affected, sizeof affected);
+            checklist_add(cl, VERDICT_FAIL, "design grids", "%s:%d: a row outside every block of its design grid (%s); claims affected: %s", path, tsv_line(t, r), PATHS_GRIDS, affected);
+            bad++;
+        }
+    free(covered);
+    tsv_free(t);
+    return bad;
+}
+
+void audit_grids(const claims *c, checklist *cl)
+{
+    tsv *spec;
+    if (tsv_read(PATHS_GRIDS, &spec)) { checklist_add(cl, VERDICT_FAIL, "design grids", "%s", cs_errmsg()); return; }
+    const char *need[] = {"table", "filter", "columns", "values"};
+    for (int k = 0; k < 4; k++)
+        if (tsv_col(spec, need[k]) < 0) { checklist_add(cl, VERDICT_FAIL, "design grids", "%s: no column '%s'", PATHS_GRIDS, need[k]); tsv_free(spec); return; }
+    size_t bad = 0, tables = 0;
+    for (size_t r = 0; r < tsv_nrows(spec); r++) {
+        const char *pat = tsv_str(spec, r, "table");
+        int again = 0;
+        for (size_t q = 0; q < r && !again; q++) again = !strcmp(tsv_str(spec, q, "table"), pat);
+        if (again) continue;
+        glob_t g;
+        if (strncmp(pat, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1) || glob(pat, 0, NULL, &g) != 0) {
+            checklist_add(cl, VERDICT_FAIL, "design grids", "%s:%d: field 'table': no frozen table matches %s", PATHS_GRIDS, tsv_line(spec, r), pat);
+            bad++;
+            continue;
+        }
+        for (size_t i = 0; i < g.gl_pathc; i++, tables++) bad += grid_table(c, g.gl_pathv[i], spec, pat, cl);
+        globfree(&g);
+    }
+    tsv_free(spec);
+    if (!bad) checklist_add(cl, VERDICT_PASS, "design grids", "%zu frozen tables hold exactly the rows of their design grids (%s)", tables, PATHS_GRIDS);
+}
+
+/* ---- git: the preregistration commit and the past versions of a file ---- */
+
+static int have_git(void)
+{
+    struct stat sb;
+    return stat(".git", &sb) == 0 && system("git rev-parse --git-dir >/dev/null 2>&1") == 0;
+}
+
+/* Last non-empty line of a command's output; 0 when there is one and it exited 0. */
+static int git_line(const char *cmd, char *out, size_t n)
+{
+    FILE *p = popen(cmd, "r");
+    if (!p) return 1;
+    out[0] = '\0';
+    char line[512];
+    while (fgets(line, sizeof line, p)) { line[strcspn(line, "\n")] = '\0'; if (line[0]) snprintf(out, n, "%s", line); }
+    return pclose(p) != 0 || !out[0];
+}
+
+int audit_prereg_commit(char *out, size_t n)
+{
+    if (!have_git()) return 1;
+    return git_line("git log --diff-filter=A --format=%h --abbrev=12 -- '" PATHS_GATES_DIR "/*.gate' 2>/dev/null", out, n);
+}
+
+/* sha256 of `git show REV:PATH`, or of its TEACHER_VERSION string (version = 1). */
+static int git_blob_value(const char *rev, const char *path, int version, char *out, size_t n)
+{
+    char cmd[700];
+    snprintf(cmd, sizeof cmd, "git show '%s:%s' 2>/dev/null", rev, path);
+    FILE *p = popen(cmd, "r");
+    if (!p) return 1;
+    size_t len = 0, cap = 1 << 16;
+    char *buf = malloc(cap);
+    for (size_t k; buf && (k = fread(buf + len, 1, cap - len - 1, p)) > 0;) {
+        len += k;
+        if (len + 1 == cap) { char *nb = realloc(buf, cap *= 2); if (!nb) { free(buf); buf = NULL; } else buf = nb; }
+    }
+    int rc = pclose(p);
+    if (!buf || rc != 0) { free(buf); return 1; }
+    buf[len] = '\0';
+    if (!version) {
+        char hex[65];
+        sha256_hex(buf, len, hex);
+        snprintf(out, n, "%s", hex);
+    } else {
+        char *d = strstr(buf, "#define TEACHER_VERSION \"");
+        if (d) snprintf(out, n, "%.*s", (int)strcspn(d + 25, "\""), d + 25);
+        else out[0] = '\0';
+    }
+    free(buf);
+    return !out[0];
+}
+
+/* Is value a past value of path in one listing of its history? */
+static int git_past_value_in(const char *how, const char *path, int version, const char *value, char *commit, size_t cn)
+{
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "git log %s --format='C %%H' --name-only -- '%s' 2>/dev/null", how, path);
+    FILE *p = popen(cmd, "r");
+    if (!p) return 0;
+    char line[600], rev[64] = "", v[80];
+    int found = 0;
+    while (!found && fgets(line, sizeof line, p)) {
+        line[strcspn(line, "\n")] = '\0';
+        if (!strncmp(line, "C ", 2)) {
+            snprintf(rev, sizeof rev, "%.63s", line + 2);
+            /* without --follow the path is the same at every commit, merges included
+             * (git prints no name for a merge) */
+            if (strcmp(how, "--follow") && !git_blob_value(rev, path, version, v, sizeof v) && !strcmp(v, value)) { found = 1; snprintf(commit, cn, "%.12s", rev); }
+            continue;
+        }
+        if (strcmp(how, "--follow")) continue;
+        if (!line[0] || !rev[0]) continue;
+        if (!git_blob_value(rev, line, version, v, sizeof v) && !strcmp(v, value)) { found = 1; snprintf(commit, cn, "%.12s", rev); }
+    }
+    while (fgets(line, sizeof line, p)) {}
+    pclose(p);
+    return found;
+}
+
+/* Is value a past value of path: any committed version, merges included
+ * (--full-history), and under earlier names (--follow, which skips merges)? */
+static int git_past_value(const char *path, int version, const char *value, char *commit, size_t cn)
+{
+    return git_past_value_in("--full-history", path, version, value, commit, cn) || git_past_value_in("--follow", path, version, value, commit, cn);
+}
+
+/* ---- the gates against their preregistered content ---- */
+
+/* The pinned copy: hex of every gate file; n entries. */
+static size_t prereg_copy(char (*path)[128], char (*hex)[65], size_t cap, int *ok)
+{
+    FILE *f = fopen(PATHS_GATES_PREREG, "r");
+    size_t n = 0;
+    *ok = f != NULL;
+    char line[512];
+    while (f && n < cap && fgets(line, sizeof line, f)) {
+        if (line[0] == '#') continue;
+        if (sscanf(line, "%64s  %127s", hex[n], path[n]) == 2 && strlen(hex[n]) == 64) n++;
+        else *ok = 0;
+    }
+    if (f) fclose(f);
+    return n;
+}
+
+void audit_gates_prereg(const claims *c, checklist *cl)
+{
+    static char ppath[64][128], phex[64][65];
+    int ok;
+    size_t np = prereg_copy(ppath, phex, 64, &ok), bad = 0;
+    if (!ok || !np) { checklist_add(cl, VERDICT_FAIL, "gates preregistered", "%s: missing or malformed (the pinned copy of the preregistered gates' hashes); every gated claim affected", PATHS_GATES_PREREG); return; }
+    char base[64] = "";
+    int git = !audit_prereg_commit(base, sizeof base);
+    paths_list g = {0};
+    paths_list_every(PATHS_GATES_DIR, 1, &g);
+    for (size_t i = 0; i < g.n; i++) {
+        char cur[65] = "", then[80] = "", affected[600];
+        const char *b = strrchr(g.p[i], '/') ? strrchr(g.p[i], '/') + 1 : g.p[i];
+        size_t k = 0;
+        while (k < np && strcmp(ppath[k], g.p[i])) k++;
+        struct stat sb;
+        int reg = lstat(g.p[i], &sb) == 0 && S_ISREG(sb.st_mode);
+        if (reg) prov_sha256_file(g.p[i], cur);
+        int in_git = git && !git_blob_value(base, g.p[i], 0, then, sizeof then);
+        const char *why = !reg ? "is not a regular file" : k == np ? "is not among the preregistered gates" : strcmp(cur, phex[k]) ? "differs from its pinned preregistered hash" : NULL;
+        if (!why && git && !in_git) why = "was not added at the preregistration commit";
+        if (!why && in_git && strcmp(cur, then)) why = "differs from its content at the preregistration commit";
+        if (!why && in_git && strcmp(then, phex[k])) why = "is pinned in " PATHS_GATES_PREREG " with a hash its preregistered content does not have";
+        if (!why) continue;
+        snprintf(affected, sizeof affected, "(no claim)");
+        size_t off = 0, cnt = 0;
+        for (size_t r = 0; r < c->n && off < sizeof affected - 80; r++)
+            if (!strncmp(c->rows[r].gate, b, strlen(b)) && c->rows[r].gate[strlen(b)] == ':')
+                off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[r].macro);
+        checklist_add(cl, VERDICT_FAIL, "gates preregistered", "%s %s (%s%s%s): a preregistered threshold is never changed; claims affected: %s", g.p[i], why,
+                      git ? "preregistration commit " : "no .git: checked against ", git ? base : PATHS_GATES_PREREG, git ? ", " PATHS_GATES_PREREG : "", affected);
+        bad++;
+    }
+    for (size_t k = 0; k < np; k++) {
+        int found = 0;
+        for (size_t i = 0; i < g.n && !found; i++) found = !strcmp(g.p[i], ppath[k]);
+        if (!found) { checklist_add(cl, VERDICT_FAIL, "gates preregistered", "%s is missing (preregistered, %s)", ppath[k], PATHS_GATES_PREREG); bad++; }
+    }
+    paths_list_free(&g);
+    if (!bad)
+        checklist_add(cl, VERDICT_PASS, "gates preregistered", "%zu gate files byte-identical to %s%s", np,
+                      git ? "their content at the preregistration commit " : "their pinned preregistered hashes (no .git) in ", git ? base : PATHS_GATES_PREREG);
+}
+
+/* Does this history hold the preregistration commit recorded in the pinned
+ * copy of the gates' hashes? A fresh or shallow history does not: its past
+ * versions cannot show what the package's history would. */
+static int history_has_prereg(void)
+{
+    FILE *f = fopen(PATHS_GATES_PREREG, "r");
+    char line[256], commit[64] = "";
+    while (f && fgets(line, sizeof line, f) && line[0] == '#')
+        if (sscanf(line, "# preregistration_commit: %63s", commit) == 1) break;
+    if (f) fclose(f);
+    if (!commit[0] || strspn(commit, "0123456789abcdef") != strlen(commit)) return 0;
+    char cmd[160];
+    snprintf(cmd, sizeof cmd, "git cat-file -e '%s^{commit}' 2>/dev/null", commit);
+    return system(cmd) == 0;
+}
+
+/* ---- superseded pins: real past values ---- */
+
+void audit_superseded_real(checklist *cl)
+{
+    tsv *t;
+    if (tsv_read(PATHS_PINS_SUPERSEDED, &t)) { checklist_add(cl, VERDICT_FAIL, "superseded pins", "%s", cs_errmsg()); return; }
+    int git = have_git(), full = git && history_has_prereg();
+    size_t bad = 0, n = tsv_nrows(t);
+    for (size_t r = 0; r < n; r++) {
+        const char *k = tsv_str(t, r, "key"), *v = tsv_str(t, r, "value"), *p = tsv_str(t, r, "path");
+        if (!k || !v || !p) { checklist_add(cl, VERDICT_FAIL, "superseded pins", "%s:%d: fields 'key', 'value', 'path' required", PATHS_PINS_SUPERSEDED, tsv_line(t, r)); bad++; continue; }
+        int version = !strcmp(k, "teacher_version");
+        if (!version && strcmp(k, "teacher_sha256") && strcmp(k, "estimator_sha256")) {
+            checklist_add(cl, VERDICT_FAIL, "superseded pins", "%s:%d: field 'key': '%s' is not a reading's pin (teacher_version, teacher_sha256, estimator_sha256)", PATHS_PINS_SUPERSEDED, tsv_line(t, r), k);
+            bad++;
+            continue;
+        }
+        char commit[16];
+        if (full && !git_past_value(p, version, v, commit, sizeof commit)) {
+            checklist_add(cl, VERDICT_FAIL, "superseded pins", "%s:%d: %s %.16s… is no past version of %s in the history (made up?); tables naming it are not traceable",
+                          PATHS_PINS_SUPERSEDED, tsv_line(t, r), k, v, p);
+            bad++;
+        }
+    }
+    tsv_free(t);
+    if (!bad)
+        checklist_add(cl, VERDICT_PASS, "superseded pins", "%zu superseded pins%s", n,
+                      full ? ", each a real past version of its file in the history"
+                      : git ? " (this history lacks the preregistration commit of " PATHS_GATES_PREREG ": each rests on the pin of " PATHS_PINS_SUPERSEDED " in " PATHS_PINS ")"
+                            : " (no .git: each rests on the pin of " PATHS_PINS_SUPERSEDED " in " PATHS_PINS ")");
+}
+
+/* The first value of "# key: value" at the top of path into out; 1 if found. */
+static int header_value(FILE *f, const char *key, char *out, size_t n)
+{
+    rewind(f);
+    char line[2048];
+    size_t kl = strlen(key);
+    while (fgets(line, sizeof line, f) && line[0] == '#')
+        if (!strncmp(line + 2, key, kl) && line[2 + kl] == ':') { snprintf(out, n, "%.*s", (int)strcspn(line + 4 + kl, "\n"), line + 4 + kl); return 1; }
+    return 0;
+}
+
+int audit_table_superseded(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return 0;
+    tsv *pins = NULL, *sup = NULL;
+    int hit = 0;
+    if (!tsv_read(PATHS_PINS, &pins) && !tsv_read(PATHS_PINS_SUPERSEDED, &sup)) {
+        const char *keys[] = {"teacher_version", "teacher_sha256", "estimator_sha256"};
+        for (int k = 0; k < 3 && !hit; k++) {
+            char v[128];
+            if (!header_value(f, keys[k], v, sizeof v)) continue;
+            long cur = tsv_find(pins, "key", keys[k]);
+            if (cur >= 0 && !strcmp(tsv_str(pins, (size_t)cur, "value"), v)) continue;
+            for (size_t r = 0; r < tsv_nrows(sup) && !hit; r++)
+                hit = !strcmp(tsv_str(sup, r, "key"), keys[k]) && !strcmp(tsv_str(sup, r, "value"), v);
+        }
+    }
+    if (pins) tsv_free(pins);
+    if (sup) tsv_free(sup);
+    fclose(f);
+    return hit;
+}
