@@ -208,8 +208,9 @@ freeze: deps
 	@if [ -d $(B)/results ]; then \
 	  for d in $(B)/results/*/; do [ -d "$$d" ] || continue; e=$$(basename $$d); mkdir -p frozen/$$e; \
 	    (cd $$d && find . \( -name '*.tsv' -o -name 'weights_*.ckpt' \) ! -name '*.tmp*' ! -name '.*' ! -path './*/*/figure_crowns*' ! -path './*/*/figure_poly*' -exec cp --parents {} $(CURDIR)/frozen/$$e/ \;) ; done; fi
-	@# the readings keep their run folders; their figure tables are not part of the readings table
+	@# the readings and the sensitivity units keep their run folders; their figure tables are not part of their tables
 	@if [ -f frozen/readings/summary.tsv ]; then $(CLI) readings-summary --dir frozen/readings --out frozen/readings/summary.tsv >/dev/null; fi
+	@if [ -f frozen/sensitivity/summary.tsv ]; then $(CLI) sensitivity-summary --dir frozen/sensitivity --out frozen/sensitivity/summary.tsv >/dev/null; fi
 	@$(CLI) hash-frozen
 	@$(CLI) numbers
 
@@ -218,7 +219,7 @@ trace: $(CLI)
 
 # ---- the release archive ------------------------------------------------------
 # `make dist`: $(B)/dist/crownshy-VERSION.tar.gz (VERSION from CITATION.cff) with
-# its SHA-256. It holds the committed and new unignored files of the package
+# its SHA-256 (printed, and in crownshy-VERSION.tar.gz.sha256). It holds the committed and new unignored files of the package
 # (git ls-files; without .git, the same folders less the ignored build outputs)
 # and no build/. Byte-reproducible for one tree: names sorted, owner 0, every
 # mtime the last commit's time (or SOURCE_DATE_EPOCH), gzip without a timestamp.
@@ -241,7 +242,7 @@ dist:
 	  --no-recursion -T $(B)/dist/files -cf - | gzip -9n > $(B)/dist/$(DIST).tar.gz.tmp; \
 	mv $(B)/dist/$(DIST).tar.gz.tmp $(B)/dist/$(DIST).tar.gz; \
 	echo "dist: $(B)/dist/$(DIST).tar.gz ($$(wc -l < $(B)/dist/files) files, $$(du -h $(B)/dist/$(DIST).tar.gz | cut -f1))"; \
-	(cd $(B)/dist && sha256sum $(DIST).tar.gz)
+	(cd $(B)/dist && sha256sum $(DIST).tar.gz | tee $(DIST).tar.gz.sha256)
 
 # ---- the write-up -------------------------------------------------------------
 deps-paper:

@@ -78,6 +78,20 @@ fresh
 rm "$scratch/tests/README.md"
 expect "a page linked from README.md that is missing fails" "README.md:" "link to 'tests/README.md'"
 
+# design constants: a row of audit/doc_numbers.tsv (value, "code FILE" holding it)
+# admits a number a measured value rounds to; a row its source does not hold fails
+fresh
+v=$(val MainJoint)
+printf '\nA constant that happens to equal a measured value: %s.\n' "$v" >> "$scratch/src/README.md"
+n=$(wc -l < "$scratch/src/README.md")
+expect "a constant equal to a measured value, with no row, fails" "src/README.md:$n:" "'$v' typed by hand"
+printf '#define SOME_CONSTANT %s\n' "$v" > "$scratch/build/const.h"
+printf '%s\tcode build/const.h\ta constant of the test\n' "$v" >> "$scratch/audit/doc_numbers.tsv"
+out=$(run); rc=$?
+[ $rc -eq 0 ] && ok "its row in audit/doc_numbers.tsv, held by its source, admits it" || bad "a row admits a constant" "verify exit $rc: $(grep -E '^  FAIL ' <<<"$out" | head -2 | cut -c1-200)"
+printf '#define SOME_CONSTANT 1\n' > "$scratch/build/const.h"
+expect "a row of audit/doc_numbers.tsv its source does not hold fails" "audit/doc_numbers.tsv:" "does not hold $v"
+
 rm -rf "$scratch"
 echo "[==========] $((pass + fail)) test(s) run."
 echo "[  PASSED  ] $pass test(s)."

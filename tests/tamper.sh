@@ -93,6 +93,7 @@ sed -i "s/^# teacher_sha256: .*/# teacher_sha256: $fake/" "$scratch/$f"
 expect "superseded reading unrecorded" "$f" "does not match the current pin"
 printf 'teacher_sha256\t%s\tsrc/forest/teacher.c\ttamper-test\n' "$fake" >> "$scratch/audit/pins_superseded.tsv"
 (cd "$scratch" && "$cli" pin >/dev/null 2>&1) # the record is pinned: a deliberate act (no .git here to show the hash is real)
+(cd "$scratch" && "$cli" numbers >/dev/null 2>&1) # its claims now pending: the generated README findings say so
 out=$(cd "$scratch" && "$cli" verify --no-figures 2>&1); rc=$?
 if [ $rc -eq 0 ] && grep -q 'PENDING .*frozen/mechanism/: 1 tables made by a superseded reading.*MechOn' <<<"$out"; then ok "superseded reading recorded: pending, named"
 else bad "superseded reading recorded: pending, named" "exit $rc: $(grep -E 'provenance|FAIL' <<<"$out" | head -3)"; fi

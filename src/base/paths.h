@@ -39,6 +39,9 @@
 #define PATHS_READINGS_TEX "paper/readings.tex"
 #define PATHS_READINGS_DIR "frozen/readings"
 #define PATHS_READINGS_SUMMARY "frozen/readings/summary.tsv"
+#define PATHS_SENS_TEX "paper/sensitivity.tex"
+#define PATHS_SENS_DIR "frozen/sensitivity"
+#define PATHS_SENS_SUMMARY "frozen/sensitivity/summary.tsv"
 #define PATHS_PAPER_DIR "paper"
 #define PATHS_FIGURES_DIR "figures"
 #define PATHS_FROZEN_DIR "frozen"
@@ -47,6 +50,9 @@
 #define PATHS_README "README.md"
 #define PATHS_DOCS_DIRS {"audit", "frozen", "src", "tests", "paper", "figures", "gates", NULL}
 #define PATHS_CHANGELOG "paper/CHANGELOG.md"
+/* Design constants a documentation page may type although a measured value
+ * rounds to them, each with the source that holds it (beside PATHS_DESIGN_NUMBERS). */
+#define PATHS_DOC_NUMBERS "audit/doc_numbers.tsv"
 
 /* The pinned instrument (design.md §4, §5): its sources are hashed into every
  * frozen file's provenance and into audit/pins.tsv; the teacher header holds

@@ -4,8 +4,9 @@
  * exemption, every relative link resolves. Limits: a marker lies on one line;
  * a number is a plain decimal token ("1.2.0" and "127.0.0.1" are not numbers). */
 #include "audit_docs.h"
-#include "audit_paper.h"
 #include "afile.h"
+#include "audit_evidence.h"
+#include "tsv.h"
 #include <ctype.h>
 #include <math.h>
 #include <stdarg.h>
@@ -62,20 +63,34 @@ static int marker_text(const char *name, const claims *c, const claim_result *re
     return 1;
 }
 
+/* A claim computed from a table made by a superseded reading: pending until
+ * its unit is re-run (as verify counts it). */
+static int superseded(const claim_row *row)
+{
+    return !strncmp(row->source, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1) && audit_table_superseded(row->source);
+}
+
+/* A gated claim's verdict as verify counts it: 0 reproduced, 1 not, 2 pending. */
+static int judged(const claim_row *row, const claim_result *r)
+{
+    if (superseded(row)) return 2;
+    return r->gate == VERDICT_PASS ? 0 : r->gate == VERDICT_FAIL ? 1 : 2;
+}
+
 /* The findings: the gated claims per gate file, our value beside the paper's. */
 static void findings(sbuf *b, const claims *c, const claim_result *res)
 {
-    size_t rep = 0, notrep = 0, pend = 0, m, a10, a25;
+    size_t k[3] = {0}, sup = 0, m, a10, a25;
     for (size_t i = 0; i < c->n; i++) {
         if (!strcmp(c->rows[i].gate, "-")) continue;
-        if (res[i].gate == VERDICT_PASS) rep++;
-        else if (res[i].gate == VERDICT_FAIL) notrep++;
-        else pend++;
+        k[judged(&c->rows[i], &res[i])]++;
+        sup += superseded(&c->rows[i]) != 0;
     }
     claims_within(c, res, &m, &a10, &a25);
     sb_printf(b, "The reference paper's gated claims, judged on `frozen/` by the preregistered gates: "
-                 "**%zu reproduced, %zu not reproduced, %zu pending** (pending: input data not on this machine). "
-                 "Of %zu measured numbers, %zu lie within 10 %% and %zu within 25 %% of the paper's value.\n\n", rep, notrep, pend, m, a10, a25);
+                 "**%zu reproduced, %zu not reproduced, %zu pending** (pending: input data not on this machine%s). "
+                 "Of %zu measured numbers, %zu lie within 10 %% and %zu within 25 %% of the paper's value.\n\n", k[0], k[1], k[2],
+              sup ? ", or a table made by a superseded reading of the pinned code, until its unit is re-run" : "", m, a10, a25);
     sb_printf(b, "| gate | reproduced | not reproduced | pending | claims: ours / paper |\n|---|---|---|---|---|\n");
     for (size_t i = 0; i < c->n; i++) {
         const char *g = c->rows[i].gate;
@@ -88,9 +103,9 @@ static void findings(sbuf *b, const claims *c, const claim_result *res)
         sbuf cl = {0};
         for (size_t j = i; j < c->n; j++) {
             if (strncmp(c->rows[j].gate, g, gl) || c->rows[j].gate[gl] != ':') continue;
-            k[res[j].gate == VERDICT_PASS ? 0 : res[j].gate == VERDICT_FAIL ? 1 : 2]++;
-            sb_printf(&cl, "%s`%s` %s / %s", cl.n ? "; " : "", c->rows[j].macro, res[j].status == VERDICT_PASS ? res[j].text : "pending",
-                      c->rows[j].reference);
+            k[judged(&c->rows[j], &res[j])]++;
+            sb_printf(&cl, "%s`%s` %s%s / %s", cl.n ? "; " : "", c->rows[j].macro, res[j].status == VERDICT_PASS ? res[j].text : "pending",
+                      res[j].status == VERDICT_PASS && superseded(&c->rows[j]) ? " (superseded reading)" : "", c->rows[j].reference);
         }
         sb_printf(b, "| `" PATHS_GATES_DIR "/%.*s` | %zu | %zu | %zu | %s |\n", (int)gl, g, k[0], k[1], k[2], cl.err ? "(out of memory)" : cl.s ? cl.s : "");
         free(cl.s);
@@ -174,10 +189,66 @@ cs_status docs_render(const char *path, const claims *c, const claim_result *res
 }
 
 /* ---- the typed-number rule (as for the paper text) ---- */
+/* Does "code FILE" hold lit as a whole token? */
+static int code_holds(const char *src, const char *lit)
+{
+    if (strncmp(src, "code ", 5) || !lit || !*lit) return 0;
+    FILE *f = fopen(src + 5, "r");
+    if (!f) return 0;
+    char *line = NULL;
+    size_t cap = 0, ll = strlen(lit);
+    int found = 0;
+    while (!found && getline(&line, &cap, f) > 0)
+        for (char *p = line; !found && (p = strstr(p, lit)); p++)
+            found = (p == line || !(isalnum((unsigned char)p[-1]) || p[-1] == '.')) && !(isalnum((unsigned char)p[ll]) || (p[ll] == '.' && isdigit((unsigned char)p[ll + 1])));
+    free(line);
+    fclose(f);
+    return found;
+}
+
 /* The values a typed decimal must not round: ours (text: what a marker
- * shows) and the reference paper's (paper = 1); and the design constants of
- * audit/design_numbers.tsv, which a page may type whatever they coincide with. */
-typedef struct { double *v; const char **who, **text; int *paper; size_t n; double *design; size_t nd; } measured;
+ * shows) and the reference paper's (paper = 1); and the design constants it
+ * may equal all the same (d, nd). */
+typedef struct { double *v; const char **who, **text; int *paper; size_t n; double *d; size_t nd; } measured;
+
+/* A design constant a page may type although a measured value rounds to it:
+ * every value of the paper's list (PATHS_DESIGN_NUMBERS, checked at its
+ * sources by the paper audit) and of PATHS_DOC_NUMBERS, whose source "code
+ * FILE" must hold the number as a literal. A bad row fails naming its line. */
+static size_t design_constants(double **out, checklist *cl, size_t *bad)
+{
+    const char *files[2] = {PATHS_DESIGN_NUMBERS, PATHS_DOC_NUMBERS};
+    size_t n = 0, cap = 0;
+    *out = NULL;
+    *bad = 0;
+    for (int fi = 0; fi < 2; fi++) {
+        tsv *t;
+        if (tsv_read(files[fi], &t)) {
+            if (fi && cl) checklist_add(cl, VERDICT_FAIL, "docs: design constants", "%s", cs_errmsg());
+            *bad += fi;
+            continue;
+        }
+        for (size_t r = 0; r < tsv_nrows(t); r++) {
+            double x;
+            const char *src = tsv_str(t, r, "source");
+            if (tsv_double(t, r, "value", &x) || !src) continue;
+            if (fi && (!code_holds(src, tsv_str(t, r, "value")) || !tsv_str(t, r, "what"))) {
+                if (cl) checklist_add(cl, VERDICT_FAIL, "docs: design constants", "%s:%d: source '%s' does not hold %s as a literal (or no 'what')", files[fi],
+                                      tsv_line(t, r), src, tsv_str(t, r, "value"));
+                (*bad)++;
+                continue;
+            }
+            if (n == cap) {
+                double *d = realloc(*out, (cap = cap ? 2 * cap : 64) * sizeof *d);
+                if (!d) break;
+                *out = d;
+            }
+            (*out)[n++] = x;
+        }
+        tsv_free(t);
+    }
+    return n;
+}
 
 static void measured_collect(const claims *c, const claim_result *res, measured *m)
 {
@@ -227,6 +298,15 @@ static size_t scan_numbers(const char *path, int lineno, const char *line, const
     size_t bad = 0;
     for (const char *s = line; *s; ) {
         if (!isdigit((unsigned char)*s) || (s > line && (isalnum((unsigned char)s[-1]) || strchr("\\_.", s[-1])))) { s++; continue; }
+        /* a section reference (§3.1, § 5.2) is no number of the study */
+        {
+            const char *q = s;
+            if (q > line && q[-1] == ' ') q--;
+            if (q - line >= 2 && (unsigned char)q[-2] == 0xC2 && (unsigned char)q[-1] == 0xA7) {
+                while (isdigit((unsigned char)*s) || (*s == '.' && isdigit((unsigned char)s[1]))) s++;
+                continue;
+            }
+        }
         const char *e = s;
         while (isdigit((unsigned char)*e)) e++;
         int dec = 0, sig = 0, lead = 1;
@@ -235,11 +315,11 @@ static size_t scan_numbers(const char *path, int lineno, const char *line, const
         for (const char *q = s; q < e; q++) if (isdigit((unsigned char)*q) && !(lead && *q == '0')) { lead = 0; sig++; }
         if (dec > 0 && sig >= 2 && !dotted && !isalpha((unsigned char)*e)) {
             double x = strtod(s, NULL);
-            int constant = 0;
-            for (size_t q = 0; q < m->nd && !constant; q++) constant = fabs(m->design[q] - x) <= 1e-12 * fmax(1.0, fabs(x));
             const char *b = s;
             while (b > line && (b[-1] == '$' || b[-1] == ' ' || b[-1] == '*' || b[-1] == '`')) b--;
             int neg = (b > line && b[-1] == '-') || (b - line >= 3 && !memcmp(b - 3, "\xe2\x88\x92", 3));
+            int constant = 0;
+            for (size_t q = 0; q < m->nd && !constant; q++) constant = fabs(x - m->d[q]) <= 1e-9 * fmax(1.0, fabs(x));
             for (size_t q = 0; q < m->n && !constant; q++)
                 if (rounds(x, dec, sig, neg, m->v[q])) {
                     checklist_add(cl, VERDICT_FAIL, "docs: typed numbers", "%s:%d: '%.*s' typed by hand rounds %s %.6g; write <!--%s%s-->%s" MARK_END " (crownshy numbers fills it); claim: %s",
@@ -365,11 +445,10 @@ size_t docs_check_page(const char *path, const claims *c, const claim_result *re
     }
     measured m;
     measured_collect(c, res, &m);
-    checklist quiet = {0}; /* a bad design row is the paper audit's failure, reported there once */
-    m.nd = audit_design_numbers(&quiet, &m.design);
-    checklist_free(&quiet);
+    size_t dbad;
+    m.nd = design_constants(&m.d, NULL, &dbad);
     bad += scan_page(path, &m, cl);
-    free(m.design);
+    free(m.d);
     free(m.v);
     free(m.who);
     free(m.text);
@@ -398,6 +477,9 @@ void audit_docs(const claims *c, const claim_result *res, checklist *cl)
     paths_list pages;
     if (docs_pages(&pages)) { checklist_add(cl, VERDICT_FAIL, "docs", "%s", cs_errmsg()); return; }
     size_t bad = 0, regions = 0;
+    double *d;
+    design_constants(&d, cl, &bad); /* its rows checked once, here */
+    free(d);
     struct stat sb;
     if (stat(PATHS_README, &sb) != 0) { checklist_add(cl, VERDICT_FAIL, "docs", "%s missing", PATHS_README); bad++; }
     for (size_t i = 0; i < pages.n; i++) {
