@@ -4,15 +4,16 @@
 # paper's number; shaded: within 10 % and 25 %). Readings: rev1 = teacher-1 on layout r1
 # (teacher-1, 5 m on 60 m, cardinal elongation, Mech* on the lattice); t2-r1 =
 # teacher-2 only; t2-r1-axes = + all-axis elongation and Mech* on the figure
-# stand; t1-r2 = teacher-1 on layout r2; rev2 = the adopted reading (teacher-2, r2).
-# Rows of summary.tsv are quantity-major, five readings each (readings.c).
+# stand; t1-r2 = teacher-1 on layout r2; rev2 = the adopted reading (teacher-2, r2);
+# arc = rev2 with the contact arc s-1..s+1 dying back too (measured, not adopted).
+# Rows of summary.tsv are quantity-major, six readings each (readings.c).
 # Reads only frozen files. Run from the repository root: gnuplot figures/readings.gp
-nr = 5
-nq = real(system("awk -F'\t' '!/^#/ && $1!=\"quantity\"{n++} END{print n/5}' frozen/readings/summary.tsv"))
+nr = 6
+nq = real(system("awk -F'\t' '!/^#/ && $1!=\"quantity\"{n++} END{print n/6}' frozen/readings/summary.tsv"))
 if (!exists("outdir")) outdir = 'figures'
 do for [fmt in "png pdf"] {
-  if (fmt eq "png") { set terminal pngcairo size 1000,760 font "Sans,12"; set output outdir.'/readings.png' } \
-  else { set terminal pdfcairo size 8in,6.1in font "Sans,11"; set output outdir.'/readings.pdf' }
+  if (fmt eq "png") { set terminal pngcairo size 1000,900 font "Sans,12"; set output outdir.'/readings.png' } \
+  else { set terminal pdfcairo size 8in,7.2in font "Sans,11"; set output outdir.'/readings.pdf' }
   set datafile separator "\t"
   set key autotitle columnhead
   set key inside right bottom vertical box opaque font "Sans,11" width -2
@@ -26,11 +27,12 @@ do for [fmt in "png pdf"] {
   set object 2 rect from 0.90, graph 0 to 1.10, graph 1 fc rgb "#2ca02c" fs solid 0.20 noborder behind
   set arrow 1 from 1, graph 0 to 1, graph 1 nohead lw 1.5 lc rgb "#1a6b1a"
   yq(r) = -floor(r / nr)
-  off(k) = 0.3 * (k - 2) / 2.0
+  off(k) = 0.34 * (k - 2.5) / 2.5
   plot "frozen/readings/summary.tsv" using (strcol(2) eq "rev1" ? 1 + $5 : NaN):(yq($0) + off(0)) with points pt 4 ps 1.5 lw 2 lc rgb "#7f7f7f" title "rev1 (revision 1)", \
        "" using (strcol(2) eq "t2-r1" ? 1 + $5 : NaN):(yq($0) + off(1)) with points pt 6 ps 1.5 lw 2 lc rgb "#ff7f0e" title "teacher-2 only", \
        "" using (strcol(2) eq "t2-r1-axes" ? 1 + $5 : NaN):(yq($0) + off(2)) with points pt 8 ps 1.5 lw 2 lc rgb "#9467bd" title "+ all-axis, figure stand", \
        "" using (strcol(2) eq "t1-r2" ? 1 + $5 : NaN):(yq($0) + off(3)) with points pt 12 ps 1.5 lw 2 lc rgb "#1f77b4" title "rev2 with teacher-1", \
-       "" using (strcol(2) eq "rev2" ? 1 + $5 : NaN):(yq($0) + off(4)):ytic(strcol(2) eq "rev2" ? strcol(1) : "") with points pt 7 ps 1.6 lc rgb "#d62728" title "rev2 (adopted)"
+       "" using (strcol(2) eq "arc" ? 1 + $5 : NaN):(yq($0) + off(5)) with points pt 2 ps 1.4 lw 2 lc rgb "#17becf" title "rev2, arc die-back", \
+       "" using (strcol(2) eq "rev2" ? 1 + $5 : NaN):(strcol(2) eq "rev2" ? yq($0) + off(4) : 1000):ytic(strcol(2) eq "rev2" ? strcol(1) : "") with points pt 7 ps 1.6 lc rgb "#d62728" title "rev2 (adopted)"
   unset output
 }

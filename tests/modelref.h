@@ -11,7 +11,8 @@ static void ref_model_forward(const model *m, const double *p, int B, const doub
                               const double *feat, const double *cond, const double *t, double *v)
 {
     const model_cfg *c = &m->cfg;
-    const int T = c->T, P = c->P, C = c->C, F = c->F, N = B * T, I = P + c->nfeat;
+    const int nu = model_cfg_nuse(c), stdz = model_cfg_stdz(c);
+    const int T = c->T, P = c->P, C = c->C, F = c->F, N = B * T, I = P + nu;
     const int E = c->ncond + c->ntime, nh = c->ntime / 2;
     double *tin = malloc(sizeof(double) * N * I), *cin = malloc(sizeof(double) * B * E);
     double *e1 = malloc(sizeof(double) * B * C), *e = malloc(sizeof(double) * B * C);
@@ -20,16 +21,16 @@ static void ref_model_forward(const model *m, const double *p, int B, const doub
     double *tmp = malloc(sizeof(double) * N * C), *h = malloc(sizeof(double) * N * F);
     for (int r = 0; r < N; r++) {
         for (int k = 0; k < P; k++) tin[r * I + k] = xt[r * P + k];
-        for (int k = 0; k < c->nfeat; k++) /* the pair model standardises (m->norm) */
-            tin[r * I + P + k] = c->pair ? (feat[r * c->nfeat + k] - m->norm[k]) * m->norm[c->nfeat + k]
-                                         : feat[r * c->nfeat + k];
+        for (int k = 0; k < nu; k++) /* standardised with m->norm, or as they are */
+            tin[r * I + P + k] = stdz ? (feat[r * c->nfeat + k] - m->norm[k]) * m->norm[nu + k]
+                                      : feat[r * c->nfeat + k];
     }
     /* pair model: standardised pair features of every patch from the raw features */
     double *phi = c->pair ? malloc(sizeof(double) * (size_t)B * T * T * REF_PQ) : NULL;
     for (int b = 0; c->pair && b < B; b++) {
         double *pb = phi + (size_t)b * T * T * REF_PQ;
         ref_pair_features(pb, feat + (size_t)b * T * c->nfeat, c->nfeat, T);
-        const float *mu = m->norm + 2 * c->nfeat, *isd = mu + REF_PQ;
+        const float *mu = m->norm + (stdz ? 2 * nu : 0), *isd = mu + REF_PQ;
         for (int e = 0; e < T * T * REF_PQ; e++) pb[e] = (pb[e] - mu[e % REF_PQ]) * isd[e % REF_PQ];
     }
     for (int b = 0; b < B; b++) {

@@ -16,7 +16,8 @@ for t in "$@"; do
   name=$(basename "$t")$label
   suffix=""; [ -n "$label" ] && suffix="-asan"
   log="$log_dir/$(basename "$t")$suffix.log"
-  "$t" > "$log" 2>&1; rc=$?
+  # a shell test runs through bash whatever its file mode
+  case $t in *.sh) bash "$t" > "$log" 2>&1 ;; *) "$t" > "$log" 2>&1 ;; esac; rc=$?
   p=$(sed -n 's/^\[  PASSED  \] \([0-9]*\) test.*/\1/p' "$log" | tail -1)
   f=$(sed -n 's/^\[  FAILED  \] \([0-9]*\) test.*/\1/p' "$log" | tail -1)
   p=${p:-0}; f=${f:-0}

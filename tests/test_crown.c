@@ -2,6 +2,7 @@
 #include "testutil.h"
 #include "crown.h"
 #include <gsl/gsl_rng.h>
+#include <string.h>
 
 static void ramp(double r[CROWN_NSEC]) { for (int s = 0; s < CROWN_NSEC; s++) r[s] = 1.0 + 0.1 * s; }
 
@@ -69,6 +70,65 @@ static void test_draws_stay_in_their_ranges(void **st)
     gsl_rng_free(rng);
 }
 
+
+/* The default distribution reproduces crown_draw_n bit for bit (the frozen
+ * stands were drawn with it), and a changed one changes only its own field. */
+static void test_default_dist_draws_bit_identical(void **st)
+{
+    (void)st;
+    gsl_rng *a = gsl_rng_alloc(gsl_rng_mt19937), *b = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(a, 777);
+    gsl_rng_set(b, 777);
+    crown_draw da[300], db[300];
+    memset(da, 0, sizeof da); /* padding bytes compare equal */
+    memset(db, 0, sizeof db);
+    crown_dist cd;
+    crown_dist_default(&cd);
+    assert_int_equal(crown_draw_n(a, 300, da), CS_OK);
+    assert_int_equal(crown_draw_n_dist(b, 300, &cd, db), CS_OK);
+    assert_memory_equal(da, db, sizeof da);
+    /* NULL is the default too */
+    gsl_rng_set(b, 777);
+    assert_int_equal(crown_draw_n_dist(b, 300, NULL, db), CS_OK);
+    assert_memory_equal(da, db, sizeof da);
+    gsl_rng_free(a);
+    gsl_rng_free(b);
+}
+
+static void test_dist_fields_act(void **st)
+{
+    (void)st;
+    gsl_rng *a = gsl_rng_alloc(gsl_rng_mt19937), *b = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(a, 99);
+    gsl_rng_set(b, 99);
+    crown_draw da[500], db[500];
+    crown_dist cd;
+    crown_dist_default(&cd);
+    cd.R_scale = 5.0;   /* R scales exactly */
+    cd.a_max = 0.3;     /* a scales exactly */
+    assert_int_equal(crown_draw_n(a, 500, da), CS_OK);
+    assert_int_equal(crown_draw_n_dist(b, 500, &cd, db), CS_OK);
+    for (int i = 0; i < 500; i++) {
+        ASSERT_NEAR(db[i].R, da[i].R * 5.0 / 4.0, 1e-12);
+        ASSERT_NEAR(db[i].a, da[i].a * 0.3 / 0.2, 1e-12);
+        ASSERT_EXACT(db[i].h, da[i].h);
+        assert_int_equal(db[i].k, da[i].k);
+    }
+    /* a wider height spread stays inside the truncation bounds */
+    crown_dist_default(&cd);
+    cd.h_sd = 6.0;
+    gsl_rng_set(b, 99);
+    assert_int_equal(crown_draw_n_dist(b, 500, &cd, db), CS_OK);
+    double s2 = 0.0;
+    for (int i = 0; i < 500; i++) { assert_true(db[i].h >= 12.0 && db[i].h <= 38.0); s2 += (db[i].h - 25.0) * (db[i].h - 25.0); }
+    assert_true(sqrt(s2 / 500.0) > 4.5);
+    /* a bad distribution is refused, never drawn */
+    cd.h_sd = -1.0;
+    assert_int_equal(crown_draw_n_dist(b, 5, &cd, db), CS_EINPUT);
+    gsl_rng_free(a);
+    gsl_rng_free(b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -77,6 +137,8 @@ int main(void)
         cmocka_unit_test(test_radius_wraps_periodically),
         cmocka_unit_test(test_lobed_target_follows_eq1),
         cmocka_unit_test(test_draws_stay_in_their_ranges),
+        cmocka_unit_test(test_default_dist_draws_bit_identical),
+        cmocka_unit_test(test_dist_fields_act),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

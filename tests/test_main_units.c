@@ -5,6 +5,7 @@
  * build/crownshy from the repository root (it reads gates/). */
 #include "testutil.h"
 #include "claims.h"
+#include "tsv.h"
 
 static char *data_rows(const char *path)
 {
@@ -50,6 +51,32 @@ static void test_unit_samples_redraw_bit_for_bit_and_recompute_w1(void **s)
                  dir, arm, a ? "joint" : "indep", dir);
         assert_int_equal(tu_run_cli("", args, out, sizeof out), 3);
     }
+    /* comparison-dist on these two arms: every patch and source, the summary and the figure patch */
+    snprintf(args, sizeof args, "comparison-dist --patches 5 --joint %s/main/weights_s03_joint.ckpt --indep %s/main/weights_s03_indep.ckpt --out %s",
+             dir, dir, dir);
+    if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("comparison-dist: %s", out);
+    {
+        tsv *t;
+        char p[600];
+        snprintf(p, sizeof p, "%s/comparison/dist_patches.tsv", dir);
+        assert_int_equal(tsv_read(p, &t), CS_OK);
+        assert_int_equal(tsv_nrows(t), 5 * 3 + 5 * 2); /* comparison: teacher, joint, indep; dart: teacher, joint */
+        double jm[5];
+        int nj = 0;
+        for (size_t i = 0; i < tsv_nrows(t); i++)
+            if (!strcmp(tsv_str(t, i, "probe"), "comparison") && !strcmp(tsv_str(t, i, "source"), "joint"))
+                assert_int_equal(tsv_double(t, i, "median_nn_clearance_m", &jm[nj++]), CS_OK);
+        tsv_free(t);
+        assert_int_equal(nj, 5);
+        snprintf(p, sizeof p, "%s/comparison/dist_summary.tsv", dir);
+        assert_int_equal(tsv_read(p, &t), CS_OK);
+        assert_int_equal(tsv_nrows(t), 5);
+        int fig = atoi(tsv_meta(t, "figure_patch"));
+        tsv_free(t);
+        int below = 0, equal_before = 0;
+        for (int k = 0; k < 5; k++) { below += jm[k] < jm[fig]; equal_before += jm[k] == jm[fig] && k < fig; }
+        assert_int_equal(below + equal_before, 2); /* rank floor((5 - 1) / 2) */
+    }
     char msg[1024];
     int nchecked = 0;
     if (claim_main_samples_check(dir, 3, msg, sizeof msg, &nchecked) != CS_OK) fail_msg("%s", msg);
@@ -63,10 +90,74 @@ static void test_unit_samples_redraw_bit_for_bit_and_recompute_w1(void **s)
     assert_non_null(strstr(msg, "run_s03_joint.tsv"));
 }
 
+/* main-eval evaluates a unit's weights without training: at volume v1 the
+ * data rows of the unit's main-run table and samples, bit for bit, recording
+ * the training record; at volume v2 every probe at the unseen spacings and none
+ * at the extrapolation spacings, for every reading. A paper-reading unit
+ * reruns to the same rows and weights. */
+static void test_eval_from_weights_gives_the_unit_rows(void **s)
+{
+    (void)s;
+    const char *dir = tu_tmpdir("main_eval");
+    char args[4096], out[8192], p1[600], p2[600];
+    snprintf(args, sizeof args, "main-run --reading paper --seed 2 --arm joint --scale smoke --epochs 2 "
+             "--samples %s/samples_a.tsv --weights %s/w_a.ckpt --out %s/run_a.tsv", dir, dir, dir);
+    if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("main-run: %s", out);
+    snprintf(args, sizeof args, "main-eval --weights %s/w_a.ckpt --trained %s/run_a.tsv --seed 2 --arm joint --scale smoke "
+             "--samples %s/samples_b.tsv --out %s/run_b.tsv", dir, dir, dir, dir);
+    if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("main-eval: %s", out);
+    const char *pairs[2][2] = {{"run_a.tsv", "run_b.tsv"}, {"samples_a.tsv", "samples_b.tsv"}};
+    for (int k = 0; k < 2; k++) {
+        snprintf(p1, sizeof p1, "%s/%s", dir, pairs[k][0]);
+        snprintf(p2, sizeof p2, "%s/%s", dir, pairs[k][1]);
+        char *x = data_rows(p1), *y = data_rows(p2);
+        assert_true(strlen(x) > 100);
+        assert_string_equal(x, y);
+        free(x); free(y);
+    }
+    tsv *t;
+    snprintf(p2, sizeof p2, "%s/run_b.tsv", dir);
+    assert_int_equal(tsv_read(p2, &t), CS_OK);
+    assert_non_null(tsv_meta(t, "trained_teacher_sha256"));
+    assert_non_null(strstr(tsv_meta(t, "model"), "reading paper"));
+    tsv_free(t);
+    /* a rerun from scratch: the same rows and weights */
+    snprintf(args, sizeof args, "main-run --reading paper --seed 2 --arm joint --scale smoke --epochs 2 "
+             "--weights %s/w_c.ckpt --out %s/run_c.tsv", dir, dir);
+    if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("main-run: %s", out);
+    snprintf(p1, sizeof p1, "%s/run_a.tsv", dir);
+    snprintf(p2, sizeof p2, "%s/run_c.tsv", dir);
+    char *x = data_rows(p1), *y = data_rows(p2);
+    assert_string_equal(x, y);
+    free(x); free(y);
+    snprintf(args, sizeof args, "cmp %s/w_a.ckpt %s/w_c.ckpt", dir, dir);
+    assert_int_equal(system(args), 0);
+    /* v2: probes at the unseen spacings only */
+    snprintf(args, sizeof args, "main-eval --volume v2 --weights %s/w_a.ckpt --trained %s/run_a.tsv --seed 2 --arm joint --scale smoke "
+             "--out %s/run_v2.tsv", dir, dir, dir);
+    if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("main-eval v2: %s", out);
+    snprintf(p2, sizeof p2, "%s/run_v2.tsv", dir);
+    assert_int_equal(tsv_read(p2, &t), CS_OK);
+    int unseen = 0, extrap = 0;
+    for (size_t i = 0; i < tsv_nrows(t); i++) {
+        if (!strcmp(tsv_str(t, i, "split"), "unseen")) unseen++;
+        else { extrap++; assert_string_equal(tsv_str(t, i, "probe"), "generated"); }
+    }
+    assert_int_equal(unseen, 3 * 3);
+    assert_int_equal(extrap, 2);
+    tsv_free(t);
+    /* the reading is checked against the weights */
+    snprintf(args, sizeof args, "main-eval --reading pair --weights %s/w_a.ckpt --trained %s/run_a.tsv --seed 2 --arm joint --scale smoke "
+             "--out %s/bad.tsv", dir, dir, dir);
+    assert_int_equal(tu_run_cli("", args, out, sizeof out), 3);
+    assert_non_null(strstr(out, "paper reading"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_unit_samples_redraw_bit_for_bit_and_recompute_w1),
+        cmocka_unit_test(test_eval_from_weights_gives_the_unit_rows),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -16,6 +16,15 @@ static model_cfg tiny2(int joint, int pair)
     return c;
 }
 static model_cfg tiny(int joint) { return tiny2(joint, 0); }
+/* A tiny configuration under reading r, with nfeat = 5 so that the paper
+ * reading's three features are fewer than all of them. */
+static model_cfg tiny_reading(int joint, model_reading r)
+{
+    model_cfg c = tiny2(joint, 0);
+    c.nfeat = 5;
+    model_cfg_set_reading(&c, r);
+    return c;
+}
 
 typedef struct {
     model *m; int B;
@@ -23,9 +32,10 @@ typedef struct {
     double *p, *xt_d, *feat_d, *cond_d, *t_d, *v_d, *dv_d;
 } fx;
 
-static void fx_make2(fx *f, int joint, int pair, int B, unsigned seed)
+static void fx_make_cfg(fx *f, model_cfg c, int B, unsigned seed);
+static void fx_make2(fx *f, int joint, int pair, int B, unsigned seed) { fx_make_cfg(f, tiny2(joint, pair), B, seed); }
+static void fx_make_cfg(fx *f, model_cfg c, int B, unsigned seed)
 {
-    model_cfg c = tiny2(joint, pair);
     assert_int_equal(model_alloc(&f->m, &c, B), CS_OK);
     gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
     gsl_rng_set(r, 11);
@@ -52,7 +62,7 @@ static void fx_make2(fx *f, int joint, int pair, int B, unsigned seed)
     f->feat_d = malloc(sizeof(double) * B * c.T * c.nfeat); tu_f2d(f->feat_d, f->feat, (size_t)B * c.T * c.nfeat);
     f->cond_d = malloc(sizeof(double) * B * c.ncond); tu_f2d(f->cond_d, f->cond, (size_t)B * c.ncond);
     f->t_d = malloc(sizeof(double) * B); tu_f2d(f->t_d, f->t, B);
-    if (pair) { /* z-scores of these very features, so standardisation is not the identity */
+    if (model_cfg_stdz(&c) || c.pair) { /* z-scores of these very features, so standardisation is not the identity */
         for (int i = 0; i < B * c.T; i++) f->feat[i * c.nfeat + 2] = 0.3f + 0.1f * f->feat[i * c.nfeat + 2];
         tu_f2d(f->feat_d, f->feat, (size_t)B * c.T * c.nfeat);
         assert_int_equal(model_norm_fit(f->m, f->feat, B), CS_OK);
@@ -372,6 +382,129 @@ static void test_forward_rejects_oversized_batch(void **s)
     fx_free(&f);
 }
 
+/* ---- readings (model.h): one code path, ingredients switchable ---------------- */
+
+/* Every reading's names round-trip, and the plain and pair readings are the
+ * configurations written before the readings existed (stdz AUTO, nuse 0). */
+static void test_reading_names_and_legacy_configurations(void **s)
+{
+    (void)s;
+    for (int r = 0; r < MODEL_NREADING; r++) {
+        model_reading q;
+        assert_int_equal(model_reading_parse(model_reading_name((model_reading)r), &q), CS_OK);
+        assert_int_equal(q, r);
+        model_cfg c = tiny_reading(1, (model_reading)r);
+        assert_int_equal(model_cfg_reading(&c), r);
+        assert_int_equal(model_cfg_check(&c), CS_OK);
+    }
+    model_reading q;
+    assert_int_equal(model_reading_parse("pairs", &q), CS_EUSAGE);
+    assert_non_null(strstr(cs_errmsg(), "paper-fourier"));
+    model_cfg p0 = tiny2(1, 0), p1 = tiny2(1, 1), r0 = p0, r1 = p1;
+    model_cfg_set_reading(&r0, MODEL_PLAIN);
+    model_cfg_set_reading(&r1, MODEL_PAIR);
+    assert_memory_equal(&p0, &r0, sizeof p0);
+    assert_memory_equal(&p1, &r1, sizeof p1);
+    assert_int_equal(model_cfg_reading(&p0), MODEL_PLAIN);
+    assert_int_equal(model_cfg_reading(&p1), MODEL_PAIR);
+    model_cfg bad = tiny2(1, 0);
+    bad.stdz = 3;
+    assert_int_equal(model_cfg_check(&bad), CS_EINPUT);
+    bad = tiny2(1, 0);
+    bad.nuse = 4;
+    assert_int_equal(model_cfg_check(&bad), CS_EINPUT);
+}
+
+/* Gradients of every reading and arm against central finite differences of
+ * the double reference, and its forward. */
+static void check_reading(int joint, model_reading r)
+{
+    fx f;
+    fx_make_cfg(&f, tiny_reading(joint, r), 2, 71 + 2 * r + joint);
+    assert_int_equal(model_forward(f.m, f.B, f.xt, f.feat, f.cond, f.t, f.v), CS_OK);
+    fx_loss(&f);
+    ASSERT_GRAD(f.v, f.v_d, (size_t)f.B * 5 * 6, 2e-5, model_reading_name(r));
+    model_backward(f.m, f.dv);
+    double *g = malloc(sizeof(double) * f.m->nparams);
+    tu_fd_grad(g, f.p, f.m->nparams, fx_loss, &f, 1e-5);
+    ASSERT_GRAD(f.m->grads, g, f.m->nparams, 5e-4, model_reading_name(r));
+    free(g);
+    fx_free(&f);
+}
+static void test_reading_gradients(void **s)
+{
+    (void)s;
+    for (int r = 0; r < MODEL_NREADING; r++) { check_reading(1, (model_reading)r); check_reading(0, (model_reading)r); }
+}
+
+/* Parameter counts: the paper reading's token embedding has nuse = 3 inputs
+ * instead of nfeat; the pair terms are the only other difference; both arms
+ * of a reading have the same count. z-scores: token ones only when
+ * standardised, pair ones only with pair attention. */
+static void test_reading_parameter_counts(void **s)
+{
+    (void)s;
+    size_t n[MODEL_NREADING], nn[MODEL_NREADING];
+    for (int r = 0; r < MODEL_NREADING; r++) {
+        model_cfg c = tiny_reading(1, (model_reading)r), i = tiny_reading(0, (model_reading)r);
+        n[r] = model_nparams(&c);
+        nn[r] = model_nnorm(&c);
+        assert_int_equal(n[r], model_nparams(&i));
+    }
+    const model_cfg c = tiny2(1, 0);
+    assert_int_equal(n[MODEL_PLAIN], n[MODEL_PAPER_FOURIER]);
+    assert_int_equal(n[MODEL_PLAIN] - n[MODEL_PAPER], (size_t)c.C * (5 - 3));
+    assert_int_equal(n[MODEL_PAIR] - n[MODEL_PAPER_FOURIER], (size_t)c.L * (c.H + c.C) * PAIRATTN_Q);
+    assert_int_equal(nn[MODEL_PLAIN], 0);
+    assert_int_equal(nn[MODEL_PAPER], 2 * 3);
+    assert_int_equal(nn[MODEL_PAPER_FOURIER], 2 * 5);
+    assert_int_equal(nn[MODEL_PAIR], 2 * 5 + 2 * PAIRATTN_Q);
+}
+
+/* Each ingredient off is really off:
+ *  - the paper reading's velocity does not move (bit for bit) when the
+ *    features it does not embed (3..nfeat-1) change, while paper-fourier's does;
+ *  - standardisation on equals the model without it (same parameters) fed the
+ *    standardised features, bit for bit; off, the raw features go in;
+ *  - without pair attention the velocity does not depend on the pair z-scores
+ *    (there are none: nnorm holds the token ones only). */
+static void test_reading_ingredients_off_are_off(void **s)
+{
+    (void)s;
+    enum { B = 2, T = 5, P = 6, NF = 5 };
+    float v1[B * T * P], v2[B * T * P];
+    for (int r = MODEL_PAPER; r <= MODEL_PAPER_FOURIER; r++) {
+        fx f;
+        fx_make_cfg(&f, tiny_reading(1, (model_reading)r), B, 81);
+        assert_int_equal(model_forward(f.m, B, f.xt, f.feat, f.cond, f.t, v1), CS_OK);
+        for (int i = 0; i < B * T; i++) f.feat[i * NF + 3] += 0.9f, f.feat[i * NF + 4] -= 0.6f;
+        assert_int_equal(model_forward(f.m, B, f.xt, f.feat, f.cond, f.t, v2), CS_OK);
+        int same = !memcmp(v1, v2, sizeof v1);
+        assert_int_equal(same, r == MODEL_PAPER);
+        fx_free(&f);
+    }
+    /* standardisation: paper-fourier vs plain with the same parameters */
+    fx f;
+    fx_make_cfg(&f, tiny_reading(1, MODEL_PAPER_FOURIER), B, 83);
+    assert_true(f.m->norm[0] != 0.f && f.m->norm[NF] != 1.f);
+    model_cfg pc = tiny_reading(1, MODEL_PLAIN);
+    model *pm;
+    assert_int_equal(model_alloc(&pm, &pc, B), CS_OK);
+    assert_int_equal(pm->nparams, f.m->nparams);
+    memcpy(pm->params, f.m->params, sizeof(float) * pm->nparams);
+    float zf[B * T * NF];
+    for (int i = 0; i < B * T; i++)
+        for (int k = 0; k < NF; k++) zf[i * NF + k] = (f.feat[i * NF + k] - f.m->norm[k]) * f.m->norm[NF + k];
+    assert_int_equal(model_forward(f.m, B, f.xt, f.feat, f.cond, f.t, v1), CS_OK);
+    assert_int_equal(model_forward(pm, B, f.xt, zf, f.cond, f.t, v2), CS_OK);
+    assert_memory_equal(v1, v2, sizeof v1);
+    /* and the plain model with the raw features differs (it does not standardise) */
+    assert_int_equal(model_forward(pm, B, f.xt, f.feat, f.cond, f.t, v2), CS_OK);
+    assert_true(memcmp(v1, v2, sizeof v1) != 0);
+    model_free(pm);
+    fx_free(&f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -398,6 +531,10 @@ int main(void)
         cmocka_unit_test(test_sample_same_bits_for_any_pass_size),
         cmocka_unit_test(test_pair_fm_grad_same_bits_for_any_pass_size),
         cmocka_unit_test(test_pair_sample_same_bits_for_any_pass_size),
+        cmocka_unit_test(test_reading_names_and_legacy_configurations),
+        cmocka_unit_test(test_reading_gradients),
+        cmocka_unit_test(test_reading_parameter_counts),
+        cmocka_unit_test(test_reading_ingredients_off_are_off),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

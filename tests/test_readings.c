@@ -8,6 +8,8 @@
  *    (readings_compute) and must agree bit for bit; a changed value is
  *    caught naming file, line and field. */
 #include "testutil.h"
+#include "unstated.h"
+#include "teacher.h"
 #include "claims.h"
 #include "estimator.h"
 #include "exp_common.h"
@@ -94,16 +96,73 @@ static void test_reading_switches_parse_strictly(void **s)
     assert_int_equal(exp_reading_parse("teacher-1", "r1", &r), CS_OK);
     assert_int_equal(r.one_sided, 1);
     assert_int_equal(r.layout, EXP_LAYOUT_R1);
-    ASSERT_EXACT(exp_field_d(EXP_LAYOUT_R2), 4.0);
-    ASSERT_EXACT(exp_field_L(EXP_LAYOUT_R2), 36.0);
-    ASSERT_EXACT(exp_field_d(EXP_LAYOUT_R1), 5.0);
-    ASSERT_EXACT(exp_field_L(EXP_LAYOUT_R1), 60.0);
+    exp_reading r2 = {.layout = EXP_LAYOUT_R2}, r1 = {.layout = EXP_LAYOUT_R1};
+    ASSERT_EXACT(exp_field_d(&r2), 4.0);
+    ASSERT_EXACT(exp_field_L(&r2), 36.0);
+    ASSERT_EXACT(exp_field_d(&r1), 5.0);
+    ASSERT_EXACT(exp_field_L(&r1), 60.0);
+    ASSERT_EXACT(exp_field_d(NULL), 4.0);
+    /* a sensitivity variant: one choice moved, every other the design's */
+    assert_int_equal(exp_reading_parse(NULL, NULL, &r), CS_OK);
+    assert_int_equal(exp_reading_vary("field_d=3.5", &r), CS_OK);
+    assert_int_equal(r.varied, 1);
+    ASSERT_EXACT(exp_field_d(&r), 3.5);
+    ASSERT_EXACT(exp_field_L(&r), 36.0);
+    ASSERT_EXACT(exp_fig_c(&r), EXP_FIG_C);
+    assert_int_equal(exp_nres(&r), 48);
+    ASSERT_EXACT(r.var.crowns.R_scale, 4.0);
+    assert_int_equal(exp_reading_vary("growth_N=32", &r), CS_OK);
+    assert_int_equal(exp_nres(&r), 32);
+    ASSERT_EXACT(exp_field_d(&r), 4.0);
+    {
+        exp_reading sr;
+        teacher_params tp;
+        assert_int_equal(exp_reading_parse(NULL, NULL, &sr), CS_OK);
+        EXP_TEACHER_PARAMS(&sr, &tp);
+        ASSERT_EXACT(tp.start_frac, 0.05);
+        assert_int_equal(exp_reading_vary("start=0.1", &sr), CS_OK);
+        EXP_TEACHER_PARAMS(&sr, &tp);
+        ASSERT_EXACT(tp.start_frac, 0.1);
+        assert_int_equal(tp.nres, 48);
+    }
+    assert_int_equal(exp_reading_vary("growth_N=32.5", &r), CS_EINPUT);
+    assert_int_equal(exp_reading_vary("crown_X=3", &r), CS_EINPUT);
+    assert_int_equal(exp_reading_vary("crown_R", &r), CS_EINPUT);
+    assert_int_equal(exp_reading_vary("crown_R=-1", &r), CS_EINPUT);
+    exp_reading rr1;
+    assert_int_equal(exp_reading_parse(NULL, "r1", &rr1), CS_OK);
+    assert_int_equal(exp_reading_vary("field_L=44", &rr1), CS_EINPUT);
+    /* every choice of the sensitivity list is a valid switch at each of its values */
+    size_t nc;
+    const unstated_choice *uc = unstated_list(&nc);
+    for (size_t i = 0; i < nc; i++)
+        for (int k = 0; k < uc[i].nvalues; k++) {
+            char spec[64];
+            snprintf(spec, sizeof spec, "%s=%.17g", uc[i].name, uc[i].values[k]);
+            exp_reading v;
+            assert_int_equal(exp_reading_parse(NULL, NULL, &v), CS_OK);
+            assert_int_equal(exp_reading_vary(spec, &v), CS_OK);
+            if (strcmp(uc[i].name, "dieback")) assert_true(k < uc[i].nvalues / 2 ? uc[i].values[k] < uc[i].ours : uc[i].values[k] > uc[i].ours);
+        }
+    assert_int_equal(exp_reading_parse("teacher-2-arc", NULL, &r), CS_OK);
+    assert_int_equal(r.dieback, TEACHER_DIEBACK_NEIGHBOURS);
+    assert_int_equal(r.one_sided, 0);
+    assert_int_equal(exp_reading_parse("teacher-2-target", NULL, &r), CS_OK);
+    assert_int_equal(r.dieback, TEACHER_DIEBACK_TARGET);
+    {
+        prov pt;
+        char *av[] = {"x"};
+        exp_prov_begin(&pt, "test", &r, 1, av);
+        assert_string_equal(pt.teacher_version, "teacher-2-target");
+    }
+    assert_int_equal(exp_reading_parse("teacher-2-arcs", NULL, &r), CS_EINPUT);
+    assert_int_equal(exp_reading_parse("teacher-2x", NULL, &r), CS_EINPUT);
     assert_int_equal(exp_reading_parse("teacher-3", NULL, &r), CS_EINPUT);
     assert_int_equal(exp_reading_parse(NULL, "r3", &r), CS_EINPUT);
     /* the provenance names the reading that ran */
     prov p;
     char *argv[] = {"x"};
-    exp_reading one = {1, EXP_LAYOUT_R1};
+    exp_reading one = {.one_sided = 1, .layout = EXP_LAYOUT_R1};
     exp_prov_begin(&p, "test", &one, 1, argv);
     assert_string_equal(p.teacher_version, "teacher-1");
     assert_string_equal(p.experiment, "test");

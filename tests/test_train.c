@@ -431,6 +431,82 @@ static void test_pair_model_loads_with_its_z_scores(void **s)
     train_free(t); patch_set_free(d);
 }
 
+/* Readings (model.h) travel in the headers' former pad: zero for plain and
+ * pair (their files are those written before the readings), the stdz and
+ * nuse of paper and paper-fourier otherwise; every reading round-trips through
+ * a weights file and a checkpoint, and samples as the trained model does. */
+static void test_readings_round_trip_in_weights_and_checkpoints(void **s)
+{
+    (void)s;
+    patch_set *d = toy_set(20, 1, 6);
+    const char *dir = tu_tmpdir("readings_files");
+    for (int r = 0; r < MODEL_NREADING; r++) {
+        model_cfg c = small_cfg(1);
+        model_cfg_set_reading(&c, (model_reading)r);
+        train_opts o = small_opts(4);
+        char wp[600], cp[600];
+        snprintf(wp, sizeof wp, "%s/w%d.ckpt", dir, r);
+        snprintf(cp, sizeof cp, "%s/c%d.ckpt", dir, r);
+        train *t;
+        assert_int_equal(train_alloc(&t, &c, d, &o), CS_OK);
+        assert_int_equal(train_run(t, 2, cp, 0, NULL), CS_OK);
+        assert_int_equal(train_save_weights(t, wp), CS_OK);
+        FILE *f = fopen(wp, "rb");
+        int32_t ingr = -1;
+        assert_int_equal(fseek(f, 12 + 11 * 4, SEEK_SET), 0);
+        assert_int_equal(fread(&ingr, 4, 1, f), 1);
+        fclose(f);
+        if (r == MODEL_PLAIN || r == MODEL_PAIR) assert_int_equal(ingr, 0);
+        else assert_true(ingr != 0);
+        for (int k = 0; k < 2; k++) {
+            model *m;
+            assert_int_equal(train_load_model(k ? cp : wp, &m, 3, NULL), CS_OK);
+            assert_int_equal(model_cfg_reading(&m->cfg), r);
+            assert_int_equal(m->nparams, t->m->nparams);
+            assert_memory_equal(m->norm, t->m->norm, sizeof(float) * t->m->nnorm);
+            assert_memory_equal(m->params, t->m->params, sizeof(float) * m->nparams);
+            float x1[2 * PATCH_T * PATCH_P], x2[2 * PATCH_T * PATCH_P];
+            gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
+            gsl_rng_set(g, 9);
+            assert_int_equal(model_sample(m, g, 2, d->feat, d->cond, 3, x1), CS_OK);
+            gsl_rng_set(g, 9);
+            assert_int_equal(model_sample(t->m, g, 2, d->feat, d->cond, 3, x2), CS_OK);
+            assert_memory_equal(x1, x2, sizeof x1);
+            gsl_rng_free(g);
+            model_free(m);
+        }
+        /* a checkpoint of another reading belongs to another run */
+        model_cfg c2 = small_cfg(1);
+        model_cfg_set_reading(&c2, (model_reading)((r + 1) % MODEL_NREADING));
+        train *u;
+        assert_int_equal(train_alloc(&u, &c2, d, &o), CS_OK);
+        assert_int_equal(train_load(u, cp), CS_EINPUT);
+        train_free(u);
+        train_free(t);
+    }
+    patch_set_free(d);
+}
+
+/* The frozen weights of the pair-aware runs (written before the readings)
+ * load as the pair reading with the reference shape. */
+static void test_frozen_weights_load_as_the_pair_reading(void **s)
+{
+    (void)s;
+    static const char *arms[2] = {"joint", "indep"};
+    for (int a = 0; a < 2; a++) {
+        char p[256];
+        snprintf(p, sizeof p, "frozen/main/weights_s01_%s.ckpt", arms[a]);
+        model *m;
+        double scale = 0;
+        assert_int_equal(train_load_model(p, &m, 2, &scale), CS_OK);
+        assert_int_equal(model_cfg_reading(&m->cfg), MODEL_PAIR);
+        assert_int_equal(m->cfg.joint, !a);
+        assert_int_equal(m->nparams, 161208);
+        assert_true(scale > 0);
+        model_free(m);
+    }
+}
+
 /* Weights files: the model, its z-scores and scale only, sealed; a tampered
  * or truncated file is refused. */
 static void test_weights_file_round_trips_and_is_sealed(void **s)
@@ -514,6 +590,8 @@ int main(void)
         cmocka_unit_test(test_pair_kill_and_resume_is_bit_identical_independent),
         cmocka_unit_test(test_version_1_checkpoint_is_refused_clearly),
         cmocka_unit_test(test_pair_model_loads_with_its_z_scores),
+        cmocka_unit_test(test_readings_round_trip_in_weights_and_checkpoints),
+        cmocka_unit_test(test_frozen_weights_load_as_the_pair_reading),
         cmocka_unit_test(test_weights_file_round_trips_and_is_sealed),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

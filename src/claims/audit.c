@@ -139,6 +139,15 @@ static void claims_of_code(const claims *c, const char *path, char *buf, size_t 
 
 /* The instrument pins that name a reading (not the gates: a gate is never
  * superseded, it is preregistered). */
+/* v is the teacher version `base` of a reading: base itself, or base with
+ * one of the teacher's die-back suffixes (teacher.h teacher_version()). */
+static int reading_version(const char *v, const char *base)
+{
+    size_t l = strlen(base);
+    if (strncmp(v, base, l)) return 0;
+    return !v[l] || !strcmp(v + l, "-arc") || !strcmp(v + l, "-target");
+}
+
 static int reading_key(const char *key)
 {
     return !strcmp(key, "teacher_version") || !strcmp(key, "teacher_sha256") || !strcmp(key, "estimator_sha256");
@@ -419,12 +428,16 @@ static void check_provenance(const claims *c, checklist *cl, const paths_list *f
                 for (size_t j = 0; j < n; j++) if (!strcmp(cur[j].key, keys[k])) want = cur[j].value;
                 if (v && want && !strcmp(v, want)) continue;
                 /* The readings (design.md §7 E0) run the pinned teacher under its
-                 * one-sided switch too: under frozen/readings/ the other
-                 * reading's version string is expected, not a mismatch. */
+                 * one-sided switch and its other die-back readings too (the
+                 * sensitivity's dieback units as well): under frozen/readings/
+                 * and frozen/sensitivity/ those version strings (teacher_version():
+                 * the pinned or the one-sided version, optionally "-arc" or
+                 * "-target") are expected, not a mismatch. */
                 char one[32] = "";
                 if (k == 0 && prov_teacher_version_one_sided(one, sizeof one)) one[0] = '\0';
-                if (k == 0 && v && !strncmp(p, PATHS_FROZEN_DIR "/readings/", strlen(PATHS_FROZEN_DIR) + 10) &&
-                    ((one[0] && !strcmp(v, one)) || !strcmp(v, "per run")))
+                if (k == 0 && v && (!strncmp(p, PATHS_FROZEN_DIR "/readings/", strlen(PATHS_FROZEN_DIR) + 10) ||
+                                    !strncmp(p, PATHS_SENS_DIR "/", strlen(PATHS_SENS_DIR) + 1)) &&
+                    ((one[0] && reading_version(v, one)) || (want && reading_version(v, want)) || !strcmp(v, "per run")))
                     continue;
                 mismatch++;
                 int line = v && reading_key(keys[k]) ? superseded_line(sup, keys[k], v) : 0;

@@ -244,6 +244,7 @@ void audit_feeds(const claims *c, const char *path, char *buf, size_t n)
         free(s);
     }
     if (!cnt && !strncmp(path, PATHS_READINGS_DIR "/", strlen(PATHS_READINGS_DIR) + 1)) { snprintf(buf, n, "the readings table %s", PATHS_READINGS_TEX); cnt = 1; }
+    if (!cnt && !strncmp(path, PATHS_SENS_DIR "/", strlen(PATHS_SENS_DIR) + 1)) { snprintf(buf, n, "the sensitivity table %s", PATHS_SENS_TEX); cnt = 1; }
     if (!cnt) snprintf(buf, n, "(no claim)");
 }
 

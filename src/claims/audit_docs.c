@@ -298,6 +298,15 @@ static size_t scan_numbers(const char *path, int lineno, const char *line, const
     size_t bad = 0;
     for (const char *s = line; *s; ) {
         if (!isdigit((unsigned char)*s) || (s > line && (isalnum((unsigned char)s[-1]) || strchr("\\_.", s[-1])))) { s++; continue; }
+        /* a section reference (§3.1, § 5.2) is no number of the study */
+        {
+            const char *q = s;
+            if (q > line && q[-1] == ' ') q--;
+            if (q - line >= 2 && (unsigned char)q[-2] == 0xC2 && (unsigned char)q[-1] == 0xA7) {
+                while (isdigit((unsigned char)*s) || (*s == '.' && isdigit((unsigned char)s[1]))) s++;
+                continue;
+            }
+        }
         const char *e = s;
         while (isdigit((unsigned char)*e)) e++;
         int dec = 0, sig = 0, lead = 1;

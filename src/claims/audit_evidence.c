@@ -439,13 +439,29 @@ void audit_gates_prereg(const claims *c, checklist *cl)
                       git ? "their content at the preregistration commit " : "their pinned preregistered hashes (no .git) in ", git ? base : PATHS_GATES_PREREG);
 }
 
+/* Does this history hold the preregistration commit recorded in the pinned
+ * copy of the gates' hashes? A fresh or shallow history does not: its past
+ * versions cannot show what the package's history would. */
+static int history_has_prereg(void)
+{
+    FILE *f = fopen(PATHS_GATES_PREREG, "r");
+    char line[256], commit[64] = "";
+    while (f && fgets(line, sizeof line, f) && line[0] == '#')
+        if (sscanf(line, "# preregistration_commit: %63s", commit) == 1) break;
+    if (f) fclose(f);
+    if (!commit[0] || strspn(commit, "0123456789abcdef") != strlen(commit)) return 0;
+    char cmd[160];
+    snprintf(cmd, sizeof cmd, "git cat-file -e '%s^{commit}' 2>/dev/null", commit);
+    return system(cmd) == 0;
+}
+
 /* ---- superseded pins: real past values ---- */
 
 void audit_superseded_real(checklist *cl)
 {
     tsv *t;
     if (tsv_read(PATHS_PINS_SUPERSEDED, &t)) { checklist_add(cl, VERDICT_FAIL, "superseded pins", "%s", cs_errmsg()); return; }
-    int git = have_git();
+    int git = have_git(), full = git && history_has_prereg();
     size_t bad = 0, n = tsv_nrows(t);
     for (size_t r = 0; r < n; r++) {
         const char *k = tsv_str(t, r, "key"), *v = tsv_str(t, r, "value"), *p = tsv_str(t, r, "path");
@@ -457,7 +473,7 @@ void audit_superseded_real(checklist *cl)
             continue;
         }
         char commit[16];
-        if (git && !git_past_value(p, version, v, commit, sizeof commit)) {
+        if (full && !git_past_value(p, version, v, commit, sizeof commit)) {
             checklist_add(cl, VERDICT_FAIL, "superseded pins", "%s:%d: %s %.16s… is no past version of %s in the history (made up?); tables naming it are not traceable",
                           PATHS_PINS_SUPERSEDED, tsv_line(t, r), k, v, p);
             bad++;
@@ -466,7 +482,9 @@ void audit_superseded_real(checklist *cl)
     tsv_free(t);
     if (!bad)
         checklist_add(cl, VERDICT_PASS, "superseded pins", "%zu superseded pins%s", n,
-                      git ? ", each a real past version of its file in the history" : " (no .git: each rests on the pin of " PATHS_PINS_SUPERSEDED " in " PATHS_PINS ")");
+                      full ? ", each a real past version of its file in the history"
+                      : git ? " (this history lacks the preregistration commit of " PATHS_GATES_PREREG ": each rests on the pin of " PATHS_PINS_SUPERSEDED " in " PATHS_PINS ")"
+                            : " (no .git: each rests on the pin of " PATHS_PINS_SUPERSEDED " in " PATHS_PINS ")");
 }
 
 /* The first value of "# key: value" at the top of path into out; 1 if found. */

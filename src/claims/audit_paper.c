@@ -3,14 +3,18 @@
  * The hand-written text is read by audit_tex.c. */
 #include "audit_paper.h"
 #include "afile.h"
+#include "attrib.h"
 #include "readings.h"
+#include "sens.h"
+#include <ctype.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-static const char *const generated[] = {PATHS_NUMBERS, PATHS_COMPARISON, PATHS_READINGS_TEX, NULL};
+static const char *const generated[] = {PATHS_NUMBERS, PATHS_COMPARISON, PATHS_READINGS_TEX, PATHS_SENS_TEX, NULL};
 
 int paper_is_generated(const char *path)
 {
@@ -18,13 +22,29 @@ int paper_is_generated(const char *path)
     return 0;
 }
 
+/* The sensitivity table (design.md §7 E0), checked against its unit tables. */
+static cs_status sens_generate(const claims *c, const char *dir, int *made)
+{
+    struct stat sb;
+    *made = 0;
+    if (stat(PATHS_SENS_SUMMARY, &sb) != 0) return CS_OK;
+    size_t n = sens_count();
+    sens_row *rows = calloc(n, sizeof *rows);
+    cs_status st = rows ? sens_compute(c, PATHS_SENS_DIR, rows) : cs_err(CS_ENOMEM, "out of memory");
+    if (!st) st = sens_check(PATHS_SENS_SUMMARY, rows, n);
+    char p[512];
+    snprintf(p, sizeof p, "%s/sensitivity.tex", dir);
+    if (!st) st = sens_write_tex(p, rows, n);
+    free(rows);
+    *made = !st;
+    return st;
+}
+
 cs_status paper_generate(const claims *c, const claim_result *res, const char *dir, int *readings)
 {
     char p[512];
     snprintf(p, sizeof p, "%s/numbers.tex", dir);
     cs_status st = claims_write_numbers(p, c, res);
-    snprintf(p, sizeof p, "%s/comparison.tex", dir);
-    if (!st) st = claims_write_comparison(p, c, res);
     struct stat sb;
     *readings = 0;
     if (!st && stat(PATHS_READINGS_SUMMARY, &sb) == 0) {
@@ -37,6 +57,14 @@ cs_status paper_generate(const claims *c, const claim_result *res, const char *d
         free(rows);
         *readings = !st;
     }
+    int sens = 0;
+    if (!st) st = sens_generate(c, dir, &sens);
+    if (sens) *readings |= 2;
+    /* the comparison last: its attribution column reads the two summaries just checked */
+    attrib_data at;
+    if (!st) st = attrib_load(PATHS_READINGS_SUMMARY, PATHS_SENS_SUMMARY, &at);
+    snprintf(p, sizeof p, "%s/comparison.tex", dir);
+    if (!st) { st = attrib_write_comparison(p, c, res, &at); attrib_free(&at); }
     return st;
 }
 

@@ -9,8 +9,10 @@
 
 /* Is path one of the generated paper files (numbers, comparison, readings)? */
 int paper_is_generated(const char *path);
-/* Write numbers.tex, comparison.tex and (when frozen/readings/summary.tsv
- * exists; *readings = 1) readings.tex into dir. Errors name file and field. */
+/* Write numbers.tex, comparison.tex, readings.tex (when
+ * frozen/readings/summary.tsv exists; *readings bit 1) and sensitivity.tex
+ * (when frozen/sensitivity/summary.tsv exists; bit 2) into dir, each summary
+ * checked against its run tables first. Errors name file and field. */
 cs_status paper_generate(const claims *c, const claim_result *res, const char *dir, int *readings);
 /* Each generated file equals a fresh generation (only numbers.tex when
  * only_numbers), naming the first differing line and its claim. */

@@ -1,7 +1,12 @@
 /* claim_main: computing functions for the E3 main and E4 extrapolation
  * claims (reference paper §5.1-§5.2; gates/main.gate, gates/extrapolation.gate),
  * from frozen/main/runs.tsv, frozen/main/baselines.tsv and
- * frozen/extrapolation/runs.tsv written by src/exp/exp_main.c. m_J and m_I are
+ * frozen/extrapolation/runs.tsv written by src/exp/exp_main.c, or the same tables
+ * of another generator reading under its own root (<root>/main/...,
+ * <root>/extrapolation/...: the runs and baselines of a claim are those of the
+ * root of its source, and a macro's reading prefix, as in PairMainRel, is
+ * ignored when the claim is computed, so one function serves every reading;
+ * design.md §8 "Readings of the generator"). m_J and m_I are
  * medians over seeds of the per-run error; p is the exact two-sided Wilcoxon
  * signed-rank test of the paired per-seed errors. */
 #include "claims.h"
@@ -70,6 +75,25 @@ static cs_status read_runs(const char *path, main_runs *r, claim_result *res)
     return st;
 }
 
+/* out = <root of source>/main/<leaf>: the root is what precedes the last
+ * "/main/" or "/extrapolation/" of the source path. */
+static void reading_path(const char *source, const char *leaf, char *out, size_t n)
+{
+    const char *cut = NULL;
+    for (const char *q = source; (q = strstr(q, "/main/")); q++) cut = q;
+    for (const char *q = source; (q = strstr(q, "/extrapolation/")); q++) if (!cut || q > cut) cut = q;
+    int len = cut ? (int)(cut - source) : (int)strlen("frozen");
+    snprintf(out, n, "%.*s/main/%s", len, cut ? source : "frozen", leaf);
+}
+
+/* The macro without its reading prefix (PairMainRel -> MainRel). */
+static const char *base_macro(const char *m)
+{
+    const char *a = strstr(m, "Main"), *b = strstr(m, "Extrap");
+    if (a && (!b || a < b)) return a;
+    return b ? b : m;
+}
+
 static double med(const double *x, int n)
 {
     double m = NAN;
@@ -78,9 +102,15 @@ static double med(const double *x, int n)
 }
 
 /* mean over the unseen spacings of the direction-blind or noise-floor W1 */
-static cs_status read_baseline(const char *col, const char *split, double d_only, double *out, char *where, size_t wn)
+/* source: the row's source (a reading's main/ or extrapolation/ table, whose
+ * baselines.tsv is read), or a baselines table itself (a sensitivity run's,
+ * design.md §7 E0). */
+static cs_status read_baseline(const char *source, const char *col, const char *split, double d_only, double *out, char *where, size_t wn)
 {
-    const char *path = "frozen/main/baselines.tsv";
+    char path[200];
+    size_t ls = strlen(source), lb = strlen("baselines.tsv");
+    if (ls >= lb && !strcmp(source + ls - lb, "baselines.tsv")) snprintf(path, sizeof path, "%s", source);
+    else reading_path(source, "baselines.tsv", path, sizeof path);
     tsv *t;
     cs_status st = tsv_read(path, &t);
     if (st) return st;
@@ -107,7 +137,7 @@ cs_status claim_main_median(const claim_row *row, claim_result *res)
     main_runs r;
     cs_status st = read_runs(row->source, &r, res);
     if (st) return st;
-    claim_set_value(row, res, med(strcmp(row->macro, "MainJoint") ? r.v[1] : r.v[0], r.n));
+    claim_set_value(row, res, med(strcmp(base_macro(row->macro), "MainJoint") ? r.v[1] : r.v[0], r.n));
     return CS_OK;
 }
 
@@ -116,7 +146,7 @@ cs_status claim_main_range(const claim_row *row, claim_result *res)
     main_runs r;
     cs_status st = read_runs(row->source, &r, res);
     if (st) return st;
-    const double *x = !strncmp(row->macro, "MainJoint", 9) ? r.v[0] : r.v[1];
+    const double *x = !strncmp(base_macro(row->macro), "MainJoint", 9) ? r.v[0] : r.v[1];
     int hi = strstr(row->macro, "Hi") != NULL;
     claim_set_value(row, res, hi ? stats_max(x, (size_t)r.n) : stats_min(x, (size_t)r.n));
     return CS_OK;
@@ -160,7 +190,7 @@ cs_status claim_main_geom_ratio(const claim_row *row, claim_result *res)
 cs_status claim_main_noise(const claim_row *row, claim_result *res)
 {
     double v;
-    cs_status st = read_baseline("noise_floor_w1", "unseen", 0, &v, res->where, sizeof res->where);
+    cs_status st = read_baseline(row->source, "noise_floor_w1", "unseen", 0, &v, res->where, sizeof res->where);
     if (st) return st;
     claim_set_value(row, res, v);
     return CS_OK;
@@ -169,17 +199,19 @@ cs_status claim_main_noise(const claim_row *row, claim_result *res)
 cs_status claim_main_iso(const claim_row *row, claim_result *res)
 {
     double v;
-    cs_status st = read_baseline("direction_blind_w1", "unseen", 0, &v, res->where, sizeof res->where);
+    cs_status st = read_baseline(row->source, "direction_blind_w1", "unseen", 0, &v, res->where, sizeof res->where);
     if (st) return st;
     claim_set_value(row, res, v);
     /* precondition: m_J <= 0.5 x direction-blind error (needs the runs) */
     main_runs r;
     claim_result tmp = *res;
-    if (read_runs("frozen/main/runs.tsv", &r, &tmp) == CS_OK)
+    char runs[200];
+    reading_path(row->source, "runs.tsv", runs, sizeof runs);
+    if (read_runs(runs, &r, &tmp) == CS_OK)
         claim_judge(row, res, GATE_LE, med(r.v[0], r.n) / v);
     else {
         res->gate = VERDICT_PENDING;
-        snprintf(res->gate_detail, sizeof res->gate_detail, "needs frozen/main/runs.tsv: %s", cs_errmsg());
+        snprintf(res->gate_detail, sizeof res->gate_detail, "needs %s: %s", runs, cs_errmsg());
     }
     return CS_OK;
 }
@@ -198,7 +230,7 @@ cs_status claim_main_probe(const claim_row *row, claim_result *res)
         {"MainRotJoint", 4, -1}, {"MainRotIndep", 5, -1}, {"MainRotRatio", 4, 0}, {"MainRotRatioIndep", 5, 1},
     };
     for (size_t i = 0; i < sizeof map / sizeof *map; i++) {
-        if (strcmp(row->macro, map[i].macro)) continue;
+        if (strcmp(base_macro(row->macro), map[i].macro)) continue;
         if (!r.has[map[i].k]) return cs_err(CS_EINPUT, "%s: no %s rows (runs made without the probes)", row->source, kind_name(map[i].k));
         double v = med(r.v[map[i].k], r.n);
         if (map[i].ratio_of >= 0) v /= med(r.v[map[i].ratio_of], r.n);
@@ -214,7 +246,7 @@ cs_status claim_main_teach_probe(const claim_row *row, claim_result *res)
 {
     double v;
     const char *col = strstr(row->macro, "Rot") ? "teacher_rotated_w1" : "teacher_shuffled_w1";
-    cs_status st = read_baseline(col, "unseen", 0, &v, res->where, sizeof res->where);
+    cs_status st = read_baseline(row->source, col, "unseen", 0, &v, res->where, sizeof res->where);
     if (st) return st;
     claim_set_value(row, res, v);
     return CS_OK;
@@ -261,7 +293,7 @@ cs_status claim_extrap_rel(const claim_row *row, claim_result *res)
     if (!st) st = gate_value(g, "spacings_m", 1, &dhi);
     gate_free(g);
     if (st) return st;
-    double want = !strcmp(row->macro, "ExtrapLowRel") ? dlo : dhi;
+    double want = !strcmp(base_macro(row->macro), "ExtrapLowRel") ? dlo : dhi;
     int k = 0;
     while (k < e.n && fabs(e.d[k] - want) > 1e-9) k++;
     if (k == e.n) return cs_err(CS_EINPUT, "%s: no runs at %.1f m", row->source, want);
@@ -271,9 +303,11 @@ cs_status claim_extrap_rel(const claim_row *row, claim_result *res)
     claim_judge(row, res, GATE_GE, rel);
     /* judged per spacing, together with: the joint arm below the direction-blind error there */
     double blind;
-    if ((st = read_baseline("direction_blind_w1", "extrap", want, &blind, NULL, 0))) {
+    if ((st = read_baseline(row->source, "direction_blind_w1", "extrap", want, &blind, NULL, 0))) {
+        char bp[200];
+        reading_path(row->source, "baselines.tsv", bp, sizeof bp);
         res->gate = VERDICT_PENDING;
-        snprintf(res->gate_detail, sizeof res->gate_detail, "needs frozen/main/baselines.tsv: %s", cs_errmsg());
+        snprintf(res->gate_detail, sizeof res->gate_detail, "needs %s: %s", bp, cs_errmsg());
         return CS_OK;
     }
     if (res->gate == VERDICT_PASS && !(mj < blind)) res->gate = VERDICT_FAIL;

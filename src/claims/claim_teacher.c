@@ -64,7 +64,9 @@ static cs_status mech_figure_and_lattice(const claim_row *row, claim_result *res
     claim_set_value(row, res, v);
     lattice_path(row->source, lp, sizeof lp);
     int figure = strcmp(lp, row->source) != 0;
-    if (!figure) {
+    /* the lattice table is read to judge the gate; a row without a gate (and
+     * the readings' and sensitivity's rows) needs only the figure stand */
+    if (!figure || !strcmp(row->gate, "-")) {
         snprintf(res->where, sizeof res->where, "%s", w1);
         if (strcmp(row->gate, "-")) claim_judge(row, res, op, v);
         return CS_OK;

@@ -76,9 +76,8 @@ cs_status claim_main_samples_check(const char *root, int maxseed, char *msg, siz
 #define CLAIMS_PENDING_FMT "\\pending{%s}"
 /* Write the generated file (atomic) from evaluated results. */
 cs_status claims_write_numbers(const char *path, const claims *c, const claim_result *res);
-/* Write paper/comparison.tex: every claim, the reference paper's value, ours,
- * the gate verdict and whether the values agree (generated, atomic). */
-cs_status claims_write_comparison(const char *path, const claims *c, const claim_result *res);
+/* LaTeX-escape a short table cell (% & _ # $). */
+void claims_tex_escape(const char *in, char *out, size_t n);
 /* Distance to the reference paper: 1 and *ref, *rel = (value - ref) / |ref|
  * for a computed measured claim whose reference is a non-zero number; else 0. */
 int claims_rel_diff(const claim_row *row, const claim_result *res, double *ref, double *rel);

@@ -15,10 +15,11 @@ static const readings_def READINGS[] = {
     {"t2-r1-axes", "t2-r1", 1, 1, "teacher-2, layout r1, all-axis elongation, Mech* on the figure stand"},
     {"t1-r2", "t1-r2", 1, 1, "revision 2 with teacher-1 (one-sided die-back)"},
     {"rev2", "t2-r2", 1, 1, "revision 2 (adopted): teacher-2, layout r2 (4 m on 36 m), all-axis elongation, Mech* on the figure stand"},
+    {"arc", "t2a-r2", 1, 1, "revision 2 with the contact arc s-1..s+1 dying back too (teacher-2-arc; measured, not adopted)"},
 };
 #define NREAD (sizeof READINGS / sizeof READINGS[0])
 
-static const char *const RUNS[] = {"t1-r1", "t2-r1", "t1-r2", "t2-r2"};
+static const char *const RUNS[] = {"t1-r1", "t2-r1", "t1-r2", "t2-r2", "t2a-r2"};
 #define NRUNS (sizeof RUNS / sizeof RUNS[0])
 
 /* Quantities: registry macros (values by their computing functions). */

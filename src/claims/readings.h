@@ -6,8 +6,11 @@
  * reading) with the registry's own computing function (claims.h) on that
  * run's tables, beside the paper's value (audit/claims.tsv reference column).
  *
- * Runs (directories under <dir>): t1-r1, t2-r1, t1-r2, t2-r2 (teacher-1|2,
- * layout r1|r2). Readings (rows): a run plus two choices that need no rerun,
+ * Runs (directories under <dir>): t1-r1, t2-r1, t1-r2, t2-r2, t2a-r2
+ * (t2a: teacher-2 with the contact arc dying back too, -arc; teacher-1|2,
+ * layout r1|r2; the die-back by beta of the target length cannot be
+ * calibrated on the field grid, so it runs as a sensitivity unit, sens.h).
+ * Readings (rows): a run plus two choices that need no rerun,
  * read from the same tables: the elongation (cardinal, or all
  * axes, paper §5.3 "the ratio of the longest to shortest crown axis") and
  * the stand the Mech* numbers are measured on (the lattice ablation,

@@ -1,5 +1,6 @@
 /* verify: the `make verify` driver and `crownshy trace` (design.md §9). */
 #include "verify.h"
+#include "attrib.h"
 #include "study.h"
 #include <stdio.h>
 #include <stdlib.h>
@@ -222,7 +223,8 @@ typedef struct { size_t rep, notrep, gpend; char notrep_list[1024]; } gate_tally
 
 /* One line per claim: consistent or not, and its gate's verdict (a table
  * made by a superseded reading is pending, never reproduced nor not). */
-static void print_claims(const claims *c, const claim_result *res, const numbers_tex *nt, size_t count[3], gate_tally *t)
+static void print_claims(const claims *c, const claim_result *res, const numbers_tex *nt, const attrib_data *at,
+                         size_t count[3], gate_tally *t)
 {
     for (size_t i = 0; i < c->n; i++) {
         char msg[1200];
@@ -253,9 +255,15 @@ static void print_claims(const claims *c, const claim_result *res, const numbers
         const char *val = res[i].status == VERDICT_PASS ? res[i].text : "-";
         const char *g = gated ? verdict_name(res[i].gate) : "-";
         double ref, rel;
-        char dist[96] = "";
+        char dist[400] = "";
         if (claims_rel_diff(&c->rows[i], &res[i], &ref, &rel))
-            snprintf(dist, sizeof dist, " [paper %s: %+.1f %%]", c->rows[i].reference, 100.0 * rel);
+        {
+            attrib_result ar;
+            attrib_judge(at, &c->rows[i], &res[i], &ar);
+            snprintf(dist, sizeof dist, " [paper %s: %+.1f %%%s%.240s]", c->rows[i].reference, 100.0 * rel,
+                     ar.kind == ATTRIB_EXPLAINED ? "; reached by " : ar.kind == ATTRIB_UNEXPLAINED ? "; unexplained"
+                     : ar.kind == ATTRIB_UNTESTED ? "; unexplained, not varied" : "", ar.kind == ATTRIB_EXPLAINED ? ar.by : "");
+        }
         printf("  %-7s %-19s %-12s %-10s %-8s %s%s\n", label, c->rows[i].macro, val, c->rows[i].kind, g, msg, dist);
         count[v]++;
     }
@@ -286,7 +294,10 @@ cs_status verify_run(const verify_opts *o)
     printf("  %-7s %-19s %-12s %-10s %-8s %s\n", "status", "macro", "value", "kind", "gate", "source / reason");
     if (!have_nt) { printf("  FAIL    paper/numbers.tex unreadable: %s\n", nterr); count[VERDICT_FAIL]++; }
     gate_tally gt = {0};
-    print_claims(&c, res, have_nt ? &nt : NULL, count, &gt);
+    /* the attribution of each difference (attrib.h), from the frozen summaries */
+    attrib_data at = {0};
+    int at_ok = attrib_load(PATHS_READINGS_SUMMARY, PATHS_SENS_SUMMARY, &at) == CS_OK;
+    print_claims(&c, res, have_nt ? &nt : NULL, &at, count, &gt);
     const size_t rep = gt.rep, notrep = gt.notrep, gpend = gt.gpend;
     const char *notrep_list = gt.notrep_list;
 
@@ -301,10 +312,14 @@ cs_status verify_run(const verify_opts *o)
     printf("\n== ledger (pinned files changed after the commit that added the preregistered gates)\n");
     audit_ledger(stdout);
 
-    size_t m, a10, a25;
-    claims_within(&c, res, &m, &a10, &a25);
+    if (!at_ok) printf("(attribution: %s)\n", cs_errmsg());
+    attrib_counts ak;
+    attrib_count(&at, &c, res, &ak);
+    attrib_free(&at);
+    char aline[600];
+    attrib_line(&ak, 0, aline, sizeof aline);
     printf("\n%zu pending (input data missing on this machine: reason above; never counted as passed)\n", count[VERDICT_PENDING]);
-    printf("%zu of %zu measured numbers within 10 %% / %zu within 25 %% of the reference paper (distance, not a verdict)\n", a10, m, a25);
+    printf("%s (distance, not a verdict)\n", aline);
     printf("reference paper's gated claims: %zu reproduced, %zu not reproduced%s%s%s, %zu pending\n", rep, notrep,
            notrep ? " (" : "", notrep_list, notrep ? ")" : "", gpend);
     if (count[VERDICT_FAIL])

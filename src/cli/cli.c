@@ -21,7 +21,8 @@ typedef enum { G_REVIEW, G_STUDY, G_MAINTAIN } cmd_group;
 typedef struct { const char *name; cmd_fn fn; cmd_group group; const char *help; } cli_cmd;
 
 const char *const CLI_ARMS[] = {"joint", "indep", "independent=indep", NULL};
-const char *const CLI_TEACHERS[] = {TEACHER_VERSION, TEACHER_VERSION_ONE_SIDED, NULL};
+const char *const CLI_TEACHERS[] = {TEACHER_VERSION, TEACHER_VERSION_ONE_SIDED, TEACHER_VERSION "-arc", TEACHER_VERSION "-target",
+                                     TEACHER_VERSION_ONE_SIDED "-arc", TEACHER_VERSION_ONE_SIDED "-target", NULL};
 const char *const CLI_LAYOUTS[] = {"r2", "r1", NULL};
 
 int cli_fail(const char *cmd, cs_status st)

@@ -31,7 +31,8 @@ extern const char *const CLI_ARMS[];
  * command that takes them. */
 extern const char *const CLI_TEACHERS[];
 extern const char *const CLI_LAYOUTS[];
-#define CLI_OPT_TEACHER(var) {"teacher", OPT_CHOICE, &(var), 0, 0, "teacher reading (default teacher-2, design.md §4)", .choices = CLI_TEACHERS}
+#define CLI_OPT_TEACHER(var) {"teacher", OPT_CHOICE, &(var), 0, 0, "teacher reading (default teacher-2, design.md §4; -arc, -target: the other die-back readings)", .choices = CLI_TEACHERS}
+#define CLI_OPT_VARY(var) {"vary", OPT_STR, &(var), 0, 0, "sensitivity: NAME=VALUE changes one unstated choice (crownshy sensitivity-run --help lists them)"}
 #define CLI_OPT_LAYOUT(var) {"layout", OPT_CHOICE, &(var), 0, 0, "field layout (default r2, design.md §7 E5)", .choices = CLI_LAYOUTS}
 
 /* The whole command line: dispatch argv[1] to its handler (cli.c). */

@@ -11,7 +11,7 @@
 #define OPT_OUT(o) {"out", OPT_STR, &(o).out, 0, 0, "output table", .required = 1}
 #define OPT_CAL(o) {"calibration", OPT_STR, &(o).calibration, 0, 0, "E5 calibration table DIR/calibration.tsv, gives beta_field", .required = 1}
 #define OPT_STANDS(o, help) {"stands", OPT_LONG, &(o).stands_opt, 1, 10000, help}
-#define OPT_READING(o) CLI_OPT_TEACHER((o).teacher), CLI_OPT_LAYOUT((o).layout)
+#define OPT_READING(o) CLI_OPT_TEACHER((o).teacher), CLI_OPT_LAYOUT((o).layout), CLI_OPT_VARY((o).vary)
 
 /* opts_parse, then the reading from --teacher/--layout; an opts result. */
 static int field_parse(const opts_cmd *c, int argc, char **argv, exp_field_opts *o)
@@ -21,7 +21,7 @@ static int field_parse(const opts_cmd *c, int argc, char **argv, exp_field_opts 
     o->stands = (unsigned)o->stands_opt;
     o->argc = argc;
     o->argv = argv;
-    if (exp_reading_parse(o->teacher, o->layout, &o->rd)) { opts_usage_error(c->cmd, "%s", cs_errmsg()); return OPTS_USAGE; }
+    if (exp_reading_parse(o->teacher, o->layout, &o->rd) || exp_reading_vary(o->vary, &o->rd)) { opts_usage_error(c->cmd, "%s", cs_errmsg()); return OPTS_USAGE; }
     return OPTS_OK;
 }
 

@@ -1,28 +1,45 @@
-/* cli_main: the argv tables of E3/E4 (main-run, main-redraw, main-baselines,
- * main-summary) and E7 (comparison-run); each fills its experiment's args
- * and calls the entry point (src/exp/exp_main.h, exp_comp.h). */
+/* cli_main: the argv tables of E3/E4 (main-run, main-train, main-eval,
+ * main-redraw, main-baselines, main-summary), the generator readings table
+ * (model-readings-summary) and E7 (comparison-run, comparison-dist); each
+ * fills its experiment's args and calls the entry point (src/exp/exp_main.h,
+ * mainsum.h, exp_comp.h, exp_compdist.h; src/claims/model_readings.h). */
 #include "cli.h"
 #include "exp_comp.h"
+#include "exp_common.h"
 #include "exp_main.h"
+#include "exp_compdist.h"
+#include "mainsum.h"
+#include "model_readings.h"
+#include "afile.h"
+#include <stdio.h>
 #include "opts.h"
 
 static const char *const SCALES[] = {"full", "smoke", NULL};
 
+static const char *const READINGS[] = {"plain", "paper", "paper-fourier", "pair", NULL};
+static const char *const VOLUMES[] = {"v1", "v2", NULL};
+
+#define UNIT_SPEC(a, seed) \
+    {"seed", OPT_LONG, &seed, 1, 4294967295.0, "model seed (zero-padded 01 is 1)", .required = 1}, \
+    {"arm", OPT_CHOICE, &(a).arm, 0, 0, "the model's arm", .required = 1, .choices = CLI_ARMS}, \
+    {"scale", OPT_CHOICE, &(a).scale, 0, 0, "the plan's scale (default full)", .choices = SCALES}
+#define TRAIN_SPEC(a, pair) \
+    {"ckpt", OPT_STR, &(a).ckpt, 0, 0, "checkpoint FILE, resumed from when it exists (default none)"}, \
+    {"epochs", OPT_LONG, &(a).epochs, 1, 1000000, "exploration override of the plan's epochs (default: the plan's)"}, \
+    {"train-stands", OPT_LONG, &(a).train_stands, 1, 10000, "exploration override of the plan's stands per training spacing (default: the plan's)"}, \
+    {"reading", OPT_CHOICE, &(a).reading, 0, 0, "generator reading (model.h, design.md §8; default pair)", .choices = READINGS}, \
+    {"pair", OPT_LONG, &pair, 0, 1, "1: the pair reading; 0: the plain reading (the form before --reading)"}
+
 int cli_main_run(int argc, char **argv)
 {
-    long seed = 0, pair = 1;
+    long seed = 0, pair = -1;
     exp_main_run_args a = {.scale = "full", .argc = argc, .argv = argv};
     const opt_spec spec[] = {
-        {"seed", OPT_LONG, &seed, 1, 4294967295.0, "model seed (zero-padded 01 is 1)", .required = 1},
-        {"arm", OPT_CHOICE, &a.arm, 0, 0, "the model's arm", .required = 1, .choices = CLI_ARMS},
+        UNIT_SPEC(a, seed), TRAIN_SPEC(a, pair),
         {"out", OPT_STR, &a.out, 0, 0, "output table FILE.tsv", .required = 1},
-        {"scale", OPT_CHOICE, &a.scale, 0, 0, "the plan's scale (default full)", .choices = SCALES},
-        {"ckpt", OPT_STR, &a.ckpt, 0, 0, "checkpoint FILE, resumed from when it exists (default none)"},
         {"samples", OPT_STR, &a.samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
         {"weights", OPT_STR, &a.weights, 0, 0, "also write the final weights to FILE (weights format, README; default none)"},
-        {"epochs", OPT_LONG, &a.epochs, 1, 1000000, "exploration override of the plan's epochs (default: the plan's)"},
-        {"train-stands", OPT_LONG, &a.train_stands, 1, 10000, "exploration override of the plan's stands per training spacing (default: the plan's)"},
-        {"pair", OPT_LONG, &pair, 0, 1, "1: the pair-aware model of design.md §8, every probe on both arms; 0: the plain model (default 1)"},
+        {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume (src/exp/mainrun.h; default v1)", .choices = VOLUMES},
     };
     const opts_cmd c = {"main-run", "--seed S --arm joint|indep --out FILE.tsv [options]",
                         "One (seed, arm) unit of E3/E4: build teacher data, train the flow model (resuming from\n"
@@ -38,18 +55,64 @@ int cli_main_run(int argc, char **argv)
     return st ? cli_fail("main-run", st) : 0;
 }
 
+int cli_main_train(int argc, char **argv)
+{
+    long seed = 0, pair = -1;
+    exp_main_run_args a = {.scale = "full", .argc = argc, .argv = argv};
+    const opt_spec spec[] = {
+        UNIT_SPEC(a, seed), TRAIN_SPEC(a, pair),
+        {"out", OPT_STR, &a.out, 0, 0, "output training table FILE.tsv", .required = 1},
+        {"weights", OPT_STR, &a.weights, 0, 0, "final weights FILE (weights format, README)", .required = 1},
+    };
+    const opts_cmd c = {"main-train", "--seed S --arm joint|indep --weights FILE --out FILE.tsv [options]",
+                        "Train one (seed, arm) unit of E3/E4 (resuming from --ckpt if it exists) and write its weights\n"
+                        "and a training table; `crownshy main-eval` evaluates the weights.",
+                        spec, sizeof spec / sizeof *spec, 0, 0};
+    int r = opts_parse(&c, argc, argv, NULL, NULL);
+    if (r) return opts_exit_code(r);
+    a.seed = (unsigned)seed;
+    a.pair = (int)pair;
+    cs_status st = exp_main_train(&a);
+    return st ? cli_fail("main-train", st) : 0;
+}
+
+int cli_main_eval(int argc, char **argv)
+{
+    long seed = 0;
+    exp_main_run_args a = {.scale = "full", .pair = -1, .argc = argc, .argv = argv};
+    const opt_spec spec[] = {
+        UNIT_SPEC(a, seed),
+        {"weights", OPT_STR, &a.weights, 0, 0, "weights FILE written by main-run/main-train --weights (or its checkpoint)", .required = 1},
+        {"trained", OPT_STR, &a.trained, 0, 0, "the unit's training or run table, whose model, training, teacher and commit lines are recorded", .required = 1},
+        {"out", OPT_STR, &a.out, 0, 0, "output run table FILE.tsv", .required = 1},
+        {"samples", OPT_STR, &a.samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
+        {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume (src/exp/mainrun.h; default v1)", .choices = VOLUMES},
+        {"reading", OPT_CHOICE, &a.reading, 0, 0, "the reading the weights must be (default: any)", .choices = READINGS},
+    };
+    const opts_cmd c = {"main-eval", "--weights FILE --trained TABLE --seed S --arm joint|indep --out FILE.tsv [options]",
+                        "Evaluate one E3/E4 unit from its weights, without training: the run table and samples of\n"
+                        "main-run at the chosen volume (v1: the data rows of the unit's main-run table, bit for bit).",
+                        spec, sizeof spec / sizeof *spec, 0, 0};
+    int r = opts_parse(&c, argc, argv, NULL, NULL);
+    if (r) return opts_exit_code(r);
+    a.seed = (unsigned)seed;
+    cs_status st = exp_main_eval(&a);
+    return st ? cli_fail("main-eval", st) : 0;
+}
+
 int cli_main_redraw(int argc, char **argv)
 {
     long seed = 0;
-    exp_main_redraw_args a = {.scale = "full", .argc = argc, .argv = argv};
+    exp_main_run_args a = {.scale = "full", .pair = -1, .argc = argc, .argv = argv};
     const opt_spec spec[] = {
         {"weights", OPT_STR, &a.weights, 0, 0, "weights FILE written by main-run --weights (or its checkpoint)", .required = 1},
         {"seed", OPT_LONG, &seed, 1, 4294967295.0, "model seed of the unit", .required = 1},
         {"arm", OPT_CHOICE, &a.arm, 0, 0, "the arm (must match the weights)", .required = 1, .choices = CLI_ARMS},
         {"out", OPT_STR, &a.out, 0, 0, "output samples FILE.tsv", .required = 1},
         {"scale", OPT_CHOICE, &a.scale, 0, 0, "the plan's scale (default full)", .choices = SCALES},
+        {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume (src/exp/mainrun.h; default v1)", .choices = VOLUMES},
     };
-    const opts_cmd c = {"main-redraw", "--weights FILE --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke]",
+    const opts_cmd c = {"main-redraw", "--weights FILE --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--volume v1|v2]",
                         "Draw the clearance samples of one E3/E4 unit again from its weights, without training:\n"
                         "the data rows of FILE.tsv equal those of the unit's samples_s<seed>_<arm>.tsv bit for bit.",
                         spec, sizeof spec / sizeof *spec, 0, 0};
@@ -62,29 +125,31 @@ int cli_main_redraw(int argc, char **argv)
 
 int cli_main_baselines(int argc, char **argv)
 {
-    exp_main_baselines_args a = {.scale = "full", .argc = argc, .argv = argv};
+    mainsum_baselines_args a = {.scale = "full", .argc = argc, .argv = argv};
     const opt_spec spec[] = {
         {"out", OPT_STR, &a.out, 0, 0, "output table FILE.tsv", .required = 1},
         {"scale", OPT_CHOICE, &a.scale, 0, 0, "the plan's scale (default full)", .choices = SCALES},
         {"samples", OPT_STR, &a.samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
+        CLI_OPT_VARY(a.vary),
+        {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume (src/exp/mainrun.h; default v1)", .choices = VOLUMES},
     };
-    const opts_cmd c = {"main-baselines", "--out FILE.tsv [--scale full|smoke] [--samples FILE.tsv]",
+    const opts_cmd c = {"main-baselines", "--out FILE.tsv [--scale full|smoke] [--volume v1|v2] [--samples FILE.tsv]",
                         "Direction-blind baseline (every crown replaced by its circular mean), split-half noise floor\n"
                         "of the teacher, and the teacher's own crowns under the shuffled-geometry and rotation probes\n"
                         "(added after the first verdict), as W1 of focal nearest-neighbour clearances per eval spacing.",
                         spec, sizeof spec / sizeof *spec, 0, 0};
     int r = opts_parse(&c, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
-    cs_status st = exp_main_baselines(&a);
+    cs_status st = mainsum_baselines(&a);
     return st ? cli_fail("main-baselines", st) : 0;
 }
 
 int cli_main_summary(int argc, char **argv)
 {
     long seeds = 0;
-    exp_main_summary_args a = {.argc = argc, .argv = argv};
+    mainsum_summary_args a = {.argc = argc, .argv = argv};
     const opt_spec spec[] = {
-        {"dir", OPT_STR, &a.dir, 0, 0, "results root RESULTS", .required = 1},
+        {"dir", OPT_STR, &a.dir, 0, 0, "a reading's results root RESULTS", .required = 1},
         {"seeds", OPT_LONG, &seeds, 1, 64, "seeds 1..N to gather", .required = 1},
     };
     const opts_cmd c = {"main-summary", "--dir RESULTS --seeds N",
@@ -94,8 +159,54 @@ int cli_main_summary(int argc, char **argv)
     int r = opts_parse(&c, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     a.seeds = (int)seeds;
-    cs_status st = exp_main_summary(&a);
+    cs_status st = mainsum_summary(&a);
     return st ? cli_fail("main-summary", st) : 0;
+}
+
+int cli_comparison_dist(int argc, char **argv)
+{
+    long np = 256;
+    exp_compdist_args a = {.argc = argc, .argv = argv};
+    const opt_spec spec[] = {
+        {"joint", OPT_STR, &a.joint, 0, 0, "joint-arm weights CKPT", .required = 1},
+        {"indep", OPT_STR, &a.indep, 0, 0, "independent-arm weights CKPT of the same seed and reading", .required = 1},
+        {"out", OPT_STR, &a.out, 0, 0, "results root DIR: writes DIR/comparison/dist_{patches,summary}.tsv", .required = 1},
+        {"patches", OPT_LONG, &np, 1, 100000, "fresh patches per probe (default 256)"},
+    };
+    const opts_cmd c = {"comparison-dist", "--joint CKPT --indep CKPT --out DIR [--patches N]",
+                        "E7 and the dart probe as distributions: N fresh patches at 5.0 m (lattice; hard-core for the dart\n"
+                        "probe), teacher, joint and independent arm; per-patch statistics, quantiles and the figure patch.",
+                        spec, sizeof spec / sizeof *spec, 0, 0};
+    int r = opts_parse(&c, argc, argv, NULL, NULL);
+    if (r) return opts_exit_code(r);
+    a.patches = (int)np;
+    cs_status st = exp_compdist_run(&a);
+    return st ? cli_fail("comparison-dist", st) : 0;
+}
+
+int cli_model_readings_summary(int argc, char **argv)
+{
+    const char *dir = NULL, *out = NULL;
+    const opt_spec spec[] = {
+        {"dir", OPT_STR, &dir, 0, 0, "results or frozen root holding paper/, extension-pair/, model-readings/", .required = 1},
+        {"out", OPT_STR, &out, 0, 0, "table FILE.tsv, e.g. DIR/model-readings/summary.tsv", .required = 1},
+    };
+    const opts_cmd c = {"model-readings-summary", "--dir DIR --out FILE.tsv",
+                        "E3/E4 generator readings: per reading that has run, seeds, parameters, joint, independent and\n"
+                        "direction-blind errors, relative improvement, Wilcoxon p, probe ratios, extrapolation advantage, steps/s.",
+                        spec, 2, 0, 0};
+    int r = opts_parse(&c, argc, argv, NULL, NULL);
+    if (r) return opts_exit_code(r);
+    model_readings_row rows[4];
+    size_t n = 0;
+    cs_status st = model_readings_compute(dir, rows, &n);
+    if (!st && !n) st = cs_err(CS_EINPUT, "%s: no reading has a main/runs.tsv", dir);
+    if (!st) st = afile_mkdir_parents(out);
+    if (!st) st = model_readings_write(out, dir, rows, n, argc, argv);
+    for (size_t i = 0; !st && i < n; i++)
+        printf("%-13s %-11s seeds %2d  joint %.4f  indep %.4f  rel %.1f %%  p %.5f  shuffle x%.2f\n", rows[i].reading, rows[i].role,
+               rows[i].seeds, rows[i].joint, rows[i].indep, 100 * rows[i].rel, rows[i].p, rows[i].shuf_joint);
+    return st ? cli_fail("model-readings-summary", st) : 0;
 }
 
 int cli_comparison_run(int argc, char **argv)

@@ -3,7 +3,7 @@
  * process dies. */
 #include "cli.h"
 #include "estimator.h"
-#include "exp_main.h"
+#include "mainrun.h"
 #include "gate.h"
 #include "mainset.h"
 #include "paths.h"
@@ -181,14 +181,14 @@ static int goal(const char *what, double value, double min, const char *fmt)
  * spacing under three probes; two units at a time on the 2-core machine. */
 static cs_status projection(const speed_result *r, double *wall_min, double *unit_j, double *unit_i, long *steps, int *nunits)
 {
-    exp_main_plan pl;
+    mainrun_plan pl;
     mainset_design ds;
     double seeds;
-    cs_status st = exp_main_plan_get("full", &pl);
+    cs_status st = mainrun_plan_get("full", &pl);
     if (!st) st = mainset_design_get(&ds);
     if (!st) st = gate_read_value(PATHS_GATE("main"), "seeds", 0, &seeds);
     if (st) return st;
-    /* about 64 interior focal stems per training stand (exp_main.h) */
+    /* about 64 interior focal stems per training stand (mainrun.h); volume v1 */
     const long npatch = 64L * pl.train_stands * (long)ds.ntrain;
     *steps = (long)pl.epochs * ((npatch + pl.batch - 1) / pl.batch);
     const double euler_calls = (double)(ds.nunseen + ds.nextrap) * MAINSET_NPROBE *

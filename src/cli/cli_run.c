@@ -30,11 +30,12 @@ static int teacher_unit_run(const teacher_unit *u, int argc, char **argv)
 {
     long stands = EXP_STANDS_DEFAULT;
     double beta = NAN;
-    const char *out = "build/results", *tag = "train", *teacher = NULL;
-    opt_spec spec[5];
+    const char *out = "build/results", *tag = "train", *teacher = NULL, *vary = NULL;
+    opt_spec spec[6];
     size_t n = 0;
     spec[n++] = (opt_spec){"out", OPT_STR, &out, 0, 0, "results root; the unit writes DIR/<experiment>/<file>.tsv (default build/results)"};
     spec[n++] = (opt_spec)CLI_OPT_TEACHER(teacher);
+    spec[n++] = (opt_spec)CLI_OPT_VARY(vary);
     if (u->takes & U_STANDS) spec[n++] = (opt_spec){"stands", OPT_LONG, &stands, 1, 10000, "stands per cell (default 8)"};
     if (u->takes & U_BETA)
         spec[n++] = (opt_spec){"beta", OPT_DOUBLE, &beta, 0, 0.999,
@@ -45,7 +46,7 @@ static int teacher_unit_run(const teacher_unit *u, int argc, char **argv)
     if (r) return opts_exit_code(r);
     if (strcmp(tag, "train") && strcmp(tag, "field")) { opts_usage_error(u->cmd, "--tag: must be train or field, not '%s'", tag); return 2; }
     exp_opts o = {.out = out, .stands = (int)stands, .beta = beta, .tag = tag, .argc = argc, .argv = argv};
-    if (exp_reading_parse(teacher, NULL, &o.rd)) { opts_usage_error(u->cmd, "%s", cs_errmsg()); return 2; }
+    if (exp_reading_parse(teacher, NULL, &o.rd) || exp_reading_vary(vary, &o.rd)) { opts_usage_error(u->cmd, "%s", cs_errmsg()); return 2; }
     cs_status st = CS_OK;
     if (u->irred) {
         double b = beta;
@@ -144,7 +145,7 @@ int cli_readings_summary(int argc, char **argv)
 {
     const char *dir = NULL, *out = NULL;
     const opt_spec spec[] = {
-        {"dir", OPT_STR, &dir, 0, 0, "readings root holding t1-r1/, t2-r1/, t1-r2/, t2-r2/ (required)"},
+        {"dir", OPT_STR, &dir, 0, 0, "readings root holding t1-r1/, t2-r1/, t1-r2/, t2-r2/, t2a-r2/, t2t-r2/ (required)"},
         {"out", OPT_STR, &out, 0, 0, "summary table (required), e.g. DIR/summary.tsv"},
     };
     const opts_cmd c = {"readings-summary", "--dir DIR --out DIR/summary.tsv",

@@ -44,7 +44,7 @@ cs_status exp_anisotropy_lattice(const exp_field_opts *args)
     fs_trees_init(&acc);
     double worst = 0;
     st = fieldrun_run(&j, &acc, &worst);
-    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"anisotropy/lattice\", %g, s, stems|crowns), s = 0..%u", exp_field_d(o.rd.layout), o.stands - 1);
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"anisotropy/lattice\", %g, s, stems|crowns), s = 0..%u", exp_field_d(&o.rd), o.stands - 1);
     p.worst_overlap_m = worst;
     fieldrun_meta_ctx m = {c.value, a, "E6 lattice: controlled lattice (layout in the layout line), canonical jitter (level = a), teacher at beta_field"};
     if (!st) st = fieldrun_write(o.out, &p, &acc, &j, 1, fieldrun_meta_generic, &m);
@@ -87,7 +87,7 @@ static cs_status aniso_family(const char *cmd, const exp_field_opts *args, const
                 fprintf(stderr, "%s: level %.2f: anisotropy median %.4f (%zu trees, %zu excluded; %zu stands failed)\n", cmd, lv[k], s.f.aniso_median, s.f.aniso_trees, s.f.aniso_excluded, jobs[k].failed);
         }
     }
-    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"%s\", %g, s, stems|crowns), s = 0..%u at every level", seed_exp, exp_field_d(o.rd.layout), o.stands - 1);
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"%s\", %g, s, stems|crowns), s = 0..%u at every level", seed_exp, exp_field_d(&o.rd), o.stands - 1);
     p.worst_overlap_m = worst;
     fieldrun_meta_ctx m = {c.value, 0, what};
     if (!st) st = fieldrun_write(o.out, &p, &acc, jobs, nl, fieldrun_meta_generic, &m);
@@ -165,7 +165,7 @@ cs_status exp_anisotropy_heldout(const exp_field_opts *args)
     fs_trees_init(&acc);
     double worst = 0;
     st = fieldrun_run(&j, &acc, &worst);
-    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"anisotropy/heldout\", %g, s, stems|crowns), s = 0..%u", exp_field_d(o.rd.layout), o.stands - 1);
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"anisotropy/heldout\", %g, s, stems|crowns), s = 0..%u", exp_field_d(&o.rd), o.stands - 1);
     p.worst_overlap_m = worst;
     fieldrun_meta_ctx m = {c.value, js.value, "E6 held-out at a*: lattice (layout in the layout line), jitter a* (level), teacher at beta_field"};
     if (!st) st = fieldrun_write(o.out, &p, &acc, &j, 1, fieldrun_meta_generic, &m);

@@ -12,6 +12,7 @@
 #include "gate.h"
 #include "paths.h"
 #include "stand_grow.h"
+#include "unstated.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -55,20 +56,91 @@ double exp_stand_k1(const stand *sd, const double *r)
 
 cs_status exp_reading_parse(const char *teacher, const char *layout, exp_reading *r)
 {
+    memset(r, 0, sizeof *r);
     r->one_sided = 0;
     r->layout = EXP_LAYOUT_R2;
-    if (teacher && !strcmp(teacher, TEACHER_VERSION_ONE_SIDED)) r->one_sided = 1;
-    else if (teacher && strcmp(teacher, TEACHER_VERSION))
-        return cs_err(CS_EINPUT, "--teacher: must be %s or %s, not '%s'", TEACHER_VERSION, TEACHER_VERSION_ONE_SIDED, teacher);
+    if (teacher) {
+        /* teacher-1|teacher-2, optionally -arc|-target: the name teacher_version() gives */
+        size_t l = strlen(TEACHER_VERSION);
+        const char *suffix = teacher + l;
+        if (!strncmp(teacher, TEACHER_VERSION_ONE_SIDED, l)) r->one_sided = 1;
+        else if (strncmp(teacher, TEACHER_VERSION, l)) suffix = NULL;
+        if (suffix && !strcmp(suffix, "-arc")) r->dieback = TEACHER_DIEBACK_NEIGHBOURS;
+        else if (suffix && !strcmp(suffix, "-target")) r->dieback = TEACHER_DIEBACK_TARGET;
+        else if (!suffix || *suffix)
+            return cs_err(CS_EINPUT, "--teacher: must be %s or %s, optionally with -arc or -target, not '%s'", TEACHER_VERSION,
+                          TEACHER_VERSION_ONE_SIDED, teacher);
+    }
     if (layout && !strcmp(layout, "r1")) r->layout = EXP_LAYOUT_R1;
     else if (layout && strcmp(layout, "r2")) return cs_err(CS_EINPUT, "--layout: must be r1 or r2, not '%s'", layout);
     return CS_OK;
 }
 
-static void exp_teacher_params(const exp_reading *r, teacher_params *p)
+/* One unstated choice set on v (unstated.h names; the design's values otherwise). */
+static cs_status variant_set(exp_variant *v, const char *name, double x)
 {
-    teacher_params_default(p);
-    p->one_sided = r ? r->one_sided : 0;
+    if (!strcmp(name, "crown_R")) v->crowns.R_scale = x;
+    else if (!strcmp(name, "crown_spread")) v->crowns.R_lnsd = x;
+    else if (!strcmp(name, "height_sd")) v->crowns.h_sd = x;
+    else if (!strcmp(name, "lobing")) v->crowns.a_max = x;
+    else if (!strcmp(name, "growth_N")) {
+        if (x != floor(x) || x < 4 || x > 4096) return cs_err(CS_EINPUT, "--vary growth_N: a whole number in [4, 4096], not %g", x);
+        v->nres = (int)x;
+    } else if (!strcmp(name, "start")) v->start_frac = x;
+    else if (!strcmp(name, "fig_hardcore")) v->fig_c = x;
+    else if (!strcmp(name, "field_d")) v->field_d = x;
+    else if (!strcmp(name, "field_L")) v->field_L = x;
+    else if (!strcmp(name, "dieback")) {
+        if (x != 1.0 && x != 2.0) return cs_err(CS_EINPUT, "--vary dieback: 1 (the contact arc) or 2 (beta of the target length), not %g", x);
+        v->dieback = (int)x;
+    } else return cs_err(CS_EINPUT, "--vary: no unstated choice '%s'", name);
+    return CS_OK;
+}
+
+cs_status exp_reading_vary(const char *vary, exp_reading *r)
+{
+    if (!vary) return CS_OK;
+    const char *eq = strchr(vary, '=');
+    char name[32], *end;
+    if (!eq || eq == vary || (size_t)(eq - vary) >= sizeof name)
+        return cs_err(CS_EINPUT, "--vary: expected NAME=VALUE, not '%s'", vary);
+    snprintf(name, sizeof name, "%.*s", (int)(eq - vary), vary);
+    double x = strtod(eq + 1, &end);
+    if (end == eq + 1 || *end || !isfinite(x) || x <= 0.0) return cs_err(CS_EINPUT, "--vary %s: value must be a positive number, not '%s'", name, eq + 1);
+    const unstated_choice *c = unstated_find(name);
+    if (!c) return cs_err(CS_EINPUT, "--vary: no unstated choice '%s' (unstated.h)", name);
+    if (r->layout == EXP_LAYOUT_R1 && c->scope == UNSTATED_FIELD) return cs_err(CS_EINPUT, "--vary %s: varies the r2 field layout, not with --layout r1", name);
+    exp_variant *v = &r->var;
+    memset(v, 0, sizeof *v);
+    snprintf(v->name, sizeof v->name, "%s", name);
+    v->value = x;
+    crown_dist_default(&v->crowns);
+    v->nres = 48;
+    v->start_frac = 0.05;
+    v->fig_c = EXP_FIG_C;
+    v->field_d = DESIGN_FIELD_SPACING_M;
+    v->field_L = DESIGN_FIELD_L_M;
+    cs_status st = variant_set(v, name, x);
+    if (st) return st;
+    if (v->dieback) r->dieback = v->dieback;
+    r->varied = 1;
+    return CS_OK;
+}
+
+static void exp_teacher_params(const exp_reading *r, teacher_params *p) { EXP_TEACHER_PARAMS(r, p); }
+
+cs_status exp_stand_alloc(const exp_reading *r, stand **out, const stems_type *kind, double d, double L, double shape,
+                          const char *experiment, unsigned index)
+{
+    return stand_alloc_dist(out, kind, d, L, shape, experiment, index, r && r->varied ? &r->var.crowns : NULL);
+}
+
+double exp_fig_c(const exp_reading *r) { return r && r->varied ? r->var.fig_c : EXP_FIG_C; }
+int exp_nres(const exp_reading *r) { return r && r->varied ? r->var.nres : 48; }
+
+void exp_variant_meta(tsv_writer *w, const exp_reading *r)
+{
+    if (r && r->varied) tsv_writer_meta(w, "sensitivity", "%s = %.17g (design.md §7 E0; every other choice the design's)", r->var.name, r->var.value);
 }
 
 void exp_prov_begin(prov *p, const char *experiment, const exp_reading *r, int argc, char **argv)
@@ -79,8 +151,16 @@ void exp_prov_begin(prov *p, const char *experiment, const exp_reading *r, int a
     snprintf(p->teacher_version, sizeof p->teacher_version, "%s", teacher_version(&tp));
 }
 
-double exp_field_d(exp_layout l) { return l == EXP_LAYOUT_R1 ? DESIGN_FIELD_SPACING_R1_M : DESIGN_FIELD_SPACING_M; }
-double exp_field_L(exp_layout l) { return l == EXP_LAYOUT_R1 ? DESIGN_FIELD_L_R1_M : DESIGN_FIELD_L_M; }
+double exp_field_d(const exp_reading *r)
+{
+    if (r && r->varied) return r->var.field_d;
+    return r && r->layout == EXP_LAYOUT_R1 ? DESIGN_FIELD_SPACING_R1_M : DESIGN_FIELD_SPACING_M;
+}
+double exp_field_L(const exp_reading *r)
+{
+    if (r && r->varied) return r->var.field_L;
+    return r && r->layout == EXP_LAYOUT_R1 ? DESIGN_FIELD_L_R1_M : DESIGN_FIELD_L_M;
+}
 const char *exp_layout_name(exp_layout l) { return l == EXP_LAYOUT_R1 ? "r1" : "r2"; }
 
 cs_status exp_field_grow_append(const stand *sd, const exp_reading *rd, double beta, int coupled, double level,

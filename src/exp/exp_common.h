@@ -26,18 +26,58 @@
  * (default r2, design.md §7 E5) on the field/anisotropy units. The provenance's
  * teacher_version names the reading that made the file. */
 typedef enum { EXP_LAYOUT_R2 = 0, EXP_LAYOUT_R1 = 1 } exp_layout;
-typedef struct { int one_sided; exp_layout layout; } exp_reading;
-/* Parse the two switches (NULL: the default); CS_EUSAGE-like CS_EINPUT naming the option. */
+
+/* ---- sensitivity (design.md §7 E0): one unstated choice changed ----
+ * --vary NAME=VALUE on every teacher unit (NAME from unstated.h) sets one of
+ * these away from the design's value; a reading with varied = 0 is the
+ * design (the zero reading stays the adopted one). */
+typedef struct {
+    char name[32];       /* the choice (unstated.h), "" when not varied */
+    double value;        /* its value */
+    crown_dist crowns;   /* the crown draws (crown.h) */
+    int nres;            /* growth resolution N of every growth but E2's refinement levels */
+    double start_frac;   /* start radius / target */
+    double fig_c;        /* hard-core level of the figure stands */
+    double field_d, field_L; /* field stands (the r2 layout's values otherwise) */
+    int dieback;         /* the die-back reading (0: the reading's own) */
+} exp_variant;
+
+/* dieback: the teacher's die-back reading (teacher.h teacher_dieback: 0 own
+ * sector, Eq. 3 as written; 1 the contact arc s-1..s+1; 2 beta of the target
+ * length), chosen by the --teacher suffix -arc / -target. */
+typedef struct { int one_sided; exp_layout layout; int dieback; int varied; exp_variant var; } exp_reading;
+/* Parse the switches (NULL: the default); CS_EINPUT naming the option.
+ * vary: "NAME=VALUE" (unstated.h names) or NULL. */
 cs_status exp_reading_parse(const char *teacher, const char *layout, exp_reading *r);
-/* A unit sets its teacher_params from the reading with
- * teacher_params_default(&p); p.one_sided = rd.one_sided; (exp_common.h does
- * not include the teacher, so the include depth stays within the layout's). */
+cs_status exp_reading_vary(const char *vary, exp_reading *r);
+/* Set teacher_params *p (teacher.h) to the reading's rule: the default with
+ * r's rule and, when varied, its resolution and start radius. A macro so that
+ * this header need not include the teacher (the include depth of the units). */
+#define EXP_TEACHER_PARAMS(r, p) do { \
+        const exp_reading *exp_rd_ = (r); \
+        teacher_params_default(p); \
+        if (exp_rd_) { \
+            (p)->one_sided = exp_rd_->one_sided; \
+            (p)->dieback = (teacher_dieback)exp_rd_->dieback; \
+            if (exp_rd_->varied) { (p)->nres = exp_rd_->var.nres; (p)->start_frac = exp_rd_->var.start_frac; } \
+        } \
+    } while (0)
+/* stand_alloc_dist with the reading's crown draws (r may be NULL). */
+cs_status exp_stand_alloc(const exp_reading *r, stand **out, const stems_type *kind, double d, double L, double shape,
+                          const char *experiment, unsigned index);
+/* Hard-core level of the figure stands (EXP_FIG_C unless varied). */
+double exp_fig_c(const exp_reading *r);
+/* Growth resolution of the reading (48 unless varied). */
+int exp_nres(const exp_reading *r);
+/* Provenance/metadata line of a varied reading ("-" for the design). */
+void exp_variant_meta(tsv_writer *w, const exp_reading *r);
 /* prov_begin for a teacher unit, recording the reading's teacher_version
  * (not the pinned default) so a teacher-1 run says which teacher made it. */
 void exp_prov_begin(prov *p, const char *experiment, const exp_reading *r, int argc, char **argv);
-/* Field stands of a layout: spacing and footprint (design.h). */
-double exp_field_d(exp_layout l);
-double exp_field_L(exp_layout l);
+/* Field stands of a reading: its layout's spacing and footprint (design.h),
+ * or the varied ones. */
+double exp_field_d(const exp_reading *r);
+double exp_field_L(const exp_reading *r);
 const char *exp_layout_name(exp_layout l);
 
 typedef struct {

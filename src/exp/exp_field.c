@@ -94,7 +94,7 @@ cs_status exp_field_calibrate(const exp_field_opts *args)
         st = fieldrun_run(&jobs[k], &acc, &worst);
         if (!st && (k % 7 == 0 || k + 1 == nb)) fprintf(stderr, "field-calibrate: beta %.2f done (%zu/%zu)\n", beta, k + 1, nb);
     }
-    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/calibration\", %g, s, stems|crowns), s = 0..%u at every beta", exp_field_d(o.rd.layout), (unsigned)seeds - 1);
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/calibration\", %g, s, stems|crowns), s = 0..%u at every beta", exp_field_d(&o.rd), (unsigned)seeds - 1);
     p.worst_overlap_m = worst;
     if (!st) st = fieldrun_write(o.out, &p, &acc, jobs, nb, meta_calibration, NULL);
     fs_trees_free(&acc);
@@ -132,7 +132,7 @@ cs_status exp_field_heldout(const exp_field_opts *args)
     fs_trees_init(&acc);
     double worst = 0;
     st = fieldrun_run(&j, &acc, &worst);
-    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/heldout\", %g, s, stems|crowns), s = 0..%u; uncoupled twin = same stand", exp_field_d(o.rd.layout), o.stands - 1);
+    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/heldout\", %g, s, stems|crowns), s = 0..%u; uncoupled twin = same stand", exp_field_d(&o.rd), o.stands - 1);
     p.worst_overlap_m = worst;
     fieldrun_meta_ctx m = {c.value, a, "E5 held-out: controlled lattice (layout in the layout line), canonical jitter, teacher at beta_field; coupled stands and their uncoupled twins (same stems and crown draws)"};
     if (!st) st = fieldrun_write(o.out, &p, &acc, &j, 1, fieldrun_meta_generic, &m);
@@ -156,7 +156,7 @@ cs_status exp_field_diagnose(const exp_field_opts *args)
     fs_calibration c;
     cs_status stb = fs_beta_field(o.calibration, &c);
     if (stb) return stb;
-    double d = exp_field_d(o.rd.layout), L = exp_field_L(o.rd.layout), a;
+    double d = exp_field_d(&o.rd), L = exp_field_L(&o.rd), a;
     cs_status st = fieldrun_canonical_jitter(&a);
     if (st) return st;
     /* 1. open-grown target elongation on the E5 held-out stands' draws */
@@ -165,7 +165,7 @@ cs_status exp_field_diagnose(const exp_field_opts *args)
     if ((st = gate_read_value(PATHS_GATE("field"), "elongation_band", 0, &lo))) return st;
     for (unsigned s = 0; s < o.stands && !st; s++) {
         stand *sd;
-        if ((st = stand_alloc(&sd, stems_lattice, d, L, a, "field/heldout", s))) break;
+        if ((st = exp_stand_alloc(&o.rd, &sd, stems_lattice, d, L, a, "field/heldout", s))) break;
         for (size_t i = 0; i < sd->s->n; i++) {
             double e = est_elongation(sd->rstar + i * CROWN_NSEC);
             int k = sd->draw[i].k;

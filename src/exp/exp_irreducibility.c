@@ -40,8 +40,7 @@ static cs_status perturb_stand(const stand *sd, const exp_reading *rd, double be
     double *ra = malloc(n * NS * sizeof *ra), *rb = malloc(n * NS * sizeof *rb), *h2 = malloc(n * sizeof *h2);
     cs_status st = (!ra || !rb || !h2) ? cs_err(CS_ENOMEM, "experiments: out of memory") : CS_OK;
     teacher_params p;
-    teacher_params_default(&p);
-    p.one_sided = rd->one_sided;
+    EXP_TEACHER_PARAMS(rd, &p);
     p.beta = beta;
     p.nres = nres;
     teacher_info ia;
@@ -97,9 +96,9 @@ static void irred_meta(tsv_writer *w, const exp_opts *o, double beta)
 }
 
 /* Stand k of the E2 design at spacing d: controlled lattice, a = 0.04, L = 12 d. */
-static cs_status irred_stand(stand **sd, double d, int k)
+static cs_status irred_stand(const exp_reading *rd, stand **sd, double d, int k)
 {
-    return stand_alloc(sd, stems_lattice, d, 12.0 * d, 0.04, "irreducibility", (unsigned)k);
+    return exp_stand_alloc(rd, sd, stems_lattice, d, 12.0 * d, 0.04, "irreducibility", (unsigned)k);
 }
 
 /* Open irreducibility/<prefix>_<tag>.tsv and write the provenance block and
@@ -132,8 +131,8 @@ cs_status exp_irreducibility_perturb(const exp_opts *o, double beta)
     for (size_t a = 0; a < c.nd && !st; a++) {
         for (int k = 0; k < o->stands && !st; k++) {
             stand *sd = NULL;
-            st = irred_stand(&sd, c.ds[a], k);
-            if (!st) st = perturb_stand(sd, &o->rd, beta, 48, c.hfac, c.tol, c.njudge, &acc[a], &worst);
+            st = irred_stand(&o->rd, &sd, c.ds[a], k);
+            if (!st) st = perturb_stand(sd, &o->rd, beta, exp_nres(&o->rd), c.hfac, c.tol, c.njudge, &acc[a], &worst);
             stand_free(sd);
         }
         if (!st) fprintf(stderr, "irreducibility perturb (%s): d=%.1f responded %zu/%zu\n", o->tag, c.ds[a],
@@ -147,7 +146,7 @@ cs_status exp_irreducibility_perturb(const exp_opts *o, double beta)
     for (size_t a = 0; a < c.nd; a++) {
         tsv_writer_dbl(w, c.ds[a]);
         tsv_writer_dbl(w, beta);
-        tsv_writer_long(w, 48);
+        tsv_writer_long(w, exp_nres(&o->rd));
         tsv_writer_long(w, acc[a].stands);
         tsv_writer_long(w, (long)acc[a].judged);
         tsv_writer_long(w, (long)acc[a].responded);
@@ -174,7 +173,7 @@ cs_status exp_irreducibility_refine(const exp_opts *o, double beta)
         for (size_t a = 0; a < c.nd && !st; a++)
             for (int k = 0; k < o->stands && !st; k++) {
                 stand *sd = NULL;
-                st = irred_stand(&sd, c.ds[a], k);
+                st = irred_stand(&o->rd, &sd, c.ds[a], k);
                 if (!st) st = perturb_stand(sd, &o->rd, beta, (int)c.levels[l], c.hfac, c.tol, c.njudge, &acc[l][a], &worst);
                 stand_free(sd);
                 if (!st && k == o->stands - 1)
@@ -254,12 +253,11 @@ static cs_status reduction_gather(const exp_opts *o, double beta, const irred_cf
     for (size_t a = 0; a < c->nd && !st; a++)
         for (int k = 0; k < o->stands && !st; k++) {
             stand *sd = NULL;
-            st = irred_stand(&sd, c->ds[a], k);
+            st = irred_stand(&o->rd, &sd, c->ds[a], k);
             if (st) break;
             double *r = malloc(sd->s->n * NS * sizeof *r);
             teacher_params p;
-            teacher_params_default(&p);
-            p.one_sided = o->rd.one_sided;
+            EXP_TEACHER_PARAMS(&o->rd, &p);
             p.beta = beta;
             teacher_info inf;
             st = r ? stand_grow(sd, &p, NULL, r, &inf, worst) : cs_err(CS_ENOMEM, "experiments: out of memory");

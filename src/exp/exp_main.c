@@ -1,25 +1,32 @@
 /* exp_main: E3 main experiment and E4 extrapolation (reference paper
- * §4.3-§5.2; design.md §7 E3/E4, §8). See exp_main.h for the data plan and
- * mainset.h for the data, the generation and the probes.
+ * §4.3-§5.2; design.md §7 E3/E4, §8). See exp_main.h for the data plan,
+ * mainset.h for the data, the generation and the probes, and mainrun.h for a
+ * unit's evaluation and tables.
  * The error of a run at one spacing is W1 (est_w1, the pinned estimator)
  * between the focal nearest-neighbour clearances of generated patches and of
  * the teacher's patches at that spacing; the run's error is the mean over the
  * unseen spacings. Clearances on patches come from the batched estimator
  * (patch_focal_clearances), checked against est_clearance to 1e-6 m before
- * every run (paper §4.3); a mismatch aborts the run. Each unit also writes the
- * clearance samples behind every W1 and its final weights; main-redraw draws
- * the samples again from the weights alone. */
+ * every evaluation (paper §4.3); a mismatch aborts the run.
+ * Units: main-run trains and evaluates; main-train trains only (weights and a
+ * training table); main-eval evaluates weights without training (the run
+ * table and samples); main-redraw draws the samples again from weights.
+ * Step plan: `epochs` x ceil(patches / batch) steps, while an epoch of the
+ * batch order holds floor(patches / batch) whole batches (train.c reshuffles
+ * when the next batch would run past the data): 300 epochs of the full plan
+ * are 14 700 steps = 306.25 passes over the data. The same for every reading,
+ * so the frozen pair-aware runs keep their weights; stated in design.md §8. */
 #include "exp_main.h"
+#include "exp_common.h"
 #include "afile.h"
 #include "estimator.h"
+#include "mainrun.h"
 #include "mainset.h"
 #include "model.h"
-#include "opts.h"
 #include "patch.h"
 #include "paths.h"
 #include "prov.h"
 #include "seed.h"
-#include "sha256.h"
 #include "stats.h"
 #include "gate.h"
 #include "train.h"
@@ -32,55 +39,10 @@
 
 #define MAXSP MAINSET_MAXSP
 
-cs_status exp_main_plan_get(const char *scale, exp_main_plan *p)
-{
-    double epochs, euler;
-    cs_status st;
-    if ((st = gate_read_value(PATHS_GATE("main"), "epochs", 0, &epochs))) return st;
-    if ((st = gate_read_value(PATHS_GATE("main"), "euler_steps", 0, &euler))) return st;
-    memset(p, 0, sizeof *p);
-    p->euler = (int)euler;
-    p->batch = 64;
-    p->lr = 2e-3;
-    if (!strcmp(scale, "full")) {
-        p->scale = "full";
-        p->train_stands = EXP_MAIN_TRAIN_STANDS; /* x 4 spacings x ~64 interior stems */
-        p->eval_stands = 16;   /* ~1024 teacher clearances per eval spacing */
-        p->gen_patches = 256;
-        p->epochs = (int)epochs;
-    } else if (!strcmp(scale, "smoke")) {
-        p->scale = "smoke";
-        p->train_stands = 1;
-        p->eval_stands = 2;
-        p->gen_patches = 32;
-        p->epochs = 4;
-        p->euler = 10;
-    } else return cs_err(CS_EUSAGE, "unknown scale '%s' (full or smoke)", scale);
-    return CS_OK;
-}
-
 static int file_exists(const char *p)
 {
     struct stat sb;
     return stat(p, &sb) == 0;
-}
-
-static cs_status file_sha256(const char *path, char hex[65])
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) return cs_err(CS_EIO, "%s: cannot open to hash", path);
-    sha256_ctx c;
-    sha256_init(&c);
-    unsigned char b[65536];
-    size_t n;
-    while ((n = fread(b, 1, sizeof b, f)) > 0) sha256_update(&c, b, n);
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) return cs_err(CS_EIO, "%s: read error while hashing", path);
-    uint8_t d[32];
-    sha256_final(&c, d);
-    sha256_tohex(d, hex);
-    return CS_OK;
 }
 
 static const char *base_name(const char *p)
@@ -89,395 +51,331 @@ static const char *base_name(const char *p)
     return s ? s + 1 : p;
 }
 
-/* One W1 of a run: spacing, probe, the generated clearances behind it, and
- * (on the generated row of a spacing) the teacher's. */
+/* The arguments every unit entry point shares (exp_main.h). */
+typedef exp_main_run_args unit_args;
+
+static cs_status unit_check(const char *cmd, const unit_args *a, int need_weights)
+{
+    if (need_weights && !a->weights) return cs_err(CS_EUSAGE, "%s: --weights is required", cmd);
+    if (!a->seed) return cs_err(CS_EUSAGE, "%s: --seed is required", cmd);
+    if (!a->arm || (strcmp(a->arm, "joint") && strcmp(a->arm, "indep"))) return cs_err(CS_EUSAGE, "%s: --arm must be joint or indep", cmd);
+    if (!a->out) return cs_err(CS_EUSAGE, "%s: --out is required", cmd);
+    if (!a->scale || (strcmp(a->scale, "full") && strcmp(a->scale, "smoke"))) return cs_err(CS_EUSAGE, "%s: --scale must be full or smoke", cmd);
+    if (a->volume && strcmp(a->volume, "v1") && strcmp(a->volume, "v2")) return cs_err(CS_EUSAGE, "%s: --volume must be v1 or v2, not '%s'", cmd, a->volume);
+    model_reading r = MODEL_PAIR;
+    if (a->reading && model_reading_parse(a->reading, &r)) return cs_err(CS_EUSAGE, "%s: --reading: %s", cmd, cs_errmsg());
+    if (a->reading && a->pair >= 0 && (r == MODEL_PAIR) != (a->pair == 1)) return cs_err(CS_EUSAGE, "%s: --pair %d contradicts --reading %s", cmd, a->pair, a->reading);
+    return CS_OK;
+}
+
+/* The reading of a training unit: --reading, else --pair (0 plain, 1 pair), else pair. */
+static model_reading unit_reading(const unit_args *a)
+{
+    model_reading r = MODEL_PAIR;
+    if (a->reading) model_reading_parse(a->reading, &r);
+    else if (a->pair == 0) r = MODEL_PLAIN;
+    return r;
+}
+
+/* What a training unit leaves for its tables. */
 typedef struct {
-    double d, w1;
-    int unseen, ng, nt;
-    mainset_probe probe;
-    double *gen, *teach;
-} run_row;
+    model_cfg cfg;
+    int npatches;
+    long steps;
+    double final_loss, scale, train_s, steps_per_s;
+    char wsha[65];
+} unit_trained;
 
-static void rows_free(run_row *rows, size_t n)
+/* Build the teacher data, train (resuming from a->ckpt), write the weights;
+ * *out owns the trainer, *data its patches. */
+static cs_status unit_train(const unit_args *a, const mainset_design *ds, const mainrun_plan *pl,
+                            model_reading reading, train **out, patch_set **data, unit_trained *u, double *worst)
 {
-    for (size_t i = 0; i < n; i++) { free(rows[i].gen); free(rows[i].teach); }
-}
-
-/* Probes a unit runs: the pair model (revision 2) every probe on both arms;
- * the revision-1 model as it did (joint: shuffled; independent: none). */
-static int unit_nprobe(int pair, int joint)
-{
-    return pair ? MAINSET_NPROBE : joint ? 2 : 1;
-}
-
-/* Every evaluation spacing x probe of one model: the rows of a run table and
- * the samples behind them. main-run and main-redraw both come through here. */
-static cs_status evaluate(model *m, int Bmax, const mainset_design *ds, const exp_main_plan *pl, double scale,
-                          unsigned seed, const char *arm, int nprobe, run_row *rows, size_t *nrows,
-                          double *worst, double *maxdiff)
-{
-    cs_status st = CS_OK;
-    *nrows = 0;
-    for (size_t si = 0; si < ds->nunseen + ds->nextrap && !st; si++) {
-        int unseen;
-        double d = mainset_eval_spacing(ds, si, &unseen);
-        mainset_eval e;
-        st = mainset_eval_build(ds, pl->eval_stands, d, scale, &e, worst, maxdiff);
-        for (int probe = 0; probe < nprobe && !st; probe++) {
-            run_row *r = &rows[(*nrows)++];
-            memset(r, 0, sizeof *r);
-            r->d = d; r->unseen = unseen; r->probe = (mainset_probe)probe; r->nt = e.ps->n;
-            r->gen = malloc((size_t)pl->gen_patches * sizeof *r->gen);
-            if (!probe) r->teach = malloc((size_t)e.ps->n * sizeof *r->teach);
-            if (!r->gen || (!probe && !r->teach)) { st = cs_err(CS_ENOMEM, "out of memory"); break; }
-            if (!probe) memcpy(r->teach, e.teach, (size_t)e.ps->n * sizeof *r->teach);
-            st = mainset_generate(m, Bmax, &e, pl->gen_patches, pl->euler, seed, r->probe, r->gen, &r->ng);
-            if (!st) st = est_w1(r->gen, (size_t)r->ng, e.teach, (size_t)e.ps->n, &r->w1);
-            if (!st) fprintf(stderr, "main-run s%u %s: d = %.1f %s W1 = %.4f m\n", seed, arm, d, mainset_probe_name(r->probe), r->w1);
-        }
-        mainset_eval_free(&e);
-    }
-    return st;
-}
-
-/* The samples behind every W1 of a run (README "Frozen samples and weights"):
- * per spacing the teacher's focal NN clearances (which = teacher, probe =
- * none), then the generated ones under each probe (which = generated). */
-static cs_status samples_write(const char *path, prov *pv, unsigned seed, const char *arm,
-                               const run_row *rows, size_t n)
-{
-    tsv_writer *w;
-    cs_status st = tsv_writer_open(&w, path);
-    if (st) return st;
-    if ((st = prov_write(w, pv))) { tsv_writer_abort(w); return st; }
-    tsv_writer_meta(w, "what", "focal nearest-neighbour clearances (m) behind every W1 of run_s%02u_%s.tsv: W1(spacing, probe) = est_w1(generated values of that spacing and probe, teacher values of that spacing), values in drawing order", seed, arm);
-    tsv_writer_columns(w, "spacing\tsplit\tprobe\twhich\tvalue");
-    for (size_t i = 0; i < n; i++) {
-        const run_row *r = &rows[i];
-        const char *split = r->unseen ? "unseen" : "extrap";
-        for (int k = 0; r->teach && k < r->nt; k++) {
-            tsv_writer_dbl(w, r->d); tsv_writer_str(w, split); tsv_writer_str(w, "none"); tsv_writer_str(w, "teacher");
-            tsv_writer_dbl(w, r->teach[k]); tsv_writer_endrow(w);
-        }
-        for (int k = 0; k < r->ng; k++) {
-            tsv_writer_dbl(w, r->d); tsv_writer_str(w, split); tsv_writer_str(w, mainset_probe_name(r->probe));
-            tsv_writer_str(w, "generated"); tsv_writer_dbl(w, r->gen[k]); tsv_writer_endrow(w);
-        }
-    }
-    return tsv_writer_commit(w);
-}
-
-static const char *seeds_text(char *buf, size_t n, unsigned seed)
-{
-    snprintf(buf, n, "stands seed_derive(main-train|main-eval, d, k, stems|crowns); model seed_derive(main-model, 0, %u, init|batch|noise); "
-             "sampling seed_derive(main-model[-shuffled|-rotated], d, %u, sample), permutation seed_derive(main-model, d, %u, shuffle)", seed, seed, seed);
-    return buf;
-}
-
-cs_status exp_main_run(const exp_main_run_args *a)
-{
-    const char *arm = a->arm, *out = a->out, *scale = a->scale, *ckpt = a->ckpt, *samples = a->samples, *weights = a->weights;
-    const long epochs = a->epochs, train_stands = a->train_stands, pairl = a->pair;
-    const int argc = a->argc;
-    char **argv = a->argv;
-    const unsigned seed = a->seed;
-    int joint = !strcmp(arm, "joint");
-    prov pv;
-    prov_begin(&pv, "main", argc, argv);
-    mainset_design ds;
-    exp_main_plan pl;
-    cs_status st = mainset_design_get(&ds);
-    if (!st) st = exp_main_plan_get(scale, &pl);
-    if (st) return st;
-    /* exploration overrides (recorded in the provenance command line) */
-    if (epochs) pl.epochs = (int)epochs;
-    if (train_stands) pl.train_stands = (int)train_stands;
-    if (pl.epochs < 1) return cs_err(CS_EUSAGE, "main-run: the plan's epochs must be >= 1");
-    const int pair = (int)pairl;
-    double worst = 0.0, maxdiff = 0.0;
+    *out = NULL;
+    memset(u, 0, sizeof *u);
+    const unsigned seed = (unsigned)a->seed;
     patch_set *tr = NULL;
-    if ((st = mainset_train_build(&ds, pl.train_stands, &tr, &worst))) return st;
-    double data_scale = patch_set_rms(tr);
-    if ((st = patch_set_standardise(tr, data_scale))) { patch_set_free(tr); return st; }
-
+    cs_status st = mainset_train_build(ds, pl->train_stands, &tr, worst);
+    *data = tr;
+    if (st) return st;
+    u->scale = patch_set_rms(tr);
+    if ((st = patch_set_standardise(tr, u->scale))) return st;
     model_cfg cfg = model_cfg_reference(PATCH_NCOND);
-    cfg.joint = joint;
-    cfg.pair = pair;
+    cfg.joint = !strcmp(a->arm, "joint");
+    model_cfg_set_reading(&cfg, reading);
     train_opts o = train_opts_default();
-    o.batch = pl.batch;
-    o.lr = pl.lr;
-    long spe = (tr->n + o.batch - 1) / o.batch;
-    o.steps = (long)pl.epochs * spe;
+    o.batch = pl->batch;
+    o.lr = pl->lr;
+    long spe = (tr->n + o.batch - 1) / o.batch; /* the step plan (see the top of this file) */
+    o.steps = (long)pl->epochs * spe;
     o.seed_init = (unsigned long)seed_derive("main-model", 0, seed, "init");
     o.seed_batch = (unsigned long)seed_derive("main-model", 0, seed, "batch");
     o.seed_noise = (unsigned long)seed_derive("main-model", 0, seed, "noise");
     /* the checkpoint's directory must exist before the first atomic write */
-    if (ckpt && (st = afile_mkdir_parents(ckpt))) { patch_set_free(tr); return st; }
+    if (a->ckpt && (st = afile_mkdir_parents(a->ckpt))) return st;
     train *t = NULL;
-    if ((st = train_alloc(&t, &cfg, tr, &o))) { patch_set_free(tr); return st; }
-    if (ckpt && file_exists(ckpt)) {
-        st = train_load(t, ckpt);
-        if (st) {
-            char why[512];
-            snprintf(why, sizeof why, "%s", cs_errmsg());
-            train_free(t); patch_set_free(tr);
-            return cs_err(st, "%s (delete the checkpoint to restart this run)", why);
-        }
-        fprintf(stderr, "main-run s%u %s: resuming at step %ld of %ld\n", seed, arm, t->step, o.steps);
+    if ((st = train_alloc(&t, &cfg, tr, &o))) return st;
+    *out = t;
+    if (a->ckpt && file_exists(a->ckpt)) {
+        if ((st = train_load(t, a->ckpt)))
+            return cs_err(st, "%s (delete the checkpoint to restart this run)", cs_errmsg());
+        fprintf(stderr, "main s%u %s %s: resuming at step %ld of %ld\n", seed, a->arm, model_reading_name(reading), t->step, o.steps);
     }
-    long every = o.steps / 50 > 0 ? o.steps / 50 : 1;
-    st = train_run(t, o.steps, ckpt, ckpt ? every : 0, stderr);
-    double final_loss = t->loss;
-    char wsha[65] = "", ssha[65] = "", sbuf[256];
-    if (!st && weights && !(st = afile_mkdir_parents(weights)) && !(st = train_save_weights(t, weights)))
-        st = file_sha256(weights, wsha);
-    if (st) { train_free(t); patch_set_free(tr); return st; }
+    const long every = o.steps / 50 > 0 ? o.steps / 50 : 1, from = t->step;
+    const double t0 = prov_now();
+    st = train_run(t, o.steps, a->ckpt, a->ckpt ? every : 0, stderr);
+    u->train_s = prov_now() - t0;
+    u->steps_per_s = u->train_s > 0 ? (double)(o.steps - from) / u->train_s : 0;
+    u->cfg = cfg;
+    u->npatches = tr->n;
+    u->steps = o.steps;
+    u->final_loss = t->loss;
+    if (!st && a->weights && !(st = afile_mkdir_parents(a->weights)) && !(st = train_save_weights(t, a->weights)))
+        st = prov_sha256_file(a->weights, u->wsha);
+    return st;
+}
 
-    run_row rows[MAINSET_NPROBE * 2 * MAXSP];
+/* `# model:` and `# training:` texts of a trained unit. */
+static void unit_meta_model(char *buf, size_t n, const model_cfg *c)
+{
+    const model_reading r = model_cfg_reading(c);
+    if (c->pair || r != MODEL_PLAIN)
+        snprintf(buf, n, "T %d P %d width %d blocks %d heads %d mlp %d joint %d pair %d params %zu%s%s", c->T, c->P, c->C, c->L, c->H,
+                 c->F, c->joint, c->pair, model_nparams(c), r == MODEL_PAIR ? "" : " reading ", r == MODEL_PAIR ? "" : model_reading_name(r));
+    else
+        snprintf(buf, n, "T %d P %d width %d blocks %d heads %d mlp %d joint %d params %zu", c->T, c->P, c->C, c->L, c->H, c->F, c->joint, model_nparams(c));
+}
+
+static void unit_meta_training(char *buf, size_t n, const unit_trained *u, const mainrun_plan *pl)
+{
+    snprintf(buf, n, "%d patches (%d stands per training spacing), batch %d, %d epochs = %ld steps, lr %g, final loss %.17g, deviation scale %.17g m",
+             u->npatches, pl->train_stands, pl->batch, pl->epochs, u->steps, pl->lr, u->final_loss, u->scale);
+}
+
+static void unit_meta_eval(char *buf, size_t n, const mainrun_plan *pl, const model_cfg *c)
+{
+    const int v1 = !strcmp(pl->volume, "v1");
+    if (v1)
+        snprintf(buf, n, "%d teacher stands per spacing, up to %d generated patches, %d Euler steps; probes: shuffled (preregistered gate)%s",
+                 pl->eval_stands, pl->gen_patches, pl->euler,
+                 c->pair ? ", rotated by (1 + g mod 7) x 45 deg about the focal stem (added after the first verdict)" : "");
+    else
+        snprintf(buf, n, "volume v2: %d teacher stands per spacing, up to %d generated patches, %d Euler steps; probes at the unseen spacings only: "
+                 "shuffled (preregistered gate), rotated by (1 + g mod 7) x 45 deg about the focal stem (added after the first verdict)",
+                 pl->eval_stands, pl->gen_patches, pl->euler);
+}
+
+/* Evaluate m, write the samples (if asked) and the run table with meta[0..nmeta)
+ * followed by the eval, estimator and samples/weights lines. */
+static cs_status unit_evaluate_write(const unit_args *a, prov *pv, model *m, int Bmax, const mainset_design *ds,
+                                     const mainrun_plan *pl, double scale, const char *(*meta)[2], int nmeta,
+                                     const char *wsha, double *worst)
+{
+    const unsigned seed = (unsigned)a->seed;
+    mainrun_row rows[MAINRUN_MAXROWS];
     size_t nrows = 0;
-    st = evaluate(t->m, t->B, &ds, &pl, data_scale, seed, arm, unit_nprobe(pair, joint), rows, &nrows, &worst, &maxdiff);
-    snprintf(pv.seeds, sizeof pv.seeds, "%s", seeds_text(sbuf, sizeof sbuf, seed));
-    pv.worst_overlap_m = worst;
-    if (!st && samples && !(st = afile_mkdir_parents(samples)) && !(st = samples_write(samples, &pv, seed, arm, rows, nrows)))
-        st = file_sha256(samples, ssha);
-    tsv_writer *w = NULL;
-    if (!st) st = tsv_writer_open(&w, out);
-    if (!st) st = prov_write(w, &pv);
+    double maxdiff = 0;
+    char sbuf[256], ssha[65] = "", ev[512], ec[160], sl[160], wl[200];
+    cs_status st = mainrun_evaluate(m, Bmax, ds, pl, scale, seed, a->arm, rows, &nrows, worst, &maxdiff);
+    snprintf(pv->seeds, sizeof pv->seeds, "%s", mainrun_seeds_text(sbuf, sizeof sbuf, seed));
+    pv->worst_overlap_m = *worst;
+    if (!st && a->samples && !(st = afile_mkdir_parents(a->samples)) && !(st = mainrun_samples_write(a->samples, pv, seed, a->arm, rows, nrows)))
+        st = prov_sha256_file(a->samples, ssha);
+    unit_meta_eval(ev, sizeof ev, pl, &m->cfg);
+    snprintf(ec, sizeof ec, "max |batched - est_clearance| = %.3g m (tolerance %.3g m)", maxdiff, ds->tol);
+    meta[nmeta][0] = "eval"; meta[nmeta++][1] = ev;
+    meta[nmeta][0] = "estimator_check"; meta[nmeta++][1] = ec;
+    if (a->samples) { snprintf(sl, sizeof sl, "%s sha256 %s", base_name(a->samples), ssha); meta[nmeta][0] = "samples"; meta[nmeta++][1] = sl; }
+    if (a->weights) { snprintf(wl, sizeof wl, "%s sha256 %s (weights format 1, README)", base_name(a->weights), wsha); meta[nmeta][0] = "weights"; meta[nmeta++][1] = wl; }
+    if (!st && !(st = afile_mkdir_parents(a->out))) st = mainrun_table_write(a->out, pv, seed, a->arm, (const char *const (*)[2])meta, nmeta, rows, nrows);
+    mainrun_rows_free(rows, nrows);
+    return st;
+}
+
+/* Plan for a unit: scale, volume, exploration overrides. */
+static cs_status unit_plan(const unit_args *a, mainset_design *ds, mainrun_plan *pl)
+{
+    cs_status st = mainset_design_get(ds);
+    if (!st) st = mainrun_plan_get(a->scale, pl);
+    if (!st && a->volume) st = mainrun_plan_volume(pl, a->volume);
+    if (!st && a->epochs) pl->epochs = (int)a->epochs;
+    if (!st && a->train_stands) pl->train_stands = (int)a->train_stands;
+    return st;
+}
+
+cs_status exp_main_run(const exp_main_run_args *ap)
+{
+    const unit_args a = *ap;
+    cs_status st0 = unit_check("main-run", &a, 0);
+    if (st0) return st0;
+    prov pv;
+    prov_begin(&pv, "main", a.argc, a.argv);
+    mainset_design ds;
+    mainrun_plan pl;
+    cs_status st = unit_plan(&a, &ds, &pl);
+    if (st) return st;
+    double worst = 0.0;
+    train *t = NULL;
+    patch_set *tr = NULL;
+    unit_trained u;
+    st = unit_train(&a, &ds, &pl, unit_reading(&a), &t, &tr, &u, &worst);
     if (!st) {
-        tsv_writer_meta(w, "scale", "%s", pl.scale);
-        if (cfg.pair)
-            tsv_writer_meta(w, "model", "T %d P %d width %d blocks %d heads %d mlp %d joint %d pair %d params %zu",
-                            cfg.T, cfg.P, cfg.C, cfg.L, cfg.H, cfg.F, cfg.joint, cfg.pair, model_nparams(&cfg));
-        else
-            tsv_writer_meta(w, "model", "T %d P %d width %d blocks %d heads %d mlp %d joint %d params %zu",
-                            cfg.T, cfg.P, cfg.C, cfg.L, cfg.H, cfg.F, cfg.joint, model_nparams(&cfg));
-        tsv_writer_meta(w, "training", "%d patches (%d stands per training spacing), batch %d, %d epochs = %ld steps, lr %g, final loss %.17g, deviation scale %.17g m",
-                        tr->n, pl.train_stands, o.batch, pl.epochs, o.steps, o.lr, final_loss, data_scale);
-        tsv_writer_meta(w, "eval", "%d teacher stands per spacing, up to %d generated patches, %d Euler steps; probes: shuffled (preregistered gate)%s",
-                        pl.eval_stands, pl.gen_patches, pl.euler,
-                        pair ? ", rotated by (1 + g mod 7) x 45 deg about the focal stem (added after the first verdict)" : "");
-        tsv_writer_meta(w, "estimator_check", "max |batched - est_clearance| = %.3g m (tolerance %.3g m)", maxdiff, ds.tol);
-        if (samples) tsv_writer_meta(w, "samples", "%s sha256 %s", base_name(samples), ssha);
-        if (weights) tsv_writer_meta(w, "weights", "%s sha256 %s (weights format 1, README)", base_name(weights), wsha);
-        tsv_writer_columns(w, "seed\tarm\tspacing\tsplit\tprobe\tw1\tn_gen\tn_teacher");
-        for (size_t i = 0; i < nrows; i++) {
-            tsv_writer_long(w, (long)seed);
-            tsv_writer_str(w, arm);
-            tsv_writer_dbl(w, rows[i].d);
-            tsv_writer_str(w, rows[i].unseen ? "unseen" : "extrap");
-            tsv_writer_str(w, mainset_probe_name(rows[i].probe));
-            tsv_writer_dbl(w, rows[i].w1);
-            tsv_writer_long(w, rows[i].ng);
-            tsv_writer_long(w, rows[i].nt);
-            tsv_writer_endrow(w);
-        }
-        st = tsv_writer_commit(w);
-        w = NULL;
+        char mm[200], tm[400];
+        unit_meta_model(mm, sizeof mm, &u.cfg);
+        unit_meta_training(tm, sizeof tm, &u, &pl);
+        char tt[200];
+        snprintf(tt, sizeof tt, "train_s %.3f steps_per_s %.4g (this invocation; a resumed run counts its last part only)", u.train_s, u.steps_per_s);
+        const char *meta[10][2] = {{"scale", pl.scale}, {"model", mm}, {"training", tm}, {"train_time", tt}};
+        st = unit_evaluate_write(&a, &pv, t->m, t->B, &ds, &pl, u.scale, meta, 4, u.wsha, &worst);
     }
-    if (w) tsv_writer_abort(w);
-    rows_free(rows, nrows);
     train_free(t);
     patch_set_free(tr);
     return st;
 }
 
-/* Redraw the samples of one unit from its frozen weights alone (design.md §9
- * verify-deep): the same evaluation sets, seeds and sampler as main-run. */
-cs_status exp_main_redraw(const exp_main_redraw_args *a)
+/* Train only: the weights and a one-row training table (what the readings
+ * table reads: parameters, steps, final loss, training time, steps/s). */
+cs_status exp_main_train(const exp_main_run_args *ap)
 {
-    const char *arm = a->arm, *out = a->out, *scale = a->scale, *weights = a->weights;
-    const int argc = a->argc;
-    char **argv = a->argv;
-    const unsigned seed = a->seed;
+    const unit_args a = *ap;
+    cs_status st0 = unit_check("main-train", &a, 1);
+    if (st0) return st0;
     prov pv;
-    prov_begin(&pv, "main", argc, argv);
+    prov_begin(&pv, "main", a.argc, a.argv);
     mainset_design ds;
-    exp_main_plan pl;
-    model *m = NULL;
-    double scl = 0, worst = 0, maxdiff = 0;
-    cs_status st = mainset_design_get(&ds);
-    if (!st) st = exp_main_plan_get(scale, &pl);
-    if (!st) st = train_load_model(weights, &m, pl.batch, &scl);
-    if (!st && m->cfg.joint != !strcmp(arm, "joint")) st = cs_err(CS_EINPUT, "%s: weights of the %s arm, not %s", weights, m->cfg.joint ? "joint" : "indep", arm);
-    run_row rows[MAINSET_NPROBE * 2 * MAXSP];
-    size_t nrows = 0;
+    mainrun_plan pl;
+    cs_status st = unit_plan(&a, &ds, &pl);
+    if (st) return st;
+    double worst = 0.0;
+    train *t = NULL;
+    patch_set *tr = NULL;
+    unit_trained u;
+    const model_reading reading = unit_reading(&a);
+    st = unit_train(&a, &ds, &pl, reading, &t, &tr, &u, &worst);
+    tsv_writer *w = NULL;
     char sbuf[256];
-    if (!st) st = evaluate(m, pl.batch, &ds, &pl, scl, seed, arm, unit_nprobe(m->cfg.pair, m->cfg.joint), rows, &nrows, &worst, &maxdiff);
-    snprintf(pv.seeds, sizeof pv.seeds, "%s", seeds_text(sbuf, sizeof sbuf, seed));
+    snprintf(pv.seeds, sizeof pv.seeds, "%s", mainrun_seeds_text(sbuf, sizeof sbuf, (unsigned)a.seed));
     pv.worst_overlap_m = worst;
-    if (!st) st = afile_mkdir_parents(out);
-    if (!st) st = samples_write(out, &pv, seed, arm, rows, nrows);
-    rows_free(rows, nrows);
+    if (!st && !(st = afile_mkdir_parents(a.out))) st = tsv_writer_open(&w, a.out);
+    if (!st && (st = prov_write(w, &pv))) { tsv_writer_abort(w); w = NULL; }
+    if (!st) {
+        char mm[200], tm[400];
+        unit_meta_model(mm, sizeof mm, &u.cfg);
+        unit_meta_training(tm, sizeof tm, &u, &pl);
+        tsv_writer_meta(w, "scale", "%s", pl.scale);
+        tsv_writer_meta(w, "model", "%s", mm);
+        tsv_writer_meta(w, "training", "%s", tm);
+        tsv_writer_meta(w, "step_plan", "%d epochs x ceil(%d / %d) = %ld steps; an epoch of the batch order holds %d whole batches, so %.17g passes over the data",
+                        pl.epochs, u.npatches, pl.batch, u.steps, u.npatches / pl.batch, (double)u.steps / (u.npatches / pl.batch));
+        tsv_writer_meta(w, "weights", "%s sha256 %s (weights format 1, README)", base_name(a.weights), u.wsha);
+        tsv_writer_meta(w, "train_s", "training wall time of this invocation (a resumed run counts its last part only); steps_per_s likewise");
+        tsv_writer_columns(w, "seed\tarm\treading\tparams\tsteps\tfinal_loss\ttrain_s\tsteps_per_s");
+        tsv_writer_long(w, a.seed); tsv_writer_str(w, a.arm); tsv_writer_str(w, model_reading_name(reading));
+        tsv_writer_long(w, (long)model_nparams(&u.cfg)); tsv_writer_long(w, u.steps); tsv_writer_dbl(w, u.final_loss);
+        tsv_writer_dbl(w, u.train_s); tsv_writer_dbl(w, u.steps_per_s);
+        tsv_writer_endrow(w);
+        st = tsv_writer_commit(w);
+    }
+    train_free(t);
+    patch_set_free(tr);
+    return st;
+}
+
+/* Copy the training record of a unit (its training or run table): model and
+ * training lines, and the teacher, commit and date it was trained under. */
+static cs_status trained_meta(const char *path, const char *(*meta)[2], int *nmeta, char (*buf)[512])
+{
+    tsv *t;
+    cs_status st = tsv_read(path, &t);
+    if (st) return st;
+    static const char *keys[][2] = {{"model", "model"}, {"training", "training"}, {"teacher_sha256", "trained_teacher_sha256"},
+                                    {"git_commit", "trained_git_commit"}, {"date", "trained_date"}, {"wall_s", "trained_wall_s"}};
+    for (size_t k = 0; k < sizeof keys / sizeof *keys && !st; k++) {
+        const char *v = tsv_meta(t, keys[k][0]);
+        if (!v) { st = cs_err(CS_EINPUT, "%s: provenance line '# %s:' missing (need a training or run table)", path, keys[k][0]); break; }
+        snprintf(buf[*nmeta], 512, "%s", v);
+        meta[*nmeta][0] = keys[k][1];
+        meta[*nmeta][1] = buf[*nmeta];
+        (*nmeta)++;
+    }
+    tsv_free(t);
+    char hex[65];
+    if (!st) st = prov_sha256_file(path, hex);
+    if (!st) {
+        snprintf(buf[*nmeta], 512, "sha256 %s of the table the unit's training run wrote (%s; git history at trained_git_commit)", hex, base_name(path));
+        meta[*nmeta][0] = "training_record";
+        meta[*nmeta][1] = buf[*nmeta];
+        (*nmeta)++;
+    }
+    return st;
+}
+
+/* Load weights for a unit: the arm must match. */
+static cs_status unit_load(const unit_args *a, const mainrun_plan *pl, model **m, double *scale)
+{
+    cs_status st = train_load_model(a->weights, m, pl->batch, scale);
+    if (!st && (*m)->cfg.joint != !strcmp(a->arm, "joint"))
+        st = cs_err(CS_EINPUT, "%s: weights of the %s arm, not %s", a->weights, (*m)->cfg.joint ? "joint" : "indep", a->arm);
+    model_reading r;
+    if (!st && a->reading && !model_reading_parse(a->reading, &r) && model_cfg_reading(&(*m)->cfg) != r)
+        st = cs_err(CS_EINPUT, "%s: weights of the %s reading, not %s", a->weights, model_reading_name(model_cfg_reading(&(*m)->cfg)), a->reading);
+    return st;
+}
+
+/* Evaluate frozen weights without training (design.md §9: frozen models are
+ * re-evaluated from their weights): the run table and samples of main-run. */
+cs_status exp_main_eval(const exp_main_run_args *ap)
+{
+    const unit_args a = *ap;
+    cs_status st0 = unit_check("main-eval", &a, 1);
+    if (st0) return st0;
+    if (!a.trained) return cs_err(CS_EUSAGE, "main-eval: --trained is required");
+    prov pv;
+    prov_begin(&pv, "main", a.argc, a.argv);
+    mainset_design ds;
+    mainrun_plan pl;
+    model *m = NULL;
+    double scl = 0, worst = 0;
+    const char *meta[16][2] = {{"scale", NULL}};
+    char buf[10][512];
+    int nmeta = 1;
+    cs_status st = unit_plan(&a, &ds, &pl);
+    meta[0][1] = pl.scale;
+    if (!st) st = trained_meta(a.trained, meta, &nmeta, buf);
+    if (!st) st = unit_load(&a, &pl, &m, &scl);
+    char wsha[65] = "";
+    if (!st) st = prov_sha256_file(a.weights, wsha);
+    if (!st) st = unit_evaluate_write(&a, &pv, m, pl.batch, &ds, &pl, scl, meta, nmeta, wsha, &worst);
     model_free(m);
     return st;
 }
 
-cs_status exp_main_baselines(const exp_main_baselines_args *a)
+/* Redraw the samples of one unit from its frozen weights alone (design.md §9
+ * verify-deep): the same evaluation sets, seeds and sampler as main-run. */
+cs_status exp_main_redraw(const exp_main_run_args *ap)
 {
-    const char *out = a->out, *scale = a->scale, *samples = a->samples;
-    const int argc = a->argc;
-    char **argv = a->argv;
+    const unit_args a = *ap;
+    cs_status st0 = unit_check("main-redraw", &a, 1);
+    if (st0) return st0;
     prov pv;
-    prov_begin(&pv, "main", argc, argv);
+    prov_begin(&pv, "main", a.argc, a.argv);
     mainset_design ds;
-    exp_main_plan pl;
-    cs_status st = mainset_design_get(&ds);
-    if (!st) st = exp_main_plan_get(scale, &pl);
-    if (st) return st;
-    double worst = 0.0, maxdiff = 0.0;
-    size_t nall = ds.nunseen + ds.nextrap;
-    /* per spacing: 0 teacher, 1 teacher shuffled, 2 teacher rotated, 3 direction-blind */
-    double blind[2 * MAXSP], noise[2 * MAXSP], tshuf[2 * MAXSP], trot[2 * MAXSP], dd[2 * MAXSP];
-    double *smp[2 * MAXSP][4] = {{0}};
-    int nt[2 * MAXSP] = {0}, half[2 * MAXSP] = {0}, uns[2 * MAXSP] = {0};
-    for (size_t si = 0; si < nall && !st; si++) {
-        dd[si] = mainset_eval_spacing(&ds, si, &uns[si]);
-        mainset_eval e;
-        st = mainset_eval_build(&ds, pl.eval_stands, dd[si], 1.0, &e, &worst, &maxdiff);
-        int n = st ? 0 : e.ps->n;
-        for (int q = 0; q < 4 && !st; q++)
-            if (!(smp[si][q] = malloc((size_t)(n ? n : 1) * sizeof **smp))) st = cs_err(CS_ENOMEM, "out of memory");
-        if (!st) st = mainset_teacher_probe(&e, MAINSET_GENERATED, smp[si][0]);
-        if (!st) st = mainset_teacher_probe(&e, MAINSET_SHUFFLED, smp[si][1]);
-        if (!st) st = mainset_teacher_probe(&e, MAINSET_ROTATED, smp[si][2]);
-        if (!st) st = mainset_blind(&e, smp[si][3]);
-        if (!st) st = est_w1(smp[si][3], (size_t)n, e.teach, (size_t)n, &blind[si]);
-        if (!st) st = est_w1(smp[si][1], (size_t)n, e.teach, (size_t)n, &tshuf[si]);
-        if (!st) st = est_w1(smp[si][2], (size_t)n, e.teach, (size_t)n, &trot[si]);
-        for (int k = 0; k < e.nstands / 2 && !st; k++) half[si] += e.per_stand[k];
-        if (!st && (half[si] == 0 || half[si] == n)) st = cs_err(CS_EINPUT, "noise floor needs at least 2 eval stands");
-        if (!st) st = est_w1(e.teach, (size_t)half[si], e.teach + half[si], (size_t)(n - half[si]), &noise[si]);
-        nt[si] = n;
-        mainset_eval_free(&e);
-    }
-    snprintf(pv.seeds, sizeof pv.seeds, "stands seed_derive(main-eval, d, k, stems|crowns), k < %d; teacher permutation seed_derive(main-teacher, d, 0, shuffle)", pl.eval_stands);
+    mainrun_plan pl;
+    model *m = NULL;
+    double scl = 0, worst = 0, maxdiff = 0;
+    cs_status st = unit_plan(&a, &ds, &pl);
+    if (!st) st = unit_load(&a, &pl, &m, &scl);
+    mainrun_row rows[MAINRUN_MAXROWS];
+    size_t nrows = 0;
+    char sbuf[256];
+    const unsigned seed = (unsigned)a.seed;
+    if (!st) st = mainrun_evaluate(m, pl.batch, &ds, &pl, scl, seed, a.arm, rows, &nrows, &worst, &maxdiff);
+    snprintf(pv.seeds, sizeof pv.seeds, "%s", mainrun_seeds_text(sbuf, sizeof sbuf, seed));
     pv.worst_overlap_m = worst;
-    char ssha[65] = "";
-    tsv_writer *w = NULL;
-    if (!st && samples) {
-        static const char *probe[4] = {"none", "shuffled", "rotated", "none"}, *which[4] = {"teacher", "teacher", "teacher", "blind"};
-        if (!(st = afile_mkdir_parents(samples))) st = tsv_writer_open(&w, samples);
-        if (!st && (st = prov_write(w, &pv))) { tsv_writer_abort(w); w = NULL; }
-        if (!st) {
-            tsv_writer_meta(w, "what", "focal nearest-neighbour clearances (m) behind every W1 of baselines.tsv: which = teacher (probe none: the teacher's crowns; "
-                            "shuffled, rotated: the teacher's crowns under the probe) or blind (circular crowns); each W1 = est_w1(values, teacher none values); "
-                            "noise floor = est_w1(first n_half teacher none values, the rest)");
-            tsv_writer_columns(w, "spacing\tsplit\tprobe\twhich\tvalue");
-            for (size_t si = 0; si < nall; si++)
-                for (int q = 0; q < 4; q++)
-                    for (int k = 0; k < nt[si]; k++) {
-                        tsv_writer_dbl(w, dd[si]); tsv_writer_str(w, uns[si] ? "unseen" : "extrap");
-                        tsv_writer_str(w, probe[q]); tsv_writer_str(w, which[q]); tsv_writer_dbl(w, smp[si][q][k]);
-                        tsv_writer_endrow(w);
-                    }
-            st = tsv_writer_commit(w);
-            w = NULL;
-        }
-        if (!st) st = file_sha256(samples, ssha);
-    }
-    if (!st) st = tsv_writer_open(&w, out);
-    if (!st) st = prov_write(w, &pv);
-    if (!st) {
-        tsv_writer_meta(w, "scale", "%s", pl.scale);
-        tsv_writer_meta(w, "noise_floor", "W1 between the teacher clearances of the first n_half (first half of the eval stands) and the rest");
-        tsv_writer_meta(w, "direction_blind", "W1 between clearances with every crown replaced by its circular mean and the teacher's (a rotation leaves it unchanged)");
-        tsv_writer_meta(w, "teacher_probes", "added after the first verdict: W1 between the teacher's own crowns under the shuffled-geometry probe "
-                        "(token i given the deviation profile of the stem whose position it was given) or the rotation probe (crowns turned by "
-                        "(1 + g mod 7) x 45 deg), evaluated at the true positions, and the teacher's: the most a perfect generator degrades");
-        if (samples) tsv_writer_meta(w, "samples", "%s sha256 %s", base_name(samples), ssha);
-        tsv_writer_columns(w, "spacing\tsplit\tdirection_blind_w1\tnoise_floor_w1\tteacher_shuffled_w1\tteacher_rotated_w1\tn_teacher\tn_half");
-        for (size_t si = 0; si < nall; si++) {
-            tsv_writer_dbl(w, dd[si]);
-            tsv_writer_str(w, uns[si] ? "unseen" : "extrap");
-            tsv_writer_dbl(w, blind[si]);
-            tsv_writer_dbl(w, noise[si]);
-            tsv_writer_dbl(w, tshuf[si]);
-            tsv_writer_dbl(w, trot[si]);
-            tsv_writer_long(w, nt[si]);
-            tsv_writer_long(w, half[si]);
-            tsv_writer_endrow(w);
-        }
-        st = tsv_writer_commit(w);
-        w = NULL;
-    }
-    if (w) tsv_writer_abort(w);
-    for (size_t si = 0; si < nall; si++)
-        for (int q = 0; q < 4; q++) free(smp[si][q]);
+    if (!st) st = afile_mkdir_parents(a.out);
+    if (!st) st = mainrun_samples_write(a.out, &pv, seed, a.arm, rows, nrows);
+    mainrun_rows_free(rows, nrows);
+    model_free(m);
     return st;
 }
 
-/* Gather the per-run tables into main/runs.tsv (error on unseen spacings and
- * the shuffled probe, per seed and arm) and extrapolation/runs.tsv. */
-cs_status exp_main_summary(const exp_main_summary_args *a)
-{
-    const char *dir = a->dir;
-    const int nseeds = a->seeds, argc = a->argc;
-    char **argv = a->argv;
-    prov pv;
-    prov_begin(&pv, "main", argc, argv);
-    const char *arms[2] = {"joint", "indep"};
-    typedef struct { double probe[MAINSET_NPROBE], ex[MAXSP], exd[MAXSP]; int np[MAINSET_NPROBE], nex; } runres;
-    runres *rr = calloc((size_t)nseeds * 2, sizeof *rr);
-    double worst = 0.0;
-    cs_status st = rr ? CS_OK : cs_err(CS_ENOMEM, "out of memory");
-    for (int s = 1; s <= nseeds && !st; s++)
-        for (int a = 0; a < 2 && !st; a++) {
-            char p[1024];
-            snprintf(p, sizeof p, "%s/main/run_s%02d_%s.tsv", dir, s, arms[a]);
-            tsv *t;
-            if ((st = tsv_read(p, &t))) break;
-            runres *r = &rr[(s - 1) * 2 + a];
-            const char *wo = tsv_meta(t, "worst_overlap_m");
-            if (wo && atof(wo) > worst) worst = atof(wo);
-            for (size_t i = 0; i < tsv_nrows(t) && !st; i++) {
-                double w1, d;
-                if ((st = tsv_double(t, i, "w1", &w1)) || (st = tsv_double(t, i, "spacing", &d))) break;
-                const char *split = tsv_str(t, i, "split"), *probe = tsv_str(t, i, "probe");
-                if (!split || !probe) { st = cs_err(CS_EINPUT, "%s:%d: field 'split'/'probe' missing", p, tsv_line(t, i)); break; }
-                int q = 0;
-                while (q < MAINSET_NPROBE && strcmp(probe, mainset_probe_name((mainset_probe)q))) q++;
-                if (q == MAINSET_NPROBE) { st = cs_err(CS_EINPUT, "%s:%d: field 'probe': unknown '%s'", p, tsv_line(t, i), probe); break; }
-                if (!strcmp(split, "unseen")) { r->probe[q] += w1; r->np[q]++; }
-                else if (!strcmp(split, "extrap") && q == MAINSET_GENERATED && r->nex < MAXSP) { r->ex[r->nex] = w1; r->exd[r->nex] = d; r->nex++; }
-            }
-            if (!st && r->np[0] == 0) st = cs_err(CS_EINPUT, "%s: no unseen-spacing rows", p);
-            if (!st && a == 0 && r->np[MAINSET_SHUFFLED] != r->np[0]) st = cs_err(CS_EINPUT, "%s: joint run lacks the shuffled probe at some unseen spacing", p);
-            for (int q = 1; q < MAINSET_NPROBE && !st; q++)
-                if (r->np[q] && r->np[q] != r->np[0]) st = cs_err(CS_EINPUT, "%s: the %s probe misses some unseen spacing", p, mainset_probe_name((mainset_probe)q));
-            for (int q = 0; q < MAINSET_NPROBE && !st; q++) r->probe[q] = r->np[q] ? r->probe[q] / r->np[q] : NAN;
-            tsv_free(t);
-        }
-    for (int pass = 0; pass < 2 && !st; pass++) {
-        char p[1024];
-        snprintf(p, sizeof p, pass ? "%s/extrapolation/runs.tsv" : "%s/main/runs.tsv", dir);
-        tsv_writer *w;
-        if ((st = tsv_writer_open(&w, p))) break;
-        prov_begin(&pv, pass ? "extrapolation" : "main", argc, argv);
-        snprintf(pv.seeds, sizeof pv.seeds, "model seeds 1..%d (see each run_s*_*.tsv)", nseeds);
-        pv.worst_overlap_m = worst;
-        if ((st = prov_write(w, &pv))) { tsv_writer_abort(w); break; }
-        tsv_writer_meta(w, "error", pass ? "W1 (m) of focal nearest-neighbour clearances at each extrapolation spacing"
-                                         : "mean over the unseen spacings of W1 (m) of focal nearest-neighbour clearances; probe shuffled = positions permuted within patches (preregistered), rotated = patch geometry turned about the focal stem (added after the first verdict), both evaluated at the true positions");
-        tsv_writer_columns(w, pass ? "seed\tarm\tspacing\tw1" : "seed\tarm\tprobe\terror");
-        for (int s = 1; s <= nseeds; s++)
-            for (int a = 0; a < 2; a++) {
-                runres *r = &rr[(s - 1) * 2 + a];
-                if (pass) {
-                    for (int k = 0; k < r->nex; k++) {
-                        tsv_writer_long(w, s); tsv_writer_str(w, arms[a]); tsv_writer_dbl(w, r->exd[k]); tsv_writer_dbl(w, r->ex[k]);
-                        tsv_writer_endrow(w);
-                    }
-                } else {
-                    for (int q = 0; q < MAINSET_NPROBE; q++) {
-                        if (!r->np[q]) continue;
-                        tsv_writer_long(w, s); tsv_writer_str(w, arms[a]); tsv_writer_str(w, mainset_probe_name((mainset_probe)q));
-                        tsv_writer_dbl(w, r->probe[q]);
-                        tsv_writer_endrow(w);
-                    }
-                }
-            }
-        st = tsv_writer_commit(w);
-    }
-    free(rr);
-    return st;
-}

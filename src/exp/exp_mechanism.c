@@ -58,7 +58,7 @@ static cs_status run_cell(const exp_opts *o, const char *key, const stems_type *
     cs_status st = CS_OK;
     for (int k = 0; k < o->stands && !st; k++) {
         stand *sd = NULL;
-        st = stand_alloc(&sd, kind, d, 12.0 * d, shape, key, (unsigned)k);
+        st = exp_stand_alloc(&o->rd, &sd, kind, d, 12.0 * d, shape, key, (unsigned)k);
         if (st) break;
         double *r = malloc(sd->s->n * NS * sizeof *r);
         if (!r) st = cs_err(CS_ENOMEM, "experiments: out of memory");
@@ -93,8 +93,7 @@ cs_status exp_mechanism_sweep(const exp_opts *o)
     for (size_t a = 0; a < nd && !st; a++)
         for (size_t b = 0; b < nb && !st; b++) {
             teacher_params p;
-            teacher_params_default(&p);
-            p.one_sided = o->rd.one_sided;
+            EXP_TEACHER_PARAMS(&o->rd, &p);
             p.beta = betas[b];
             st = run_cell(o, "mechanism", stems_lattice, ds[a], 0.04, &p, &res[a * nb + b], &worst);
             if (!st) fprintf(stderr, "mechanism sweep: d=%.1f beta=%.2f k1=%+.3f k2=%+.3f k3=%+.3f cover=%.3f\n",
@@ -203,8 +202,7 @@ cs_status exp_mechanism_ablation(const exp_opts *o)
     double worst = 0.0;
     for (int a = 0; a < 3 && !st; a++) {
         teacher_params p;
-        teacher_params_default(&p);
-            p.one_sided = o->rd.one_sided;
+        EXP_TEACHER_PARAMS(&o->rd, &p);
         p.coupled = coupled[a];
         p.beta = beta[a];
         st = run_cell(o, "mechanism", stems_lattice, d, 0.04, &p, &res[a], &worst);
@@ -227,7 +225,7 @@ cs_status exp_mechanism_figure(const exp_opts *o)
     cs_status st = ablation_gate(&d, beta);
     if (st) return st;
     stand *sd = NULL;
-    st = stand_alloc(&sd, stems_hardcore, d, EXP_FIG_L, EXP_FIG_C, "fig/mechanism", 0);
+    st = exp_stand_alloc(&o->rd, &sd, stems_hardcore, d, EXP_FIG_L, exp_fig_c(&o->rd), "fig/mechanism", 0);
     if (st) return st;
     size_t n = sd->s->n;
     double *r = malloc(3 * n * NS * sizeof *r);
@@ -237,8 +235,7 @@ cs_status exp_mechanism_figure(const exp_opts *o)
     double worst = 0.0;
     for (int a = 0; a < 3 && !st; a++) {
         teacher_params p;
-        teacher_params_default(&p);
-            p.one_sided = o->rd.one_sided;
+        EXP_TEACHER_PARAMS(&o->rd, &p);
         p.coupled = coupled[a];
         p.beta = beta[a];
         st = stand_grow(sd, &p, NULL, r + (size_t)a * n * NS, NULL, &worst);
@@ -252,7 +249,7 @@ cs_status exp_mechanism_figure(const exp_opts *o)
         sp.worst_overlap_m = worst;
         snprintf(sp.seeds, sizeof sp.seeds, "seed_derive(fig/mechanism,%.1f,0,stems|crowns) (the figure stand)", d);
         char stems[256];
-        snprintf(stems, sizeof stems, "hard-core Poisson c = %.2f, d = %.2f m, L = %.0f m: the one figure stand, identical in all arms", EXP_FIG_C, d, EXP_FIG_L);
+        snprintf(stems, sizeof stems, "hard-core Poisson c = %.2f, d = %.2f m, L = %.0f m: the one figure stand, identical in all arms", exp_fig_c(&o->rd), d, EXP_FIG_L);
         exp_opts o1 = *o;
         o1.stands = 1;
         st = write_ablation(&o1, &sp, "figure_stats.tsv", stems, d, beta, 1, fres);
@@ -267,7 +264,7 @@ cs_status exp_mechanism_figure(const exp_opts *o)
         if (st) tsv_writer_abort(w);
     }
     if (!st) {
-        tsv_writer_meta(w, "stems", "hard-core Poisson c = %.2f, d = %.2f m, L = %.0f m; one stand, identical in all panels", EXP_FIG_C, d, EXP_FIG_L);
+        tsv_writer_meta(w, "stems", "hard-core Poisson c = %.2f, d = %.2f m, L = %.0f m; one stand, identical in all panels", exp_fig_c(&o->rd), d, EXP_FIG_L);
         /* NN clearance on the stand shown (interior trees), for the panel captions. */
         for (int a = 0; a < 3; a++)
             tsv_writer_meta(w, arms[a], "median k1 clearance %.3f m", exp_stand_k1(sd, r + (size_t)a * n * NS));

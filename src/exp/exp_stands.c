@@ -38,14 +38,13 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
     double worst = 0.0;
     if (!sds || !rs) st = cs_err(CS_ENOMEM, "experiments: out of memory");
     for (size_t a = 0; a < nd && !st; a++) {
-        st = stand_alloc(&sds[a], stems_hardcore, ds[a], EXP_FIG_L, EXP_FIG_C, key, 0);
+        st = exp_stand_alloc(&o->rd, &sds[a], stems_hardcore, ds[a], EXP_FIG_L, exp_fig_c(&o->rd), key, 0);
         for (size_t b = 0; b < nrows + (size_t)with_uncoupled && !st; b++) {
             double *r = malloc(sds[a]->s->n * NS * sizeof *r);
             rs[a * (nrows + (size_t)with_uncoupled) + b] = r;
             if (!r) { st = cs_err(CS_ENOMEM, "experiments: out of memory"); break; }
             teacher_params p;
-            teacher_params_default(&p);
-            p.one_sided = o->rd.one_sided;
+            EXP_TEACHER_PARAMS(&o->rd, &p);
             if (b < nrows) p.beta = betas[b];
             else p.coupled = 0;
             st = stand_grow(sds[a], &p, NULL, r, NULL, &worst);
@@ -57,7 +56,7 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
         st = prov_write(w, &pv);
     }
     if (!st) {
-        tsv_writer_meta(w, "stems", "hard-core Poisson c = %.2f, L = %.0f m; crown draws shared within a column", EXP_FIG_C, EXP_FIG_L);
+        tsv_writer_meta(w, "stems", "hard-core Poisson c = %.2f, L = %.0f m; crown draws shared within a column", exp_fig_c(&o->rd), EXP_FIG_L);
         for (size_t b = 0; b < nrows; b++) tsv_writer_meta(w, rows[b], "dieback %.17g", betas[b]);
         unit_out_crown_columns(w);
         for (size_t a = 0; a < nd; a++)
@@ -92,15 +91,14 @@ static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size
     cs_status st = CS_OK;
     for (size_t a = 0; a < nd && !st; a++) {
         stand *sd = NULL;
-        st = stand_alloc(&sd, stems_hardcore, ds[a], EXP_FIG_L, EXP_FIG_C, "fig/pointcloud", 0);
+        st = exp_stand_alloc(&o->rd, &sd, stems_hardcore, ds[a], EXP_FIG_L, exp_fig_c(&o->rd), "fig/pointcloud", 0);
         if (st) break;
         size_t n = sd->s->n;
         double *rc = malloc(n * NS * sizeof *rc), *ru = malloc(n * NS * sizeof *ru);
         unsigned char *fz = malloc(n * NS);
         if (!rc || !ru || !fz) st = cs_err(CS_ENOMEM, "experiments: out of memory");
         teacher_params p;
-        teacher_params_default(&p);
-            p.one_sided = o->rd.one_sided;
+        EXP_TEACHER_PARAMS(&o->rd, &p);
         p.beta = beta;
         p.frozen_out = fz;
         if (!st) st = stand_grow(sd, &p, NULL, rc, NULL, &worst);
@@ -143,7 +141,7 @@ static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size
     snprintf(pv.seeds, sizeof pv.seeds, "seed_derive(fig/pointcloud,d,0,stems|crowns)");
     st = prov_write(w, &pv);
     if (st) { tsv_writer_abort(w); return st; }
-    tsv_writer_meta(w, "stems", "hard-core Poisson c = %.2f, L = %.0f m, one stand per spacing (the figure's)", EXP_FIG_C, EXP_FIG_L);
+    tsv_writer_meta(w, "stems", "hard-core Poisson c = %.2f, L = %.0f m, one stand per spacing (the figure's)", exp_fig_c(&o->rd), EXP_FIG_L);
     tsv_writer_meta(w, "dieback", "%.17g", beta);
     tsv_writer_meta(w, "contact", "interior crowns with a sector frozen on contact during coupled growth");
     tsv_writer_columns(w, "spacing_m	trees	contact_fraction	overlap_fraction_coupled	overlap_fraction_uncoupled	k1_coupled_m	k1_uncoupled_m");

@@ -15,6 +15,13 @@ else
 MAIN_NSEEDS := $(shell awk '$$1=="seeds"{print $$2}' gates/main.gate)
 endif
 MAIN_SEED_LIST := $(shell seq -f '%02g' 1 $(MAIN_NSEEDS))
+# the intermediate generator readings (plain, paper-fourier; design.md §8): descriptive rows
+ifeq ($(SCALE),smoke)
+READING_NSEEDS := 1
+else
+READING_NSEEDS := 4
+endif
+READING_SEED_LIST := $(shell seq -f '%02g' 1 $(READING_NSEEDS))
 
 # E1, E2, E8, E9 (teacher): 8 stands per cell at full scale, 1 at smoke scale.
 ifeq ($(SCALE),smoke)
@@ -35,6 +42,17 @@ else
 FIELD_STANDS := 28
 ANISO_SWEEP_STANDS := 12
 endif
+
+# E0 sensitivity (src/cli/cli_sens.c): E1 and E2 at 4 stands per cell (the
+# full run: 8; the centre unit uses the same count, so the columns compare),
+# E5/E6 at the full run's counts; smoke 1.
+ifeq ($(SCALE),smoke)
+SENS_STANDS := 1
+else
+SENS_STANDS := 4
+endif
+SENS_ARGS = --stands $(SENS_STANDS) --field-stands $(FIELD_STANDS) --sweep-stands $(ANISO_SWEEP_STANDS)
+SENS_DEPS := $(TEACHER_DEPS) gates/field.gate gates/anisotropy.gate gates/main.gate
 
 $(B)/manifest.mk: src/base/manifest.h src/base/manifest.sh
 	@mkdir -p $(dir $@)

@@ -10,11 +10,11 @@
 
 cs_status fieldrun_run(fieldrun_job *j, fs_trees *acc, double *worst)
 {
-    double d = exp_field_d(j->rd.layout), L = exp_field_L(j->rd.layout);
+    double d = exp_field_d(&j->rd), L = exp_field_L(&j->rd);
     j->failed = 0;
     for (unsigned s = 0; s < j->nstands; s++) {
         stand *sd;
-        cs_status st = stand_alloc(&sd, j->kind, d, L, j->shape, j->seed_exp, s);
+        cs_status st = exp_stand_alloc(&j->rd, &sd, j->kind, d, L, j->shape, j->seed_exp, s);
         if (st == CS_EINPUT && j->kind == stems_hardcore && strstr(cs_errmsg(), "unbuildable")) {
             /* A level the stem process cannot reach is a finding, not a crash. */
             j->failed++;
@@ -47,8 +47,9 @@ cs_status fieldrun_write(const char *out, prov *p, const fs_trees *acc, const fi
     if ((st = prov_write(w, p))) { tsv_writer_abort(w); return st; }
     tsv_writer_meta(w, "trees_table", "%s", tp);
     if (nj) tsv_writer_meta(w, "layout", "%s: field stands d = %g m on L = %g m (design.md §7 E5%s)", exp_layout_name(jobs[0].rd.layout),
-                            exp_field_d(jobs[0].rd.layout), exp_field_L(jobs[0].rd.layout),
+                            exp_field_d(&jobs[0].rd), exp_field_L(&jobs[0].rd),
                             jobs[0].rd.layout == EXP_LAYOUT_R1 ? ", the first round's layout" : "");
+    if (nj) exp_variant_meta(w, &jobs[0].rd);
     if (meta) meta(w, ctx);
     tsv_writer_columns(w, FS_SUMMARY_COLUMNS);
     for (size_t k = 0; k < nj && !st; k++)

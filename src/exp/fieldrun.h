@@ -15,10 +15,10 @@
 typedef struct exp_field_opts exp_field_opts;
 struct exp_field_opts {
     const char *out, *calibration, *sweep, *jitter_calibration;
-    const char *teacher, *layout; /* --teacher, --layout as given (NULL: defaults) */
+    const char *teacher, *layout, *vary; /* --teacher, --layout, --vary as given (NULL: defaults) */
     long stands_opt;  /* --stands as parsed */
     unsigned stands;  /* stands per level */
-    exp_reading rd;   /* the reading from teacher and layout */
+    exp_reading rd;   /* the reading from teacher, layout and vary */
     int argc;         /* the command line, for the provenance */
     char **argv;
 };

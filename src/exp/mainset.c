@@ -15,6 +15,9 @@ cs_status mainset_design_get(mainset_design *d)
 {
     cs_status st;
     memset(d, 0, sizeof *d);
+    crown_dist_default(&d->crowns);
+    d->nres = 48;
+    d->start_frac = 0.05;
     if ((st = gate_read_value(PATHS_GATE("mechanism"), "dieback_train", 0, &d->beta))) return st;
     if ((st = gate_read_value(PATHS_GATE("anisotropy"), "canonical_jitter", 0, &d->jitter))) return st;
     if ((st = gate_read_value(PATHS_GATE("main"), "estimator_agreement_tol_m", 0, &d->tol))) return st;
@@ -41,7 +44,7 @@ static cs_status add_stand_patches(const mainset_design *ds, const char *exp, do
                                    patch_set *ps, int *added, double *worst)
 {
     stand *sd;
-    cs_status st = stand_alloc(&sd, stems_lattice, d, 12.0 * d, ds->jitter, exp, k);
+    cs_status st = stand_alloc_dist(&sd, stems_lattice, d, 12.0 * d, ds->jitter, exp, k, &ds->crowns);
     if (st) return st;
     size_t n = sd->s->n;
     double *r = malloc(n * CROWN_NSEC * sizeof *r);
@@ -49,6 +52,9 @@ static cs_status add_stand_patches(const mainset_design *ds, const char *exp, do
     teacher_params tp;
     teacher_params_default(&tp);
     tp.beta = ds->beta;
+    tp.nres = ds->nres;
+    tp.start_frac = ds->start_frac;
+    tp.dieback = (teacher_dieback)ds->dieback;
     st = stand_grow(sd, &tp, NULL, r, NULL, worst);
     patch_stand pst;
     if (!st) st = patch_stand_init(&pst, (int)n, sd->s->x, sd->s->y, r, sd->h, d);

@@ -21,6 +21,7 @@
 #ifndef MAINSET_H
 #define MAINSET_H
 #include "cs.h"
+#include "crown.h"
 #include "model.h"
 #include "patch.h"
 #include <stddef.h>
@@ -29,12 +30,17 @@
 
 typedef struct {
     double beta, jitter, tol;
+    crown_dist crowns;  /* the teachers' crown draws (crown.h; the default unless a sensitivity run varies them) */
+    int nres;           /* the teacher's growth resolution (48 unless varied) */
+    double start_frac;  /* the teacher's start radius / target (0.05 unless varied) */
+    int dieback;        /* the teacher's die-back reading (teacher.h teacher_dieback; 0 = Eq. 3) */
     double train_d[MAINSET_MAXSP], unseen_d[MAINSET_MAXSP], extrap_d[MAINSET_MAXSP];
     size_t ntrain, nunseen, nextrap;
 } mainset_design;
 
 /* beta_train, the canonical jitter, the estimator tolerance and the spacings
- * from gates/ (mechanism, anisotropy, main, extrapolation). */
+ * from gates/ (mechanism, anisotropy, main, extrapolation); the design's crown
+ * draws and resolution. */
 cs_status mainset_design_get(mainset_design *d);
 /* Spacing i of the evaluation list: the unseen spacings, then the extrapolation ones. */
 double mainset_eval_spacing(const mainset_design *d, size_t i, int *unseen);

@@ -23,7 +23,8 @@ cs_status unit_out_finish(tsv_writer *w, prov *pv, const char *path)
 void unit_out_meta(tsv_writer *w, const exp_opts *o)
 {
     tsv_writer_meta(w, "stands_per_cell", "%d", o->stands);
-    tsv_writer_meta(w, "teacher_resolution", "N = 48 unless a column says otherwise; gamma = 1");
+    tsv_writer_meta(w, "teacher_resolution", "N = %d unless a column says otherwise; gamma = 1", exp_nres(&o->rd));
+    exp_variant_meta(w, &o->rd);
 }
 
 /* Crowns of one panel: one row per tree: panel, tree, x, y, h, interior, r0..r23. */

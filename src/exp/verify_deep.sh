@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # verify_deep.sh: the second tier of verification (design.md §9),
 # behind `make verify-deep`. Reruns every teacher experiment unit (E1, E2, the
-# teacher figure data, E5, E6 and the E0 readings) into $DEEP with make -j$JOBS,
+# teacher figure data, E5, E6, the E0 readings and sensitivity) into $DEEP with make -j$JOBS,
 # printing progress (units done of total, elapsed, ETA), then compares every
 # table it wrote with its frozen/ counterpart bit for bit: the data rows (the
 # header and every row after the "# key: value" lines); provenance lines
@@ -51,8 +51,8 @@ while IFS= read -r f; do
     rel=${f#"$DEEP"/}
     fz="frozen/$rel"
     if [ ! -f "$fz" ]; then
-        # make freeze leaves out the readings' figure tables: nothing to compare
-        case "$rel" in readings/*/*/figure_crowns*|readings/*/*/figure_poly*) skipped=$((skipped + 1)); continue ;; esac
+        # make freeze leaves out the readings' and sensitivity units' figure tables: nothing to compare
+        case "$rel" in readings/*/*/figure_crowns*|readings/*/*/figure_poly*|sensitivity/*/*/figure_crowns*|sensitivity/*/*/figure_poly*) skipped=$((skipped + 1)); continue ;; esac
         echo "  FAIL    $fz: rerun made $f but frozen/ has no such table"; missing=$((missing + 1)); continue
     fi
     # a table that names its input folder (readings/summary.tsv) names frozen/ once frozen

@@ -24,19 +24,33 @@ void crown_target(const crown_draw *c, double rstar[CROWN_NSEC])
         rstar[s] = c->R * (1.0 + c->a * cos((double)c->k * crown_theta(s) + c->phi));
 }
 
-cs_status crown_draw_n(gsl_rng *rng, size_t n, crown_draw *out)
+void crown_dist_default(crown_dist *c)
 {
+    const crown_dist d = CROWN_DIST_DEFAULT;
+    *c = d;
+}
+
+cs_status crown_draw_n(gsl_rng *rng, size_t n, crown_draw *out) { return crown_draw_n_dist(rng, n, NULL, out); }
+
+cs_status crown_draw_n_dist(gsl_rng *rng, size_t n, const crown_dist *c, crown_draw *out)
+{
+    crown_dist d;
+    if (c) d = *c;
+    else crown_dist_default(&d);
+    if (!(d.h_sd >= 0.0) || !(d.h_lo < d.h_hi) || !(d.R_scale > 0.0) || !(d.R_lnsd >= 0.0) || !(d.a_max >= 0.0 && d.a_max < 1.0))
+        return cs_err(CS_EINPUT, "crown: distribution cannot be drawn (h sd %g in [%g, %g], R %g exp(%g z), a_max %g)",
+                      d.h_sd, d.h_lo, d.h_hi, d.R_scale, d.R_lnsd, d.a_max);
     for (size_t i = 0; i < n; i++) {
         double h = 0.0;
         int tries = 0;
         do {
             if (++tries > 1000) return cs_err(CS_ENUMERIC, "crown: height redraw did not terminate");
-            h = 25.0 + gsl_ran_gaussian(rng, 4.0);
-        } while (h < 12.0 || h > 38.0);
+            h = d.h_mean + gsl_ran_gaussian(rng, d.h_sd);
+        } while (h < d.h_lo || h > d.h_hi);
         double z = gsl_ran_gaussian(rng, 1.0);
         out[i].h = h;
-        out[i].R = 4.0 * exp(CROWN_R_LOG_SD * z);
-        out[i].a = 0.2 * gsl_rng_uniform(rng);
+        out[i].R = d.R_scale * exp(d.R_lnsd * z);
+        out[i].a = d.a_max * gsl_rng_uniform(rng);
         out[i].k = 2 + (int)gsl_rng_uniform_int(rng, 4);
         out[i].phi = 2.0 * CROWN_PI * gsl_rng_uniform(rng);
     }

@@ -24,7 +24,7 @@ double crown_radius_at(const double r[CROWN_NSEC], double theta);
 /* Bearing of sector s (radians). */
 double crown_theta(int s);
 
-/* One tree's draw (design.md §3). */
+/* One tree's draw (design.md §3; crown_dist below gives the distributions). */
 typedef struct {
     double h;    /* height, m: N(25, 4^2) truncated to [12, 38] by redraw */
     double R;    /* open-grown radius, m: 4 exp(0.15 z), z ~ N(0,1) */
@@ -33,10 +33,28 @@ typedef struct {
     double phi;  /* lobe phase ~ U[0, 2 pi) */
 } crown_draw;
 
+/* The per-tree distributions the paper leaves unstated (design.md §3). The
+ * default is the design's; the sensitivity runs (design.md §7 E0) change one
+ * field at a time. The lobe count stays uniform on {2,3,4,5}. */
+typedef struct {
+    double h_mean, h_sd;   /* height N(h_mean, h_sd^2), m ... */
+    double h_lo, h_hi;     /* ... truncated to [h_lo, h_hi] by redraw */
+    double R_scale;        /* R = R_scale exp(R_lnsd z), m */
+    double R_lnsd;
+    double a_max;          /* lobing amplitude a ~ U[0, a_max] */
+} crown_dist;
+#define CROWN_DIST_DEFAULT {25.0, 4.0, 12.0, 38.0, 4.0, CROWN_R_LOG_SD, 0.2}
+void crown_dist_default(crown_dist *c);
+
 /* Lobed target r*_s = R (1 + a cos(k theta_s + phi)) (paper Eq. 1). */
 void crown_target(const crown_draw *c, double rstar[CROWN_NSEC]);
-/* Draw n trees in index order from rng, fields drawn in the order h, z, a, k, phi.
- * CS_ENUMERIC if the height redraw fails 1000 times (probability ~0). */
+/* Draw n trees in index order from rng, fields drawn in the order h, z, a, k, phi,
+ * from the default distribution. CS_ENUMERIC if the height redraw fails 1000
+ * times (probability ~0). */
 cs_status crown_draw_n(gsl_rng *rng, size_t n, crown_draw *out);
+/* The same from distribution c (NULL: the default; bit-identical to
+ * crown_draw_n then). CS_EINPUT for a distribution that cannot be drawn
+ * (sd < 0, empty height range, a_max outside [0, 1), R_scale <= 0). */
+cs_status crown_draw_n_dist(gsl_rng *rng, size_t n, const crown_dist *c, crown_draw *out);
 
 #endif

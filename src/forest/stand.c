@@ -12,7 +12,9 @@ void stand_free(stand *sd)
     free(sd);
 }
 
-cs_status stand_from_stems(stand **out, stems *s, uint64_t crown_seed)
+cs_status stand_from_stems(stand **out, stems *s, uint64_t crown_seed) { return stand_from_stems_dist(out, s, crown_seed, NULL); }
+
+cs_status stand_from_stems_dist(stand **out, stems *s, uint64_t crown_seed, const crown_dist *cd)
 {
     *out = NULL;
     stand *sd = calloc(1, sizeof *sd);
@@ -30,7 +32,7 @@ cs_status stand_from_stems(stand **out, stems *s, uint64_t crown_seed)
         return cs_err(CS_ENOMEM, "stand: out of memory");
     }
     gsl_rng_set(rng, seed_mt(crown_seed));
-    cs_status st = crown_draw_n(rng, n, sd->draw);
+    cs_status st = crown_draw_n_dist(rng, n, cd, sd->draw);
     gsl_rng_free(rng);
     if (st) { stand_free(sd); return st; }
     for (size_t i = 0; i < n; i++) {
@@ -45,12 +47,18 @@ cs_status stand_from_stems(stand **out, stems *s, uint64_t crown_seed)
 cs_status stand_alloc(stand **out, const stems_type *kind, double d, double L, double shape,
                       const char *experiment, unsigned index)
 {
+    return stand_alloc_dist(out, kind, d, L, shape, experiment, index, NULL);
+}
+
+cs_status stand_alloc_dist(stand **out, const stems_type *kind, double d, double L, double shape,
+                           const char *experiment, unsigned index, const crown_dist *cd)
+{
     *out = NULL;
     stems *s = NULL;
     uint64_t ss = seed_derive(experiment, d, index, "stems");
     cs_status st = kind->alloc(&s, d, L, shape, ss);
     if (st) return st;
-    return stand_from_stems(out, s, seed_derive(experiment, d, index, "crowns"));
+    return stand_from_stems_dist(out, s, seed_derive(experiment, d, index, "crowns"), cd);
 }
 
 void stand_view(const stand *sd, stand_arrays *v)

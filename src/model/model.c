@@ -17,6 +17,39 @@ model_cfg model_cfg_reference(int ncond)
     return c;
 }
 
+static const char *const reading_names[MODEL_NREADING] = {"plain", "paper", "paper-fourier", "pair"};
+
+const char *model_reading_name(model_reading r)
+{
+    return r >= 0 && r < MODEL_NREADING ? reading_names[r] : "none";
+}
+
+cs_status model_reading_parse(const char *s, model_reading *r)
+{
+    for (int k = 0; k < MODEL_NREADING; k++)
+        if (s && !strcmp(s, reading_names[k])) { *r = (model_reading)k; return CS_OK; }
+    return cs_err(CS_EUSAGE, "unknown generator reading '%s' (plain, paper, paper-fourier or pair)", s ? s : "");
+}
+
+void model_cfg_set_reading(model_cfg *c, model_reading r)
+{
+    c->pair = r == MODEL_PAIR;
+    c->stdz = r == MODEL_PAPER || r == MODEL_PAPER_FOURIER ? MODEL_STDZ_ON : MODEL_STDZ_AUTO;
+    c->nuse = r == MODEL_PAPER ? PATCH_FEAT_RBAR + 1 : 0;
+}
+
+int model_cfg_stdz(const model_cfg *c) { return c->stdz == MODEL_STDZ_AUTO ? c->pair : c->stdz == MODEL_STDZ_ON; }
+int model_cfg_nuse(const model_cfg *c) { return c->nuse ? c->nuse : c->nfeat; }
+
+model_reading model_cfg_reading(const model_cfg *c)
+{
+    const int z = model_cfg_stdz(c), all = model_cfg_nuse(c) == c->nfeat;
+    if (c->pair) return z && all ? MODEL_PAIR : MODEL_NREADING;
+    if (!z) return all ? MODEL_PLAIN : MODEL_NREADING;
+    if (all) return MODEL_PAPER_FOURIER;
+    return model_cfg_nuse(c) == PATCH_FEAT_RBAR + 1 ? MODEL_PAPER : MODEL_NREADING;
+}
+
 cs_status model_cfg_check(const model_cfg *c)
 {
 #define POS(f) if (c->f < 1) return cs_err(CS_EINPUT, "model config: " #f " = %d must be >= 1", c->f)
@@ -27,6 +60,8 @@ cs_status model_cfg_check(const model_cfg *c)
     if (c->joint != 0 && c->joint != 1) return cs_err(CS_EINPUT, "model config: joint = %d must be 0 or 1", c->joint);
     if (c->pair != 0 && c->pair != 1) return cs_err(CS_EINPUT, "model config: pair = %d must be 0 or 1", c->pair);
     if (c->pair && c->nfeat < 3) return cs_err(CS_EINPUT, "model config: the pair model needs nfeat >= 3 (x, y, rbar), got %d", c->nfeat);
+    if (c->stdz < MODEL_STDZ_AUTO || c->stdz > MODEL_STDZ_OFF) return cs_err(CS_EINPUT, "model config: stdz = %d must be 0 (as pair), 1 (on) or 2 (off)", c->stdz);
+    if (c->nuse < 0 || c->nuse > c->nfeat) return cs_err(CS_EINPUT, "model config: nuse = %d must be 0 (all) .. nfeat = %d", c->nuse, c->nfeat);
     return CS_OK;
 }
 
@@ -34,7 +69,7 @@ cs_status model_cfg_check(const model_cfg *c)
 static size_t layout(const model_cfg *c, model *m, size_t *ndecay)
 {
     size_t o = 0;
-    const size_t C = c->C, F = c->F, E = c->ncond + c->ntime, I = c->P + c->nfeat;
+    const size_t C = c->C, F = c->F, E = c->ncond + c->ntime, I = c->P + model_cfg_nuse(c);
 #define PUT(field, n) do { if (m) m->field = o; o += (n); } while (0)
 #define PUTB(l, field, n) do { if (m) m->blk[l].field = o; o += (n); } while (0)
     PUT(tok_w, C * I);
@@ -72,7 +107,13 @@ static size_t layout(const model_cfg *c, model *m, size_t *ndecay)
 
 size_t model_nparams(const model_cfg *cfg) { return layout(cfg, NULL, NULL); }
 
-size_t model_nnorm(const model_cfg *cfg) { return cfg->pair ? 2 * (size_t)cfg->nfeat + 2 * PAIRATTN_Q : 0; }
+size_t model_nnorm(const model_cfg *cfg)
+{
+    return (model_cfg_stdz(cfg) ? 2 * (size_t)model_cfg_nuse(cfg) : 0) + (cfg->pair ? 2 * PAIRATTN_Q : 0);
+}
+
+/* Offset of the pair z-scores in m->norm (after the token z-scores, if any). */
+static size_t pair_norm_off(const model_cfg *c) { return model_cfg_stdz(c) ? 2 * (size_t)model_cfg_nuse(c) : 0; }
 
 /* mean and population sd (double) of n values x[k*stride]; isd = 1/sd (1 if sd is 0) */
 static void zscore(const float *x, size_t n, size_t stride, const unsigned char *skip, float *mu, float *isd)
@@ -90,12 +131,14 @@ static void zscore(const float *x, size_t n, size_t stride, const unsigned char 
 cs_status model_norm_fit(model *m, const float *feat, int n)
 {
     const model_cfg *c = &m->cfg;
-    if (!c->pair) return CS_OK;
+    if (!model_cfg_stdz(c) && !c->pair) return CS_OK;
     if (n < 1) return cs_err(CS_EINPUT, "model_norm_fit: no patches");
-    const int T = c->T, nf = c->nfeat, Q = PAIRATTN_Q;
+    const int T = c->T, nf = c->nfeat, nu = model_cfg_nuse(c), Q = PAIRATTN_Q;
     const size_t TT = (size_t)T * T, npairs = (size_t)n * TT;
-    for (int k = 0; k < nf; k++)
-        zscore(feat + k, (size_t)n * T, nf, NULL, m->norm + k, m->norm + nf + k);
+    for (int k = 0; model_cfg_stdz(c) && k < nu; k++)
+        zscore(feat + k, (size_t)n * T, nf, NULL, m->norm + k, m->norm + nu + k);
+    if (!c->pair) return CS_OK;
+    float *pn = m->norm + pair_norm_off(c);
     float *f = malloc(sizeof(float) * npairs * Q);
     unsigned char *self = malloc(npairs);
     if (!f || !self) { free(f); free(self); return cs_err(CS_ENOMEM, "model_norm_fit: out of memory"); }
@@ -104,7 +147,7 @@ cs_status model_norm_fit(model *m, const float *feat, int n)
         for (size_t e = 0; e < TT; e++) self[(size_t)b * TT + e] = e % (T + 1) == 0;
     }
     for (int q = 0; q < Q; q++)
-        zscore(f + q, npairs, Q, self, m->norm + 2 * nf + q, m->norm + 2 * nf + Q + q);
+        zscore(f + q, npairs, Q, self, pn + q, pn + Q + q);
     free(f);
     free(self);
     return CS_OK;
@@ -143,14 +186,14 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
     m->wtall = calloc(m->ndecay, sizeof(float));
     m->nnorm = model_nnorm(cfg);
     m->norm = calloc(m->nnorm ? m->nnorm : 1, sizeof(float));
-    if (m->norm && cfg->pair) { /* identity z-scores (mean 0, 1/sd 1) until model_norm_fit */
-        float *fisd = m->norm + cfg->nfeat, *pisd = m->norm + 2 * cfg->nfeat + PAIRATTN_Q;
-        for (int k = 0; k < cfg->nfeat; k++) fisd[k] = 1.f;
-        for (int q = 0; q < PAIRATTN_Q; q++) pisd[q] = 1.f;
+    if (m->norm) { /* identity z-scores (mean 0, 1/sd 1) until model_norm_fit */
+        const int nu = model_cfg_nuse(cfg);
+        for (int k = 0; model_cfg_stdz(cfg) && k < nu; k++) m->norm[nu + k] = 1.f;
+        for (int q = 0; cfg->pair && q < PAIRATTN_Q; q++) m->norm[pair_norm_off(cfg) + PAIRATTN_Q + q] = 1.f;
     }
 
     const size_t N = (size_t)Bmax * cfg->T, C = cfg->C, F = cfg->F, B = Bmax;
-    const size_t I = cfg->P + cfg->nfeat, E = cfg->ncond + cfg->ntime, TP = (size_t)cfg->T * cfg->P;
+    const size_t I = cfg->P + model_cfg_nuse(cfg), E = cfg->ncond + cfg->ntime, TP = (size_t)cfg->T * cfg->P;
     const size_t probn = cfg->joint ? B * cfg->H * cfg->T * cfg->T : 0;
     const size_t TTQ = cfg->pair ? (size_t)cfg->T * cfg->T * PAIRATTN_Q : 0;
     const size_t Phin = cfg->pair ? N * cfg->H * PAIRATTN_Q : 0;
@@ -201,7 +244,7 @@ void model_init(model *m, gsl_rng *r)
     memset(p, 0, m->nparams * sizeof(float));
     const size_t C = c->C, F = c->F;
     const double res = 1.0 / sqrt(2.0 * c->L);
-    init_matrix(p + m->tok_w, C, c->P + c->nfeat, 1.0, r);
+    init_matrix(p + m->tok_w, C, c->P + model_cfg_nuse(c), 1.0, r);
     init_matrix(p + m->e1_w, C, c->ncond + c->ntime, 1.0, r);
     init_matrix(p + m->e2_w, C, C, 1.0, r);
     for (int l = 0; l < c->L; l++) {
@@ -226,7 +269,7 @@ void model_init(model *m, gsl_rng *r)
 static void transpose_all(model *m)
 {
     const model_cfg *c = &m->cfg;
-    const int C = c->C, F = c->F, I = c->P + c->nfeat, E = c->ncond + c->ntime;
+    const int C = c->C, F = c->F, I = c->P + model_cfg_nuse(c), E = c->ncond + c->ntime;
     const float *w = m->params;
     float *t = m->wtall;
     gemm_transpose(t + m->tok_w, w + m->tok_w, C, I);
@@ -251,23 +294,24 @@ static void forward(model *m, int B, const float *xt, const float *feat,
 {
     const model_cfg *c = &m->cfg;
     const int T = c->T, P = c->P, C = c->C, F = c->F, N = B * T;
-    const int I = P + c->nfeat, E = c->ncond + c->ntime, nh = c->ntime / 2;
+    const int nu = model_cfg_nuse(c), I = P + nu, E = c->ncond + c->ntime, nh = c->ntime / 2;
     const float *w = m->params;
     float *wt = m->wtall;
     const nn_attn_mode mode = c->joint ? NN_ATTN_JOINT : NN_ATTN_SELF;
     m->B = B;
-    const int nf = c->nfeat;
+    const int nf = c->nfeat, stdz = model_cfg_stdz(c);
     for (int r = 0; r < N; r++) {
         memcpy(m->tin + (size_t)r * I, xt + (size_t)r * P, sizeof(float) * P);
-        if (!c->pair) memcpy(m->tin + (size_t)r * I + P, feat + (size_t)r * nf, sizeof(float) * nf);
+        if (!stdz) memcpy(m->tin + (size_t)r * I + P, feat + (size_t)r * nf, sizeof(float) * nu);
         else /* standardised features */
-            for (int k = 0; k < nf; k++)
-                m->tin[(size_t)r * I + P + k] = (feat[(size_t)r * nf + k] - m->norm[k]) * m->norm[nf + k];
+            for (int k = 0; k < nu; k++)
+                m->tin[(size_t)r * I + P + k] = (feat[(size_t)r * nf + k] - m->norm[k]) * m->norm[nu + k];
     }
     const size_t TTQ = (size_t)T * T * PAIRATTN_Q;
+    const float *pn = m->norm + pair_norm_off(c);
     for (int b = 0; c->pair && b < B; b++) /* pair geometry from the raw features */
         pairattn_geometry(m->phi + b * TTQ, m->phit + b * TTQ, feat + (size_t)b * T * nf, nf, T,
-                          m->norm + 2 * nf, m->norm + 2 * nf + PAIRATTN_Q);
+                          pn, pn + PAIRATTN_Q);
     for (int b = 0; b < B; b++) {
         float *ci = m->cin + (size_t)b * E;
         memcpy(ci, cond + (size_t)b * c->ncond, sizeof(float) * c->ncond);
@@ -345,7 +389,7 @@ static void backward(model *m, const float *dv, int zero)
 {
     const model_cfg *c = &m->cfg;
     const int B = m->B, T = c->T, P = c->P, C = c->C, F = c->F, N = B * T;
-    const int I = P + c->nfeat, E = c->ncond + c->ntime;
+    const int I = P + model_cfg_nuse(c), E = c->ncond + c->ntime;
     const float *w = m->params;
     float *g = m->grads;
     const nn_attn_mode mode = c->joint ? NN_ATTN_JOINT : NN_ATTN_SELF;
@@ -472,7 +516,7 @@ cs_status model_sample(model *m, gsl_rng *noise, int B, const float *feat,
 double model_train_flops(const model_cfg *c, int B)
 {
     const double N = (double)B * c->T, C = c->C, F = c->F, T = c->T, hd = (double)c->C / c->H;
-    const double I = c->P + c->nfeat, E = c->ncond + c->ntime;
+    const double I = c->P + model_cfg_nuse(c), E = c->ncond + c->ntime;
     double gemm_fwd = 2 * N * (I * C + 3 * C * C * c->L + C * C * c->L + 2 * C * F * c->L + C * c->P)
                     + 2.0 * B * (E * C + C * C);
     /* backward: weight gradients for all, input gradients for all but the token and e1 layers */

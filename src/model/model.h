@@ -33,11 +33,40 @@ typedef struct {
     int H;     /* heads (C % H == 0) */
     int F;     /* MLP width */
     int joint; /* 1: attention across the patch; 0: each token attends only to itself */
-    int pair;  /* 1: revision 2 (design.md §8 "Pair awareness"): per-token features
-                * standardised with the model's z-scores (model_norm_fit) and
-                * pair-aware attention (src/model/pairattn.h) from features 0..2 =
-                * (x, y, rbar) / d; 0: the revision-1 model, unchanged */
+    int pair;  /* 1: pair-aware attention (src/model/pairattn.h) from features 0..2 =
+                * (x, y, rbar) / d (design.md §8 "Pair awareness"); 0: plain
+                * multi-head attention */
+    int stdz;  /* token features standardised with the model's z-scores
+                * (model_norm_fit): MODEL_STDZ_AUTO (0) as `pair` (the pair
+                * model standardises, the plain one does not: the two models
+                * written before the readings), MODEL_STDZ_ON, MODEL_STDZ_OFF */
+    int nuse;  /* features 0..nuse-1 of each token's nfeat embedded (0: all);
+                * the pair geometry always reads the raw features 0..2 */
 } model_cfg;
+
+enum { MODEL_STDZ_AUTO = 0, MODEL_STDZ_ON = 1, MODEL_STDZ_OFF = 2 };
+
+/* The readings of the generator (design.md §8 "Readings of the generator"):
+ *  plain          the features as they are (position, size and the polar
+ *                 Fourier basis of src/model/patch.h), plain attention;
+ *  paper          paper §4.2 as written: (p_i - p_focal)/d and rbar_i/d only,
+ *                 standardised on the training data (a preprocessing the paper
+ *                 neither states nor excludes), plain attention;
+ *  paper-fourier  paper + the polar Fourier basis, standardised;
+ *  pair           paper-fourier + pair-aware attention (the extension). */
+typedef enum { MODEL_PLAIN = 0, MODEL_PAPER = 1, MODEL_PAPER_FOURIER = 2, MODEL_PAIR = 3, MODEL_NREADING = 4 } model_reading;
+const char *model_reading_name(model_reading r);
+/* CS_EUSAGE naming the choices when s is not a reading's name. */
+cs_status model_reading_parse(const char *s, model_reading *r);
+/* Set pair, stdz and nuse of c for reading r (c->nfeat must be set; the
+ * paper reading embeds features 0..2). plain and pair set stdz AUTO and nuse 0,
+ * so their configurations (and files) are those written before the readings. */
+void model_cfg_set_reading(model_cfg *c, model_reading r);
+/* The reading whose ingredients c has, or MODEL_NREADING if none. */
+model_reading model_cfg_reading(const model_cfg *c);
+/* Effective ingredients: 1 if token features are standardised; features embedded. */
+int model_cfg_stdz(const model_cfg *c);
+int model_cfg_nuse(const model_cfg *c);
 
 typedef struct {
     size_t ln1_g, ln1_b, qkv_w, qkv_b, proj_w, proj_b, ln2_g, ln2_b, fc1_w, fc1_b, fc2_w, fc2_b;
@@ -57,10 +86,10 @@ typedef struct model {
     /* offsets into params/grads */
     size_t tok_w, tok_b, e1_w, e1_b, e2_w, e2_b, lnf_g, lnf_b, head_w, head_b;
     model_block_off *blk;
-    /* pair model: z-scores fitted on the training data (model_norm_fit) and
-     * stored with the parameters in checkpoints: fmu, fisd [nfeat] of the
-     * token features, pmu, pisd [PAIRATTN_Q] of the pair features; model_nnorm
-     * floats (0 for the revision-1 model) */
+    /* z-scores fitted on the training data (model_norm_fit) and stored with
+     * the parameters in checkpoints: fmu, fisd [nuse] of the token features
+     * (when standardised), then pmu, pisd [PAIRATTN_Q] of the pair features
+     * (pair model); model_nnorm floats (0 for the plain reading) */
     float *norm;
     size_t nnorm;
     /* patches per forward/backward pass of model_fm_grad (default
@@ -84,11 +113,13 @@ cs_status model_cfg_check(const model_cfg *cfg);
 /* Number of parameters (independent of cfg->joint). */
 size_t model_nparams(const model_cfg *cfg);
 
-/* Floats of m->norm for cfg (2 nfeat + 2 PAIRATTN_Q for the pair model, else 0). */
+/* Floats of m->norm for cfg: 2 nuse (token z-scores, when standardised) +
+ * 2 PAIRATTN_Q (pair z-scores, pair model). */
 size_t model_nnorm(const model_cfg *cfg);
-/* Pair model: z-scores of the token features over all n*T tokens and of the
- * pair features over all ordered pairs i != j of the n patches feat[n*T*nfeat]
- * (mean and population sd in double; sd 0 -> 1). No-op for the revision-1 model. */
+/* z-scores of the embedded token features over all n*T tokens (when
+ * standardised) and of the pair features over all ordered pairs i != j of the
+ * n patches feat[n*T*nfeat] (pair model); mean and population sd in double,
+ * sd 0 -> 1. No-op for the plain reading. */
 cs_status model_norm_fit(model *m, const float *feat, int n);
 
 cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax);

@@ -5,8 +5,12 @@
  *
  * and a fixed featurisation of it, f_ij (PAIRATTN_Q values: the four of g_ij,
  * then cos theta_ij, sin theta_ij, cos 2 theta_ij, sin 2 theta_ij of the
- * bearing theta_ij from i to j; all 0 for the self pair), standardised with
- * z-scores from the training pairs: phi_ij = (f_ij - mu) / sd. Per block and
+ * bearing theta_ij from i to j), standardised with z-scores from the training
+ * pairs i != j: phi_ij = (f_ij - mu) / sd. For the self pair the offset,
+ * distance and bearing terms are 0 but the free space is -2 rbar_i / d, and
+ * after standardisation none of phi_ii is 0: it is a fixed function of the
+ * token's own rbar_i / d, which the token already carries, so the independent
+ * arm's value term below sees nothing of another tree. Per block and
  * head h (hd = C/H, scale = 1/sqrt(hd)):
  *
  *   logits_ij = scale (q_i . k_j + beta_ij),  beta_ij = wb_h . phi_ij

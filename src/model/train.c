@@ -3,6 +3,7 @@
 #include "train.h"
 #include "paths.h"
 #include <errno.h>
+#include <stddef.h>
 #include <gsl/gsl_randist.h>
 #include <math.h>
 #include <stdint.h>
@@ -219,11 +220,23 @@ static void put(buf *b, const void *src, size_t n)
 typedef struct {
     int32_t cfg[11]; /* T P nfeat ncond ntime C L H F joint pair */
     int32_t batch, epoch, pos, ndata;
+    int32_t ingr; /* stdz | nuse << 8 (cfg_ingr): in what was the alignment padding, zero in the files written before the readings */
     int64_t step, steps;
     uint64_t nparams, data_hash, rng_size, nnorm;
     double scale, lr, warmup, lr_final, b1, b2, eps, wd;
     uint64_t seeds[3];
 } ckpt_head;
+
+/* The ingredients beyond `pair` (model.h stdz, nuse) in one int32 of the
+ * file headers, where both formats had a zero pad: zero for the plain and pair
+ * readings, so their files are those written before the readings. */
+static int32_t cfg_ingr(const model_cfg *c) { return (int32_t)(c->stdz | c->nuse << 8); }
+static model_cfg cfg_from(const int32_t v[11], int32_t ingr)
+{
+    model_cfg c = {v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], ingr & 0xff, ingr >> 8};
+    return c;
+}
+_Static_assert(offsetof(ckpt_head, step) == 64 && sizeof(ckpt_head) == 200, "checkpoint header layout of format version 2");
 
 static void fill_head(const train *t, ckpt_head *h)
 {
@@ -231,6 +244,7 @@ static void fill_head(const train *t, ckpt_head *h)
     const model_cfg *c = &t->m->cfg;
     int32_t v[11] = {c->T, c->P, c->nfeat, c->ncond, c->ntime, c->C, c->L, c->H, c->F, c->joint, c->pair};
     memcpy(h->cfg, v, sizeof v);
+    h->ingr = cfg_ingr(c);
     h->batch = t->B; h->epoch = t->epoch; h->pos = t->pos; h->ndata = t->data->n;
     h->step = t->step; h->steps = t->o.steps;
     h->nparams = t->m->nparams; h->data_hash = t->data_hash; h->nnorm = t->m->nnorm;
@@ -350,7 +364,7 @@ cs_status train_load(train *t, const char *path)
     if (st) return st;
     fill_head(t, &mine);
     const char *what = NULL;
-    if (memcmp(h.cfg, mine.cfg, sizeof h.cfg)) what = "model configuration";
+    if (memcmp(h.cfg, mine.cfg, sizeof h.cfg) || h.ingr != mine.ingr) what = "model configuration";
     else if (h.nparams != mine.nparams || h.nnorm != mine.nnorm) what = "parameter count";
     else if (h.batch != mine.batch || h.steps != mine.steps || h.lr != mine.lr || h.warmup != mine.warmup ||
              h.lr_final != mine.lr_final || h.b1 != mine.b1 || h.b2 != mine.b2 || h.eps != mine.eps || h.wd != mine.wd)
@@ -385,10 +399,11 @@ cs_status train_load(train *t, const char *path)
 #define WGTS_VERSION 1u
 typedef struct {
     int32_t cfg[11];
-    int32_t pad;
+    int32_t ingr; /* cfg_ingr; the pad of the files written before the readings */
     uint64_t nparams, nnorm;
     double scale;
 } wgts_head;
+_Static_assert(sizeof(wgts_head) == 72, "weights header layout of format version 1");
 
 cs_status train_save_weights(const train *t, const char *path)
 {
@@ -397,6 +412,7 @@ cs_status train_save_weights(const train *t, const char *path)
     const model_cfg *c = &t->m->cfg;
     int32_t v[11] = {c->T, c->P, c->nfeat, c->ncond, c->ntime, c->C, c->L, c->H, c->F, c->joint, c->pair};
     memcpy(h.cfg, v, sizeof v);
+    h.ingr = cfg_ingr(c);
     h.nparams = t->m->nparams; h.nnorm = t->m->nnorm; h.scale = t->data->scale;
     buf b = {0};
     uint32_t ver = WGTS_VERSION;
@@ -443,7 +459,7 @@ static cs_status weights_load(const char *path, model **out, int Bmax, double *s
     uint64_t sum;
     memcpy(&sum, p + n - 8, 8);
     if (fnv1a(FNV0, p, (size_t)n - 8) != sum) { free(p); return cs_err(CS_EINPUT, "%s: weights checksum mismatch (corrupt or tampered)", path); }
-    model_cfg c = {h.cfg[0], h.cfg[1], h.cfg[2], h.cfg[3], h.cfg[4], h.cfg[5], h.cfg[6], h.cfg[7], h.cfg[8], h.cfg[9], h.cfg[10]};
+    model_cfg c = cfg_from(h.cfg, h.ingr);
     model *m;
     if ((st = model_alloc(&m, &c, Bmax))) { free(p); return cs_err(CS_EINPUT, "%s: weights model configuration unusable: %s", path, cs_errmsg()); }
     if (m->nparams != h.nparams || m->nnorm != h.nnorm) { model_free(m); free(p); return cs_err(CS_EINPUT, "%s: parameter count mismatch", path); }
@@ -468,7 +484,7 @@ cs_status train_load_model(const char *path, model **out, int Bmax, double *scal
     }
     cs_status st = ckpt_read(path, &p, &len, &h);
     if (st) return st;
-    model_cfg c = {h.cfg[0], h.cfg[1], h.cfg[2], h.cfg[3], h.cfg[4], h.cfg[5], h.cfg[6], h.cfg[7], h.cfg[8], h.cfg[9], h.cfg[10]};
+    model_cfg c = cfg_from(h.cfg, h.ingr);
     model *m;
     st = model_alloc(&m, &c, Bmax);
     if (st) { free(p); return cs_err(CS_EINPUT, "%s: checkpoint model configuration unusable: %s", path, cs_errmsg()); }

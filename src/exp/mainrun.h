@@ -1,0 +1,93 @@
+/* mainrun: the evaluation of one E3/E4 unit from a model (reference paper
+ * §4.3-§5.2; design.md §7 E3/E4, §8): every evaluation spacing x probe of the
+ * plan, the W1 of each and the clearance samples behind it, and the tables a
+ * unit writes (run table, samples). main-run (train, then evaluate),
+ * main-eval (evaluate frozen weights) and main-redraw (the samples only) all
+ * come through here, so a re-evaluation gives a run's rows bit for bit.
+ *
+ * Evaluation volumes (mainrun_plan.volume): v1, the volume of the runs frozen
+ * before the readings (16 teacher stands and 256 generated patches per
+ * spacing; probes at every spacing, as many as that model had); v2, the volume
+ * of the readings (design.md §8 "Readings of the generator"): more stands and
+ * patches per spacing for a lower noise floor, the probes at the unseen
+ * spacings only (no claim reads them at the extrapolation spacings), the same
+ * for every reading. Evaluation stands and sampling seeds do not depend on the
+ * volume: v2's first 16 stands are v1's, each spacing x probe draws from its own
+ * seed. Every function returns cs_status and never exits. */
+#ifndef MAINRUN_H
+#define MAINRUN_H
+#include "cs.h"
+#include "mainset.h"
+#include "model.h"
+#include "prov.h"
+#include <stddef.h>
+
+/* Stands per training spacing at full scale (chosen so that E3+E4
+ * fit the 60 min budget on 2 cores; measured, README "Budgets"). */
+#define MAINRUN_TRAIN_STANDS 12
+
+/* Evaluation volume v2 at full scale (mainrun.h; design.md §8 "Readings of
+ * the generator"): chosen from the split-half noise floor and its cost,
+ * measured (README "Budgets"). */
+#define MAINRUN_V1_EVAL_STANDS 16
+#define MAINRUN_V1_GEN_PATCHES 256
+#define MAINRUN_V2_EVAL_STANDS 96
+#define MAINRUN_V2_GEN_PATCHES 1536
+
+typedef struct {
+    const char *scale;     /* "full" or "smoke" */
+    const char *volume;    /* evaluation volume: "v1" or "v2" (mainrun.h) */
+    int train_stands;      /* stands per training spacing */
+    int eval_stands;       /* teacher stands per eval spacing */
+    int gen_patches;       /* generated patches per eval spacing */
+    int epochs;            /* full: gates/main.gate epochs */
+    int euler;             /* gates/main.gate euler_steps */
+    int batch;
+    double lr;
+} mainrun_plan;
+
+/* The plan for a scale ("full" or "smoke"); gate values read from gates/. */
+cs_status mainrun_plan_get(const char *scale, mainrun_plan *p);
+
+/* Set the evaluation stands and generated patches of p (scale set) for a
+ * volume ("v1" or "v2"; CS_EUSAGE otherwise). */
+cs_status mainrun_plan_volume(mainrun_plan *p, const char *volume);
+
+/* One W1 of a run: spacing, probe, the generated clearances behind it, and
+ * (on the generated row of a spacing) the teacher's. */
+typedef struct {
+    double d, w1;
+    int unseen, ng, nt;
+    mainset_probe probe;
+    double *gen, *teach;
+} mainrun_row;
+
+#define MAINRUN_MAXROWS (MAINSET_NPROBE * 2 * MAINSET_MAXSP)
+
+void mainrun_rows_free(mainrun_row *rows, size_t n);
+
+/* Probes of a unit at an unseen (unseen = 1) or an extrapolation spacing:
+ * v1 as the frozen runs did (pair model every probe on both arms; the plain
+ * model shuffled on the joint arm, none on the independent one), v2 every
+ * probe at the unseen spacings and none at the extrapolation ones. */
+int mainrun_nprobe(const mainrun_plan *pl, const model_cfg *cfg, int unseen);
+
+/* Every evaluation spacing x probe of model m under plan pl (deviation scale
+ * `scale`, model seed `seed`): rows[*nrows] (at most MAINRUN_MAXROWS), worst
+ * overlap and estimator agreement; a progress line per row to stderr. */
+cs_status mainrun_evaluate(model *m, int Bmax, const mainset_design *ds, const mainrun_plan *pl, double scale,
+                           unsigned seed, const char *arm, mainrun_row *rows, size_t *nrows,
+                           double *worst, double *maxdiff);
+
+/* The samples behind every W1 of a run (README "Frozen samples and weights"). */
+cs_status mainrun_samples_write(const char *path, prov *pv, unsigned seed, const char *arm,
+                                const mainrun_row *rows, size_t n);
+
+/* The run table: provenance, the `# key: value` lines meta[nmeta][2], the rows. */
+cs_status mainrun_table_write(const char *path, prov *pv, unsigned seed, const char *arm,
+                              const char *const (*meta)[2], int nmeta, const mainrun_row *rows, size_t n);
+
+/* The provenance `seeds` text of a unit. */
+const char *mainrun_seeds_text(char *buf, size_t n, unsigned seed);
+
+#endif
