@@ -24,6 +24,32 @@ static const char *base_name(const char *p)
     return s ? s + 1 : p;
 }
 
+/* The samples behind baselines.tsv (teacher, teacher under each probe,
+ * direction-blind) per spacing; hex receives the file's sha256. */
+static cs_status samples_baselines_write(const char *samples, prov *pv, size_t nall, const double *dd, const int *uns,
+                                         const int *nt, double *const (*smp)[4], char hex[65])
+{
+    static const char *probe[4] = {"none", "shuffled", "rotated", "none"}, *which[4] = {"teacher", "teacher", "teacher", "blind"};
+    tsv_writer *w = NULL;
+    cs_status st = afile_mkdir_parents(samples);
+    if (!st) st = tsv_writer_open(&w, samples);
+    if (!st && (st = prov_write(w, pv))) { tsv_writer_abort(w); return st; }
+    if (st) return st;
+    tsv_writer_meta(w, "what", "focal nearest-neighbour clearances (m) behind every W1 of baselines.tsv: which = teacher (probe none: the teacher's crowns; "
+                    "shuffled, rotated: the teacher's crowns under the probe) or blind (circular crowns); each W1 = est_w1(values, teacher none values); "
+                    "noise floor = est_w1(first n_half teacher none values, the rest)");
+    tsv_writer_columns(w, "spacing\tsplit\tprobe\twhich\tvalue");
+    for (size_t si = 0; si < nall; si++)
+        for (int q = 0; q < 4; q++)
+            for (int k = 0; k < nt[si]; k++) {
+                tsv_writer_dbl(w, dd[si]); tsv_writer_str(w, uns[si] ? "unseen" : "extrap");
+                tsv_writer_str(w, probe[q]); tsv_writer_str(w, which[q]); tsv_writer_dbl(w, smp[si][q][k]);
+                tsv_writer_endrow(w);
+            }
+    if ((st = tsv_writer_commit(w))) return st;
+    return prov_sha256_file(samples, hex);
+}
+
 cs_status mainsum_baselines(const mainsum_baselines_args *a)
 {
     const char *out = a->out, *scale = a->scale ? a->scale : "full", *samples = a->samples, *volume = a->volume ? a->volume : "v1";
@@ -71,27 +97,7 @@ cs_status mainsum_baselines(const mainsum_baselines_args *a)
     pv.worst_overlap_m = worst;
     char ssha[65] = "";
     tsv_writer *w = NULL;
-    if (!st && samples) {
-        static const char *probe[4] = {"none", "shuffled", "rotated", "none"}, *which[4] = {"teacher", "teacher", "teacher", "blind"};
-        if (!(st = afile_mkdir_parents(samples))) st = tsv_writer_open(&w, samples);
-        if (!st && (st = prov_write(w, &pv))) { tsv_writer_abort(w); w = NULL; }
-        if (!st) {
-            tsv_writer_meta(w, "what", "focal nearest-neighbour clearances (m) behind every W1 of baselines.tsv: which = teacher (probe none: the teacher's crowns; "
-                            "shuffled, rotated: the teacher's crowns under the probe) or blind (circular crowns); each W1 = est_w1(values, teacher none values); "
-                            "noise floor = est_w1(first n_half teacher none values, the rest)");
-            tsv_writer_columns(w, "spacing\tsplit\tprobe\twhich\tvalue");
-            for (size_t si = 0; si < nall; si++)
-                for (int q = 0; q < 4; q++)
-                    for (int k = 0; k < nt[si]; k++) {
-                        tsv_writer_dbl(w, dd[si]); tsv_writer_str(w, uns[si] ? "unseen" : "extrap");
-                        tsv_writer_str(w, probe[q]); tsv_writer_str(w, which[q]); tsv_writer_dbl(w, smp[si][q][k]);
-                        tsv_writer_endrow(w);
-                    }
-            st = tsv_writer_commit(w);
-            w = NULL;
-        }
-        if (!st) st = prov_sha256_file(samples, ssha);
-    }
+    if (!st && samples) st = samples_baselines_write(samples, &pv, nall, dd, uns, nt, smp, ssha);
     if (!st) st = tsv_writer_open(&w, out);
     if (!st) st = prov_write(w, &pv);
     if (!st) {
