@@ -19,11 +19,11 @@ static const char *const SCALES[] = {"full", "smoke", NULL};
 static const char *const READINGS[] = {"plain", "paper", "paper-fourier", "pair", NULL};
 static const char *const VOLUMES[] = {"v1", "v2", NULL};
 
-#define UNIT_SPEC(a, seed) \
+#define UNIT_OPTS(a, seed) \
     {"seed", OPT_LONG, &seed, 1, 4294967295.0, "model seed (zero-padded 01 is 1)", .required = 1}, \
     {"arm", OPT_CHOICE, &(a).arm, 0, 0, "the model's arm", .required = 1, .choices = CLI_ARMS}, \
     {"scale", OPT_CHOICE, &(a).scale, 0, 0, "the plan's scale (default full)", .choices = SCALES}
-#define TRAIN_SPEC(a, pair) \
+#define TRAIN_OPTS(a, pair) \
     {"ckpt", OPT_STR, &(a).ckpt, 0, 0, "checkpoint FILE, resumed from when it exists (default none)"}, \
     {"epochs", OPT_LONG, &(a).epochs, 1, 1000000, "exploration override of the plan's epochs (default: the plan's)"}, \
     {"train-stands", OPT_LONG, &(a).train_stands, 1, 10000, "exploration override of the plan's stands per training spacing (default: the plan's)"}, \
@@ -35,7 +35,7 @@ int cli_main_run(int argc, char **argv)
     long seed = 0, pair = -1;
     exp_main_run_args a = {.scale = "full", .argc = argc, .argv = argv};
     const opt_spec spec[] = {
-        UNIT_SPEC(a, seed), TRAIN_SPEC(a, pair),
+        UNIT_OPTS(a, seed), TRAIN_OPTS(a, pair),
         {"out", OPT_STR, &a.out, 0, 0, "output table FILE.tsv", .required = 1},
         {"samples", OPT_STR, &a.samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
         {"weights", OPT_STR, &a.weights, 0, 0, "also write the final weights to FILE (weights format, README; default none)"},
@@ -60,7 +60,7 @@ int cli_main_train(int argc, char **argv)
     long seed = 0, pair = -1;
     exp_main_run_args a = {.scale = "full", .argc = argc, .argv = argv};
     const opt_spec spec[] = {
-        UNIT_SPEC(a, seed), TRAIN_SPEC(a, pair),
+        UNIT_OPTS(a, seed), TRAIN_OPTS(a, pair),
         {"out", OPT_STR, &a.out, 0, 0, "output training table FILE.tsv", .required = 1},
         {"weights", OPT_STR, &a.weights, 0, 0, "final weights FILE (weights format, README)", .required = 1},
     };
@@ -81,7 +81,7 @@ int cli_main_eval(int argc, char **argv)
     long seed = 0;
     exp_main_run_args a = {.scale = "full", .pair = -1, .argc = argc, .argv = argv};
     const opt_spec spec[] = {
-        UNIT_SPEC(a, seed),
+        UNIT_OPTS(a, seed),
         {"weights", OPT_STR, &a.weights, 0, 0, "weights FILE written by main-run/main-train --weights (or its checkpoint)", .required = 1},
         {"trained", OPT_STR, &a.trained, 0, 0, "the unit's training or run table, whose model, training, teacher and commit lines are recorded", .required = 1},
         {"out", OPT_STR, &a.out, 0, 0, "output run table FILE.tsv", .required = 1},
