@@ -55,6 +55,22 @@ static void test_table_from_constructed_runs(void **s)
     ASSERT_NEAR(r->ex_lo, 0.5, 1e-12);
     ASSERT_NEAR(r->ex_hi, 0.25, 1e-12);
     ASSERT_NEAR(r->steps_per_s, 50, 1e-12);
+    /* the training speed is written as a provenance line, never as a data
+     * column: the data rows of a rerun must equal the frozen ones */
+    char out[600];
+    snprintf(out, sizeof out, "%s/summary.tsv", root);
+    assert_int_equal(model_readings_write(out, root, rows, n, 0, NULL), CS_OK);
+    FILE *f = fopen(out, "r");
+    assert_non_null(f);
+    char line[4096];
+    int meta = 0, cols = 0;
+    while (fgets(line, sizeof line, f)) {
+        if (!strncmp(line, "# steps_per_s_paper: 50 ", 24)) meta = 1;
+        if (!strncmp(line, "reading\t", 8)) cols = strstr(line, "steps_per_s") == NULL ? 1 : -1;
+    }
+    fclose(f);
+    assert_int_equal(meta, 1);
+    assert_int_equal(cols, 1);
     /* a seed missing a probe row is refused, naming the file */
     snprintf(p, sizeof p, "%s/paper-reading/main/runs.tsv", root);
     put(p, "seed\tarm\tprobe\terror\n1\tjoint\tgenerated\t0.1\n1\tjoint\tshuffled\t0.4\n1\tindep\tgenerated\t0.5\n"
