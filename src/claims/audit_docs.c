@@ -114,9 +114,9 @@ static void findings(sbuf *b, const claims *c, const claim_result *res)
         sup += superseded(&c->rows[i]) != 0;
     }
     claims_within(c, res, &m, &a10, &a25);
-    sb_printf(b, "The reference paper's gated claims (E3/E4: its generator as written, `frozen/paper-reading/`), judged by the preregistered gates: "
-                 "**%zu reproduced, %zu not reproduced, %zu pending** (pending: input data not on this machine, or units still running%s). "
-                 "The pair extension, by the same thresholds (rows marked pair): %zu meet, %zu do not, %zu pending. "
+    sb_printf(b, "The reference paper's gated claims (E3/E4: its generator as written), judged by the preregistered gates: "
+                 "**%zu reproduced, %zu not reproduced, %zu pending** (pending: data not on this machine, or units still running%s). "
+                 "The pair extension, same thresholds (rows marked pair): %zu meet, %zu do not, %zu pending. "
                  "Of %zu measured numbers, %zu lie within 10 %% and %zu within 25 %% of the paper's value.\n\n", k[0], k[1], k[2],
               sup ? ", or a table made by a superseded reading of the pinned code, until its unit is re-run" : "", ke[0], ke[1], ke[2], m, a10, a25);
     sb_printf(b, "| gate | reproduced | not reproduced | pending | claims: ours / paper |\n|---|---|---|---|---|\n");

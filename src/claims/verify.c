@@ -345,7 +345,7 @@ cs_status verify_run(const verify_opts *o)
     attrib_free(&at);
     char aline[600];
     attrib_line(&ak, 0, aline, sizeof aline);
-    printf("\n%zu pending (input data missing on this machine: reason above; never counted as passed)\n", count[VERDICT_PENDING]);
+    printf("\n%zu pending (input data missing on this machine, or a reading's units not yet frozen: reason above; never counted as passed)\n", count[VERDICT_PENDING]);
     printf("%s (distance, not a verdict)\n", aline);
     printf("reference paper's gated claims: %zu reproduced, %zu not reproduced%s%s%s, %zu pending\n", rep, notrep,
            notrep ? " (" : "", notrep_list, notrep ? ")" : "", gpend);
