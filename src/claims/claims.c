@@ -129,7 +129,8 @@ int claims_is_extension(const claim_row *row)
 
 int claims_awaited_source(const char *source)
 {
-    static const char *dirs[] = {PATHS_FROZEN_DIR "/paper-reading/", PATHS_FROZEN_DIR "/extension-pair/main/", PATHS_FROZEN_DIR "/model-readings/"};
+    static const char *dirs[] = {PATHS_FROZEN_DIR "/paper-reading/", PATHS_FROZEN_DIR "/extension-pair/main/", PATHS_FROZEN_DIR "/extension-pair/extrapolation/",
+                                 PATHS_FROZEN_DIR "/model-readings/"};
     size_t l = strlen(source), k = strlen("/run_s*_*.tsv");
     if (l > k && !strcmp(source + l - k, "/run_s*_*.tsv")) return 1;
     for (size_t i = 0; i < sizeof dirs / sizeof *dirs; i++)

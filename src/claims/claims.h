@@ -51,7 +51,7 @@ cs_status claims_apply_gate_maps(claims *c, const char *main_map, const char *ex
 int claims_is_extension(const claim_row *row);
 /* A frozen source that is a reading's unit still being run: under one of the
  * readings' folders of design.md §8 (frozen/paper-reading/,
- * frozen/extension-pair/main/, frozen/model-readings/) or a unit set
+ * frozen/extension-pair/{main,extrapolation}/, frozen/model-readings/) or a unit set
  * "<dir>/run_s*_*.tsv"; such a source missing is pending, never a failure. */
 int claims_awaited_source(const char *source);
 void claims_free(claims *c);
