@@ -271,7 +271,7 @@ static void check_pins(const claims *c, checklist *cl)
                 size_t off = 0, cnt = 0;
                 affected[0] = '\0';
                 for (size_t i = 0; i < c->n && off < sizeof affected - 40; i++)
-                    if (!strcmp(c->rows[i].kind, "measured") || !strcmp(c->rows[i].kind, "probe")) off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
+                    if (!strcmp(c->rows[i].kind, "measured") || !strcmp(c->rows[i].kind, "probe") || claims_is_extension(&c->rows[i])) off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
                 if (!cnt) snprintf(affected, sizeof affected, "every measured claim");
             } else if (!strcmp(key, "design_sha256") || !strcmp(key, "design_numbers_sha256")) {
                 snprintf(affected, sizeof affected, "every claim resting on the design constants (%s)", path);

@@ -271,7 +271,7 @@ static void measured_collect(const claims *c, const claim_result *res, measured 
     m->paper = calloc(2 * (c->n ? c->n : 1), sizeof *m->paper);
     for (size_t r = 0; m->v && m->who && m->text && m->paper && r < c->n; r++) {
         const char *k = c->rows[r].kind;
-        if (strcmp(k, "measured") && strcmp(k, "needs-data") && strcmp(k, "probe")) continue;
+        if (strcmp(k, "measured") && strcmp(k, "needs-data") && strcmp(k, "probe") && strcmp(k, "extension")) continue;
         char *end;
         double ref = strtod(c->rows[r].reference, &end);
         if (res[r].status == VERDICT_PASS && isfinite(res[r].value)) {
