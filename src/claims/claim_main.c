@@ -353,7 +353,8 @@ cs_status claim_main_meta(const claim_row *row, claim_result *res)
 }
 
 /* The paper reading over the seeds frozen so far (descriptive, never gated,
- * never a verdict): MainFrozenSeeds, the seeds with both arms frozen; over
+ * never a verdict): MainFrozenSeeds, the seeds with both arms frozen (text);
+ * over
  * them the medians MainFrozenJoint and MainFrozenIndep, MainFrozenRel (%),
  * MainFrozenGeomRatio (median shuffled / median joint) and MainFrozenIsoRatio
  * (median joint / the direction-blind level of the reading's baselines). When
@@ -373,7 +374,9 @@ cs_status claim_main_sofar(const claim_row *row, claim_result *res)
         if (m.seed_ok[s]) { j[n] = m.err[0][0][s]; i[n] = m.err[1][0][s]; sh[n] = m.err[0][1][s]; n++; }
     snprintf(res->where, sizeof res->where, "%s/run_s*_*.tsv (%d of %d seeds frozen, both arms)", dir, n, want);
     const char *what = strstr(row->macro, "Frozen") ? strstr(row->macro, "Frozen") + 6 : "";
-    if (!strcmp(what, "Seeds")) { claim_set_value(row, res, n); return CS_OK; }
+    /* a count of frozen units, not a measured quantity: text, so the typed
+     * spacings of the write-up (4.0, 5.0, 6.0 m) are never read as rounding it */
+    if (!strcmp(what, "Seeds")) { snprintf(res->text, sizeof res->text, "%d", n); return CS_OK; }
     if (!n) { claim_pending(res, "%s: no seed of the reading has both arms frozen yet", dir); return CS_OK; }
     double mj = med(j, n), mi = med(i, n);
     if (!strcmp(what, "Joint")) claim_set_value(row, res, mj);
