@@ -179,6 +179,9 @@ static void twelve_seeds_give_the_gated_claims(void **st)
     assert_int_equal(r.gate, VERDICT_FAIL); /* joint ~0.42 over blind ~0.78 > 0.5 */
     r = eval("MainFrozenRel", src, "claim_main_sofar", "-");
     ASSERT_EXACT(r.value, 100.0 * (mi - mj) / mi);
+    /* the turned-geometry probe over the same seeds: median rotated / median joint */
+    r = eval("MainFrozenRotRatio", src, "claim_main_sofar", "-");
+    ASSERT_EXACT(r.value, median_over_seeds(0, 2) / mj);
     r = eval("ExtrapLowRel", src, "claim_extrap_rel", "extrapolation.gate:rel_improvement_min");
     assert_int_equal(r.status, VERDICT_PASS);
     double j[12], i[12], a, b;

@@ -356,7 +356,8 @@ cs_status claim_main_meta(const claim_row *row, claim_result *res)
  * never a verdict): MainFrozenSeeds, the seeds with both arms frozen (text);
  * over
  * them the medians MainFrozenJoint and MainFrozenIndep, MainFrozenRel (%),
- * MainFrozenGeomRatio (median shuffled / median joint) and MainFrozenIsoRatio
+ * MainFrozenGeomRatio (median shuffled / median joint), MainFrozenRotRatio
+ * (median turned-geometry / median joint) and MainFrozenIsoRatio
  * (median joint / the direction-blind level of the reading's baselines). When
  * every seed is frozen they equal the gated claims' values. */
 cs_status claim_main_sofar(const claim_row *row, claim_result *res)
@@ -368,10 +369,10 @@ cs_status claim_main_sofar(const claim_row *row, claim_result *res)
     cs_status st = mainruns_wanted(dir, &want);
     if (!st) st = mainruns_load(dir, want, &m);
     if (st) return st;
-    double j[MAXSEED], i[MAXSEED], sh[MAXSEED];
+    double j[MAXSEED], i[MAXSEED], sh[MAXSEED], ro[MAXSEED];
     int n = 0;
     for (int s = 0; s < want; s++)
-        if (m.seed_ok[s]) { j[n] = m.err[0][0][s]; i[n] = m.err[1][0][s]; sh[n] = m.err[0][1][s]; n++; }
+        if (m.seed_ok[s]) { j[n] = m.err[0][0][s]; i[n] = m.err[1][0][s]; sh[n] = m.err[0][1][s]; ro[n] = m.err[0][2][s]; n++; }
     snprintf(res->where, sizeof res->where, "%s/run_s*_*.tsv (%d of %d seeds frozen, both arms)", dir, n, want);
     const char *what = strstr(row->macro, "Frozen") ? strstr(row->macro, "Frozen") + 6 : "";
     /* a count of frozen units, not a measured quantity: text, so the typed
@@ -383,6 +384,7 @@ cs_status claim_main_sofar(const claim_row *row, claim_result *res)
     else if (!strcmp(what, "Indep")) claim_set_value(row, res, mi);
     else if (!strcmp(what, "Rel")) claim_set_value(row, res, 100.0 * (mi - mj) / mi);
     else if (!strcmp(what, "GeomRatio")) claim_set_value(row, res, med(sh, n) / mj);
+    else if (!strcmp(what, "RotRatio")) claim_set_value(row, res, med(ro, n) / mj);
     else if (!strcmp(what, "IsoRatio")) {
         double blind;
         if ((st = read_baseline(row->source, "direction_blind_w1", "unseen", 0, &blind, NULL, 0))) return st;
