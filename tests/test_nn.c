@@ -80,13 +80,14 @@ static void test_linear_forward_pretransposed_weights(void **s)
 /* The bias gradient is one sum per column over the rows in order, added to
  * what db held (what lets a batch run in passes): bit for bit the scalar loop.
  * 150 columns: full 64-column blocks, an 8-column block and a scalar tail. */
-static void test_linear_backward_bias_grad_is_row_ordered_sum(void **s)
+/* db += column sums, each db[c] one chain of additions over the rows in
+ * order (the naive loop), at a ragged shape and at the model's pass shapes. */
+static void check_bias_grad(int M, int K, int N, unsigned st)
 {
-    (void)s;
-    enum { M = 11, K = 3, N = 150 };
-    unsigned st = 4;
-    float in[M * K], w[N * K], dout[M * N], dw[N * K] = {0}, db[N], want[N];
-    tu_fill(in, M * K, 1, &st); tu_fill(w, N * K, 1, &st); tu_fill(dout, M * N, 3, &st); tu_fill(db, N, 1, &st);
+    float *in = malloc(sizeof(float) * M * K), *w = malloc(sizeof(float) * N * K),
+          *dout = malloc(sizeof(float) * M * N), *dw = calloc((size_t)N * K, sizeof(float)),
+          *db = malloc(sizeof(float) * N), *want = malloc(sizeof(float) * N);
+    tu_fill(in, (size_t)M * K, 1, &st); tu_fill(w, (size_t)N * K, 1, &st); tu_fill(dout, (size_t)M * N, 3, &st); tu_fill(db, N, 1, &st);
     for (int c = 0; c < N; c++) {
         float e = db[c];
         for (int r = 0; r < M; r++) e += dout[r * N + c];
@@ -95,9 +96,19 @@ static void test_linear_backward_bias_grad_is_row_ordered_sum(void **s)
     nn_linear_backward(NULL, dw, db, dout, in, w, M, K, N);
     for (int c = 0; c < N; c++)
         if (memcmp(&db[c], &want[c], sizeof(float)) != 0) {
-            print_error("db[%d] = %.17g, row-ordered sum %.17g\n", c, (double)db[c], (double)want[c]);
+            print_error("db[%d] = %.17g, row-ordered sum %.17g (M %d, N %d)\n", c, (double)db[c], (double)want[c], M, N);
             fail();
         }
+    free(in); free(w); free(dout); free(dw); free(db); free(want);
+}
+
+static void test_linear_backward_bias_grad_is_row_ordered_sum(void **s)
+{
+    (void)s;
+    check_bias_grad(11, 3, 150, 4);
+    check_bias_grad(96, 4, 64, 5);
+    check_bias_grad(96, 4, 256, 6);
+    check_bias_grad(96, 4, 21, 7);
 }
 
 static void test_linear_backward_accumulates_weight_grads(void **s)

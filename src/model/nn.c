@@ -43,7 +43,7 @@ void nn_linear_forward(float *out, const float *in, const float *w, const float 
 
 HOT static void colsum_add(float *db, const float *dout, int M, int N)
 {
-    for (int r = 0; r < M; r++) axpy(db, 1.f, dout + (size_t)r * N, N);
+    colsum_block(db, dout, N, M, N);
 }
 
 /* dinp = dout w with epi on its strips (both skipped when dinp == NULL),

@@ -140,6 +140,33 @@ DEF_VEXP(vexp, vf, vi, splat)
  * on whether it sat in a full vector or in the tail. */
 INL float sexp(float x) { return vexp(splat(x))[0]; }
 
+/* db[0..n) += rows r < M of x (row stride ldx), row after row: each db[c]
+ * is one chain of additions over r in order. Blocks of 4 vectors of columns
+ * keep their chains in registers over all rows (the same additions as
+ * adding row after row into db). */
+INL void colsum_block(float *restrict db, const float *restrict x, ptrdiff_t ldx, int M, int n)
+{
+    int c = 0;
+    for (; c + 4 * VL <= n; c += 4 * VL) {
+        vf a0 = ld(db + c), a1 = ld(db + c + VL), a2 = ld(db + c + 2 * VL), a3 = ld(db + c + 3 * VL);
+        for (int r = 0; r < M; r++) {
+            const float *xr = x + (size_t)r * ldx + c;
+            a0 += ld(xr); a1 += ld(xr + VL); a2 += ld(xr + 2 * VL); a3 += ld(xr + 3 * VL);
+        }
+        st(db + c, a0); st(db + c + VL, a1); st(db + c + 2 * VL, a2); st(db + c + 3 * VL, a3);
+    }
+    for (; c + VL <= n; c += VL) {
+        vf a = ld(db + c);
+        for (int r = 0; r < M; r++) a += ld(x + (size_t)r * ldx + c);
+        st(db + c, a);
+    }
+    for (; c < n; c++) {
+        float a = db[c];
+        for (int r = 0; r < M; r++) a += x[(size_t)r * ldx + c];
+        db[c] = a;
+    }
+}
+
 #ifdef NN_AVX512
 typedef float vf16 __attribute__((vector_size(64)));
 typedef int vi16 __attribute__((vector_size(64)));

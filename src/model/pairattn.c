@@ -12,25 +12,82 @@
 
 enum { Q = PAIRATTN_Q };
 
+/* The features of pair (i, j) into o[0..Q), in double, rounded to float. */
+static void pair_features(float *o, const float *tok, int stride, int i, int j)
+{
+    const double xi = tok[(size_t)i * stride], yi = tok[(size_t)i * stride + 1];
+    const double ri = tok[(size_t)i * stride + 2];
+    const double dx = (double)tok[(size_t)j * stride] - xi;
+    const double dy = (double)tok[(size_t)j * stride + 1] - yi;
+    const double dist = sqrt(dx * dx + dy * dy);
+    const double c = dist > 0 ? dx / dist : 0.0, s = dist > 0 ? dy / dist : 0.0;
+    o[0] = (float)dx;
+    o[1] = (float)dy;
+    o[2] = (float)dist;
+    o[3] = (float)(dist - ri - (double)tok[(size_t)j * stride + 2]);
+    o[4] = (float)c;
+    o[5] = (float)s;
+    o[6] = (float)(c * c - s * s);
+    o[7] = (float)(2 * c * s);
+}
+
 void pairattn_features(float *f, const float *tok, int stride, int T)
 {
-    for (int i = 0; i < T; i++) {
-        const double xi = tok[(size_t)i * stride], yi = tok[(size_t)i * stride + 1];
-        const double ri = tok[(size_t)i * stride + 2];
-        for (int j = 0; j < T; j++) {
-            const double dx = (double)tok[(size_t)j * stride] - xi;
-            const double dy = (double)tok[(size_t)j * stride + 1] - yi;
-            const double dist = sqrt(dx * dx + dy * dy);
-            const double c = dist > 0 ? dx / dist : 0.0, s = dist > 0 ? dy / dist : 0.0;
-            float *o = f + ((size_t)i * T + j) * Q;
-            o[0] = (float)dx;
-            o[1] = (float)dy;
-            o[2] = (float)dist;
-            o[3] = (float)(dist - ri - (double)tok[(size_t)j * stride + 2]);
-            o[4] = (float)c;
-            o[5] = (float)s;
-            o[6] = (float)(c * c - s * s);
-            o[7] = (float)(2 * c * s);
+    for (int i = 0; i < T; i++)
+        for (int j = 0; j < T; j++) pair_features(f + ((size_t)i * T + j) * Q, tok, stride, i, j);
+}
+
+/* ---- the geometry on 4 pairs at a time ---------------------------------------------- */
+/* pairattn_geometry runs once per patch and training step (and once per
+ * patch of a sampling call): a square root and two divisions per pair in
+ * double. Here 4 pairs (i, j..j+3) go through the same double operations in
+ * the same order on 4 lanes (each lane the scalar code of pairattn_features),
+ * the z-scores in float on 4 lanes, and a 4 x 4 transpose gives the
+ * pair-major rows; test_pairattn compares every gemm path with naive loops. */
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define GEOM_VEC 1
+#include <immintrin.h>
+__attribute__((target("avx2"))) static void geometry_row4(float *phi, float *phit, const double *xs,
+                                                         const double *ys, const double *rs, int T, int i, int j,
+                                                         const float *mu, const float *isd)
+{
+    const size_t TT = (size_t)T * T, e = (size_t)i * T + j;
+    const __m256d zero = _mm256_setzero_pd(), two = _mm256_set1_pd(2.0);
+    const __m256d dx = _mm256_sub_pd(_mm256_loadu_pd(xs + j), _mm256_set1_pd(xs[i]));
+    const __m256d dy = _mm256_sub_pd(_mm256_loadu_pd(ys + j), _mm256_set1_pd(ys[i]));
+    const __m256d dist = _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)));
+    const __m256d pos = _mm256_cmp_pd(dist, zero, _CMP_GT_OQ);
+    const __m256d c = _mm256_and_pd(pos, _mm256_div_pd(dx, dist)), sn = _mm256_and_pd(pos, _mm256_div_pd(dy, dist));
+    const __m256d f[Q] = {dx, dy, dist,
+                          _mm256_sub_pd(_mm256_sub_pd(dist, _mm256_set1_pd(rs[i])), _mm256_loadu_pd(rs + j)),
+                          c, sn, _mm256_sub_pd(_mm256_mul_pd(c, c), _mm256_mul_pd(sn, sn)),
+                          _mm256_mul_pd(_mm256_mul_pd(two, c), sn)};
+    __m128 z[Q];
+    for (int q = 0; q < Q; q++) {
+        z[q] = _mm_mul_ps(_mm_sub_ps(_mm256_cvtpd_ps(f[q]), _mm_set1_ps(mu[q])), _mm_set1_ps(isd[q]));
+        _mm_storeu_ps(phit + q * TT + e, z[q]);
+    }
+    _MM_TRANSPOSE4_PS(z[0], z[1], z[2], z[3]);
+    _MM_TRANSPOSE4_PS(z[4], z[5], z[6], z[7]);
+    for (int u = 0; u < 4; u++) {
+        _mm_storeu_ps(phi + (e + u) * Q, z[u]);
+        _mm_storeu_ps(phi + (e + u) * Q + 4, z[4 + u]);
+    }
+}
+#endif
+
+/* The features of pairs (i, j) for j in [j0, T), then their z-scores. */
+static void geometry_tail(float *phi, float *phit, const float *tok, int stride, int T, int i, int j0,
+                          const float *mu, const float *isd)
+{
+    const size_t TT = (size_t)T * T;
+    for (int j = j0; j < T; j++) {
+        const size_t e = (size_t)i * T + j;
+        pair_features(phi + e * Q, tok, stride, i, j);
+        for (int q = 0; q < Q; q++) {
+            float z = (phi[e * Q + q] - mu[q]) * isd[q];
+            phi[e * Q + q] = z;
+            phit[(size_t)q * TT + e] = z;
         }
     }
 }
@@ -38,14 +95,22 @@ void pairattn_features(float *f, const float *tok, int stride, int T)
 void pairattn_geometry(float *phi, float *phit, const float *tok, int stride, int T,
                        const float *mu, const float *isd)
 {
-    const size_t TT = (size_t)T * T;
-    pairattn_features(phi, tok, stride, T);
-    for (size_t e = 0; e < TT; e++)
-        for (int q = 0; q < Q; q++) {
-            float z = (phi[e * Q + q] - mu[q]) * isd[q];
-            phi[e * Q + q] = z;
-            phit[(size_t)q * TT + e] = z;
+    int j4 = 0;
+#ifdef GEOM_VEC
+    enum { TMAX = 64 };
+    if (T <= TMAX && gemm_get_isa() >= GEMM_AVX2) {
+        double xs[TMAX], ys[TMAX], rs[TMAX];
+        for (int j = 0; j < T; j++) {
+            xs[j] = tok[(size_t)j * stride];
+            ys[j] = tok[(size_t)j * stride + 1];
+            rs[j] = tok[(size_t)j * stride + 2];
         }
+        j4 = T - T % 4;
+        for (int i = 0; i < T; i++)
+            for (int j = 0; j < j4; j += 4) geometry_row4(phi, phit, xs, ys, rs, T, i, j, mu, isd);
+    }
+#endif
+    for (int i = 0; i < T; i++) geometry_tail(phi, phit, tok, stride, T, i, j4, mu, isd);
 }
 
 size_t pairattn_scratch_len(int T, int C, int H)
