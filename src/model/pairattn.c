@@ -173,6 +173,73 @@ A256 void dpair1x4(float *dpx, const float *dPhi, const float *phit, int T, int 
             _mm256_storeu_ps(dpx + (h0 + v) * TT + (size_t)i * T + 8 * w, c[v][w]);
 }
 
+/* out[i][j..j+32) += sum_q Phi[h_v][i][q] wvt[q][j + 8v..], rows i..i+2 (the
+ * value term of every head at once; vector v of the block is in head h_v) */
+A256 void value3x4(float *out, const float *Phi, const float *wvt, int T, int C, int hd, int i, int j)
+{
+    __m256 c[3][4], b[4];
+    _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) c[u][v] = _mm256_loadu_ps(out + (size_t)(i + u) * C + j + 8 * v);
+    for (int q = 0; q < Q; q++) {
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) b[v] = _mm256_loadu_ps(wvt + (size_t)q * C + j + 8 * v);
+        _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
+            _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) {
+                const int h = (j + 8 * v) / hd;
+                c[u][v] = _mm256_fmadd_ps(_mm256_broadcast_ss(Phi + ((size_t)h * T + i + u) * Q + q), b[v], c[u][v]);
+            }
+    }
+    _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) _mm256_storeu_ps(out + (size_t)(i + u) * C + j + 8 * v, c[u][v]);
+}
+
+/* dPhi[h][i][0..8) = sum_d dO[i][h hd + d] wv[h hd + d][0..8), rows i..i+2, heads h0..h0+3 */
+A256 void dphi3x4(float *dPhi, const float *dO, const float *wv, int T, int C, int hd, int i, int h0)
+{
+    __m256 c[3][4], b[4];
+    _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) c[u][v] = _mm256_setzero_ps();
+    for (int d = 0; d < hd; d++) {
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) b[v] = _mm256_loadu_ps(wv + ((size_t)(h0 + v) * hd + d) * Q);
+        _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
+            _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++)
+                c[u][v] = _mm256_fmadd_ps(_mm256_broadcast_ss(dO + (size_t)(i + u) * C + (h0 + v) * hd + d), b[v], c[u][v]);
+    }
+    _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) _mm256_storeu_ps(dPhi + ((size_t)(h0 + v) * T + i + u) * Q, c[u][v]);
+}
+
+/* dwv[h hd + d][0..8) += sum_i dO[i][h hd + d] Phi[h][i][0..8), d..d+1, heads h0..h0+3 */
+A256 void dwv2x4(float *dwv, const float *dO, const float *Phi, int T, int C, int hd, int d, int h0)
+{
+    __m256 c[2][4], b[4];
+    _Pragma("GCC unroll 2") for (int u = 0; u < 2; u++)
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) c[u][v] = _mm256_loadu_ps(dwv + ((size_t)(h0 + v) * hd + d + u) * Q);
+    for (int i = 0; i < T; i++) {
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) b[v] = _mm256_loadu_ps(Phi + ((size_t)(h0 + v) * T + i) * Q);
+        _Pragma("GCC unroll 2") for (int u = 0; u < 2; u++)
+            _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++)
+                c[u][v] = _mm256_fmadd_ps(_mm256_broadcast_ss(dO + (size_t)i * C + (h0 + v) * hd + d + u), b[v], c[u][v]);
+    }
+    _Pragma("GCC unroll 2") for (int u = 0; u < 2; u++)
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) _mm256_storeu_ps(dwv + ((size_t)(h0 + v) * hd + d + u) * Q, c[u][v]);
+}
+
+__attribute__((target("avx2,fma"))) static void value_avx2(float *out, const float *Phi, const float *wvt, int T, int C, int H)
+{
+    for (int i = 0; i < T; i += 3)
+        for (int j = 0; j < C; j += 32) value3x4(out, Phi, wvt, T, C, C / H, i, j);
+}
+
+__attribute__((target("avx2,fma"))) static void dvalue_avx2(float *dPhi, float *dwv, const float *dO, const float *Phi,
+                                                            const float *wv, int T, int C, int H)
+{
+    const int hd = C / H;
+    for (int h0 = 0; h0 < H; h0 += 4) {
+        for (int i = 0; i < T; i += 3) dphi3x4(dPhi, dO, wv, T, C, hd, i, h0);
+        for (int d = 0; d < hd; d += 2) dwv2x4(dwv, dO, Phi, T, C, hd, d, h0);
+    }
+}
+
 __attribute__((target("avx2,fma"))) static void mix_avx2(float *Phi, const float *prob, const float *phi, int T, int H)
 {
     for (int h0 = 0; h0 < H; h0 += 4)
@@ -210,6 +277,33 @@ static void pair_dp(float *dpx, const float *dPhi, const float *phit, int T, int
                  dpx + (size_t)i * T, TT, 0);
 }
 
+/* The value term out_h += Phi_h Wv_h^T of every head (one gemm_fma call per
+ * head, or 3 rows x 32 columns of chains at a time: the same chains). */
+static void pair_value(float *out, const float *Phi, const float *wvt, int T, int C, int H)
+{
+    const int hd = C / H;
+#ifdef PAIR_VEC
+    if (T % 3 == 0 && C % 32 == 0 && hd % 8 == 0 && gemm_get_isa() >= GEMM_AVX2) { value_avx2(out, Phi, wvt, T, C, H); return; }
+#endif
+    for (int h = 0; h < H; h++)
+        gemm_fma(T, hd, Q, Phi + (size_t)h * T * Q, Q, 1, wvt + h * hd, C, out + h * hd, C, 1);
+}
+
+/* dPhi_h = dO_h Wv_h; dWv_h += dO_h^T Phi_h, every head (per-head gemm_fma
+ * calls, or 12 and 8 chains at a time: the same chains). */
+static void pair_dvalue(float *dPhi, float *dwv, const float *dO, const float *Phi, const float *wv,
+                        int T, int C, int H)
+{
+    const int hd = C / H;
+#ifdef PAIR_VEC
+    if (T % 3 == 0 && H % 4 == 0 && hd % 2 == 0 && gemm_get_isa() >= GEMM_AVX2) { dvalue_avx2(dPhi, dwv, dO, Phi, wv, T, C, H); return; }
+#endif
+    for (int h = 0; h < H; h++) {
+        gemm_fma(T, Q, hd, dO + h * hd, C, 1, wv + (size_t)h * hd * Q, Q, dPhi + (size_t)h * T * Q, Q, 0);
+        gemm_fma(hd, Q, T, dO + h * hd, 1, C, Phi + (size_t)h * T * Q, Q, dwv + (size_t)h * hd * Q, Q, 1);
+    }
+}
+
 /* One patch: out[T x C], prob[H x T x T], Phi[H x T x Q] from qkv[T x 3C]. */
 static void patch_forward(float *out, float *prob, float *Phi, const float *qkv, const float *phi,
                           const float *phit, const float *wb, const float *wvt, int T, int C, int H,
@@ -229,8 +323,7 @@ static void patch_forward(float *out, float *prob, float *Phi, const float *qkv,
             for (int i = 0; i < T; i++)
                 memcpy(Phi + ((size_t)h * T + i) * Q, phi + ((size_t)i * T + i) * Q, sizeof(float) * Q);
     }
-    for (int h = 0; h < H; h++) /* out_h += Phi_h Wv_h^T */
-        gemm_fma(T, hd, Q, Phi + (size_t)h * T * Q, Q, 1, wvt + h * hd, C, out + h * hd, C, 1);
+    pair_value(out, Phi, wvt, T, C, H); /* out_h += Phi_h Wv_h^T */
 }
 
 /* One patch: dqkv[T x 3C] from dO[T x C]; dwb, dwv accumulate. */
@@ -238,14 +331,10 @@ static void patch_backward(float *dqkv, float *dwb, float *dwv, const float *dO,
                            const float *prob, const float *Phi, const float *phi, const float *phit,
                            const float *wv, int T, int C, int H, nn_attn_mode mode, float *scratch)
 {
-    const int hd = C / H, TT = T * T;
+    const int TT = T * T;
     float *dpx = scratch + nn_attention_scratch_len(T, C, H); /* [H x T x T] */
     float *dPhi = dpx + (size_t)H * TT;                       /* [H x T x Q] */
-    for (int h = 0; h < H; h++) {
-        /* dPhi_h = dO_h Wv_h; dWv_h += dO_h^T Phi_h */
-        gemm_fma(T, Q, hd, dO + h * hd, C, 1, wv + (size_t)h * hd * Q, Q, dPhi + (size_t)h * T * Q, Q, 0);
-        gemm_fma(hd, Q, T, dO + h * hd, 1, C, Phi + (size_t)h * T * Q, Q, dwv + (size_t)h * hd * Q, Q, 1);
-    }
+    pair_dvalue(dPhi, dwv, dO, Phi, wv, T, C, H); /* dPhi_h = dO_h Wv_h; dWv_h += dO_h^T Phi_h */
     if (mode == NN_ATTN_JOINT) {
         pair_dp(dpx, dPhi, phit, T, H); /* dP[h][i][j] gains dPhi_hi . phi_ij */
         nn_attention_backward_biased(dqkv, dO, qkv, prob, dpx, 1, T, C, H, mode, scratch);
