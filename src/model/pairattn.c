@@ -224,6 +224,15 @@ A256 void dwv2x4(float *dwv, const float *dO, const float *Phi, int T, int C, in
         _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) _mm256_storeu_ps(dwv + ((size_t)(h0 + v) * hd + d + u) * Q, c[u][v]);
 }
 
+/* x[0..n) = s * x[0..n) (a product per value, as the scalar loop) */
+__attribute__((target("avx2"))) static void scale_avx2(float *x, size_t n, float s)
+{
+    const __m256 vs = _mm256_set1_ps(s);
+    size_t e = 0;
+    for (; e + 8 <= n; e += 8) _mm256_storeu_ps(x + e, _mm256_mul_ps(vs, _mm256_loadu_ps(x + e)));
+    for (; e < n; e++) x[e] = s * x[e];
+}
+
 __attribute__((target("avx2,fma"))) static void value_avx2(float *out, const float *Phi, const float *wvt, int T, int C, int H)
 {
     for (int i = 0; i < T; i += 3)
@@ -314,7 +323,11 @@ static void patch_forward(float *out, float *prob, float *Phi, const float *qkv,
     if (mode == NN_ATTN_JOINT) {
         const float scale = 1.f / sqrtf((float)hd);
         gemm_fma(H, TT, Q, wb, Q, 1, phit, TT, sb, TT, 0); /* beta[h][ij] = wb_h . phi_ij */
-        for (size_t e = 0; e < (size_t)H * TT; e++) sb[e] = scale * sb[e];
+#ifdef PAIR_VEC
+        if (gemm_get_isa() >= GEMM_AVX2) scale_avx2(sb, (size_t)H * TT, scale);
+        else
+#endif
+            for (size_t e = 0; e < (size_t)H * TT; e++) sb[e] = scale * sb[e];
         nn_attention_forward_biased(out, prob, qkv, sb, 1, T, C, H, mode, scratch);
         pair_mix(Phi, prob, phi, T, H); /* Phi[h][i][q] = sum_j a_hij phi_ijq */
     } else {
