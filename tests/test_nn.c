@@ -4,6 +4,7 @@
 #include "testutil.h"
 #include "nnref.h"
 #include "nn.h"
+#include "gemm.h"
 
 #define FD_H 1e-5
 #define GRAD_TOL 2e-4
@@ -240,6 +241,34 @@ static void same_bits(const float *a, const float *b, size_t n, const char *what
         }
 }
 
+/* The fused bias + GELU (16-lane on the AVX-512 path, four vectors of chains
+ * interleaved) against bias, then the one-vector-at-a-time GELU, on every
+ * gemm path, at widths with and without a tail; values reach both clamps of
+ * the exponential. */
+static void test_fused_bias_gelu_interleaved_matches_unfused(void **s)
+{
+    (void)s;
+    enum { M = 6, NMAX = 256 };
+    const int widths[] = {21, 64, 100, 256};
+    static float h[M * NMAX], h2[M * NMAX], b[NMAX], sig[M * NMAX], sig2[M * NMAX], o1[M * NMAX], o2[M * NMAX];
+    for (int isa = GEMM_SCALAR; isa <= GEMM_AVX512; isa++) {
+        if (!gemm_isa_available((gemm_isa)isa)) continue;
+        gemm_isa before = gemm_set_isa((gemm_isa)isa);
+        for (size_t w = 0; w < sizeof widths / sizeof *widths; w++) {
+            const int N = widths[w];
+            unsigned st = 31 + (unsigned)N;
+            tu_fill(h, (size_t)M * N, 8, &st); tu_fill(b, N, 1, &st);
+            h[3] = 120.f; h[N + 5] = -150.f; h[2 * N + 7] = 90.f; h[3 * N + 1] = -1e-30f;
+            for (int r = 0; r < M; r++)
+                for (int c = 0; c < N; c++) h2[r * N + c] = h[r * N + c] + b[c];
+            nn_gelu_forward_save(o2, sig2, h2, (size_t)M * N);
+            nn_bias_gelu_forward_save(h, sig, o1, b, M, N);
+            for (int i = 0; i < M * N; i++) { ASSERT_EXACT(h[i], h2[i]); ASSERT_EXACT(sig[i], sig2[i]); ASSERT_EXACT(o1[i], o2[i]); }
+        }
+        gemm_set_isa(before);
+    }
+}
+
 static void test_fused_linear_gelu_matches_unfused(void **s)
 {
     (void)s;
@@ -434,6 +463,7 @@ int main(void)
         cmocka_unit_test(test_gelu_forward_and_gradient),
         cmocka_unit_test(test_residual_forward_and_backward),
         cmocka_unit_test(test_fused_bias_passes_match_unfused),
+        cmocka_unit_test(test_fused_bias_gelu_interleaved_matches_unfused),
         cmocka_unit_test(test_fused_linear_gelu_matches_unfused),
         cmocka_unit_test(test_fused_linear_residual_layernorm_matches_unfused),
         cmocka_unit_test(test_fused_linear_backward_gelu_matches_unfused),
