@@ -171,6 +171,45 @@ static double ge_loss(void *p)
     return tu_dot(c->out, c->dout, c->n);
 }
 
+/* Whole calls (four rows at a time where C is a multiple of 8) against one
+ * row per call, bit for bit: mean, 1/sd, output, input gradient and the
+ * accumulated dg, db, at the model's width, a narrow one and one with a
+ * tail. */
+static void check_layernorm_rows(int M, int C, unsigned st)
+{
+    const size_t n = (size_t)M * C;
+    float *x = malloc(sizeof(float) * n), *dy = malloc(sizeof(float) * n), *g = malloc(sizeof(float) * C),
+          *b = malloc(sizeof(float) * C), *y1 = malloc(sizeof(float) * n), *y2 = malloc(sizeof(float) * n),
+          *dx1 = malloc(sizeof(float) * n), *dx2 = malloc(sizeof(float) * n), *mu1 = malloc(sizeof(float) * M),
+          *mu2 = malloc(sizeof(float) * M), *rs1 = malloc(sizeof(float) * M), *rs2 = malloc(sizeof(float) * M),
+          *dg1 = malloc(sizeof(float) * C), *dg2 = malloc(sizeof(float) * C), *db1 = malloc(sizeof(float) * C),
+          *db2 = malloc(sizeof(float) * C);
+    tu_fill(x, n, 3, &st); tu_fill(dy, n, 1, &st); tu_fill(g, C, 1, &st); tu_fill(b, C, 1, &st);
+    tu_fill(dx1, n, 1, &st); memcpy(dx2, dx1, sizeof(float) * n);
+    tu_fill(dg1, C, 1, &st); memcpy(dg2, dg1, sizeof(float) * C);
+    tu_fill(db1, C, 1, &st); memcpy(db2, db1, sizeof(float) * C);
+    nn_layernorm_forward(y1, mu1, rs1, x, g, b, M, C);
+    for (int r = 0; r < M; r++)
+        nn_layernorm_forward(y2 + (size_t)r * C, mu2 + r, rs2 + r, x + (size_t)r * C, g, b, 1, C);
+    nn_layernorm_backward(dx1, dg1, db1, dy, x, mu1, rs1, g, M, C);
+    for (int r = 0; r < M; r++)
+        nn_layernorm_backward(dx2 + (size_t)r * C, dg2, db2, dy + (size_t)r * C, x + (size_t)r * C, mu2 + r,
+                              rs2 + r, g, 1, C);
+    for (int r = 0; r < M; r++) { ASSERT_EXACT(mu1[r], mu2[r]); ASSERT_EXACT(rs1[r], rs2[r]); }
+    for (size_t i = 0; i < n; i++) { ASSERT_EXACT(y1[i], y2[i]); ASSERT_EXACT(dx1[i], dx2[i]); }
+    for (int c = 0; c < C; c++) { ASSERT_EXACT(dg1[c], dg2[c]); ASSERT_EXACT(db1[c], db2[c]); }
+    free(x); free(dy); free(g); free(b); free(y1); free(y2); free(dx1); free(dx2); free(mu1); free(mu2);
+    free(rs1); free(rs2); free(dg1); free(dg2); free(db1); free(db2);
+}
+
+static void test_layernorm_four_rows_match_one_row(void **s)
+{
+    (void)s;
+    check_layernorm_rows(11, 64, 41);
+    check_layernorm_rows(9, 8, 42);
+    check_layernorm_rows(7, 20, 43);
+}
+
 static void test_gelu_forward_and_gradient(void **s)
 {
     (void)s;
@@ -460,6 +499,7 @@ int main(void)
         cmocka_unit_test(test_linear_backward_bias_grad_is_row_ordered_sum),
         cmocka_unit_test(test_linear_backward_accumulates_weight_grads),
         cmocka_unit_test(test_layernorm_forward_and_gradients),
+        cmocka_unit_test(test_layernorm_four_rows_match_one_row),
         cmocka_unit_test(test_gelu_forward_and_gradient),
         cmocka_unit_test(test_residual_forward_and_backward),
         cmocka_unit_test(test_fused_bias_passes_match_unfused),

@@ -14,6 +14,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* A statement for each of four independent chains (rows, vectors), emitted
+ * stage by stage, so the out-of-order core sees four chains side by side. */
+#define X4 _Pragma("GCC unroll 4") for (int k = 0; k < 4; k++)
+
 HOT void nn_expf(float *y, const float *x, size_t n)
 {
     size_t i = 0;
@@ -66,11 +70,37 @@ void nn_linear_backward(float *dinp, float *dw, float *db, const float *dout,
 /* ---- layer norm ---------------------------------------------------------------- */
 #define LN_EPS 1e-5f
 
+/* Rows r..r+3 of the layer norm forward (C a multiple of VL), stage by stage
+ * across the four rows: each row gets the operations of the one-row loop of
+ * nn_layernorm_forward in their order (its sums, butterflies and scalar
+ * steps), whose long reduction chains the core could not overlap row after
+ * row. */
+INL void ln_forward4(float *out, float *mean, float *rstd, const float *in, const float *g,
+                     const float *b, int r, int C, float invC)
+{
+    const float *x[4];
+    float *y[4], mu[4], rs[4];
+    vf acc[4], vm[4], vr[4];
+    X4 { x[k] = in + (size_t)(r + k) * C; y[k] = out + (size_t)(r + k) * C; acc[k] = splat(0.f); }
+    for (int c = 0; c < C; c += VL) X4 acc[k] += ld(x[k] + c);
+    X4 mu[k] = hsum(acc[k]) * invC;
+    X4 { vm[k] = splat(mu[k]); acc[k] = splat(0.f); }
+    for (int c = 0; c < C; c += VL) X4 { vf d = ld(x[k] + c) - vm[k]; acc[k] += d * d; }
+    X4 rs[k] = 1.f / sqrtf(hsum(acc[k]) * invC + LN_EPS);
+    X4 vr[k] = splat(rs[k]);
+    for (int c = 0; c < C; c += VL)
+        X4 st(y[k] + c, (ld(x[k] + c) - vm[k]) * vr[k] * ld(g + c) + ld(b + c));
+    X4 { mean[r + k] = mu[k]; rstd[r + k] = rs[k]; }
+}
+
 HOT void nn_layernorm_forward(float *out, float *mean, float *rstd, const float *in,
                               const float *g, const float *b, int M, int C)
 {
     const float invC = 1.f / (float)C;
-    for (int r = 0; r < M; r++) {
+    int r0 = 0;
+    if (C % VL == 0)
+        for (; r0 + 4 <= M; r0 += 4) ln_forward4(out, mean, rstd, in, g, b, r0, C, invC);
+    for (int r = r0; r < M; r++) {
         const float *x = in + (size_t)r * C;
         float *y = out + (size_t)r * C;
         float mu = vsum(x, C) * invC;
@@ -89,12 +119,53 @@ HOT void nn_layernorm_forward(float *out, float *mean, float *rstd, const float 
     }
 }
 
+/* Rows r..r+3 of the layer norm backward (C a multiple of VL), stage by stage
+ * as ln_forward4; dg and db still take row r's terms before row r + 1's. */
+INL void ln_backward4(float *dinp, float *dg, float *db, const float *dout, const float *in,
+                      const float *mean, const float *rstd, const float *g, int r, int C, float invC)
+{
+    const float *x[4], *dy[4];
+    float *dx[4];
+    vf vm[4], vr[4], s1[4], s2[4], va1[4], va2[4];
+    X4 {
+        x[k] = in + (size_t)(r + k) * C; dy[k] = dout + (size_t)(r + k) * C; dx[k] = dinp + (size_t)(r + k) * C;
+        vm[k] = splat(mean[r + k]); vr[k] = splat(rstd[r + k]); s1[k] = splat(0.f); s2[k] = splat(0.f);
+    }
+    for (int c = 0; c < C; c += VL) {
+        vf xh[4], d[4];
+        X4 {
+            xh[k] = (ld(x[k] + c) - vm[k]) * vr[k]; d[k] = ld(dy[k] + c);
+            vf dxh = d[k] * ld(g + c);
+            s1[k] += dxh;
+            s2[k] += dxh * xh[k];
+        }
+        vf tg = ld(dg + c), tb = ld(db + c);
+        X4 { tg = tg + d[k] * xh[k]; tb = tb + d[k]; }
+        st(dg + c, tg); st(db + c, tb);
+    }
+    X4 {
+        float a1 = hsum(s1[k]), a2 = hsum(s2[k]);
+        a1 *= invC;
+        a2 *= invC;
+        va1[k] = splat(a1); va2[k] = splat(a2);
+    }
+    for (int c = 0; c < C; c += VL)
+        X4 {
+            vf xh = (ld(x[k] + c) - vm[k]) * vr[k];
+            vf dxh = ld(dy[k] + c) * ld(g + c);
+            st(dx[k] + c, ld(dx[k] + c) + vr[k] * (dxh - va1[k] - xh * va2[k]));
+        }
+}
+
 HOT void nn_layernorm_backward(float *dinp, float *dg, float *db, const float *dout,
                                const float *in, const float *mean, const float *rstd,
                                const float *g, int M, int C)
 {
     const float invC = 1.f / (float)C;
-    for (int r = 0; r < M; r++) {
+    int r0 = 0;
+    if (C % VL == 0)
+        for (; r0 + 4 <= M; r0 += 4) ln_backward4(dinp, dg, db, dout, in, mean, rstd, g, r0, C, invC);
+    for (int r = r0; r < M; r++) {
         const float *x = in + (size_t)r * C, *dy = dout + (size_t)r * C;
         float *dx = dinp + (size_t)r * C;
         vf vm = splat(mean[r]), vr = splat(rstd[r]);
@@ -149,7 +220,6 @@ DEF_VGSIG(vgsig, vf, vexp, splat)
  * (nn_vec.h) in their order. One vector's chain of about 35 dependent
  * operations is longer than the out-of-order window overlaps, so the bias +
  * GELU pass ran at about half its throughput with one chain at a time. */
-#define X4 _Pragma("GCC unroll 4") for (int k = 0; k < 4; k++)
 #define DEF_VGSIG_X4(NAME, VF, VI, SPLAT) \
 INL void NAME(VF *s, const VF *x) \
 { \
