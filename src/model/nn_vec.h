@@ -141,19 +141,20 @@ DEF_VEXP(vexp, vf, vi, splat)
 INL float sexp(float x) { return vexp(splat(x))[0]; }
 
 /* db[0..n) += rows r < M of x (row stride ldx), row after row: each db[c]
- * is one chain of additions over r in order. Blocks of 4 vectors of columns
+ * is one chain of additions over r in order. Blocks of 8 vectors of columns
  * keep their chains in registers over all rows (the same additions as
  * adding row after row into db). */
 INL void colsum_block(float *restrict db, const float *restrict x, ptrdiff_t ldx, int M, int n)
 {
     int c = 0;
-    for (; c + 4 * VL <= n; c += 4 * VL) {
-        vf a0 = ld(db + c), a1 = ld(db + c + VL), a2 = ld(db + c + 2 * VL), a3 = ld(db + c + 3 * VL);
+    for (; c + 8 * VL <= n; c += 8 * VL) {
+        vf a[8];
+        _Pragma("GCC unroll 8") for (int q = 0; q < 8; q++) a[q] = ld(db + c + q * VL);
         for (int r = 0; r < M; r++) {
             const float *xr = x + (size_t)r * ldx + c;
-            a0 += ld(xr); a1 += ld(xr + VL); a2 += ld(xr + 2 * VL); a3 += ld(xr + 3 * VL);
+            _Pragma("GCC unroll 8") for (int q = 0; q < 8; q++) a[q] += ld(xr + q * VL);
         }
-        st(db + c, a0); st(db + c + VL, a1); st(db + c + 2 * VL, a2); st(db + c + 3 * VL, a3);
+        _Pragma("GCC unroll 8") for (int q = 0; q < 8; q++) st(db + c + q * VL, a[q]);
     }
     for (; c + VL <= n; c += VL) {
         vf a = ld(db + c);
