@@ -4,6 +4,7 @@
 #include "testutil.h"
 #include "nnref.h"
 #include "nn.h"
+#include "gemm.h"
 
 #define FD_H 1e-5
 #define GRAD_TOL 2e-4
@@ -80,13 +81,14 @@ static void test_linear_forward_pretransposed_weights(void **s)
 /* The bias gradient is one sum per column over the rows in order, added to
  * what db held (what lets a batch run in passes): bit for bit the scalar loop.
  * 150 columns: full 64-column blocks, an 8-column block and a scalar tail. */
-static void test_linear_backward_bias_grad_is_row_ordered_sum(void **s)
+/* db += column sums, each db[c] one chain of additions over the rows in
+ * order (the naive loop), at a ragged shape and at the model's pass shapes. */
+static void check_bias_grad(int M, int K, int N, unsigned st)
 {
-    (void)s;
-    enum { M = 11, K = 3, N = 150 };
-    unsigned st = 4;
-    float in[M * K], w[N * K], dout[M * N], dw[N * K] = {0}, db[N], want[N];
-    tu_fill(in, M * K, 1, &st); tu_fill(w, N * K, 1, &st); tu_fill(dout, M * N, 3, &st); tu_fill(db, N, 1, &st);
+    float *in = malloc(sizeof(float) * M * K), *w = malloc(sizeof(float) * N * K),
+          *dout = malloc(sizeof(float) * M * N), *dw = calloc((size_t)N * K, sizeof(float)),
+          *db = malloc(sizeof(float) * N), *want = malloc(sizeof(float) * N);
+    tu_fill(in, (size_t)M * K, 1, &st); tu_fill(w, (size_t)N * K, 1, &st); tu_fill(dout, (size_t)M * N, 3, &st); tu_fill(db, N, 1, &st);
     for (int c = 0; c < N; c++) {
         float e = db[c];
         for (int r = 0; r < M; r++) e += dout[r * N + c];
@@ -95,9 +97,19 @@ static void test_linear_backward_bias_grad_is_row_ordered_sum(void **s)
     nn_linear_backward(NULL, dw, db, dout, in, w, M, K, N);
     for (int c = 0; c < N; c++)
         if (memcmp(&db[c], &want[c], sizeof(float)) != 0) {
-            print_error("db[%d] = %.17g, row-ordered sum %.17g\n", c, (double)db[c], (double)want[c]);
+            print_error("db[%d] = %.17g, row-ordered sum %.17g (M %d, N %d)\n", c, (double)db[c], (double)want[c], M, N);
             fail();
         }
+    free(in); free(w); free(dout); free(dw); free(db); free(want);
+}
+
+static void test_linear_backward_bias_grad_is_row_ordered_sum(void **s)
+{
+    (void)s;
+    check_bias_grad(11, 3, 150, 4);
+    check_bias_grad(96, 4, 64, 5);
+    check_bias_grad(96, 4, 256, 6);
+    check_bias_grad(96, 4, 21, 7);
 }
 
 static void test_linear_backward_accumulates_weight_grads(void **s)
@@ -157,6 +169,45 @@ static double ge_loss(void *p)
     ge_ctx *c = p;
     ref_gelu(c->out, c->in, c->n);
     return tu_dot(c->out, c->dout, c->n);
+}
+
+/* Whole calls (four rows at a time where C is a multiple of 8) against one
+ * row per call, bit for bit: mean, 1/sd, output, input gradient and the
+ * accumulated dg, db, at the model's width, a narrow one and one with a
+ * tail. */
+static void check_layernorm_rows(int M, int C, unsigned st)
+{
+    const size_t n = (size_t)M * C;
+    float *x = malloc(sizeof(float) * n), *dy = malloc(sizeof(float) * n), *g = malloc(sizeof(float) * C),
+          *b = malloc(sizeof(float) * C), *y1 = malloc(sizeof(float) * n), *y2 = malloc(sizeof(float) * n),
+          *dx1 = malloc(sizeof(float) * n), *dx2 = malloc(sizeof(float) * n), *mu1 = malloc(sizeof(float) * M),
+          *mu2 = malloc(sizeof(float) * M), *rs1 = malloc(sizeof(float) * M), *rs2 = malloc(sizeof(float) * M),
+          *dg1 = malloc(sizeof(float) * C), *dg2 = malloc(sizeof(float) * C), *db1 = malloc(sizeof(float) * C),
+          *db2 = malloc(sizeof(float) * C);
+    tu_fill(x, n, 3, &st); tu_fill(dy, n, 1, &st); tu_fill(g, C, 1, &st); tu_fill(b, C, 1, &st);
+    tu_fill(dx1, n, 1, &st); memcpy(dx2, dx1, sizeof(float) * n);
+    tu_fill(dg1, C, 1, &st); memcpy(dg2, dg1, sizeof(float) * C);
+    tu_fill(db1, C, 1, &st); memcpy(db2, db1, sizeof(float) * C);
+    nn_layernorm_forward(y1, mu1, rs1, x, g, b, M, C);
+    for (int r = 0; r < M; r++)
+        nn_layernorm_forward(y2 + (size_t)r * C, mu2 + r, rs2 + r, x + (size_t)r * C, g, b, 1, C);
+    nn_layernorm_backward(dx1, dg1, db1, dy, x, mu1, rs1, g, M, C);
+    for (int r = 0; r < M; r++)
+        nn_layernorm_backward(dx2 + (size_t)r * C, dg2, db2, dy + (size_t)r * C, x + (size_t)r * C, mu2 + r,
+                              rs2 + r, g, 1, C);
+    for (int r = 0; r < M; r++) { ASSERT_EXACT(mu1[r], mu2[r]); ASSERT_EXACT(rs1[r], rs2[r]); }
+    for (size_t i = 0; i < n; i++) { ASSERT_EXACT(y1[i], y2[i]); ASSERT_EXACT(dx1[i], dx2[i]); }
+    for (int c = 0; c < C; c++) { ASSERT_EXACT(dg1[c], dg2[c]); ASSERT_EXACT(db1[c], db2[c]); }
+    free(x); free(dy); free(g); free(b); free(y1); free(y2); free(dx1); free(dx2); free(mu1); free(mu2);
+    free(rs1); free(rs2); free(dg1); free(dg2); free(db1); free(db2);
+}
+
+static void test_layernorm_four_rows_match_one_row(void **s)
+{
+    (void)s;
+    check_layernorm_rows(11, 64, 41);
+    check_layernorm_rows(9, 8, 42);
+    check_layernorm_rows(7, 20, 43);
 }
 
 static void test_gelu_forward_and_gradient(void **s)
@@ -227,6 +278,34 @@ static void same_bits(const float *a, const float *b, size_t n, const char *what
             print_error("%s[%zu]: fused %.17g, unfused %.17g\n", what, i, (double)a[i], (double)b[i]);
             fail();
         }
+}
+
+/* The fused bias + GELU (16-lane on the AVX-512 path, four vectors of chains
+ * interleaved) against bias, then the one-vector-at-a-time GELU, on every
+ * gemm path, at widths with and without a tail; values reach both clamps of
+ * the exponential. */
+static void test_fused_bias_gelu_interleaved_matches_unfused(void **s)
+{
+    (void)s;
+    enum { M = 6, NMAX = 256 };
+    const int widths[] = {21, 64, 100, 256};
+    static float h[M * NMAX], h2[M * NMAX], b[NMAX], sig[M * NMAX], sig2[M * NMAX], o1[M * NMAX], o2[M * NMAX];
+    for (int isa = GEMM_SCALAR; isa <= GEMM_AVX512; isa++) {
+        if (!gemm_isa_available((gemm_isa)isa)) continue;
+        gemm_isa before = gemm_set_isa((gemm_isa)isa);
+        for (size_t w = 0; w < sizeof widths / sizeof *widths; w++) {
+            const int N = widths[w];
+            unsigned st = 31 + (unsigned)N;
+            tu_fill(h, (size_t)M * N, 8, &st); tu_fill(b, N, 1, &st);
+            h[3] = 120.f; h[N + 5] = -150.f; h[2 * N + 7] = 90.f; h[3 * N + 1] = -1e-30f;
+            for (int r = 0; r < M; r++)
+                for (int c = 0; c < N; c++) h2[r * N + c] = h[r * N + c] + b[c];
+            nn_gelu_forward_save(o2, sig2, h2, (size_t)M * N);
+            nn_bias_gelu_forward_save(h, sig, o1, b, M, N);
+            for (int i = 0; i < M * N; i++) { ASSERT_EXACT(h[i], h2[i]); ASSERT_EXACT(sig[i], sig2[i]); ASSERT_EXACT(o1[i], o2[i]); }
+        }
+        gemm_set_isa(before);
+    }
 }
 
 static void test_fused_linear_gelu_matches_unfused(void **s)
@@ -420,9 +499,11 @@ int main(void)
         cmocka_unit_test(test_linear_backward_bias_grad_is_row_ordered_sum),
         cmocka_unit_test(test_linear_backward_accumulates_weight_grads),
         cmocka_unit_test(test_layernorm_forward_and_gradients),
+        cmocka_unit_test(test_layernorm_four_rows_match_one_row),
         cmocka_unit_test(test_gelu_forward_and_gradient),
         cmocka_unit_test(test_residual_forward_and_backward),
         cmocka_unit_test(test_fused_bias_passes_match_unfused),
+        cmocka_unit_test(test_fused_bias_gelu_interleaved_matches_unfused),
         cmocka_unit_test(test_fused_linear_gelu_matches_unfused),
         cmocka_unit_test(test_fused_linear_residual_layernorm_matches_unfused),
         cmocka_unit_test(test_fused_linear_backward_gelu_matches_unfused),

@@ -91,6 +91,63 @@ static void test_geometry_standardises_both_layouts(void **s)
         }
 }
 
+/* The naive geometry: the pair features one pair at a time in double, then
+ * each z-score in float, written to both layouts (the order of operations the
+ * library's vector kernels must keep). */
+static void naive_geometry(float *phi, float *phit, const float *tok, int stride, int T,
+                           const float *mu, const float *isd)
+{
+    const size_t TT = (size_t)T * T;
+    for (int i = 0; i < T; i++)
+        for (int j = 0; j < T; j++) {
+            const double xi = tok[i * stride], yi = tok[i * stride + 1], ri = tok[i * stride + 2];
+            const double dx = (double)tok[j * stride] - xi, dy = (double)tok[j * stride + 1] - yi;
+            const double dist = sqrt(dx * dx + dy * dy);
+            const double c = dist > 0 ? dx / dist : 0.0, sn = dist > 0 ? dy / dist : 0.0;
+            const float f[Q] = {(float)dx, (float)dy, (float)dist,
+                                (float)(dist - ri - (double)tok[j * stride + 2]), (float)c, (float)sn,
+                                (float)(c * c - sn * sn), (float)(2 * c * sn)};
+            const size_t e = (size_t)i * T + j;
+            for (int q = 0; q < Q; q++) {
+                float z = (f[q] - mu[q]) * isd[q];
+                phi[e * Q + q] = z;
+                phit[q * TT + e] = z;
+            }
+        }
+}
+
+/* pairattn_geometry = the naive loops bit for bit on every gemm path, at the
+ * reference patch and at a ragged T, with coincident and aligned stems. */
+static void check_geometry_paths(int T)
+{
+    enum { NF = 12 };
+    const size_t n = (size_t)T * T * Q;
+    float *tok = malloc(sizeof(float) * T * NF), *phi = malloc(sizeof(float) * n),
+          *phit = malloc(sizeof(float) * n), *rphi = malloc(sizeof(float) * n),
+          *rphit = malloc(sizeof(float) * n), mu[Q], isd[Q];
+    unsigned st = 77 + T;
+    tu_fill(tok, (size_t)T * NF, 4.f, &st);
+    tu_fill(mu, Q, 1.f, &st);
+    for (int q = 0; q < Q; q++) isd[q] = 0.37f + 0.29f * q;
+    for (int k = 0; k < NF; k++) tok[3 * NF + k] = tok[1 * NF + k]; /* stems 1 and 3 coincide */
+    tok[5 * NF] = tok[2 * NF];                                        /* 2 and 5: same x */
+    tok[7 * NF + 1] = tok[2 * NF + 1];                                /* 2 and 7: same y */
+    naive_geometry(rphi, rphit, tok, NF, T, mu, isd);
+    for (int isa = GEMM_SCALAR; isa <= GEMM_AVX512; isa++) {
+        if (!gemm_isa_available((gemm_isa)isa)) continue;
+        gemm_isa before = gemm_set_isa((gemm_isa)isa);
+        memset(phi, 0xff, sizeof(float) * n);
+        memset(phit, 0xff, sizeof(float) * n);
+        pairattn_geometry(phi, phit, tok, NF, T, mu, isd);
+        gemm_set_isa(before);
+        same_bits(phi, rphi, n, "pair geometry (pair-major) against the naive loops");
+        same_bits(phit, rphit, n, "pair geometry (feature-major) against the naive loops");
+    }
+    free(tok); free(phi); free(phit); free(rphi); free(rphit);
+}
+static void test_geometry_naive_every_path_reference(void **s) { (void)s; check_geometry_paths(24); }
+static void test_geometry_naive_every_path_ragged(void **s) { (void)s; check_geometry_paths(11); }
+
 /* ---- layer against the reference ------------------------------------------------ */
 typedef struct {
     int B, T, C, H, mode;
@@ -280,6 +337,8 @@ int main(void)
         cmocka_unit_test(test_features_by_hand),
         cmocka_unit_test(test_features_match_trigonometry),
         cmocka_unit_test(test_geometry_standardises_both_layouts),
+        cmocka_unit_test(test_geometry_naive_every_path_reference),
+        cmocka_unit_test(test_geometry_naive_every_path_ragged),
         cmocka_unit_test(test_layer_joint_tiny),
         cmocka_unit_test(test_layer_self_tiny),
         cmocka_unit_test(test_layer_joint_reference_patch),

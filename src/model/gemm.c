@@ -282,26 +282,39 @@ double gemm_peak_gflops(gemm_isa isa, long iters)
 #ifdef GEMM_X86
 /* dst[8 x 8] (row stride ldd) = s * src[8 x 8]^T (row stride lds): unpack,
  * shuffle, then swap 128-bit lanes; s * x is the scalar loop's product. */
-__attribute__((target("avx2"))) static void tr8x8(float *dst, ptrdiff_t ldd, const float *src, ptrdiff_t lds,
-                                                  float s)
+__attribute__((target("avx2"))) static inline void tr8x8(float *dst, ptrdiff_t ldd, const float *src, ptrdiff_t lds,
+                                                         float s)
 {
+    /* unrolled by hand: as loops over arrays GCC kept r, t and u on the stack */
     const __m256 vs = _mm256_set1_ps(s);
-    __m256 r[8], t[8], u[8];
-    for (int i = 0; i < 8; i++) r[i] = _mm256_mul_ps(vs, _mm256_loadu_ps(src + i * lds));
-    for (int i = 0; i < 8; i += 2) {
-        t[i] = _mm256_unpacklo_ps(r[i], r[i + 1]);
-        t[i + 1] = _mm256_unpackhi_ps(r[i], r[i + 1]);
-    }
-    for (int i = 0; i < 8; i += 4) {
-        u[i] = _mm256_shuffle_ps(t[i], t[i + 2], 0x44);
-        u[i + 1] = _mm256_shuffle_ps(t[i], t[i + 2], 0xEE);
-        u[i + 2] = _mm256_shuffle_ps(t[i + 1], t[i + 3], 0x44);
-        u[i + 3] = _mm256_shuffle_ps(t[i + 1], t[i + 3], 0xEE);
-    }
-    for (int i = 0; i < 4; i++) {
-        _mm256_storeu_ps(dst + i * ldd, _mm256_permute2f128_ps(u[i], u[i + 4], 0x20));
-        _mm256_storeu_ps(dst + (i + 4) * ldd, _mm256_permute2f128_ps(u[i], u[i + 4], 0x31));
-    }
+    const __m256 r0 = _mm256_mul_ps(vs, _mm256_loadu_ps(src)), r1 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + lds));
+    const __m256 r2 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 2 * lds)), r3 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 3 * lds));
+    const __m256 r4 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 4 * lds)), r5 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 5 * lds));
+    const __m256 r6 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 6 * lds)), r7 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 7 * lds));
+    const __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpackhi_ps(r0, r1);
+    const __m256 t2 = _mm256_unpacklo_ps(r2, r3), t3 = _mm256_unpackhi_ps(r2, r3);
+    const __m256 t4 = _mm256_unpacklo_ps(r4, r5), t5 = _mm256_unpackhi_ps(r4, r5);
+    const __m256 t6 = _mm256_unpacklo_ps(r6, r7), t7 = _mm256_unpackhi_ps(r6, r7);
+    const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xEE);
+    const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xEE);
+    const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xEE);
+    const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xEE);
+    _mm256_storeu_ps(dst, _mm256_permute2f128_ps(u0, u4, 0x20));
+    _mm256_storeu_ps(dst + ldd, _mm256_permute2f128_ps(u1, u5, 0x20));
+    _mm256_storeu_ps(dst + 2 * ldd, _mm256_permute2f128_ps(u2, u6, 0x20));
+    _mm256_storeu_ps(dst + 3 * ldd, _mm256_permute2f128_ps(u3, u7, 0x20));
+    _mm256_storeu_ps(dst + 4 * ldd, _mm256_permute2f128_ps(u0, u4, 0x31));
+    _mm256_storeu_ps(dst + 5 * ldd, _mm256_permute2f128_ps(u1, u5, 0x31));
+    _mm256_storeu_ps(dst + 6 * ldd, _mm256_permute2f128_ps(u2, u6, 0x31));
+    _mm256_storeu_ps(dst + 7 * ldd, _mm256_permute2f128_ps(u3, u7, 0x31));
+}
+
+/* The 8 x 8 blocks of gemm_transpose_scaled (n0, k0 multiples of 8). */
+__attribute__((target("avx2"))) static void tr_blocks(float *dst, ptrdiff_t ldd, const float *src, ptrdiff_t lds,
+                                                      int n0, int k0, float s)
+{
+    for (int n = 0; n < n0; n += 8)
+        for (int k = 0; k < k0; k += 8) tr8x8(dst + k * ldd + n, ldd, src + n * lds + k, lds, s);
 }
 #endif
 
@@ -315,8 +328,7 @@ void gemm_transpose_scaled(float *dst, ptrdiff_t ldd, const float *src, ptrdiff_
     if (gemm_isa_available(GEMM_AVX2)) {
         n0 = N - N % 8;
         k0 = K - K % 8;
-        for (int n = 0; n < n0; n += 8)
-            for (int k = 0; k < k0; k += 8) tr8x8(dst + k * ldd + n, ldd, src + n * lds + k, lds, s);
+        tr_blocks(dst, ldd, src, lds, n0, k0, s);
     }
 #endif
     /* the rest: columns k >= k0 of every row, and rows n >= n0 */

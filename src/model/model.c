@@ -287,10 +287,24 @@ static void transpose_all(model *m)
         gemm_transpose(t + m->blk[l].pv_w, w + m->blk[l].pv_w, C, PAIRATTN_Q);
 }
 
-/* model_forward on weights already transposed by transpose_all; 1 <= B <=
- * Bmax checked by the callers. */
+/* The pair geometry of B patches (pair model) from their raw features into
+ * phi/phit (B*T*T*Q floats each); it depends on the features alone, so a
+ * sampling call computes it once for all its Euler steps. */
+static void pair_geometry(model *m, float *phi, float *phit, const float *feat, int B)
+{
+    const model_cfg *c = &m->cfg;
+    const size_t TTQ = (size_t)c->T * c->T * PAIRATTN_Q;
+    const float *pn = m->norm + pair_norm_off(c);
+    for (int b = 0; c->pair && b < B; b++)
+        pairattn_geometry(phi + b * TTQ, phit + b * TTQ, feat + (size_t)b * c->T * c->nfeat, c->nfeat,
+                          c->T, pn, pn + PAIRATTN_Q);
+}
+
+/* model_forward on weights already transposed by transpose_all and (pair
+ * model) the patches' geometry in phi/phit; 1 <= B <= Bmax checked by the
+ * callers. */
 static void forward(model *m, int B, const float *xt, const float *feat,
-                    const float *cond, const float *t, float *v)
+                    const float *cond, const float *t, float *v, const float *phi, const float *phit)
 {
     const model_cfg *c = &m->cfg;
     const int T = c->T, P = c->P, C = c->C, F = c->F, N = B * T;
@@ -307,11 +321,6 @@ static void forward(model *m, int B, const float *xt, const float *feat,
             for (int k = 0; k < nu; k++)
                 m->tin[(size_t)r * I + P + k] = (feat[(size_t)r * nf + k] - m->norm[k]) * m->norm[nu + k];
     }
-    const size_t TTQ = (size_t)T * T * PAIRATTN_Q;
-    const float *pn = m->norm + pair_norm_off(c);
-    for (int b = 0; c->pair && b < B; b++) /* pair geometry from the raw features */
-        pairattn_geometry(m->phi + b * TTQ, m->phit + b * TTQ, feat + (size_t)b * T * nf, nf, T,
-                          pn, pn + PAIRATTN_Q);
     for (int b = 0; b < B; b++) {
         float *ci = m->cin + (size_t)b * E;
         memcpy(ci, cond + (size_t)b * c->ncond, sizeof(float) * c->ncond);
@@ -339,7 +348,7 @@ static void forward(model *m, int B, const float *xt, const float *feat,
          * layer norm, or bias and GELU, while in cache; values as unfused. */
         if (c->pair)
             pairattn_linear_forward(m->qkv[l], m->att[l], m->prob[l], m->Phi[l], m->ln1[l], NULL,
-                                    w + o->qkv_b, m->phi, m->phit, w + o->pb_w, wt + o->pv_w, B, T, C,
+                                    w + o->qkv_b, phi, phit, w + o->pb_w, wt + o->pv_w, B, T, C,
                                     c->H, mode, wt + o->qkv_w, m->ascr);
         else
             nn_linear_attention_forward(m->qkv[l], m->att[l], m->prob[l], m->ln1[l], NULL,
@@ -360,14 +369,19 @@ static void forward(model *m, int B, const float *xt, const float *feat,
 }
 
 /* forward() on patches [b0, b0 + nb) of batch-wide arrays (xt and v hold T*P
- * values per patch): one pass of model_fm_grad or model_sample. */
+ * values per patch): one pass of model_fm_grad or model_sample. The pass's
+ * geometry is computed here into the front of m->phi (training), or, when
+ * geom_all is set, was computed for the whole batch (sampling). */
 static void forward_pass(model *m, int b0, int nb, const float *xt, const float *feat,
-                         const float *cond, const float *t, float *v)
+                         const float *cond, const float *t, float *v, int geom_all)
 {
     const model_cfg *c = &m->cfg;
-    const size_t TP = (size_t)c->T * c->P;
-    forward(m, nb, xt + b0 * TP, feat + (size_t)b0 * c->T * c->nfeat, cond + (size_t)b0 * c->ncond,
-            t + b0, v + b0 * TP);
+    const size_t TP = (size_t)c->T * c->P, TTQ = (size_t)c->T * c->T * PAIRATTN_Q;
+    const float *fb = feat + (size_t)b0 * c->T * c->nfeat;
+    if (!geom_all) pair_geometry(m, m->phi, m->phit, fb, nb);
+    const size_t g = geom_all ? b0 * TTQ : 0;
+    forward(m, nb, xt + b0 * TP, fb, cond + (size_t)b0 * c->ncond, t + b0, v + b0 * TP, m->phi + g,
+            m->phit + g);
 }
 
 /* Patches per pass (m->micro, or the whole batch when unset). */
@@ -378,7 +392,8 @@ cs_status model_forward(model *m, int B, const float *xt, const float *feat,
 {
     if (B < 1 || B > m->Bmax) return cs_err(CS_EINPUT, "model_forward: batch %d outside 1..%d", B, m->Bmax);
     transpose_all(m);
-    forward(m, B, xt, feat, cond, t, v);
+    pair_geometry(m, m->phi, m->phit, feat, B);
+    forward(m, B, xt, feat, cond, t, v, m->phi, m->phit);
     return CS_OK;
 }
 
@@ -480,7 +495,7 @@ cs_status model_fm_grad(model *m, gsl_rng *noise, int B, const float *x1,
     for (int b0 = 0; b0 < B; b0 += mb) {
         const int nb = B - b0 < mb ? B - b0 : mb;
         const size_t o = (size_t)b0 * n;
-        forward_pass(m, b0, nb, m->fm_xt, feat, cond, m->fm_t, m->fm_v);
+        forward_pass(m, b0, nb, m->fm_xt, feat, cond, m->fm_t, m->fm_v, 0);
         fm_loss_add(m->fm_v + o, m->fm_u + o, (size_t)nb * n, k, m->fm_dv + o, &s);
         if (!isfinite(s)) return cs_err(CS_ENUMERIC, "flow-matching loss is not finite (%g)", s / (double)ntot);
         backward(m, m->fm_dv + o, b0 == 0);
@@ -499,13 +514,14 @@ cs_status model_sample(model *m, gsl_rng *noise, int B, const float *feat,
     const float dt = 1.f / (float)nsteps;
     const int mb = pass_size(m, B);
     transpose_all(m);
+    pair_geometry(m, m->phi, m->phit, feat, B);
     for (int k = 0; k < nsteps; k++) {
         float tk = (float)k / (float)nsteps;
         for (int b = 0; b < B; b++) m->fm_t[b] = tk;
         /* in passes of m->micro patches, as model_fm_grad: patches do not
          * interact in the forward, so v is the same as in one pass */
         for (int b0 = 0; b0 < B; b0 += mb)
-            forward_pass(m, b0, B - b0 < mb ? B - b0 : mb, x, feat, cond, m->fm_t, m->fm_v);
+            forward_pass(m, b0, B - b0 < mb ? B - b0 : mb, x, feat, cond, m->fm_t, m->fm_v, 1);
         for (size_t i = 0; i < n; i++) x[i] += dt * m->fm_v[i];
     }
     for (size_t i = 0; i < n; i++)

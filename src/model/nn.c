@@ -14,6 +14,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* A statement for each of four independent chains (rows, vectors), emitted
+ * stage by stage, so the out-of-order core sees four chains side by side. */
+#define X4 _Pragma("GCC unroll 4") for (int k = 0; k < 4; k++)
+
 HOT void nn_expf(float *y, const float *x, size_t n)
 {
     size_t i = 0;
@@ -43,7 +47,7 @@ void nn_linear_forward(float *out, const float *in, const float *w, const float 
 
 HOT static void colsum_add(float *db, const float *dout, int M, int N)
 {
-    for (int r = 0; r < M; r++) axpy(db, 1.f, dout + (size_t)r * N, N);
+    colsum_block(db, dout, N, M, N);
 }
 
 /* dinp = dout w with epi on its strips (both skipped when dinp == NULL),
@@ -66,11 +70,37 @@ void nn_linear_backward(float *dinp, float *dw, float *db, const float *dout,
 /* ---- layer norm ---------------------------------------------------------------- */
 #define LN_EPS 1e-5f
 
+/* Rows r..r+3 of the layer norm forward (C a multiple of VL), stage by stage
+ * across the four rows: each row gets the operations of the one-row loop of
+ * nn_layernorm_forward in their order (its sums, butterflies and scalar
+ * steps), whose long reduction chains the core could not overlap row after
+ * row. */
+INL void ln_forward4(float *out, float *mean, float *rstd, const float *in, const float *g,
+                     const float *b, int r, int C, float invC)
+{
+    const float *x[4];
+    float *y[4], mu[4], rs[4];
+    vf acc[4], vm[4], vr[4];
+    X4 { x[k] = in + (size_t)(r + k) * C; y[k] = out + (size_t)(r + k) * C; acc[k] = splat(0.f); }
+    for (int c = 0; c < C; c += VL) X4 acc[k] += ld(x[k] + c);
+    X4 mu[k] = hsum(acc[k]) * invC;
+    X4 { vm[k] = splat(mu[k]); acc[k] = splat(0.f); }
+    for (int c = 0; c < C; c += VL) X4 { vf d = ld(x[k] + c) - vm[k]; acc[k] += d * d; }
+    X4 rs[k] = 1.f / sqrtf(hsum(acc[k]) * invC + LN_EPS);
+    X4 vr[k] = splat(rs[k]);
+    for (int c = 0; c < C; c += VL)
+        X4 st(y[k] + c, (ld(x[k] + c) - vm[k]) * vr[k] * ld(g + c) + ld(b + c));
+    X4 { mean[r + k] = mu[k]; rstd[r + k] = rs[k]; }
+}
+
 HOT void nn_layernorm_forward(float *out, float *mean, float *rstd, const float *in,
                               const float *g, const float *b, int M, int C)
 {
     const float invC = 1.f / (float)C;
-    for (int r = 0; r < M; r++) {
+    int r0 = 0;
+    if (C % VL == 0)
+        for (; r0 + 4 <= M; r0 += 4) ln_forward4(out, mean, rstd, in, g, b, r0, C, invC);
+    for (int r = r0; r < M; r++) {
         const float *x = in + (size_t)r * C;
         float *y = out + (size_t)r * C;
         float mu = vsum(x, C) * invC;
@@ -89,12 +119,53 @@ HOT void nn_layernorm_forward(float *out, float *mean, float *rstd, const float 
     }
 }
 
+/* Rows r..r+3 of the layer norm backward (C a multiple of VL), stage by stage
+ * as ln_forward4; dg and db still take row r's terms before row r + 1's. */
+INL void ln_backward4(float *dinp, float *dg, float *db, const float *dout, const float *in,
+                      const float *mean, const float *rstd, const float *g, int r, int C, float invC)
+{
+    const float *x[4], *dy[4];
+    float *dx[4];
+    vf vm[4], vr[4], s1[4], s2[4], va1[4], va2[4];
+    X4 {
+        x[k] = in + (size_t)(r + k) * C; dy[k] = dout + (size_t)(r + k) * C; dx[k] = dinp + (size_t)(r + k) * C;
+        vm[k] = splat(mean[r + k]); vr[k] = splat(rstd[r + k]); s1[k] = splat(0.f); s2[k] = splat(0.f);
+    }
+    for (int c = 0; c < C; c += VL) {
+        vf xh[4], d[4];
+        X4 {
+            xh[k] = (ld(x[k] + c) - vm[k]) * vr[k]; d[k] = ld(dy[k] + c);
+            vf dxh = d[k] * ld(g + c);
+            s1[k] += dxh;
+            s2[k] += dxh * xh[k];
+        }
+        vf tg = ld(dg + c), tb = ld(db + c);
+        X4 { tg = tg + d[k] * xh[k]; tb = tb + d[k]; }
+        st(dg + c, tg); st(db + c, tb);
+    }
+    X4 {
+        float a1 = hsum(s1[k]), a2 = hsum(s2[k]);
+        a1 *= invC;
+        a2 *= invC;
+        va1[k] = splat(a1); va2[k] = splat(a2);
+    }
+    for (int c = 0; c < C; c += VL)
+        X4 {
+            vf xh = (ld(x[k] + c) - vm[k]) * vr[k];
+            vf dxh = ld(dy[k] + c) * ld(g + c);
+            st(dx[k] + c, ld(dx[k] + c) + vr[k] * (dxh - va1[k] - xh * va2[k]));
+        }
+}
+
 HOT void nn_layernorm_backward(float *dinp, float *dg, float *db, const float *dout,
                                const float *in, const float *mean, const float *rstd,
                                const float *g, int M, int C)
 {
     const float invC = 1.f / (float)C;
-    for (int r = 0; r < M; r++) {
+    int r0 = 0;
+    if (C % VL == 0)
+        for (; r0 + 4 <= M; r0 += 4) ln_backward4(dinp, dg, db, dout, in, mean, rstd, g, r0, C, invC);
+    for (int r = r0; r < M; r++) {
         const float *x = in + (size_t)r * C, *dy = dout + (size_t)r * C;
         float *dx = dinp + (size_t)r * C;
         vf vm = splat(mean[r]), vr = splat(rstd[r]);
@@ -143,6 +214,45 @@ INL VF NAME(VF x) \
     return SPLAT(1.f) / (SPLAT(1.f) + VEXP(SPLAT(-2.f) * u)); \
 }
 DEF_VGSIG(vgsig, vf, vexp, splat)
+
+/* The sigmoid of four vectors at once, written stage by stage across the four:
+ * each vector gets the lane-wise operations of DEF_VGSIG and DEF_VEXP
+ * (nn_vec.h) in their order. One vector's chain of about 35 dependent
+ * operations is longer than the out-of-order window overlaps, so the bias +
+ * GELU pass ran at about half its throughput with one chain at a time. */
+#define DEF_VGSIG_X4(NAME, VF, VI, SPLAT) \
+INL void NAME(VF *s, const VF *x) \
+{ \
+    const VF lo = SPLAT(-87.0f), hi = SPLAT(88.0f), shifter = SPLAT(12582912.0f); \
+    VF y[4], kn[4], r[4], p[4]; \
+    VI ml[4], mh[4], n[4]; \
+    X4 y[k] = SPLAT(-2.f) * (SPLAT(GELU_K) * (x[k] + SPLAT(GELU_A) * x[k] * x[k] * x[k])); \
+    X4 ml[k] = y[k] < lo; \
+    X4 mh[k] = y[k] > hi; \
+    X4 y[k] = (VF)(((VI)y[k] & ~ml[k]) | ((VI)lo & ml[k])); \
+    X4 y[k] = (VF)(((VI)y[k] & ~mh[k]) | ((VI)hi & mh[k])); \
+    X4 kn[k] = (y[k] * SPLAT(1.44269504088896341f) + shifter) - shifter; \
+    X4 r[k] = y[k] - kn[k] * SPLAT(0.693145751953125f); \
+    X4 r[k] = r[k] - kn[k] * SPLAT(1.428606765330187e-06f); \
+    X4 p[k] = SPLAT(1.f / 5040.f) * r[k] + SPLAT(1.f / 720.f); \
+    X4 p[k] = p[k] * r[k] + SPLAT(1.f / 120.f); \
+    X4 p[k] = p[k] * r[k] + SPLAT(1.f / 24.f); \
+    X4 p[k] = p[k] * r[k] + SPLAT(1.f / 6.f); \
+    X4 p[k] = p[k] * r[k] + SPLAT(0.5f); \
+    X4 p[k] = p[k] * r[k] + SPLAT(1.f); \
+    X4 p[k] = p[k] * r[k] + SPLAT(1.f); \
+    X4 n[k] = (__builtin_convertvector(kn[k], VI) + 127) << 23; \
+    X4 s[k] = SPLAT(1.f) / (SPLAT(1.f) + p[k] * (VF)n[k]); \
+}
+DEF_VGSIG_X4(vgsig_x4, vf, vi, splat)
+
+/* Columns [c, c + 4 * lanes) of one row of the fused bias + GELU. */
+#define BIAS_GELU_X4(VF, LANES, LD, ST, SIGX4) do { \
+    VF x_[4], s_[4]; \
+    X4 x_[k] = LD(hr + c + LANES * k) + LD(b + c + LANES * k); \
+    SIGX4(s_, x_); \
+    X4 { ST(hr + c + LANES * k, x_[k]); ST(sr + c + LANES * k, s_[k]); ST(orow + c + LANES * k, x_[k] * s_[k]); } \
+} while (0)
 
 INL vf vgelu_grad(vf x, vf s)
 {
@@ -208,6 +318,7 @@ INL void bias_gelu_tail(float *hr, float *sr, float *orow, const float *b, int c
  * identical (test_nn_clones compares this path with the baseline build). */
 #ifdef NN_AVX512
 DEF_VGSIG(vgsig16, vf16, vexp16, splat16)
+DEF_VGSIG_X4(vgsig16_x4, vf16, vi16, splat16)
 
 __attribute__((target("avx512f"))) static void bias_gelu16(float *h, float *sig, float *out,
                                                            const float *b, int M, int N)
@@ -215,6 +326,7 @@ __attribute__((target("avx512f"))) static void bias_gelu16(float *h, float *sig,
     for (int r = 0; r < M; r++) {
         float *hr = h + (size_t)r * N, *sr = sig + (size_t)r * N, *orow = out + (size_t)r * N;
         int c = 0;
+        for (; c + 64 <= N; c += 64) BIAS_GELU_X4(vf16, 16, ld16, st16, vgsig16_x4);
         for (; c + 16 <= N; c += 16) {
             vf16 x = ld16(hr + c) + ld16(b + c), sg = vgsig16(x);
             st16(hr + c, x); st16(sr + c, sg); st16(orow + c, x * sg);
@@ -250,6 +362,7 @@ HOT void nn_bias_gelu_forward_save(float *h, float *sig, float *out, const float
     for (int r = 0; r < M; r++) {
         float *hr = h + (size_t)r * N, *sr = sig + (size_t)r * N, *orow = out + (size_t)r * N;
         int c = 0;
+        for (; c + 4 * VL <= N; c += 4 * VL) BIAS_GELU_X4(vf, VL, ld, st, vgsig_x4);
         for (; c + VL <= N; c += VL) {
             vf x = ld(hr + c) + ld(b + c), sg = vgsig(x);
             st(hr + c, x); st(sr + c, sg); st(orow + c, x * sg);

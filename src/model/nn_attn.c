@@ -356,7 +356,7 @@ void nn_linear_backward_attention(float *dqkv, float *datt, float *dw, float *db
  * nn.c's column sums, on a strided block. */
 HOT static void colsum_add_strided(float *db, const float *x, ptrdiff_t ldx, int M, int n)
 {
-    for (int r = 0; r < M; r++) axpy(db, 1.f, x + (size_t)r * ldx, n);
+    colsum_block(db, x, ldx, M, n);
 }
 
 void nn_linear_backward_qkv(float *dinp, float *dw, float *db, const float *dqkv,

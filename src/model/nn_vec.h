@@ -140,6 +140,34 @@ DEF_VEXP(vexp, vf, vi, splat)
  * on whether it sat in a full vector or in the tail. */
 INL float sexp(float x) { return vexp(splat(x))[0]; }
 
+/* db[0..n) += rows r < M of x (row stride ldx), row after row: each db[c]
+ * is one chain of additions over r in order. Blocks of 8 vectors of columns
+ * keep their chains in registers over all rows (the same additions as
+ * adding row after row into db). */
+INL void colsum_block(float *restrict db, const float *restrict x, ptrdiff_t ldx, int M, int n)
+{
+    int c = 0;
+    for (; c + 8 * VL <= n; c += 8 * VL) {
+        vf a[8];
+        _Pragma("GCC unroll 8") for (int q = 0; q < 8; q++) a[q] = ld(db + c + q * VL);
+        for (int r = 0; r < M; r++) {
+            const float *xr = x + (size_t)r * ldx + c;
+            _Pragma("GCC unroll 8") for (int q = 0; q < 8; q++) a[q] += ld(xr + q * VL);
+        }
+        _Pragma("GCC unroll 8") for (int q = 0; q < 8; q++) st(db + c + q * VL, a[q]);
+    }
+    for (; c + VL <= n; c += VL) {
+        vf a = ld(db + c);
+        for (int r = 0; r < M; r++) a += ld(x + (size_t)r * ldx + c);
+        st(db + c, a);
+    }
+    for (; c < n; c++) {
+        float a = db[c];
+        for (int r = 0; r < M; r++) a += x[(size_t)r * ldx + c];
+        db[c] = a;
+    }
+}
+
 #ifdef NN_AVX512
 typedef float vf16 __attribute__((vector_size(64)));
 typedef int vi16 __attribute__((vector_size(64)));

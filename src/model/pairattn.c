@@ -12,25 +12,82 @@
 
 enum { Q = PAIRATTN_Q };
 
+/* The features of pair (i, j) into o[0..Q), in double, rounded to float. */
+static void pair_features(float *o, const float *tok, int stride, int i, int j)
+{
+    const double xi = tok[(size_t)i * stride], yi = tok[(size_t)i * stride + 1];
+    const double ri = tok[(size_t)i * stride + 2];
+    const double dx = (double)tok[(size_t)j * stride] - xi;
+    const double dy = (double)tok[(size_t)j * stride + 1] - yi;
+    const double dist = sqrt(dx * dx + dy * dy);
+    const double c = dist > 0 ? dx / dist : 0.0, s = dist > 0 ? dy / dist : 0.0;
+    o[0] = (float)dx;
+    o[1] = (float)dy;
+    o[2] = (float)dist;
+    o[3] = (float)(dist - ri - (double)tok[(size_t)j * stride + 2]);
+    o[4] = (float)c;
+    o[5] = (float)s;
+    o[6] = (float)(c * c - s * s);
+    o[7] = (float)(2 * c * s);
+}
+
 void pairattn_features(float *f, const float *tok, int stride, int T)
 {
-    for (int i = 0; i < T; i++) {
-        const double xi = tok[(size_t)i * stride], yi = tok[(size_t)i * stride + 1];
-        const double ri = tok[(size_t)i * stride + 2];
-        for (int j = 0; j < T; j++) {
-            const double dx = (double)tok[(size_t)j * stride] - xi;
-            const double dy = (double)tok[(size_t)j * stride + 1] - yi;
-            const double dist = sqrt(dx * dx + dy * dy);
-            const double c = dist > 0 ? dx / dist : 0.0, s = dist > 0 ? dy / dist : 0.0;
-            float *o = f + ((size_t)i * T + j) * Q;
-            o[0] = (float)dx;
-            o[1] = (float)dy;
-            o[2] = (float)dist;
-            o[3] = (float)(dist - ri - (double)tok[(size_t)j * stride + 2]);
-            o[4] = (float)c;
-            o[5] = (float)s;
-            o[6] = (float)(c * c - s * s);
-            o[7] = (float)(2 * c * s);
+    for (int i = 0; i < T; i++)
+        for (int j = 0; j < T; j++) pair_features(f + ((size_t)i * T + j) * Q, tok, stride, i, j);
+}
+
+/* ---- the geometry on 4 pairs at a time ---------------------------------------------- */
+/* pairattn_geometry runs once per patch and training step (and once per
+ * patch of a sampling call): a square root and two divisions per pair in
+ * double. Here 4 pairs (i, j..j+3) go through the same double operations in
+ * the same order on 4 lanes (each lane the scalar code of pairattn_features),
+ * the z-scores in float on 4 lanes, and a 4 x 4 transpose gives the
+ * pair-major rows; test_pairattn compares every gemm path with naive loops. */
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define GEOM_VEC 1
+#include <immintrin.h>
+__attribute__((target("avx2"))) static void geometry_row4(float *phi, float *phit, const double *xs,
+                                                         const double *ys, const double *rs, int T, int i, int j,
+                                                         const float *mu, const float *isd)
+{
+    const size_t TT = (size_t)T * T, e = (size_t)i * T + j;
+    const __m256d zero = _mm256_setzero_pd(), two = _mm256_set1_pd(2.0);
+    const __m256d dx = _mm256_sub_pd(_mm256_loadu_pd(xs + j), _mm256_set1_pd(xs[i]));
+    const __m256d dy = _mm256_sub_pd(_mm256_loadu_pd(ys + j), _mm256_set1_pd(ys[i]));
+    const __m256d dist = _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)));
+    const __m256d pos = _mm256_cmp_pd(dist, zero, _CMP_GT_OQ);
+    const __m256d c = _mm256_and_pd(pos, _mm256_div_pd(dx, dist)), sn = _mm256_and_pd(pos, _mm256_div_pd(dy, dist));
+    const __m256d f[Q] = {dx, dy, dist,
+                          _mm256_sub_pd(_mm256_sub_pd(dist, _mm256_set1_pd(rs[i])), _mm256_loadu_pd(rs + j)),
+                          c, sn, _mm256_sub_pd(_mm256_mul_pd(c, c), _mm256_mul_pd(sn, sn)),
+                          _mm256_mul_pd(_mm256_mul_pd(two, c), sn)};
+    __m128 z[Q];
+    for (int q = 0; q < Q; q++) {
+        z[q] = _mm_mul_ps(_mm_sub_ps(_mm256_cvtpd_ps(f[q]), _mm_set1_ps(mu[q])), _mm_set1_ps(isd[q]));
+        _mm_storeu_ps(phit + q * TT + e, z[q]);
+    }
+    _MM_TRANSPOSE4_PS(z[0], z[1], z[2], z[3]);
+    _MM_TRANSPOSE4_PS(z[4], z[5], z[6], z[7]);
+    for (int u = 0; u < 4; u++) {
+        _mm_storeu_ps(phi + (e + u) * Q, z[u]);
+        _mm_storeu_ps(phi + (e + u) * Q + 4, z[4 + u]);
+    }
+}
+#endif
+
+/* The features of pairs (i, j) for j in [j0, T), then their z-scores. */
+static void geometry_tail(float *phi, float *phit, const float *tok, int stride, int T, int i, int j0,
+                          const float *mu, const float *isd)
+{
+    const size_t TT = (size_t)T * T;
+    for (int j = j0; j < T; j++) {
+        const size_t e = (size_t)i * T + j;
+        pair_features(phi + e * Q, tok, stride, i, j);
+        for (int q = 0; q < Q; q++) {
+            float z = (phi[e * Q + q] - mu[q]) * isd[q];
+            phi[e * Q + q] = z;
+            phit[(size_t)q * TT + e] = z;
         }
     }
 }
@@ -38,14 +95,22 @@ void pairattn_features(float *f, const float *tok, int stride, int T)
 void pairattn_geometry(float *phi, float *phit, const float *tok, int stride, int T,
                        const float *mu, const float *isd)
 {
-    const size_t TT = (size_t)T * T;
-    pairattn_features(phi, tok, stride, T);
-    for (size_t e = 0; e < TT; e++)
-        for (int q = 0; q < Q; q++) {
-            float z = (phi[e * Q + q] - mu[q]) * isd[q];
-            phi[e * Q + q] = z;
-            phit[(size_t)q * TT + e] = z;
+    int j4 = 0;
+#ifdef GEOM_VEC
+    enum { TMAX = 64 };
+    if (T <= TMAX && gemm_get_isa() >= GEMM_AVX2) {
+        double xs[TMAX], ys[TMAX], rs[TMAX];
+        for (int j = 0; j < T; j++) {
+            xs[j] = tok[(size_t)j * stride];
+            ys[j] = tok[(size_t)j * stride + 1];
+            rs[j] = tok[(size_t)j * stride + 2];
         }
+        j4 = T - T % 4;
+        for (int i = 0; i < T; i++)
+            for (int j = 0; j < j4; j += 4) geometry_row4(phi, phit, xs, ys, rs, T, i, j, mu, isd);
+    }
+#endif
+    for (int i = 0; i < T; i++) geometry_tail(phi, phit, tok, stride, T, i, j4, mu, isd);
 }
 
 size_t pairattn_scratch_len(int T, int C, int H)
@@ -108,6 +173,82 @@ A256 void dpair1x4(float *dpx, const float *dPhi, const float *phit, int T, int 
             _mm256_storeu_ps(dpx + (h0 + v) * TT + (size_t)i * T + 8 * w, c[v][w]);
 }
 
+/* out[i][j..j+32) += sum_q Phi[h_v][i][q] wvt[q][j + 8v..], rows i..i+2 (the
+ * value term of every head at once; vector v of the block is in head h_v) */
+A256 void value3x4(float *out, const float *Phi, const float *wvt, int T, int C, int hd, int i, int j)
+{
+    __m256 c[3][4], b[4];
+    _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) c[u][v] = _mm256_loadu_ps(out + (size_t)(i + u) * C + j + 8 * v);
+    for (int q = 0; q < Q; q++) {
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) b[v] = _mm256_loadu_ps(wvt + (size_t)q * C + j + 8 * v);
+        _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
+            _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) {
+                const int h = (j + 8 * v) / hd;
+                c[u][v] = _mm256_fmadd_ps(_mm256_broadcast_ss(Phi + ((size_t)h * T + i + u) * Q + q), b[v], c[u][v]);
+            }
+    }
+    _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) _mm256_storeu_ps(out + (size_t)(i + u) * C + j + 8 * v, c[u][v]);
+}
+
+/* dPhi[h][i][0..8) = sum_d dO[i][h hd + d] wv[h hd + d][0..8), rows i..i+2, heads h0..h0+3 */
+A256 void dphi3x4(float *dPhi, const float *dO, const float *wv, int T, int C, int hd, int i, int h0)
+{
+    __m256 c[3][4], b[4];
+    _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) c[u][v] = _mm256_setzero_ps();
+    for (int d = 0; d < hd; d++) {
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) b[v] = _mm256_loadu_ps(wv + ((size_t)(h0 + v) * hd + d) * Q);
+        _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
+            _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++)
+                c[u][v] = _mm256_fmadd_ps(_mm256_broadcast_ss(dO + (size_t)(i + u) * C + (h0 + v) * hd + d), b[v], c[u][v]);
+    }
+    _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) _mm256_storeu_ps(dPhi + ((size_t)(h0 + v) * T + i + u) * Q, c[u][v]);
+}
+
+/* dwv[h hd + d][0..8) += sum_i dO[i][h hd + d] Phi[h][i][0..8), d..d+1, heads h0..h0+3 */
+A256 void dwv2x4(float *dwv, const float *dO, const float *Phi, int T, int C, int hd, int d, int h0)
+{
+    __m256 c[2][4], b[4];
+    _Pragma("GCC unroll 2") for (int u = 0; u < 2; u++)
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) c[u][v] = _mm256_loadu_ps(dwv + ((size_t)(h0 + v) * hd + d + u) * Q);
+    for (int i = 0; i < T; i++) {
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) b[v] = _mm256_loadu_ps(Phi + ((size_t)(h0 + v) * T + i) * Q);
+        _Pragma("GCC unroll 2") for (int u = 0; u < 2; u++)
+            _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++)
+                c[u][v] = _mm256_fmadd_ps(_mm256_broadcast_ss(dO + (size_t)i * C + (h0 + v) * hd + d + u), b[v], c[u][v]);
+    }
+    _Pragma("GCC unroll 2") for (int u = 0; u < 2; u++)
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) _mm256_storeu_ps(dwv + ((size_t)(h0 + v) * hd + d + u) * Q, c[u][v]);
+}
+
+/* x[0..n) = s * x[0..n) (a product per value, as the scalar loop) */
+__attribute__((target("avx2"))) static void scale_avx2(float *x, size_t n, float s)
+{
+    const __m256 vs = _mm256_set1_ps(s);
+    size_t e = 0;
+    for (; e + 8 <= n; e += 8) _mm256_storeu_ps(x + e, _mm256_mul_ps(vs, _mm256_loadu_ps(x + e)));
+    for (; e < n; e++) x[e] = s * x[e];
+}
+
+__attribute__((target("avx2,fma"))) static void value_avx2(float *out, const float *Phi, const float *wvt, int T, int C, int H)
+{
+    for (int i = 0; i < T; i += 3)
+        for (int j = 0; j < C; j += 32) value3x4(out, Phi, wvt, T, C, C / H, i, j);
+}
+
+__attribute__((target("avx2,fma"))) static void dvalue_avx2(float *dPhi, float *dwv, const float *dO, const float *Phi,
+                                                            const float *wv, int T, int C, int H)
+{
+    const int hd = C / H;
+    for (int h0 = 0; h0 < H; h0 += 4) {
+        for (int i = 0; i < T; i += 3) dphi3x4(dPhi, dO, wv, T, C, hd, i, h0);
+        for (int d = 0; d < hd; d += 2) dwv2x4(dwv, dO, Phi, T, C, hd, d, h0);
+    }
+}
+
 __attribute__((target("avx2,fma"))) static void mix_avx2(float *Phi, const float *prob, const float *phi, int T, int H)
 {
     for (int h0 = 0; h0 < H; h0 += 4)
@@ -145,6 +286,33 @@ static void pair_dp(float *dpx, const float *dPhi, const float *phit, int T, int
                  dpx + (size_t)i * T, TT, 0);
 }
 
+/* The value term out_h += Phi_h Wv_h^T of every head (one gemm_fma call per
+ * head, or 3 rows x 32 columns of chains at a time: the same chains). */
+static void pair_value(float *out, const float *Phi, const float *wvt, int T, int C, int H)
+{
+    const int hd = C / H;
+#ifdef PAIR_VEC
+    if (T % 3 == 0 && C % 32 == 0 && hd % 8 == 0 && gemm_get_isa() >= GEMM_AVX2) { value_avx2(out, Phi, wvt, T, C, H); return; }
+#endif
+    for (int h = 0; h < H; h++)
+        gemm_fma(T, hd, Q, Phi + (size_t)h * T * Q, Q, 1, wvt + h * hd, C, out + h * hd, C, 1);
+}
+
+/* dPhi_h = dO_h Wv_h; dWv_h += dO_h^T Phi_h, every head (per-head gemm_fma
+ * calls, or 12 and 8 chains at a time: the same chains). */
+static void pair_dvalue(float *dPhi, float *dwv, const float *dO, const float *Phi, const float *wv,
+                        int T, int C, int H)
+{
+    const int hd = C / H;
+#ifdef PAIR_VEC
+    if (T % 3 == 0 && H % 4 == 0 && hd % 2 == 0 && gemm_get_isa() >= GEMM_AVX2) { dvalue_avx2(dPhi, dwv, dO, Phi, wv, T, C, H); return; }
+#endif
+    for (int h = 0; h < H; h++) {
+        gemm_fma(T, Q, hd, dO + h * hd, C, 1, wv + (size_t)h * hd * Q, Q, dPhi + (size_t)h * T * Q, Q, 0);
+        gemm_fma(hd, Q, T, dO + h * hd, 1, C, Phi + (size_t)h * T * Q, Q, dwv + (size_t)h * hd * Q, Q, 1);
+    }
+}
+
 /* One patch: out[T x C], prob[H x T x T], Phi[H x T x Q] from qkv[T x 3C]. */
 static void patch_forward(float *out, float *prob, float *Phi, const float *qkv, const float *phi,
                           const float *phit, const float *wb, const float *wvt, int T, int C, int H,
@@ -155,7 +323,11 @@ static void patch_forward(float *out, float *prob, float *Phi, const float *qkv,
     if (mode == NN_ATTN_JOINT) {
         const float scale = 1.f / sqrtf((float)hd);
         gemm_fma(H, TT, Q, wb, Q, 1, phit, TT, sb, TT, 0); /* beta[h][ij] = wb_h . phi_ij */
-        for (size_t e = 0; e < (size_t)H * TT; e++) sb[e] = scale * sb[e];
+#ifdef PAIR_VEC
+        if (gemm_get_isa() >= GEMM_AVX2) scale_avx2(sb, (size_t)H * TT, scale);
+        else
+#endif
+            for (size_t e = 0; e < (size_t)H * TT; e++) sb[e] = scale * sb[e];
         nn_attention_forward_biased(out, prob, qkv, sb, 1, T, C, H, mode, scratch);
         pair_mix(Phi, prob, phi, T, H); /* Phi[h][i][q] = sum_j a_hij phi_ijq */
     } else {
@@ -164,8 +336,7 @@ static void patch_forward(float *out, float *prob, float *Phi, const float *qkv,
             for (int i = 0; i < T; i++)
                 memcpy(Phi + ((size_t)h * T + i) * Q, phi + ((size_t)i * T + i) * Q, sizeof(float) * Q);
     }
-    for (int h = 0; h < H; h++) /* out_h += Phi_h Wv_h^T */
-        gemm_fma(T, hd, Q, Phi + (size_t)h * T * Q, Q, 1, wvt + h * hd, C, out + h * hd, C, 1);
+    pair_value(out, Phi, wvt, T, C, H); /* out_h += Phi_h Wv_h^T */
 }
 
 /* One patch: dqkv[T x 3C] from dO[T x C]; dwb, dwv accumulate. */
@@ -173,14 +344,10 @@ static void patch_backward(float *dqkv, float *dwb, float *dwv, const float *dO,
                            const float *prob, const float *Phi, const float *phi, const float *phit,
                            const float *wv, int T, int C, int H, nn_attn_mode mode, float *scratch)
 {
-    const int hd = C / H, TT = T * T;
+    const int TT = T * T;
     float *dpx = scratch + nn_attention_scratch_len(T, C, H); /* [H x T x T] */
     float *dPhi = dpx + (size_t)H * TT;                       /* [H x T x Q] */
-    for (int h = 0; h < H; h++) {
-        /* dPhi_h = dO_h Wv_h; dWv_h += dO_h^T Phi_h */
-        gemm_fma(T, Q, hd, dO + h * hd, C, 1, wv + (size_t)h * hd * Q, Q, dPhi + (size_t)h * T * Q, Q, 0);
-        gemm_fma(hd, Q, T, dO + h * hd, 1, C, Phi + (size_t)h * T * Q, Q, dwv + (size_t)h * hd * Q, Q, 1);
-    }
+    pair_dvalue(dPhi, dwv, dO, Phi, wv, T, C, H); /* dPhi_h = dO_h Wv_h; dWv_h += dO_h^T Phi_h */
     if (mode == NN_ATTN_JOINT) {
         pair_dp(dpx, dPhi, phit, T, H); /* dP[h][i][j] gains dPhi_hi . phi_ij */
         nn_attention_backward_biased(dqkv, dO, qkv, prob, dpx, 1, T, C, H, mode, scratch);
