@@ -114,6 +114,38 @@ void attrib_judge(const attrib_data *d, const claim_row *row, const claim_result
     out->kind = out->by[0] ? ATTRIB_EXPLAINED : tested ? ATTRIB_UNEXPLAINED : ATTRIB_UNTESTED;
 }
 
+static void by_add(char *by, size_t n, const char *s)
+{
+    size_t l = strlen(by);
+    if (l + strlen(s) + 3 < n) snprintf(by + l, n - l, "%s%s", l ? ", " : "", s);
+}
+
+int attrib_reached(const attrib_data *d, const claim_row *row, const claim_result *res, double lo, double hi,
+                   char *by, size_t n, int *tested)
+{
+    by[0] = '\0';
+    *tested = 0;
+    double p, rel;
+    if (!claims_rel_diff(row, res, &p, &rel)) return 0;
+    double v = res->value, centre = v;
+    for (size_t i = 0; i < d->n; i++)
+        if (d->v[i].sens && !strcmp(d->v[i].quantity, row->macro) && !strcmp(d->v[i].unit, "centre")) centre = d->v[i].value;
+    for (size_t i = 0; i < d->n; i++) {
+        const attrib_value *a = &d->v[i];
+        if (strcmp(a->quantity, row->macro) || (a->sens && !strcmp(a->unit, "centre"))) continue;
+        *tested = 1;
+        double shift = a->value - (a->sens ? centre : v);
+        int inside = lo + shift <= p && p <= hi + shift;
+        const unstated_choice *uc = a->sens ? unstated_find(a->unit) : NULL;
+        int between = a->sens && !(uc && uc->categorical) && fmin(v, v + shift) <= p && p <= fmax(v, v + shift);
+        if (!inside && !between) continue;
+        char s[64];
+        snprintf(s, sizeof s, a->sens ? "%s" : "reading %s", a->unit);
+        if (!strstr(by, s)) by_add(by, n, s);
+    }
+    return by[0] != '\0';
+}
+
 void attrib_count(const attrib_data *d, const claims *c, const claim_result *res, attrib_counts *k)
 {
     memset(k, 0, sizeof *k);

@@ -13,6 +13,7 @@
 #include "verify.h"
 #include "audit_paper.h"
 #include "audit_docs.h"
+#include "agree.h"
 #include <unistd.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -236,3 +237,26 @@ int cli_cmd_figures(int argc, char **argv)
     return count[VERDICT_FAIL] ? 1 : 0;
 }
 
+
+int cli_cmd_report(int argc, char **argv)
+{
+    const opts_cmd oc = {"report", "", "Print the reproduction summary (the table that opens the write-up, paper/summary.tex):\n"
+                         "every measured claim with a paper value or a gate, ours with its 95 % interval over the\n"
+                         "independent replicate unit, the gate verdict and the agreement class (colour only on a terminal).",
+                         NULL, 0, 0, 0};
+    int r = opts_parse(&oc, argc, argv, NULL, NULL);
+    if (r) return opts_exit_code(r);
+    claims c;
+    claim_result *res;
+    cs_status st = verify_load_eval(&c, &res);
+    if (st) return cli_fail("report", st);
+    const claim_interval *ci;
+    attrib_data at = {0};
+    if (!(st = agree_intervals_cached(&c, res, &ci)) && !(st = attrib_load(PATHS_READINGS_SUMMARY, PATHS_SENS_SUMMARY, &at))) {
+        agree_print_report(stdout, &c, res, ci, &at, isatty(STDOUT_FILENO));
+        attrib_free(&at);
+    }
+    free(res);
+    claims_free(&c);
+    return st ? cli_fail("report", st) : 0;
+}

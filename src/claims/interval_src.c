@@ -1,0 +1,435 @@
+/* interval_src: the replicate units of each family of claims, read from
+ * frozen/ (design.md §6.4): seeds of the E3/E4 run tables, unseen spacings of
+ * the baselines, stands of the E5/E6 per-tree tables, patches of the E7
+ * distribution, replicate stands of the figure stands. Each extractor hands
+ * back units and the claim's statistic over them; interval.c checks that the
+ * frozen units give the claim's own value. */
+#include "interval.h"
+#include "fieldsim.h"
+#include "stats.h"
+#include "tsv.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAXSEED 64
+
+/* The macro without a reading prefix (PairMainRel -> MainRel). */
+static const char *base_macro(const char *m)
+{
+    const char *a = strstr(m, "Main"), *b = strstr(m, "Extrap");
+    if (a && (!b || a < b)) return a;
+    return b ? b : m;
+}
+
+static cs_status alloc_x(iv_data *d, size_t n, size_t m)
+{
+    d->x = calloc(n * m > 0 ? n * m : 1, sizeof *d->x);
+    d->n = n;
+    d->m = m;
+    return d->x ? CS_OK : cs_err(CS_ENOMEM, "interval: out of memory");
+}
+
+/* ---- E3: seeds of runs.tsv; columns as claim_main.c's kinds ---- */
+
+static int run_col(const char *arm, const char *probe)
+{
+    int a = !strcmp(arm, "joint") ? 0 : !strcmp(arm, "indep") ? 1 : -1;
+    int q = !strcmp(probe, "generated") ? 0 : !strcmp(probe, "shuffled") ? 1 : !strcmp(probe, "rotated") ? 2 : -1;
+    return a < 0 || q < 0 ? -1 : 2 * q + a; /* 0 joint, 1 indep, 2 joint shuffled, 3 indep shuffled, 4/5 rotated */
+}
+
+static cs_status main_seeds(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
+{
+    (void)res; (void)sp;
+    tsv *t;
+    cs_status st = tsv_read(row->source, &t);
+    if (st) return st;
+    double v[MAXSEED][6];
+    int maxs = 0;
+    for (int i = 0; i < MAXSEED; i++) for (int k = 0; k < 6; k++) v[i][k] = NAN;
+    for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+        long s;
+        double e;
+        const char *arm = tsv_str(t, r, "arm"), *probe = tsv_str(t, r, "probe");
+        if ((st = tsv_long(t, r, "seed", &s)) || (st = tsv_double(t, r, "error", &e))) break;
+        int k = arm && probe ? run_col(arm, probe) : -1;
+        if (s < 1 || s > MAXSEED || k < 0) { st = cs_err(CS_EINPUT, "%s:%d: field 'seed'/'arm'/'probe': unexpected row", row->source, tsv_line(t, r)); break; }
+        v[s - 1][k] = e;
+        if (s > maxs) maxs = (int)s;
+    }
+    tsv_free(t);
+    if (!st) st = alloc_x(d, (size_t)maxs, 6);
+    if (st) return st;
+    for (int i = 0; i < maxs; i++) memcpy(d->x + (size_t)i * 6, v[i], sizeof v[i]);
+    d->unit = "seed";
+    d->method = "bootstrap";
+    snprintf(d->from, sizeof d->from, "%s (%d seeds)", row->source, maxs);
+    const char *m = base_macro(row->macro);
+    static const struct { const char *macro; iv_kind k; size_t a, b; } map[] = {
+        {"MainJoint", IV_MEDIAN, 0, 0}, {"MainIndep", IV_MEDIAN, 1, 0},
+        {"MainJointLo", IV_MIN, 0, 0}, {"MainJointHi", IV_MAX, 0, 0}, {"MainIndepLo", IV_MIN, 1, 0}, {"MainIndepHi", IV_MAX, 1, 0},
+        {"MainRel", IV_REL, 0, 1}, {"MainP", IV_WILCOXON, 0, 1}, {"MainGeomRatio", IV_RATIO, 2, 0},
+        {"MainShufJoint", IV_MEDIAN, 2, 0}, {"MainShufIndep", IV_MEDIAN, 3, 0}, {"MainGeomRatioIndep", IV_RATIO, 3, 1},
+        {"MainRotJoint", IV_MEDIAN, 4, 0}, {"MainRotIndep", IV_MEDIAN, 5, 0}, {"MainRotRatio", IV_RATIO, 4, 0},
+        {"MainRotRatioIndep", IV_RATIO, 5, 1},
+    };
+    for (size_t i = 0; i < sizeof map / sizeof *map; i++)
+        if (!strcmp(m, map[i].macro)) {
+            d->stat = (iv_stat){map[i].k, map[i].a, map[i].b, NULL, NULL};
+            return CS_OK;
+        }
+    return cs_err(CS_EINVARIANT, "interval: no seed statistic for %s", row->macro);
+}
+
+/* ---- E3 baselines: the unseen spacings, mean over them ---- */
+
+static cs_status main_spacings(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
+{
+    (void)res; (void)sp;
+    char path[256];
+    const char *src = row->source, *leaf = "baselines.tsv";
+    size_t ls = strlen(src), lb = strlen(leaf);
+    if (ls >= lb && !strcmp(src + ls - lb, leaf)) snprintf(path, sizeof path, "%s", src);
+    else {
+        const char *cut = NULL;
+        for (const char *q = src; (q = strstr(q, "/main/")); q++) cut = q;
+        for (const char *q = src; (q = strstr(q, "/extrapolation/")); q++) if (!cut || q > cut) cut = q;
+        snprintf(path, sizeof path, "%.*s/main/%s", cut ? (int)(cut - src) : 6, cut ? src : "frozen", leaf);
+    }
+    const char *col = !strcmp(row->function, "claim_main_noise") ? "noise_floor_w1"
+                    : !strcmp(row->function, "claim_main_iso") ? "direction_blind_w1"
+                    : strstr(row->macro, "Rot") ? "teacher_rotated_w1" : "teacher_shuffled_w1";
+    tsv *t;
+    cs_status st = tsv_read(path, &t);
+    if (st) return st;
+    if (!(st = alloc_x(d, tsv_nrows(t), 1))) {
+        size_t n = 0;
+        for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+            const char *split = tsv_str(t, r, "split");
+            if (!split || strcmp(split, "unseen")) continue;
+            st = tsv_double(t, r, col, &d->x[n++]);
+        }
+        d->n = n;
+    }
+    tsv_free(t);
+    d->unit = "spacing";
+    d->method = "bootstrap";
+    d->stat = (iv_stat){IV_MEAN, 0, 0, NULL, NULL};
+    snprintf(d->from, sizeof d->from, "%s (%s, %zu unseen spacings)", path, col, d->n);
+    return st;
+}
+
+/* ---- E4: seeds of extrapolation/runs.tsv ---- */
+
+static cs_status extrap_seeds(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
+{
+    (void)res; (void)sp;
+    tsv *t;
+    cs_status st = tsv_read(row->source, &t);
+    if (st) return st;
+    /* per seed: joint and indep W1 at each of up to 4 spacings (file order) */
+    double dd[4], w[MAXSEED][4][2];
+    int nd = 0, maxs = 0;
+    for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+        long s;
+        double sp_m, w1;
+        const char *arm = tsv_str(t, r, "arm");
+        if ((st = tsv_long(t, r, "seed", &s)) || (st = tsv_double(t, r, "spacing", &sp_m)) || (st = tsv_double(t, r, "w1", &w1))) break;
+        int k = 0;
+        while (k < nd && fabs(dd[k] - sp_m) > 1e-9) k++;
+        if (k == nd && nd < 4) dd[nd++] = sp_m;
+        int a = arm && !strcmp(arm, "joint") ? 0 : arm && !strcmp(arm, "indep") ? 1 : -1;
+        if (k == 4 || a < 0 || s < 1 || s > MAXSEED) { st = cs_err(CS_EINPUT, "%s:%d: unexpected row", row->source, tsv_line(t, r)); break; }
+        w[s - 1][k][a] = w1;
+        if (s > maxs) maxs = (int)s;
+    }
+    tsv_free(t);
+    if (st) return st;
+    d->unit = "seed";
+    d->method = "bootstrap";
+    snprintf(d->from, sizeof d->from, "%s (%d seeds)", row->source, maxs);
+    if (!strcmp(row->function, "claim_extrap_p")) {
+        /* claim_extrap_p: per seed, the mean over the spacings of each arm */
+        if ((st = alloc_x(d, (size_t)maxs, 2))) return st;
+        for (int i = 0; i < maxs; i++) {
+            double a = 0, b = 0;
+            for (int k = 0; k < nd; k++) { a += w[i][k][1] / nd; b += w[i][k][0] / nd; }
+            d->x[2 * i] = b;
+            d->x[2 * i + 1] = a;
+        }
+        d->stat = (iv_stat){IV_WILCOXON, 0, 1, NULL, NULL};
+        return CS_OK;
+    }
+    /* ExtrapLowRel: the lowest spacing, ExtrapHighRel: the highest */
+    int lowk = 0, highk = 0;
+    for (int k = 1; k < nd; k++) { if (dd[k] < dd[lowk]) lowk = k; if (dd[k] > dd[highk]) highk = k; }
+    int k = strstr(base_macro(row->macro), "Low") ? lowk : highk;
+    if ((st = alloc_x(d, (size_t)maxs, 2))) return st;
+    for (int i = 0; i < maxs; i++) { d->x[2 * i] = w[i][k][0]; d->x[2 * i + 1] = w[i][k][1]; }
+    d->stat = (iv_stat){IV_REL, 0, 1, NULL, NULL};
+    return CS_OK;
+}
+
+/* ---- E5/E6: stands of a per-tree table, regrouped by fs_group ---- */
+
+typedef enum { FS_ELONG, FS_ANISO, FS_ANISO_TREES, FS_STANDS, FS_RHO, FS_OVERSHOOT } fs_kind;
+typedef struct {
+    fs_trees t;
+    fs_kind kind;
+    double level[32];  /* coupled buildable levels, file order */
+    size_t nlevel;
+    unsigned nstand;   /* stand ids 0..nstand-1 */
+    size_t **of;       /* of[s]: tree indices of stand s, count in cnt[s] */
+    size_t *cnt;
+} fs_ctx;
+
+static void fs_ctx_free(void *p)
+{
+    fs_ctx *c = p;
+    if (!c) return;
+    for (unsigned s = 0; c->of && s < c->nstand; s++) free(c->of[s]);
+    free(c->of);
+    free(c->cnt);
+    fs_trees_free(&c->t);
+    free(c);
+}
+
+/* The trees of the drawn stands, stand b of the draw numbered b. */
+static cs_status fs_draw(const fs_ctx *c, const double *x, size_t n, fs_trees *out)
+{
+    fs_trees_init(out);
+    cs_status st = CS_OK;
+    for (size_t b = 0; b < n && !st; b++) {
+        unsigned s = (unsigned)x[b];
+        for (size_t q = 0; q < c->cnt[s] && !st; q++) {
+            size_t k = c->of[s][q];
+            st = fs_trees_push(out, c->t.coupled[k], c->t.level[k], (unsigned)b, c->t.tree[k], c->t.gap[k], c->t.elong[k], c->t.elong_card[k]);
+        }
+    }
+    return st;
+}
+
+static cs_status fs_stat(const double *x, size_t n, size_t m, const void *ctx, double *out)
+{
+    (void)m;
+    const fs_ctx *c = ctx;
+    fs_trees d;
+    cs_status st = fs_draw(c, x, n, &d);
+    fs_summary s;
+    double an[32];
+    for (size_t l = 0; l < c->nlevel && !st; l++) {
+        st = fs_group(&d, 1, c->level[l], &s);
+        an[l] = s.f.aniso_median;
+        if (st || c->kind == FS_RHO || c->kind == FS_OVERSHOOT) continue;
+        *out = c->kind == FS_ELONG ? s.elong_median : c->kind == FS_ANISO ? s.f.aniso_median
+             : c->kind == FS_ANISO_TREES ? (double)s.f.aniso_trees : (double)s.stands;
+        break;
+    }
+    if (!st && c->kind == FS_RHO) st = stats_spearman(c->level, an, c->nlevel, out);
+    if (!st && c->kind == FS_OVERSHOOT) {
+        size_t k = 0;
+        for (size_t l = 1; l < c->nlevel; l++) if (c->level[l] > c->level[k]) k = l;
+        *out = an[k];
+    }
+    fs_trees_free(&d);
+    return st;
+}
+
+/* Coupled levels with trees, in the order of the summary table. */
+static cs_status fs_levels(const char *summary, fs_ctx *c, int first_only)
+{
+    tsv *t;
+    cs_status st = tsv_read(summary, &t);
+    if (st) return st;
+    for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+        const char *arm = tsv_str(t, r, "arm");
+        long trees;
+        double lv;
+        if (!arm || strcmp(arm, "coupled")) continue;
+        if ((st = tsv_long(t, r, "trees", &trees)) || (st = tsv_double(t, r, "level", &lv))) break;
+        if (trees == 0) continue;
+        if (c->nlevel == 32) { st = cs_err(CS_EINPUT, "%s: more than 32 levels", summary); break; }
+        c->level[c->nlevel++] = lv;
+        if (first_only) break;
+    }
+    tsv_free(t);
+    return st;
+}
+
+static cs_status fs_stands(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
+{
+    (void)res; (void)sp;
+    fs_ctx *c = calloc(1, sizeof *c);
+    if (!c) return cs_err(CS_ENOMEM, "interval: out of memory");
+    d->stat = (iv_stat){IV_CALLBACK, 0, 0, fs_stat, c};
+    d->cleanup = fs_ctx_free;
+    const char *m = row->macro, *f = row->function;
+    c->kind = !strcmp(f, "claim_aniso_rho") ? FS_RHO : !strcmp(f, "claim_aniso_hardcore_overshoot") ? FS_OVERSHOOT
+            : strstr(m, "Elong") ? FS_ELONG : strstr(m, "Stands") ? FS_STANDS : !strcmp(m, "AnisoTrees") ? FS_ANISO_TREES : FS_ANISO;
+    char tp[512];
+    fs_trees_path(row->source, tp, sizeof tp);
+    cs_status st = fs_levels(row->source, c, c->kind != FS_RHO && c->kind != FS_OVERSHOOT);
+    if (!st) st = fs_trees_read(tp, &c->t);
+    for (size_t k = 0; k < c->t.n && !st; k++) if (c->t.stand[k] + 1 > c->nstand) c->nstand = c->t.stand[k] + 1;
+    if (!st && (c->nstand == 0 || c->nlevel == 0)) st = cs_err(CS_EINPUT, "%s: no stands or no buildable coupled level", tp);
+    if (!st) {
+        c->of = calloc(c->nstand, sizeof *c->of);
+        c->cnt = calloc(c->nstand, sizeof *c->cnt);
+        if (!c->of || !c->cnt) st = cs_err(CS_ENOMEM, "interval: out of memory");
+    }
+    for (unsigned s = 0; s < c->nstand && !st; s++) {
+        c->of[s] = malloc((c->t.n ? c->t.n : 1) * sizeof **c->of);
+        if (!c->of[s]) { st = cs_err(CS_ENOMEM, "interval: out of memory"); break; }
+        for (size_t k = 0; k < c->t.n; k++) if (c->t.stand[k] == s) c->of[s][c->cnt[s]++] = k;
+    }
+    if (!st) st = alloc_x(d, c->nstand, 1);
+    for (unsigned s = 0; s < c->nstand && !st; s++) d->x[s] = s;
+    d->unit = "stand";
+    d->method = "bootstrap";
+    snprintf(d->from, sizeof d->from, "%s (%u stands)", tp, c->nstand);
+    return st;
+}
+
+/* ---- E7: patches of a distribution table drawn from the same models ---- */
+
+/* "--joint X --indep Y" of a table's command line. */
+static int models_of(const tsv *t, char *buf, size_t n)
+{
+    const char *c = tsv_meta(t, "command"), *j = c ? strstr(c, "--joint ") : NULL, *i = c ? strstr(c, "--indep ") : NULL;
+    if (!j || !i) return 0;
+    snprintf(buf, n, "%.*s|%.*s", (int)strcspn(j + 8, " "), j + 8, (int)strcspn(i + 8, " "), i + 8);
+    return 1;
+}
+
+static cs_status comp_patches(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
+{
+    (void)res;
+    d->unit = "patch";
+    d->method = "range";
+    tsv *src;
+    cs_status st = tsv_read(row->source, &src);
+    if (st) return st;
+    char want[280], got[280];
+    int ok = models_of(src, want, sizeof want);
+    tsv_free(src);
+    if (!ok) return cs_err(CS_EINPUT, "%s: header '# command:' names no --joint/--indep models", row->source);
+    /* the distribution beside the claim's table, else the one the statement names */
+    char cand[2][520];
+    const char *slash = strrchr(row->source, '/');
+    snprintf(cand[0], sizeof cand[0], "%.*sdist_patches.tsv", slash ? (int)(slash - row->source + 1) : 0, row->source);
+    snprintf(cand[1], sizeof cand[1], "%s", sp->replicates);
+    tsv *t = NULL;
+    for (int k = 0; k < 2 && !t; k++) {
+        FILE *f = fopen(cand[k], "r");
+        if (!f) continue;
+        fclose(f);
+        if ((st = tsv_read(cand[k], &t))) return st;
+        if (!models_of(t, got, sizeof got) || strcmp(got, want)) { tsv_free(t); t = NULL; }
+    }
+    if (!t) {
+        d->method = "none";
+        snprintf(d->why, sizeof d->why, "no patch distribution drawn from the models of %s (%s) is frozen", row->source, want);
+        return CS_OK;
+    }
+    const char *s = strstr(row->macro, "Teach") ? "teacher" : strstr(row->macro, "Indep") ? "indep" : "joint";
+    const char *col = !strcmp(row->function, "claim_comp_overlap") ? "overlapping" : "median_nn_clearance_m";
+    if (!(st = alloc_x(d, tsv_nrows(t), 1))) {
+        size_t n = 0;
+        for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+            const char *probe = tsv_str(t, r, "probe"), *so = tsv_str(t, r, "source");
+            if (!probe || !so || strcmp(probe, "comparison") || strcmp(so, s)) continue;
+            st = tsv_double(t, r, col, &d->x[n++]);
+        }
+        d->n = n;
+        if (!st && n == 0) st = cs_err(CS_EINPUT, "%s: no comparison rows of source %s", tsv_path(t), s);
+    }
+    snprintf(d->from, sizeof d->from, "%s (%s, %s, %zu patches of the same models)", tsv_path(t), s, col, d->n);
+    tsv_free(t);
+    return st;
+}
+
+/* ---- one-stand claims: the replicate stands of the same family ---- */
+
+/* The replicate table's family and column for a figure-stand claim. */
+static int figure_column(const claim_row *row, char *family, size_t fn, char *arm, size_t an, double *d, const char **col)
+{
+    const char *m = row->macro, *f = row->function;
+    if (!strcmp(f, "claim_mech_ablation_k") || !strcmp(f, "claim_mech_cover") || !strcmp(f, "claim_mech_overlap")) {
+        snprintf(family, fn, "mechanism");
+        snprintf(arm, an, "%s", !strncmp(m, "MechCoupOff", 11) ? "coupling_off" : !strcmp(m, "MechAbrOff") ? "abrasion_off" : "both_on");
+        *d = 3.5;
+        *col = !strcmp(f, "claim_mech_cover") ? "cover" : !strcmp(f, "claim_mech_overlap") ? "overlap_m"
+             : strstr(m, "KTwo") ? "k2_m" : strstr(m, "KThree") ? "k3_m" : "k1_m";
+        return 1;
+    }
+    if (!strcmp(f, "claim_hero_stems")) {
+        snprintf(family, fn, "hero");
+        snprintf(arm, an, "beta_train");
+        *d = !strcmp(m, "HeroStemsDense") ? 3.0 : 6.5;
+        *col = "stems";
+        return 1;
+    }
+    if (!strcmp(f, "claim_pc_stand") || !strcmp(f, "claim_pc_clearance")) {
+        snprintf(family, fn, "pointcloud");
+        *d = strstr(m, "OtherA") ? 5.0 : strstr(m, "OtherB") ? 4.0 : 3.0;
+        snprintf(arm, an, "%s", !strcmp(m, "PcUncoupled") ? "uncoupled" : "coupled");
+        *col = !strcmp(f, "claim_pc_clearance") ? "k1_m" : strstr(m, "Trees") ? "stems" : "contact_pct";
+        return 1;
+    }
+    return 0;
+}
+
+static cs_status figure_stands(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
+{
+    (void)res;
+    d->unit = "stand";
+    d->method = "range";
+    char family[32], arm[32];
+    double dd;
+    const char *col;
+    if (!figure_column(row, family, sizeof family, arm, sizeof arm, &dd, &col))
+        return cs_err(CS_EINVARIANT, "interval: no replicate stands for %s", row->macro);
+    tsv *t;
+    cs_status st = tsv_read(sp->replicates, &t);
+    if (st) return st;
+    if (!(st = alloc_x(d, tsv_nrows(t), 1))) {
+        size_t n = 0;
+        for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+            const char *fa = tsv_str(t, r, "family"), *a = tsv_str(t, r, "arm");
+            double sd;
+            long stand;
+            if ((st = tsv_double(t, r, "spacing_m", &sd)) || (st = tsv_long(t, r, "stand", &stand))) break;
+            if (!fa || !a || strcmp(fa, family) || strcmp(a, arm) || fabs(sd - dd) > 1e-9) continue;
+            if (stand == 0) d->own = (int)n; /* the figure stand itself */
+            st = tsv_double(t, r, col, &d->x[n++]);
+        }
+        d->n = n;
+        if (!st && n < 2) st = cs_err(CS_EINPUT, "%s: %zu replicate stands of %s/%s at %.1f m", sp->replicates, n, family, arm, dd);
+    }
+    snprintf(d->from, sizeof d->from, "%s (%s, %s at %.1f m, %s; %zu stands)", sp->replicates, family, arm, dd, col, d->n);
+    tsv_free(t);
+    return st;
+}
+
+/* ---- dispatch ---- */
+
+static const struct { const char *function; iv_extract ex; } extractors[] = {
+    {"claim_main_median", main_seeds}, {"claim_main_range", main_seeds}, {"claim_main_rel", main_seeds},
+    {"claim_main_p", main_seeds}, {"claim_main_geom_ratio", main_seeds}, {"claim_main_probe", main_seeds},
+    {"claim_main_noise", main_spacings}, {"claim_main_iso", main_spacings}, {"claim_main_teach_probe", main_spacings},
+    {"claim_extrap_rel", extrap_seeds}, {"claim_extrap_p", extrap_seeds},
+    {"claim_field_elong", fs_stands}, {"claim_aniso_lattice", fs_stands}, {"claim_aniso_lattice_counts", fs_stands},
+    {"claim_jitter_heldout", fs_stands}, {"claim_aniso_rho", fs_stands}, {"claim_aniso_hardcore_overshoot", fs_stands},
+    {"claim_comp_k", comp_patches}, {"claim_comp_overlap", comp_patches},
+    {"claim_mech_ablation_k", figure_stands}, {"claim_mech_cover", figure_stands}, {"claim_mech_overlap", figure_stands},
+    {"claim_hero_stems", figure_stands}, {"claim_pc_stand", figure_stands}, {"claim_pc_clearance", figure_stands},
+};
+
+iv_extract interval_extractor(const char *function)
+{
+    for (size_t i = 0; i < sizeof extractors / sizeof *extractors; i++)
+        if (!strcmp(extractors[i].function, function)) return extractors[i].ex;
+    return NULL;
+}
