@@ -39,6 +39,11 @@ cs_status agree_write_intervals(const char *path, const claims *c, const claim_i
  * or a missing row; VERDICT_PASS otherwise. */
 verdict agree_check_interval(const char *path, const claim_row *row, const claim_interval *ci, char *msg, size_t n);
 
+/* paper/comparison.tex: every claim, the reference paper's value, ours, our
+ * interval, the gate verdict, whether the values agree, beyond 10 % what
+ * reaches the paper's value (attrib_judge), and the agreement class. */
+cs_status agree_write_comparison(const char *path, const claims *c, const claim_result *res, const attrib_data *at,
+                                 const claim_interval *ci);
 /* paper/summary.tex: the reproduction summary (generated, atomic). */
 cs_status agree_write_summary(const char *path, const claims *c, const claim_result *res, const claim_interval *ci,
                               const attrib_data *d);

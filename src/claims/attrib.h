@@ -39,9 +39,4 @@ typedef struct { size_t measured, in10, in25, attributed, unexplained, untested;
 void attrib_count(const attrib_data *d, const claims *c, const claim_result *res, attrib_counts *k);
 /* The one summary line (plain text; tex != 0: LaTeX percent signs). */
 void attrib_line(const attrib_counts *k, int tex, char *buf, size_t n);
-/* Write paper/comparison.tex: every claim, the reference paper's value, ours,
- * the gate verdict, whether the values agree and, beyond 10 %, what reaches
- * the paper's value (at NULL: nothing measured); generated, atomic. */
-cs_status attrib_write_comparison(const char *path, const claims *c, const claim_result *res, const attrib_data *at);
-
 #endif

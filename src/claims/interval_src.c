@@ -5,6 +5,7 @@
  * back units and the claim's statistic over them; interval.c checks that the
  * frozen units give the claim's own value. */
 #include "interval.h"
+#include "estimator.h"
 #include "fieldsim.h"
 #include "stats.h"
 #include "tsv.h"
@@ -183,6 +184,9 @@ typedef struct {
     unsigned nstand;   /* stand ids 0..nstand-1 */
     size_t **of;       /* of[s]: tree indices of stand s, count in cnt[s] */
     size_t *cnt;
+    double *an;        /* per tree: est_anisotropy, where an_ok */
+    int *an_ok;
+    double *buf;       /* scratch: one value per tree of a draw */
 } fs_ctx;
 
 static void fs_ctx_free(void *p)
@@ -192,49 +196,56 @@ static void fs_ctx_free(void *p)
     for (unsigned s = 0; c->of && s < c->nstand; s++) free(c->of[s]);
     free(c->of);
     free(c->cnt);
+    free(c->an);
+    free(c->an_ok);
+    free(c->buf);
     fs_trees_free(&c->t);
     free(c);
 }
 
-/* The trees of the drawn stands, stand b of the draw numbered b. */
-static cs_status fs_draw(const fs_ctx *c, const double *x, size_t n, fs_trees *out)
+/* The group statistics of the drawn stands (draw b is a stand of its own):
+ * the medians fs_group takes (est_median of the trees' elongation; of the
+ * anisotropy of the trees est_anisotropy defines, as field_summarize), from
+ * per-tree values computed once. */
+static cs_status fs_level_stat(const fs_ctx *c, const double *x, size_t n, double level, double *buf, double *out)
 {
-    fs_trees_init(out);
-    cs_status st = CS_OK;
-    for (size_t b = 0; b < n && !st; b++) {
+    size_t m = 0, stands = 0;
+    for (size_t b = 0; b < n; b++) {
         unsigned s = (unsigned)x[b];
-        for (size_t q = 0; q < c->cnt[s] && !st; q++) {
+        size_t any = 0;
+        for (size_t q = 0; q < c->cnt[s]; q++) {
             size_t k = c->of[s][q];
-            st = fs_trees_push(out, c->t.coupled[k], c->t.level[k], (unsigned)b, c->t.tree[k], c->t.gap[k], c->t.elong[k], c->t.elong_card[k]);
+            if (!c->t.coupled[k] || c->t.level[k] != level) continue;
+            any = 1;
+            if (c->kind == FS_ELONG) buf[m++] = c->t.elong[k];
+            else if (c->an_ok[k]) buf[m++] = c->an[k];
         }
+        stands += any;
     }
-    return st;
+    if (c->kind == FS_STANDS) { *out = (double)stands; return CS_OK; }
+    if (c->kind == FS_ANISO_TREES) { *out = (double)m; return CS_OK; }
+    if (m == 0) { *out = NAN; return CS_OK; }
+    return est_median(buf, m, out);
 }
 
 static cs_status fs_stat(const double *x, size_t n, size_t m, const void *ctx, double *out)
 {
     (void)m;
     const fs_ctx *c = ctx;
-    fs_trees d;
-    cs_status st = fs_draw(c, x, n, &d);
-    fs_summary s;
     double an[32];
-    for (size_t l = 0; l < c->nlevel && !st; l++) {
-        st = fs_group(&d, 1, c->level[l], &s);
-        an[l] = s.f.aniso_median;
-        if (st || c->kind == FS_RHO || c->kind == FS_OVERSHOOT) continue;
-        *out = c->kind == FS_ELONG ? s.elong_median : c->kind == FS_ANISO ? s.f.aniso_median
-             : c->kind == FS_ANISO_TREES ? (double)s.f.aniso_trees : (double)s.stands;
-        break;
-    }
-    if (!st && c->kind == FS_RHO) st = stats_spearman(c->level, an, c->nlevel, out);
-    if (!st && c->kind == FS_OVERSHOOT) {
+    cs_status st = CS_OK;
+    size_t nl = c->kind == FS_RHO || c->kind == FS_OVERSHOOT ? c->nlevel : 1;
+    for (size_t l = 0; l < nl && !st; l++) st = fs_level_stat(c, x, n, c->level[l], c->buf, &an[l]);
+    if (st) return st;
+    if (c->kind == FS_RHO) return stats_spearman(c->level, an, c->nlevel, out);
+    if (c->kind == FS_OVERSHOOT) {
         size_t k = 0;
         for (size_t l = 1; l < c->nlevel; l++) if (c->level[l] > c->level[k]) k = l;
         *out = an[k];
+        return CS_OK;
     }
-    fs_trees_free(&d);
-    return st;
+    *out = an[0];
+    return CS_OK;
 }
 
 /* Coupled levels with trees, in the order of the summary table. */
@@ -283,6 +294,15 @@ static cs_status fs_stands(const claim_row *row, const claim_result *res, const 
         c->of[s] = malloc((c->t.n ? c->t.n : 1) * sizeof **c->of);
         if (!c->of[s]) { st = cs_err(CS_ENOMEM, "interval: out of memory"); break; }
         for (size_t k = 0; k < c->t.n; k++) if (c->t.stand[k] == s) c->of[s][c->cnt[s]++] = k;
+    }
+    if (!st) {
+        size_t nt = c->t.n ? c->t.n : 1, maxs = 0;
+        for (unsigned s = 0; s < c->nstand; s++) if (c->cnt[s] > maxs) maxs = c->cnt[s];
+        c->an = malloc(nt * sizeof *c->an);
+        c->an_ok = malloc(nt * sizeof *c->an_ok);
+        c->buf = malloc((c->nstand * maxs > 0 ? c->nstand * maxs : 1) * sizeof *c->buf);
+        if (!c->an || !c->an_ok || !c->buf) st = cs_err(CS_ENOMEM, "interval: out of memory");
+        for (size_t k = 0; k < c->t.n && !st; k++) c->an_ok[k] = est_anisotropy(c->t.gap[k], &c->an[k]);
     }
     if (!st) st = alloc_x(d, c->nstand, 1);
     for (unsigned s = 0; s < c->nstand && !st; s++) d->x[s] = s;

@@ -1,5 +1,6 @@
 /* verify: the `make verify` driver and `crownshy trace` (design.md §9). */
 #include "verify.h"
+#include "agree.h"
 #include "attrib.h"
 #include "study.h"
 #include <stdio.h>
@@ -224,11 +225,22 @@ typedef struct { size_t rep, notrep, gpend; char notrep_list[1024]; } gate_tally
 /* One line per claim: consistent or not, and its gate's verdict (a table
  * made by a superseded reading is pending, never reproduced nor not). */
 static void print_claims(const claims *c, const claim_result *res, const numbers_tex *nt, const attrib_data *at,
-                         size_t count[3], gate_tally *t)
+                         const claim_interval *ci, size_t count[3], gate_tally *t)
 {
     for (size_t i = 0; i < c->n; i++) {
         char msg[1200];
         verdict v = verify_consistent(&c->rows[i], &res[i], nt, msg, sizeof msg);
+        /* the interval recomputed from its replicates, against the generated table */
+        if (v != VERDICT_FAIL && ci[i].why[0] && !strncmp(ci[i].why, "interval error: ", 16)) {
+            v = VERDICT_FAIL;
+            snprintf(msg, sizeof msg, "%s: %s", c->rows[i].macro, ci[i].why);
+        } else if (v != VERDICT_FAIL && res[i].status == VERDICT_PASS) {
+            char imsg[1200];
+            if (agree_check_interval(PATHS_INTERVALS_OUT, &c->rows[i], &ci[i], imsg, sizeof imsg) == VERDICT_FAIL) {
+                v = VERDICT_FAIL;
+                snprintf(msg, sizeof msg, "%s", imsg);
+            }
+        }
         int gated = strcmp(c->rows[i].gate, "-") != 0;
         const char *label = verdict_name(v);
         /* a table made by a superseded reading: its numbers are that reading's
@@ -260,11 +272,15 @@ static void print_claims(const claims *c, const claim_result *res, const numbers
         {
             attrib_result ar;
             attrib_judge(at, &c->rows[i], &res[i], &ar);
-            snprintf(dist, sizeof dist, " [paper %s: %+.1f %%%s%.240s]", c->rows[i].reference, 100.0 * rel,
+            agree_result ag;
+            agree_judge(at, &c->rows[i], &res[i], &ci[i], &ag);
+            snprintf(dist, sizeof dist, " [paper %s: %+.1f %%%s%.160s; %s%s%.120s]", c->rows[i].reference, 100.0 * rel,
                      ar.kind == ATTRIB_EXPLAINED ? "; reached by " : ar.kind == ATTRIB_UNEXPLAINED ? "; unexplained"
-                     : ar.kind == ATTRIB_UNTESTED ? "; unexplained, not varied" : "", ar.kind == ATTRIB_EXPLAINED ? ar.by : "");
+                     : ar.kind == ATTRIB_UNTESTED ? "; unexplained, not varied" : "", ar.kind == ATTRIB_EXPLAINED ? ar.by : "",
+                     agree_name(ag.kind), ag.by[0] ? ": " : "", ag.by);
         }
-        printf("  %-7s %-19s %-12s %-10s %-8s %s%s\n", label, c->rows[i].macro, val, c->rows[i].kind, g, msg, dist);
+        const char *iv = !strcmp(c->rows[i].kind, "measured") ? (ci[i].has ? ci[i].text : "none") : "-";
+        printf("  %-7s %-19s %-12s %-22s %-10s %-8s %s%s\n", label, c->rows[i].macro, val, iv, c->rows[i].kind, g, msg, dist);
         count[v]++;
     }
 }
@@ -291,13 +307,17 @@ cs_status verify_run(const verify_opts *o)
     checklist_free(&cl);
 
     printf("\n== claims (recomputed from frozen/ and compared with paper/numbers.tex; a failing gate is a finding: NOTREP)\n");
-    printf("  %-7s %-19s %-12s %-10s %-8s %s\n", "status", "macro", "value", "kind", "gate", "source / reason");
+    printf("  %-7s %-19s %-12s %-22s %-10s %-8s %s\n", "status", "macro", "value", "95 % interval", "kind", "gate", "source / reason");
     if (!have_nt) { printf("  FAIL    paper/numbers.tex unreadable: %s\n", nterr); count[VERDICT_FAIL]++; }
     gate_tally gt = {0};
     /* the attribution of each difference (attrib.h), from the frozen summaries */
     attrib_data at = {0};
     int at_ok = attrib_load(PATHS_READINGS_SUMMARY, PATHS_SENS_SUMMARY, &at) == CS_OK;
-    print_claims(&c, res, have_nt ? &nt : NULL, &at, count, &gt);
+    const claim_interval *ci = NULL;
+    cs_status ist = agree_intervals_cached(&c, res, &ci);
+    if (ist) printf("  FAIL    intervals: %s\n", cs_errmsg());
+    if (ist) count[VERDICT_FAIL]++;
+    print_claims(&c, res, have_nt ? &nt : NULL, &at, ci, count, &gt);
     const size_t rep = gt.rep, notrep = gt.notrep, gpend = gt.gpend;
     const char *notrep_list = gt.notrep_list;
 
@@ -315,11 +335,15 @@ cs_status verify_run(const verify_opts *o)
     if (!at_ok) printf("(attribution: %s)\n", cs_errmsg());
     attrib_counts ak;
     attrib_count(&at, &c, res, &ak);
+    agree_counts gk;
+    agree_count(&at, &c, res, ci, &gk);
     attrib_free(&at);
-    char aline[600];
+    char aline[600], gline[800];
     attrib_line(&ak, 0, aline, sizeof aline);
+    agree_line(&gk, 0, gline, sizeof gline);
     printf("\n%zu pending (input data missing on this machine: reason above; never counted as passed)\n", count[VERDICT_PENDING]);
     printf("%s (distance, not a verdict)\n", aline);
+    printf("%s\n", gline);
     printf("reference paper's gated claims: %zu reproduced, %zu not reproduced%s%s%s, %zu pending\n", rep, notrep,
            notrep ? " (" : "", notrep_list, notrep ? ")" : "", gpend);
     if (count[VERDICT_FAIL])
