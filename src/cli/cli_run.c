@@ -5,7 +5,6 @@
 #include "cli.h"
 #include "exp_irreducibility.h"
 #include "exp_mechanism.h"
-#include "exp_replicates.h"
 #include "exp_stands.h"
 #include "gate.h"
 #include "opts.h"
@@ -175,13 +174,4 @@ int cli_readings_summary(int argc, char **argv)
     claims_free(&cl);
     if (st) return cli_fail("readings-summary", st);
     return 0;
-}
-
-int cli_replicates_run(int argc, char **argv)
-{
-    static const teacher_unit u = {"replicates-run",
-                                   "Replicate stands of the one-stand figure numbers (E1 figure stand, E8 point-cloud stands, E9 hero stems):\n"
-                                   "stands k = 0..N-1 of each figure family (k = 0: the figure's own) -> DIR/replicates/figure_stands.tsv",
-                                   U_STANDS, exp_replicates_run, NULL};
-    return teacher_unit_run(&u, argc, argv);
 }

@@ -1,4 +1,4 @@
-/* exp_replicates: the replicate stands of the numbers that rest on one
+/* cli_replicates: `crownshy replicates-run`, the replicate stands of the numbers that rest on one
  * figure stand (design.md §6.4): the E1 figure stand (hard-core, 3.5 m,
  * L = 36 m; its ablation arms), the E8 point-cloud stands (5, 4, 3 m;
  * coupled and uncoupled) and the E9 hero stems (3.0 and 6.5 m). Stand k of a
@@ -10,12 +10,16 @@
  * exp_pointcloud_stand, exp_hero_stems).
  * Output replicates/figure_stands.tsv, one row per (family, arm, spacing,
  * stand): family arm spacing_m stand stems trees k1_m k2_m k3_m cover
- * overlap_m contact_pct (nan where the family does not define a column). */
-#include "exp_replicates.h"
+ * overlap_m contact_pct (nan where the family does not define a column).
+ * It runs three experiments' figure stands, so it lives beside the other
+ * cross-experiment runner (cli_sens.c), not among the experiments. */
+#include "cli.h"
+#include "exp_common.h"
 #include "exp_mechanism.h"
 #include "exp_stands.h"
 #include "gate.h"
 #include "paths.h"
+#include "opts.h"
 #include "unit_out.h"
 #include <math.h>
 #include <stdio.h>
@@ -81,7 +85,7 @@ static void write_row(tsv_writer *w, const rep_row *r)
     tsv_writer_endrow(w);
 }
 
-cs_status exp_replicates_run(const exp_opts *o)
+static cs_status replicates_run(const exp_opts *o)
 {
     prov pv;
     exp_prov_begin(&pv, "replicates", &o->rd, o->argc, o->argv);
@@ -112,4 +116,25 @@ cs_status exp_replicates_run(const exp_opts *o)
     }
     free(rows);
     return st;
+}
+
+int cli_replicates_run(int argc, char **argv)
+{
+    long stands = 100;
+    const char *out = "build/results", *teacher = NULL;
+    const opt_spec spec[] = {
+        {"out", OPT_STR, &out, 0, 0, "results root; writes DIR/replicates/figure_stands.tsv (default build/results)"},
+        CLI_OPT_TEACHER(teacher),
+        {"stands", OPT_LONG, &stands, 1, 10000, "stands per family, k = 0..N-1 (default 100)"},
+    };
+    const opts_cmd c = {"replicates-run", "[options]",
+                        "Replicate stands of the one-stand figure numbers (E1 figure stand, E8 point-cloud stands, E9 hero stems):\n"
+                        "stands k = 0..N-1 of each figure family (k = 0: the figure's own) -> DIR/replicates/figure_stands.tsv",
+                        spec, sizeof spec / sizeof spec[0], 0, 0};
+    int r = opts_parse(&c, argc, argv, NULL, NULL);
+    if (r) return opts_exit_code(r);
+    exp_opts o = {.out = out, .stands = (int)stands, .beta = NAN, .tag = "train", .argc = argc, .argv = argv};
+    if (exp_reading_parse(teacher, NULL, &o.rd)) { opts_usage_error("replicates-run", "%s", cs_errmsg()); return 2; }
+    cs_status st = replicates_run(&o);
+    return st ? cli_fail("replicates-run", st) : 0;
 }
