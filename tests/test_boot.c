@@ -1,4 +1,4 @@
-/* Tests for src/base/boot.c (design.md §6.4) against a naive reference: the
+/* Tests for src/base/boot.c (design.md §6.1) against a naive reference: the
  * same draws made with an explicit loop, sorted with qsort and interpolated
  * by hand, must give the same bits; and properties a percentile interval
  * must have whatever the data. */

@@ -28,7 +28,7 @@ static void claim_test(void **state)
     if (r.status == VERDICT_PASS && !r.text[0]) fail_msg("%s computed but empty", row->macro);
     if (r.status == VERDICT_PASS && strcmp(row->format, "text") && !isfinite(r.value))
         fail_msg("%s: non-finite value %.17g", row->macro, r.value);
-    /* its 95 % interval recomputed from the replicates, bit for bit (design.md §6.4) */
+    /* its 95 % interval recomputed from the replicates, bit for bit (design.md §6.1) */
     claim_interval ci;
     if (interval_eval(&g_it, row, &r, &ci) != CS_OK) fail_msg("%s: interval: %s", row->macro, cs_errmsg());
     if (agree_check_interval(PATHS_INTERVALS_OUT, row, &ci, msg, sizeof msg) == VERDICT_FAIL) fail_msg("%s", msg);

@@ -1,5 +1,5 @@
 /* Tests of the claim intervals (src/claims/interval.c, agree.c; design.md
- * §6.4): every measured claim has a stated method; one perturbed replicate
+ * §6.1): every measured claim has a stated method; one perturbed replicate
  * row changes a claim's interval and fails the claim test's check, naming
  * the claim; replicates that do not give the claim's value are refused; the
  * statement table is checked against the code; the agreement classes. */

@@ -1,4 +1,4 @@
-/* boot: percentile bootstrap and single-unit ranges; see boot.h (design.md §6.4). */
+/* boot: percentile bootstrap and single-unit ranges; see boot.h (design.md §6.1). */
 #include "boot.h"
 #include "stats.h"
 #include <gsl/gsl_rng.h>

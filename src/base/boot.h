@@ -1,9 +1,10 @@
 /* boot: percentile intervals over independent replicate units (design.md
- * §6.4). A data set is n units (rows) of m values each (columns, e.g. the
+ * §6.1). A data set is n units (rows) of m values each (columns, e.g. the
  * two arms of one seed); a statistic maps such a set to one number. The
  * percentile bootstrap draws B sets of n units with replacement (rows kept
  * whole, so pairing survives), evaluates the statistic on each and reports
- * the (1-level)/2 and (1+level)/2 quantiles (GSL linear interpolation on the
+ * the (1-level)/2 and (1+level)/2 quantiles (at level 0.95: 2.5 and 97.5 %;
+ * GSL linear interpolation on the
  * sorted draws, as stats_quantile). Draws come from gsl_rng_mt19937 seeded
  * with `seed`: unit index = gsl_rng_uniform_int(r, n), row by row, resample
  * by resample, so an interval is a pure function of (data, stat, B, seed).

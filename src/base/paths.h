@@ -34,7 +34,7 @@
 #define PATHS_DESIGN_NUMBERS "audit/design_numbers.tsv"
 /* The claim-computing code, pinned file by file. */
 #define PATHS_CLAIMS_SRC_DIR "src/claims"
-/* How each measured claim's interval is computed (design.md §6.4; pinned). */
+/* How each measured claim's interval is computed (design.md §6.1; pinned). */
 #define PATHS_INTERVALS "audit/intervals.tsv"
 #define PATHS_NUMBERS "paper/numbers.tex"
 /* Every measured claim's interval, %.17g (generated; the claim tests' reference). */

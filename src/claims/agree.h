@@ -1,12 +1,15 @@
 /* agree: the agreement of each measured claim with the reference paper,
- * judged against our own 95 % interval (design.md §6.4, §9.7): inside (the
+ * judged against our own 95 % interval (design.md §6.1): inside (the
  * paper's value lies in our interval), reached (outside, but a run reading
  * or an unstated choice moves our interval onto it: attrib_reached),
  * unexplained (outside, and nothing measured reaches it), or no interval (no
  * replicate unit frozen for it). Writes the generated paper/intervals.tsv
  * (every interval, %.17g: what the claim tests recompute bit for bit) and
  * paper/summary.tex (the one-page reproduction summary), and prints the same
- * table on a terminal (`crownshy report`). */
+ * table on a terminal (`crownshy report`). The paper's value is known to its
+ * printed precision: our interval is widened by half a unit in the paper's
+ * last printed digit before it is compared (0.00049 printed for 2/4096 is
+ * inside a point interval at 2/4096). */
 #ifndef AGREE_H
 #define AGREE_H
 #include "attrib.h"

@@ -25,7 +25,7 @@ cs_status attrib_load(const char *readings_summary, const char *sens_summary, at
 void attrib_free(attrib_data *d);
 /* The verdict of one claim (ATTRIB_NA: not a measured number with a reference). */
 void attrib_judge(const attrib_data *d, const claim_row *row, const claim_result *res, attrib_result *out);
-/* Against our interval [lo, hi] (design.md §6.4): does a reading or an
+/* Against our interval [lo, hi] (design.md §6.1): does a reading or an
  * unstated choice move our interval onto the paper's value p? A run reading
  * of value x does when [lo, hi] + (x - v) holds p (v: our value); a choice's
  * sensitivity value x does when [lo, hi] + (x - c) holds p (c: the centre

@@ -100,7 +100,7 @@ static void current_pins(pin *p, size_t *n)
     paths_list_free(&cc);
     add_file_pin(p, &k, "registry_sha256", PATHS_CLAIMS);
     registry_row_pins(p, &k);
-    /* how every interval is computed (design.md §6.4) */
+    /* how every interval is computed (design.md §6.1) */
     add_file_pin(p, &k, "intervals_sha256", PATHS_INTERVALS);
     add_file_pin(p, &k, "aggregates_sha256", PATHS_AGGREGATES);
     /* what else a number rests on: the record of superseded readings, the

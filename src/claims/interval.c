@@ -1,5 +1,5 @@
 /* interval: the statement table, the statistics and the evaluation; see
- * interval.h (design.md §6.4). */
+ * interval.h (design.md §6.1). */
 #include "interval.h"
 #include "stats.h"
 #include "tsv.h"

@@ -1,5 +1,5 @@
 /* interval: the 95 % interval of every measured claim, from the frozen
- * replicates it rests on (design.md §6.4). audit/intervals.tsv (pinned)
+ * replicates it rests on (design.md §6.1). audit/intervals.tsv (pinned)
  * states, per computing function, the independent replicate unit (seed,
  * stand, spacing, patch), the method and the replicates read, and the
  * bootstrap plan (seed, resamples, level) in its header; the code checks the

@@ -1,5 +1,5 @@
 /* interval_src: the replicate units of each family of claims, read from
- * frozen/ (design.md §6.4): seeds of the E3/E4 run tables, unseen spacings of
+ * frozen/ (design.md §6.1): seeds of the E3/E4 run tables, unseen spacings of
  * the baselines, stands of the E5/E6 per-tree tables, patches of the E7
  * distribution, replicate stands of the figure stands. Each extractor hands
  * back units and the claim's statistic over them; interval.c checks that the

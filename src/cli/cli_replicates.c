@@ -1,5 +1,5 @@
 /* cli_replicates: `crownshy replicates-run`, the replicate stands of the numbers that rest on one
- * figure stand (design.md §6.4): the E1 figure stand (hard-core, 3.5 m,
+ * figure stand (design.md §6.1): the E1 figure stand (hard-core, 3.5 m,
  * L = 36 m; its ablation arms), the E8 point-cloud stands (5, 4, 3 m;
  * coupled and uncoupled) and the E9 hero stems (3.0 and 6.5 m). Stand k of a
  * family is the figure's own key with stand index k (seed_derive(key, d, k,
@@ -108,7 +108,7 @@ static cs_status replicates_run(const exp_opts *o)
     }
     if (!st) {
         unit_out_meta(w, o);
-        tsv_writer_meta(w, "what", "replicate stands of the one-stand figure numbers (design.md §6.4): E1 figure stand arms, E8 point-cloud stands, E9 hero stems");
+        tsv_writer_meta(w, "what", "replicate stands of the one-stand figure numbers (design.md §6.1): E1 figure stand arms, E8 point-cloud stands, E9 hero stems");
         tsv_writer_meta(w, "dieback", "%.17g (gates/mechanism.gate dieback_train; the E1 arms: the ablation's)", btrain);
         tsv_writer_columns(w, "family\tarm\tspacing_m\tstand\tstems\ttrees\tk1_m\tk2_m\tk3_m\tcover\toverlap_m\tcontact_pct");
         for (size_t i = 0; i < nr; i++) write_row(w, &rows[i]);

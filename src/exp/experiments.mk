@@ -31,7 +31,7 @@ TEACHER_STANDS := 8
 endif
 TEACHER_DEPS := gates/mechanism.gate gates/irreducibility.gate
 
-# Replicate stands of the one-stand figure numbers (design.md §6.4): 100 per
+# Replicate stands of the one-stand figure numbers (design.md §6.1): 100 per
 # family at full scale, 3 at smoke scale.
 # E5, E6: 28 held-out stands (E5, E6 lattice, E6 held-out) and 12 per sweep
 # level at full scale; 3 and 2 at smoke scale. Calibration seeds come from
