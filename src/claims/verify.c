@@ -106,8 +106,64 @@ static cs_status install_file(const char *src, const char *dst)
     return afile_commit(&a);
 }
 
+/* verify draws the figures while it audits: every script's gnuplot is started
+ * in the background, two at a time, into build/figures.<pid>/ (status in
+ * <script>.rc); verify_figures then waits and compares. */
+static pid_t g_fig_pid = -1;
+
+static void figures_outdir(char *buf, size_t n)
+{
+    snprintf(buf, n, "build/figures.%ld", (long)getpid());
+}
+
+void verify_figures_launch(void)
+{
+    char outdir[128], jobs[200], cmd[400];
+    figures_outdir(outdir, sizeof outdir);
+    if (afile_mkdir_parents(outdir) || (mkdir(outdir, 0777) && errno != EEXIST) || !has_gnuplot()) return;
+    paths_list gps;
+    if (paths_list_files(PATHS_FIGURES_DIR, ".gp", 0, &gps)) return;
+    /* one shell line per script; xargs runs two at a time */
+    snprintf(jobs, sizeof jobs, "%s/jobs", outdir);
+    FILE *f = fopen(jobs, "w");
+    for (size_t i = 0; f && i < gps.n; i++) {
+        const char *base = gps.p[i] + strlen(PATHS_FIGURES_DIR) + 1;
+        fprintf(f, "gnuplot -e \"outdir='%s'\" '%s' > '%s/%s.log' 2>&1; echo $? > '%s/%s.rc'\n", outdir, gps.p[i], outdir, base, outdir, base);
+    }
+    paths_list_free(&gps);
+    if (!f || fclose(f)) return;
+    snprintf(cmd, sizeof cmd, "xargs -P 2 -d '\\n' -I{} sh -c {} < '%s'", jobs);
+    fflush(stdout);
+    pid_t pid = fork();
+    if (pid == 0) {
+        execl("/bin/sh", "sh", "-c", cmd, (char *)NULL);
+        _exit(127);
+    }
+    g_fig_pid = pid;
+}
+
+/* The launched redraw of one script: its exit status, or -1 when not launched. */
+static int launched_status(const char *outdir, const char *base)
+{
+    if (g_fig_pid < 0) return -1;
+    char p[400];
+    snprintf(p, sizeof p, "%s/%s.rc", outdir, base);
+    FILE *f = fopen(p, "r");
+    int rc = 1;
+    if (f) { if (fscanf(f, "%d", &rc) != 1) rc = 1; fclose(f); }
+    return rc;
+}
+
+static void figures_wait(void)
+{
+    if (g_fig_pid <= 0) return;
+    int ws;
+    while (waitpid(g_fig_pid, &ws, 0) < 0 && errno == EINTR) {}
+}
+
 void verify_figures(checklist *cl, int install, const claims *c)
 {
+    figures_wait();
     paths_list gps;
     if (paths_list_files(PATHS_FIGURES_DIR, ".gp", 0, &gps)) { checklist_add(cl, VERDICT_FAIL, "figures", "%s", cs_errmsg()); return; }
     int gp = has_gnuplot();
@@ -115,7 +171,7 @@ void verify_figures(checklist *cl, int install, const claims *c)
      * with the committed PNG and never writes into figures/; `crownshy
      * figures` installs a redraw only when its script succeeded */
     char outdir[128];
-    snprintf(outdir, sizeof outdir, "build/figures.%ld", (long)getpid());
+    figures_outdir(outdir, sizeof outdir);
     if (afile_mkdir_parents(outdir) || (mkdir(outdir, 0777) && errno != EEXIST)) {
         checklist_add(cl, VERDICT_FAIL, "figures", "%s: cannot create: %s", outdir, strerror(errno));
         paths_list_free(&gps);
@@ -149,7 +205,9 @@ void verify_figures(checklist *cl, int install, const claims *c)
         if (!gp) { checklist_add(cl, VERDICT_FAIL, item, "gnuplot not installed (make deps)"); continue; }
         char cmd[1400];
         snprintf(cmd, sizeof cmd, "gnuplot -e \"outdir='%s'\" '%s' > %s/%s.log 2>&1", outdir, script, outdir, base);
-        if (system(cmd) != 0) { checklist_add(cl, VERDICT_FAIL, item, "gnuplot %s failed (see %s/%s.log); claims: %s", script, outdir, base, feeds); continue; }
+        int rc = launched_status(outdir, base);
+        if (rc < 0) rc = system(cmd);
+        if (rc != 0) { checklist_add(cl, VERDICT_FAIL, item, "gnuplot %s failed (see %s/%s.log); claims: %s", script, outdir, base, feeds); continue; }
         char drawn[300];
         snprintf(drawn, sizeof drawn, "%s/%s.png", outdir, stem);
         if (install) {
@@ -291,8 +349,9 @@ cs_status verify_run(const verify_opts *o)
     claim_result *res;
     cs_status st = verify_preflight();
     if (st) return st;
-    if ((st = verify_load_eval(&c, &res))) return st;
-    if ((st = verify_external_inputs(&c, res, "verify"))) { free(res); claims_free(&c); return st; }
+    if (!o->no_figures) verify_figures_launch();
+    if ((st = verify_load_eval(&c, &res))) { figures_wait(); return st; }
+    if ((st = verify_external_inputs(&c, res, "verify"))) { figures_wait(); free(res); claims_free(&c); return st; }
     numbers_tex nt;
     int have_nt = numbers_read(PATHS_NUMBERS, &nt) == CS_OK;
     char nterr[512];
