@@ -7,6 +7,8 @@
 #include "interval.h"
 #include "estimator.h"
 #include "fieldsim.h"
+#include "gate.h"
+#include "paths.h"
 #include "stats.h"
 #include "tsv.h"
 #include <math.h>
@@ -175,7 +177,7 @@ static cs_status extrap_seeds(const claim_row *row, const claim_result *res, con
 
 /* ---- E5/E6: stands of a per-tree table, regrouped by fs_group ---- */
 
-typedef enum { FS_ELONG, FS_ANISO, FS_ANISO_TREES, FS_STANDS, FS_RHO, FS_OVERSHOOT } fs_kind;
+typedef enum { FS_ELONG, FS_ANISO, FS_ANISO_TREES, FS_STANDS, FS_RHO, FS_OVERSHOOT, FS_CAL_BETA, FS_CAL_JITTER } fs_kind;
 typedef struct {
     fs_trees t;
     fs_kind kind;
@@ -187,6 +189,7 @@ typedef struct {
     double *an;        /* per tree: est_anisotropy, where an_ok */
     int *an_ok;
     double *buf;       /* scratch: one value per tree of a draw */
+    double target, step, scale; /* the calibrations: fs_beta_field, fs_jitter_star */
 } fs_ctx;
 
 static void fs_ctx_free(void *p)
@@ -218,6 +221,7 @@ static cs_status fs_level_stat(const fs_ctx *c, const double *x, size_t n, doubl
             if (!c->t.coupled[k] || c->t.level[k] != level) continue;
             any = 1;
             if (c->kind == FS_ELONG) buf[m++] = c->t.elong[k];
+            else if (c->kind == FS_CAL_BETA) buf[m++] = est_tree_mean(c->t.gap[k]); /* tree_mean_median, as field_summarize */
             else if (c->an_ok[k]) buf[m++] = c->an[k];
         }
         stands += any;
@@ -234,9 +238,17 @@ static cs_status fs_stat(const double *x, size_t n, size_t m, const void *ctx, d
     const fs_ctx *c = ctx;
     double an[32];
     cs_status st = CS_OK;
-    size_t nl = c->kind == FS_RHO || c->kind == FS_OVERSHOOT ? c->nlevel : 1;
+    size_t nl = c->kind == FS_ELONG || c->kind == FS_ANISO || c->kind == FS_ANISO_TREES || c->kind == FS_STANDS ? 1 : c->nlevel;
     for (size_t l = 0; l < nl && !st; l++) st = fs_level_stat(c, x, n, c->level[l], c->buf, &an[l]);
     if (st) return st;
+    if (c->kind == FS_CAL_BETA || c->kind == FS_CAL_JITTER) {
+        /* the calibrated grid value: the curve interpolated to the target, rounded to the step */
+        double interp;
+        int bracketed;
+        if ((st = fs_interp_target(c->level, an, c->nlevel, c->target, &interp, &bracketed))) return st;
+        *out = c->scale * fs_round_step(interp, c->step);
+        return CS_OK;
+    }
     if (c->kind == FS_RHO) return stats_spearman(c->level, an, c->nlevel, out);
     if (c->kind == FS_OVERSHOOT) {
         size_t k = 0;
@@ -255,11 +267,11 @@ static cs_status fs_levels(const char *summary, fs_ctx *c, int first_only)
     cs_status st = tsv_read(summary, &t);
     if (st) return st;
     for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
-        const char *arm = tsv_str(t, r, "arm");
+        const char *arm = tsv_col(t, "arm") >= 0 ? tsv_str(t, r, "arm") : "coupled";
         long trees;
         double lv;
         if (!arm || strcmp(arm, "coupled")) continue;
-        if ((st = tsv_long(t, r, "trees", &trees)) || (st = tsv_double(t, r, "level", &lv))) break;
+        if ((st = tsv_long(t, r, tsv_col(t, "trees") >= 0 ? "trees" : "aniso_trees", &trees)) || (st = tsv_double(t, r, "level", &lv))) break;
         if (trees == 0) continue;
         if (c->nlevel == 32) { st = cs_err(CS_EINPUT, "%s: more than 32 levels", summary); break; }
         c->level[c->nlevel++] = lv;
@@ -278,10 +290,25 @@ static cs_status fs_stands(const claim_row *row, const claim_result *res, const 
     d->cleanup = fs_ctx_free;
     const char *m = row->macro, *f = row->function;
     c->kind = !strcmp(f, "claim_aniso_rho") ? FS_RHO : !strcmp(f, "claim_aniso_hardcore_overshoot") ? FS_OVERSHOOT
+            : !strcmp(f, "claim_field_calib_dieback") ? FS_CAL_BETA : !strcmp(f, "claim_jitter_star") ? FS_CAL_JITTER
             : strstr(m, "Elong") ? FS_ELONG : strstr(m, "Stands") ? FS_STANDS : !strcmp(m, "AnisoTrees") ? FS_ANISO_TREES : FS_ANISO;
     char tp[512];
-    fs_trees_path(row->source, tp, sizeof tp);
-    cs_status st = fs_levels(row->source, c, c->kind != FS_RHO && c->kind != FS_OVERSHOOT);
+    cs_status st = CS_OK;
+    c->scale = 1.0;
+    if (c->kind == FS_CAL_JITTER) {
+        /* a* is calibrated on the sweep beside it (anisotropy/jitter.tsv and its trees) */
+        const char *slash = strrchr(row->source, '/');
+        snprintf(tp, sizeof tp, "%.*sjitter_trees.tsv", slash ? (int)(slash - row->source + 1) : 0, row->source);
+        c->step = FS_JITTER_STEP;
+        c->scale = !strcmp(m, "JitterStarPct") ? 100.0 : 1.0;
+        st = gate_read_value(PATHS_GATE("anisotropy"), "field_median", 0, &c->target);
+    } else {
+        fs_trees_path(row->source, tp, sizeof tp);
+        if (c->kind == FS_CAL_BETA && !(st = gate_read_value(PATHS_GATE("field"), "calibration_target_m", 0, &c->target)))
+            st = gate_read_value(PATHS_GATE("field"), "dieback_grid", 2, &c->step);
+    }
+    int all_levels = c->kind == FS_RHO || c->kind == FS_OVERSHOOT || c->kind == FS_CAL_BETA || c->kind == FS_CAL_JITTER;
+    if (!st) st = fs_levels(row->source, c, !all_levels);
     if (!st) st = fs_trees_read(tp, &c->t);
     for (size_t k = 0; k < c->t.n && !st; k++) if (c->t.stand[k] + 1 > c->nstand) c->nstand = c->t.stand[k] + 1;
     if (!st && (c->nstand == 0 || c->nlevel == 0)) st = cs_err(CS_EINPUT, "%s: no stands or no buildable coupled level", tp);
@@ -442,6 +469,7 @@ static const struct { const char *function; iv_extract ex; } extractors[] = {
     {"claim_extrap_rel", extrap_seeds}, {"claim_extrap_p", extrap_seeds},
     {"claim_field_elong", fs_stands}, {"claim_aniso_lattice", fs_stands}, {"claim_aniso_lattice_counts", fs_stands},
     {"claim_jitter_heldout", fs_stands}, {"claim_aniso_rho", fs_stands}, {"claim_aniso_hardcore_overshoot", fs_stands},
+    {"claim_field_calib_dieback", fs_stands}, {"claim_jitter_star", fs_stands},
     {"claim_comp_k", comp_patches}, {"claim_comp_overlap", comp_patches},
     {"claim_mech_ablation_k", figure_stands}, {"claim_mech_cover", figure_stands}, {"claim_mech_overlap", figure_stands},
     {"claim_hero_stems", figure_stands}, {"claim_pc_stand", figure_stands}, {"claim_pc_clearance", figure_stands},
