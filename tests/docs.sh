@@ -41,14 +41,14 @@ if [ $rc -eq 0 ] && grep -qE '^  PASS +docs ' <<<"$out"; then ok "the untouched 
 else bad "untouched copy" "verify exit $rc; $(grep -E '^  FAIL ' <<<"$out" | head -2 | cut -c1-200)"; fi
 
 # a measured value typed by hand into the README, then into a reference page
-v=$(val MainJoint)
+v=$(val PairMainJoint)
 printf '\nThe joint error is %s m.\n' "$v" >> "$scratch/README.md"
 n=$(wc -l < "$scratch/README.md")
-expect "a typed measured number in README.md fails naming it" "README.md:$n:" "'$v' typed by hand" "claim: MainJoint"
+expect "a typed measured number in README.md fails naming it" "README.md:$n:" "'$v' typed by hand" "claim: PairMainJoint"
 fresh
-v=$(val MainRel)
+v=$(val PairMainRel)
 sed -i "3s/\$/ It improves by $v %./" "$scratch/audit/README.md"
-expect "a typed measured number in audit/README.md fails naming it" "audit/README.md:3:" "'$v' typed by hand" "claim: MainRel"
+expect "a typed measured number in audit/README.md fails naming it" "audit/README.md:3:" "'$v' typed by hand" "claim: PairMainRel"
 fresh
 sed -i "5s/\$/ The paper reports 53.6 %./" "$scratch/src/README.md"
 expect "a typed reference-paper value in src/README.md fails naming it" "src/README.md:5:" "'53.6'" "the reference paper's value" "MainRelPaper"
@@ -81,7 +81,7 @@ expect "a page linked from README.md that is missing fails" "README.md:" "link t
 # design constants: a row of audit/doc_numbers.tsv (value, "code FILE" holding it)
 # admits a number a measured value rounds to; a row its source does not hold fails
 fresh
-v=$(val MainJoint)
+v=$(val PairMainJoint)
 printf '\nA constant that happens to equal a measured value: %s.\n' "$v" >> "$scratch/src/README.md"
 n=$(wc -l < "$scratch/src/README.md")
 expect "a constant equal to a measured value, with no row, fails" "src/README.md:$n:" "'$v' typed by hand"

@@ -250,8 +250,8 @@ if [ $have_git = 1 ] && fresh_git; then
   launder
   expect "made-up superseded hash in frozen/main, re-pinned (.git)" "audit/pins_superseded.tsv" "no past version of src/forest/teacher.c"
   out=$(cd "$scratch" && "$cli" verify --no-figures 2>&1)
-  if grep -q '^  PENDING MainRel .*superseded reading' <<<"$out" && ! grep -q '^  PASS    MainRel ' <<<"$out"; then ok "claims of a superseded table are pending, never reproduced"
-  else bad "claims of a superseded table are pending, never reproduced" "$(grep -E 'MainRel ' <<<"$out" | head -2)"; fi
+  if grep -q '^  PENDING PairMainRel .*superseded reading' <<<"$out" && ! grep -q '^  PASS    PairMainRel ' <<<"$out"; then ok "claims of a superseded table are pending, never reproduced"
+  else bad "claims of a superseded table are pending, never reproduced" "$(grep -E 'PairMainRel ' <<<"$out" | head -2)"; fi
 else echo "[  SKIPPED ] made-up superseded hash (.git): no git history here"; fi
 # 25. a design constant (no gate carries it)
 fresh

@@ -22,6 +22,10 @@
  * the gates (audit/pins.tsv), so dropping a verdict changes a pinned file;
  * the registry's gate column must agree with it. */
 #define PATHS_GATE_MAP "audit/gate_map.tsv"
+/* The same for the extension claims (kind extension: a generator reading
+ * added after the first verdict, judged by the same thresholds beside the
+ * reference paper's method, design.md §8): pinned like the map above. */
+#define PATHS_GATE_MAP_EXT "audit/gate_map_extension.tsv"
 /* Aggregate frozen tables and the per-run tables they are computed from. */
 #define PATHS_AGGREGATES "audit/aggregates.tsv"
 /* The design grid of every frozen table (its rows, block by block). */

@@ -93,6 +93,7 @@ static void current_pins(pin *p, size_t *n)
     paths_list_free(&g);
     /* pinned with the gates: which claim each gate judges */
     add_file_pin(p, &k, "gate_map_sha256", PATHS_GATE_MAP);
+    add_file_pin(p, &k, "gate_map_sha256", PATHS_GATE_MAP_EXT);
     /* the claim-computing code and the registry: an edit changes a verdict's inputs */
     paths_list cc = {0};
     paths_list_files(PATHS_CLAIMS_SRC_DIR, ".c", 0, &cc);
@@ -274,7 +275,7 @@ static void check_pins(const claims *c, checklist *cl)
                 size_t off = 0, cnt = 0;
                 affected[0] = '\0';
                 for (size_t i = 0; i < c->n && off < sizeof affected - 40; i++)
-                    if (!strcmp(c->rows[i].kind, "measured") || !strcmp(c->rows[i].kind, "probe")) off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
+                    if (!strcmp(c->rows[i].kind, "measured") || !strcmp(c->rows[i].kind, "probe") || claims_is_extension(&c->rows[i])) off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
                 if (!cnt) snprintf(affected, sizeof affected, "every measured claim");
             } else if (!strcmp(key, "design_sha256") || !strcmp(key, "design_numbers_sha256")) {
                 snprintf(affected, sizeof affected, "every claim resting on the design constants (%s)", path);
@@ -511,7 +512,8 @@ static void check_registry(const claims *c, checklist *cl)
     for (size_t r = 0; r < c->n; r++)
         if (strcmp(c->rows[r].gate_reg, c->rows[r].gate)) {
             checklist_add(cl, VERDICT_FAIL, "registry gate column", "%s:%d: the gate column of %s says '%s' but the pinned %s%s%.0d says '%s' (the map decides which claim a gate judges); claim: %s",
-                          PATHS_CLAIMS, c->rows[r].line, c->rows[r].macro, c->rows[r].gate_reg, PATHS_GATE_MAP,
+                          PATHS_CLAIMS, c->rows[r].line, c->rows[r].macro, c->rows[r].gate_reg,
+                          claims_is_extension(&c->rows[r]) ? PATHS_GATE_MAP_EXT : PATHS_GATE_MAP,
                           c->rows[r].gate_map_line ? ":" : "", c->rows[r].gate_map_line, c->rows[r].gate, c->rows[r].macro);
             bad++;
         }

@@ -1,6 +1,9 @@
 /* claim_comp: computing functions for E7 (reference paper Fig. teaser b-d,
- * Limitations) from frozen/comparison/{patch,dart_probe}.tsv written by
- * src/exp/exp_comp.c, and the lidar span of teaser panel a (needs CHM=path). */
+ * Limitations) from a reading's comparison/dist_summary.tsv written by
+ * `crownshy comparison-dist` (src/exp/exp_compdist.c: 256 fresh patches per
+ * arm; the paper reading under frozen/paper-reading/, the pair extension
+ * under frozen/extension-pair/, its macros prefixed Pair), and the lidar span
+ * of teaser panel a (needs CHM=path). */
 #include "claims.h"
 #include "paths.h"
 #include "tsv.h"
@@ -10,37 +13,95 @@
 #include <stdlib.h>
 #include <string.h>
 
-static cs_status source_value(const claim_row *row, claim_result *res, const char *source, const char *col)
+/* The macro without a reading prefix (PairCompGenOverlap -> CompGenOverlap). */
+static const char *comp_base(const char *m)
+{
+    return !strncmp(m, "Pair", 4) ? m + 4 : m;
+}
+
+static int has_suffix(const char *s, const char *suf)
+{
+    size_t l = strlen(s), k = strlen(suf);
+    return l >= k && !strcmp(s + l - k, suf);
+}
+
+/* One cell of dist_summary.tsv: the row of (probe, source), column
+ * <stat>_q50 as the value; a macro ending in Range gives its 5-95 % range
+ * "<q05> to <q95>" (text, in fmt) instead. */
+static cs_status dist_value(const claim_row *row, claim_result *res, const char *probe, const char *source, const char *stat, const char *fmt)
 {
     tsv *t;
     cs_status st = tsv_read(row->source, &t);
     if (st) return st;
-    long r = tsv_find(t, "source", source);
-    double v;
-    if (r < 0) st = cs_err(CS_EINPUT, "%s: no row with source = %s", row->source, source);
-    else if (!(st = tsv_double(t, (size_t)r, col, &v))) {
-        snprintf(res->where, sizeof res->where, "%s:%d (%s, %s)", row->source, tsv_line(t, (size_t)r), source, col);
-        claim_set_value(row, res, v);
+    long r = -1;
+    for (size_t i = 0; i < tsv_nrows(t) && r < 0; i++) {
+        const char *p = tsv_str(t, i, "probe"), *s = tsv_str(t, i, "source");
+        if (p && s && !strcmp(p, probe) && !strcmp(s, source)) r = (long)i;
+    }
+    char c05[64], c50[64], c95[64];
+    snprintf(c05, sizeof c05, "%s_q05", stat);
+    snprintf(c50, sizeof c50, "%s_q50", stat);
+    snprintf(c95, sizeof c95, "%s_q95", stat);
+    double q05, q50, q95, n;
+    if (r < 0) st = cs_err(CS_EINPUT, "%s: no row with probe = %s and source = %s", row->source, probe, source);
+    else if (!(st = tsv_double(t, (size_t)r, c05, &q05)) && !(st = tsv_double(t, (size_t)r, c50, &q50)) && !(st = tsv_double(t, (size_t)r, c95, &q95)) &&
+             !(st = tsv_double(t, (size_t)r, "patches", &n))) {
+        int range = has_suffix(row->macro, "Range");
+        snprintf(res->where, sizeof res->where, "%s:%d (%s, %s: %s over %.0f patches)", row->source, tsv_line(t, (size_t)r), probe, source,
+                 range ? "5 % and 95 % quantiles" : "median", n);
+        if (range) {
+            char a[32], b[32];
+            snprintf(a, sizeof a, fmt, q05);
+            snprintf(b, sizeof b, fmt, q95);
+            res->value = q05;
+            snprintf(res->text, sizeof res->text, "%s to %s", a, b);
+        } else
+            claim_set_value(row, res, q50);
     }
     tsv_free(t);
     return st;
 }
 
+/* E7 as distributions over fresh patches (design.md §7 E7): medians over the
+ * patches of dist_summary.tsv with their 5-95 % ranges. */
 cs_status claim_comp_overlap(const claim_row *row, claim_result *res)
 {
-    const char *s = !strcmp(row->macro, "CompGenOverlap") ? "joint" : !strcmp(row->macro, "CompTeachOverlap") ? "teacher" : "indep";
-    return source_value(row, res, s, "overlapping");
+    const char *m = comp_base(row->macro);
+    const char *s = !strncmp(m, "CompGen", 7) ? "joint" : !strncmp(m, "CompTeach", 9) ? "teacher" : "indep";
+    return dist_value(row, res, "comparison", s, "overlapping", "%.0f");
 }
 
 cs_status claim_comp_k(const claim_row *row, claim_result *res)
 {
-    const char *s = strstr(row->macro, "Teach") ? "teacher" : strstr(row->macro, "Indep") ? "indep" : "joint";
-    return source_value(row, res, s, "median_nn_clearance_m");
+    const char *m = comp_base(row->macro);
+    const char *s = strstr(m, "Teach") ? "teacher" : strstr(m, "Indep") ? "indep" : "joint";
+    return dist_value(row, res, "comparison", s, "median_nn", "%+.3f");
 }
 
 cs_status claim_comp_dart(const claim_row *row, claim_result *res)
 {
-    return source_value(row, res, strstr(row->macro, "Teach") ? "teacher" : "joint", "median_focal_nn_clearance_m");
+    return dist_value(row, res, "dart", strstr(comp_base(row->macro), "Teach") ? "teacher" : "joint", "median_nn", "%+.3f");
+}
+
+/* The share of patches (percent) in which no crown of the joint arm overlaps. */
+cs_status claim_comp_no_overlap(const claim_row *row, claim_result *res)
+{
+    tsv *t;
+    cs_status st = tsv_read(row->source, &t);
+    if (st) return st;
+    long r = -1;
+    for (size_t i = 0; i < tsv_nrows(t) && r < 0; i++) {
+        const char *p = tsv_str(t, i, "probe"), *s = tsv_str(t, i, "source");
+        if (p && s && !strcmp(p, "comparison") && !strcmp(s, "joint")) r = (long)i;
+    }
+    double f;
+    if (r < 0) st = cs_err(CS_EINPUT, "%s: no row with probe = comparison and source = joint", row->source);
+    else if (!(st = tsv_double(t, (size_t)r, "no_overlap_fraction", &f))) {
+        snprintf(res->where, sizeof res->where, "%s:%d (comparison, joint: no_overlap_fraction)", row->source, tsv_line(t, (size_t)r));
+        claim_set_value(row, res, 100.0 * f);
+    }
+    tsv_free(t);
+    return st;
 }
 
 /* One number of a CHM file: the whole token, finite. */

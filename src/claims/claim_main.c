@@ -1,15 +1,20 @@
 /* claim_main: computing functions for the E3 main and E4 extrapolation
  * claims (reference paper §5.1-§5.2; gates/main.gate, gates/extrapolation.gate),
- * from frozen/main/runs.tsv, frozen/main/baselines.tsv and
- * frozen/extrapolation/runs.tsv written by src/exp/exp_main.c, or the same tables
- * of another generator reading under its own root (<root>/main/...,
- * <root>/extrapolation/...: the runs and baselines of a claim are those of the
- * root of its source, and a macro's reading prefix, as in PairMainRel, is
- * ignored when the claim is computed, so one function serves every reading;
- * design.md §8 "Readings of the generator"). m_J and m_I are
+ * from a reading's main/runs.tsv, main/baselines.tsv and extrapolation/runs.tsv
+ * written by src/exp/exp_main.c (the pair extension: frozen/main/,
+ * frozen/extrapolation/), or from its per-run tables directly: a source
+ * "<root>/main/run_s*_*.tsv" (the paper reading, frozen/paper-reading/), or a
+ * main/runs.tsv not made yet, is gathered by src/claims/mainruns.h with
+ * main-summary's reduction, and is pending, naming the frozen seeds and the
+ * missing units, until every unit of the design is frozen. The runs and
+ * baselines of a claim are those of the root of its source, and a macro's
+ * reading prefix, as in PairMainRel, is ignored when the claim is computed,
+ * so one function serves every reading (design.md §8 "Readings of the
+ * generator"). m_J and m_I are
  * medians over seeds of the per-run error; p is the exact two-sided Wilcoxon
  * signed-rank test of the paired per-seed errors. */
 #include "claims.h"
+#include "mainruns.h"
 #include "paths.h"
 #include "stats.h"
 #include "tsv.h"
@@ -17,6 +22,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #define MAXSEED 64
 
@@ -42,10 +48,51 @@ static const char *kind_name(int k)
     return n[k];
 }
 
+/* dir of "<dir>/runs.tsv" when that summary is not there: its units are read instead */
+static int summary_absent(const char *path, char *dir, size_t n)
+{
+    size_t l = strlen(path), k = strlen("/main/runs.tsv");
+    if (l < k || strcmp(path + l - k, "/main/runs.tsv") || access(path, F_OK) == 0) return 0;
+    snprintf(dir, n, "%.*s", (int)(l - strlen("/runs.tsv")), path);
+    return 1;
+}
+
+/* The units of dir (mainruns.h); a set not yet whole leaves res pending. */
+static cs_status load_units(const char *dir, mainruns *m, claim_result *res)
+{
+    int want;
+    cs_status st = mainruns_wanted(dir, &want);
+    if (!st) st = mainruns_load(dir, want, m);
+    if (st) return st;
+    if (m->nmissing) {
+        mainruns_pending_text(m, dir, res->why, sizeof res->why);
+        res->status = VERDICT_PENDING;
+    }
+    snprintf(res->where, sizeof res->where, "%s/run_s*_*.tsv (%d seeds x 2 arms; per seed the mean W1 over the unseen spacings)", dir, m->want);
+    return CS_OK;
+}
+
+static cs_status read_units(const char *dir, main_runs *r, claim_result *res)
+{
+    static mainruns m;
+    cs_status st = load_units(dir, &m, res);
+    if (st || res->status == VERDICT_PENDING) return st;
+    r->n = m.want;
+    for (int a = 0; a < 2; a++)
+        for (int q = 0; q < 3; q++) {
+            static const int k[3][2] = {{0, 1}, {2, 3}, {4, 5}};
+            r->has[k[q][a]] = m.has[a][q] > 0;
+            memcpy(r->v[k[q][a]], m.err[a][q], sizeof r->v[0]);
+        }
+    return CS_OK;
+}
+
 static cs_status read_runs(const char *path, main_runs *r, claim_result *res)
 {
     tsv *t;
     memset(r, 0, sizeof *r);
+    char dir[300];
+    if (mainruns_unit_set(path, dir, sizeof dir) || summary_absent(path, dir, sizeof dir)) return read_units(dir, r, res);
     cs_status st = tsv_read(path, &t);
     if (st) return st;
     int seen[MAXSEED][NK] = {{0}};
@@ -136,7 +183,7 @@ cs_status claim_main_median(const claim_row *row, claim_result *res)
 {
     main_runs r;
     cs_status st = read_runs(row->source, &r, res);
-    if (st) return st;
+    if (st || res->status == VERDICT_PENDING) return st;
     claim_set_value(row, res, med(strcmp(base_macro(row->macro), "MainJoint") ? r.v[1] : r.v[0], r.n));
     return CS_OK;
 }
@@ -145,7 +192,7 @@ cs_status claim_main_range(const claim_row *row, claim_result *res)
 {
     main_runs r;
     cs_status st = read_runs(row->source, &r, res);
-    if (st) return st;
+    if (st || res->status == VERDICT_PENDING) return st;
     const double *x = !strncmp(base_macro(row->macro), "MainJoint", 9) ? r.v[0] : r.v[1];
     int hi = strstr(row->macro, "Hi") != NULL;
     claim_set_value(row, res, hi ? stats_max(x, (size_t)r.n) : stats_min(x, (size_t)r.n));
@@ -156,7 +203,7 @@ cs_status claim_main_rel(const claim_row *row, claim_result *res)
 {
     main_runs r;
     cs_status st = read_runs(row->source, &r, res);
-    if (st) return st;
+    if (st || res->status == VERDICT_PENDING) return st;
     double mj = med(r.v[0], r.n), mi = med(r.v[1], r.n);
     double rel = (mi - mj) / mi;
     claim_set_value(row, res, 100.0 * rel);
@@ -168,7 +215,7 @@ cs_status claim_main_p(const claim_row *row, claim_result *res)
 {
     main_runs r;
     cs_status st = read_runs(row->source, &r, res);
-    if (st) return st;
+    if (st || res->status == VERDICT_PENDING) return st;
     double p;
     if ((st = stats_wilcoxon_exact(r.v[1], r.v[0], (size_t)r.n, &p, NULL, NULL))) return st;
     claim_set_value(row, res, p);
@@ -180,7 +227,7 @@ cs_status claim_main_geom_ratio(const claim_row *row, claim_result *res)
 {
     main_runs r;
     cs_status st = read_runs(row->source, &r, res);
-    if (st) return st;
+    if (st || res->status == VERDICT_PENDING) return st;
     double ratio = med(r.v[2], r.n) / med(r.v[0], r.n);
     claim_set_value(row, res, ratio);
     claim_judge(row, res, GATE_GE, ratio);
@@ -207,12 +254,15 @@ cs_status claim_main_iso(const claim_row *row, claim_result *res)
     claim_result tmp = *res;
     char runs[200];
     reading_path(row->source, "runs.tsv", runs, sizeof runs);
-    if (read_runs(runs, &r, &tmp) == CS_OK)
-        claim_judge(row, res, GATE_LE, med(r.v[0], r.n) / v);
-    else {
+    tmp.status = VERDICT_PASS;
+    if (read_runs(runs, &r, &tmp) != CS_OK) {
         res->gate = VERDICT_PENDING;
         snprintf(res->gate_detail, sizeof res->gate_detail, "needs %s: %s", runs, cs_errmsg());
-    }
+    } else if (tmp.status == VERDICT_PENDING) {
+        res->gate = VERDICT_PENDING;
+        snprintf(res->gate_detail, sizeof res->gate_detail, "precondition pending: %.230s", tmp.why);
+    } else
+        claim_judge(row, res, GATE_LE, med(r.v[0], r.n) / v);
     return CS_OK;
 }
 
@@ -224,7 +274,7 @@ cs_status claim_main_probe(const claim_row *row, claim_result *res)
 {
     main_runs r;
     cs_status st = read_runs(row->source, &r, res);
-    if (st) return st;
+    if (st || res->status == VERDICT_PENDING) return st;
     static const struct { const char *macro; int k, ratio_of; } map[] = {
         {"MainShufJoint", 2, -1}, {"MainShufIndep", 3, -1}, {"MainGeomRatioIndep", 3, 1},
         {"MainRotJoint", 4, -1}, {"MainRotIndep", 5, -1}, {"MainRotRatio", 4, 0}, {"MainRotRatioIndep", 5, 1},
@@ -252,12 +302,121 @@ cs_status claim_main_teach_probe(const claim_row *row, claim_result *res)
     return CS_OK;
 }
 
+/* The folder of a reading's run tables named by a source (a unit set, a
+ * main/runs.tsv or a baselines table beside them). */
+static void runs_dir(const char *source, char *dir, size_t n)
+{
+    if (mainruns_unit_set(source, dir, n)) return;
+    reading_path(source, "", dir, n);
+    size_t l = strlen(dir);
+    if (l && dir[l - 1] == '/') dir[l - 1] = '\0';
+}
+
+/* The readings table's descriptive columns (design.md §8): *Params, the
+ * parameter count on the `# model:` line of the seed-1 joint run; and
+ * *StepsPerSec, the median over the reading's frozen units of the training
+ * speed on their `# train_time:` line (a wall-clock figure of the machine
+ * that trained them; pending when no unit recorded one). */
+cs_status claim_main_meta(const claim_row *row, claim_result *res)
+{
+    char dir[300], p[400];
+    runs_dir(row->source, dir, sizeof dir);
+    int want;
+    cs_status st = mainruns_wanted(dir, &want);
+    if (st) return st;
+    const int params = strstr(row->macro, "Params") != NULL;
+    double v[2 * MAXSEED];
+    size_t nv = 0, units = 0;
+    for (int s = 1; s <= want && !(params && units); s++)
+        for (int a = 0; a < 2 && !(params && units); a++) {
+            snprintf(p, sizeof p, "%s/run_s%02d_%s.tsv", dir, s, a ? "indep" : "joint");
+            if (access(p, F_OK) != 0) continue;
+            tsv *t;
+            if ((st = tsv_read(p, &t))) return st;
+            units++;
+            const char *m = tsv_meta(t, params ? "model" : "train_time");
+            const char *q = m ? strstr(m, params ? "params " : "steps_per_s ") : NULL;
+            if (q) v[nv++] = atof(q + (params ? 7 : 12));
+            else if (params) st = cs_err(CS_EINPUT, "%s: its '# model:' line names no parameter count", p);
+            tsv_free(t);
+            if (st) return st;
+        }
+    if (!units) { claim_pending(res, "%s: no unit of the reading frozen yet (%d seeds x 2 arms to run)", dir, want); return CS_OK; }
+    if (!nv) {
+        claim_pending(res, "%s: none of its %zu frozen units recorded a training speed (a '# train_time:' line): they were trained before the speed was written, "
+                      "and re-evaluated from their weights since", dir, units);
+        return CS_OK;
+    }
+    snprintf(res->where, sizeof res->where, params ? "%s/run_s01_joint.tsv (# model: params)" : "%s/run_s*_*.tsv (# train_time: steps_per_s, median over %zu units)", dir, nv);
+    claim_set_value(row, res, med(v, (int)nv));
+    return CS_OK;
+}
+
+/* The paper reading over the seeds frozen so far (descriptive, never gated,
+ * never a verdict): MainFrozenSeeds, the seeds with both arms frozen (text);
+ * over
+ * them the medians MainFrozenJoint and MainFrozenIndep, MainFrozenRel (%),
+ * MainFrozenGeomRatio (median shuffled / median joint), MainFrozenRotRatio
+ * (median turned-geometry / median joint) and MainFrozenIsoRatio
+ * (median joint / the direction-blind level of the reading's baselines). When
+ * every seed is frozen they equal the gated claims' values. */
+cs_status claim_main_sofar(const claim_row *row, claim_result *res)
+{
+    char dir[300];
+    if (!mainruns_unit_set(row->source, dir, sizeof dir)) return cs_err(CS_EINPUT, "%s: claim_main_sofar reads a unit set <dir>/run_s*_*.tsv", row->source);
+    static mainruns m;
+    int want;
+    cs_status st = mainruns_wanted(dir, &want);
+    if (!st) st = mainruns_load(dir, want, &m);
+    if (st) return st;
+    double j[MAXSEED], i[MAXSEED], sh[MAXSEED], ro[MAXSEED];
+    int n = 0;
+    for (int s = 0; s < want; s++)
+        if (m.seed_ok[s]) { j[n] = m.err[0][0][s]; i[n] = m.err[1][0][s]; sh[n] = m.err[0][1][s]; ro[n] = m.err[0][2][s]; n++; }
+    snprintf(res->where, sizeof res->where, "%s/run_s*_*.tsv (%d of %d seeds frozen, both arms)", dir, n, want);
+    const char *what = strstr(row->macro, "Frozen") ? strstr(row->macro, "Frozen") + 6 : "";
+    /* a count of frozen units, not a measured quantity: text, so the typed
+     * spacings of the write-up (4.0, 5.0, 6.0 m) are never read as rounding it */
+    if (!strcmp(what, "Seeds")) { snprintf(res->text, sizeof res->text, "%d", n); return CS_OK; }
+    if (!n) { claim_pending(res, "%s: no seed of the reading has both arms frozen yet", dir); return CS_OK; }
+    double mj = med(j, n), mi = med(i, n);
+    if (!strcmp(what, "Joint")) claim_set_value(row, res, mj);
+    else if (!strcmp(what, "Indep")) claim_set_value(row, res, mi);
+    else if (!strcmp(what, "Rel")) claim_set_value(row, res, 100.0 * (mi - mj) / mi);
+    else if (!strcmp(what, "GeomRatio")) claim_set_value(row, res, med(sh, n) / mj);
+    else if (!strcmp(what, "RotRatio")) claim_set_value(row, res, med(ro, n) / mj);
+    else if (!strcmp(what, "IsoRatio")) {
+        double blind;
+        if ((st = read_baseline(row->source, "direction_blind_w1", "unseen", 0, &blind, NULL, 0))) return st;
+        claim_set_value(row, res, mj / blind);
+    } else return cs_err(CS_EINPUT, "claim_main_sofar: no quantity named %s", row->macro);
+    return CS_OK;
+}
+
 /* extrapolation: per spacing, median over seeds of each arm's W1 */
 typedef struct { int n; double d[4]; double joint[4][MAXSEED], indep[4][MAXSEED]; int nj[4], ni[4]; } extrap_runs;
+
+static cs_status read_extrap_units(const char *dir, extrap_runs *e, claim_result *res)
+{
+    static mainruns m;
+    cs_status st = load_units(dir, &m, res);
+    if (st || res->status == VERDICT_PENDING) return st;
+    if (!m.nex) return cs_err(CS_EINPUT, "%s: no extrapolation rows in its run tables", dir);
+    e->n = m.nex;
+    for (int k = 0; k < m.nex; k++) {
+        e->d[k] = m.exd[k];
+        e->nj[k] = e->ni[k] = m.want;
+        memcpy(e->joint[k], m.ex[0][k], sizeof e->joint[k]);
+        memcpy(e->indep[k], m.ex[1][k], sizeof e->indep[k]);
+    }
+    return CS_OK;
+}
 
 static cs_status read_extrap(const char *path, extrap_runs *e, claim_result *res)
 {
     memset(e, 0, sizeof *e);
+    char dir[300];
+    if (mainruns_unit_set(path, dir, sizeof dir)) return read_extrap_units(dir, e, res);
     tsv *t;
     cs_status st = tsv_read(path, &t);
     if (st) return st;
@@ -285,7 +444,7 @@ cs_status claim_extrap_rel(const claim_row *row, claim_result *res)
 {
     extrap_runs e;
     cs_status st = read_extrap(row->source, &e, res);
-    if (st) return st;
+    if (st || res->status == VERDICT_PENDING) return st;
     gate *g;
     if ((st = claim_gate_load("extrapolation.gate", &g))) return st;
     double dlo, dhi;
@@ -320,7 +479,7 @@ cs_status claim_extrap_p(const claim_row *row, claim_result *res)
 {
     extrap_runs e;
     cs_status st = read_extrap(row->source, &e, res);
-    if (st) return st;
+    if (st || res->status == VERDICT_PENDING) return st;
     /* Pooled over the extrapolation spacings at the level of the seed: the two
      * spacings of one seed share one trained model, so the independent unit of
      * the paired test is the seed (mean W1 over the spacings per arm). Rows are

@@ -1,6 +1,7 @@
 /* claims: registry, evaluation and numbers.tex (design.md §9). */
 #include "claims.h"
 #include "paths.h"
+#include "study.h"
 #include "tsv.h"
 #include "afile.h"
 #include <math.h>
@@ -9,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #define X(f) cs_status f(const claim_row *row, claim_result *res);
 #include "claims_list.h"
@@ -88,8 +90,8 @@ cs_status claims_load(const char *path, claims *out)
             }
         if (st) break;
         if (strcmp(w->kind, "measured") && strcmp(w->kind, "design") && strcmp(w->kind, "field") && strcmp(w->kind, "needs-data") &&
-            strcmp(w->kind, "probe")) {
-            st = cs_err(CS_EINPUT, "%s:%d: field 'kind': unknown kind '%s' (measured, design, field, needs-data, probe)", path, w->line, w->kind);
+            strcmp(w->kind, "probe") && strcmp(w->kind, "extension")) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'kind': unknown kind '%s' (measured, design, field, needs-data, probe, extension)", path, w->line, w->kind);
             break;
         }
         /* probe: measured like a claim, added after the first verdict, never gated */
@@ -116,11 +118,29 @@ cs_status claims_load(const char *path, claims *out)
     if (st) { free(rows); return st; }
     out->rows = rows;
     out->n = n;
-    if (!strcmp(path, PATHS_CLAIMS) && (st = claims_apply_gate_map(out, PATHS_GATE_MAP))) { claims_free(out); return st; }
+    if (!strcmp(path, PATHS_CLAIMS) && (st = claims_apply_gate_maps(out, PATHS_GATE_MAP, PATHS_GATE_MAP_EXT))) { claims_free(out); return st; }
     return CS_OK;
 }
 
-cs_status claims_apply_gate_map(claims *c, const char *map_path)
+int claims_is_extension(const claim_row *row)
+{
+    return !strcmp(row->kind, "extension");
+}
+
+int claims_awaited_source(const char *source)
+{
+    static const char *dirs[] = {PATHS_FROZEN_DIR "/paper-reading/", PATHS_FROZEN_DIR "/extension-pair/main/", PATHS_FROZEN_DIR "/extension-pair/extrapolation/",
+                                 PATHS_FROZEN_DIR "/model-readings/"};
+    size_t l = strlen(source), k = strlen("/run_s*_*.tsv");
+    if (l > k && !strcmp(source + l - k, "/run_s*_*.tsv")) return 1;
+    for (size_t i = 0; i < sizeof dirs / sizeof *dirs; i++)
+        if (!strncmp(source, dirs[i], strlen(dirs[i]))) return 1;
+    return 0;
+}
+
+/* ext: 0 the main map (no extension row), 1 the extension map (only those);
+ * reset: clear every row's gate first. */
+static cs_status apply_map(claims *c, const char *map_path, int ext, int reset)
 {
     tsv *t;
     cs_status st = tsv_read(map_path, &t);
@@ -130,7 +150,7 @@ cs_status claims_apply_gate_map(claims *c, const char *map_path)
         tsv_free(t);
         return st;
     }
-    for (size_t i = 0; i < c->n; i++) { strcpy(c->rows[i].gate, "-"); c->rows[i].gate_map_line = 0; }
+    for (size_t i = 0; i < c->n && reset; i++) { strcpy(c->rows[i].gate, "-"); c->rows[i].gate_map_line = 0; c->rows[i].gate_map_ext = 0; }
     for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
         const char *m = tsv_str(t, r, "macro"), *g = tsv_str(t, r, "gate");
         int line = tsv_line(t, r);
@@ -138,12 +158,26 @@ cs_status claims_apply_gate_map(claims *c, const char *map_path)
         for (size_t i = 0; i < c->n && !row; i++) if (!strcmp(c->rows[i].macro, m)) row = &c->rows[i];
         if (!row) st = cs_err(CS_EINPUT, "%s:%d: field 'macro': '%s' is not a claim of the registry", map_path, line, m);
         else if (row->gate_map_line) st = cs_err(CS_EINPUT, "%s:%d: field 'macro': %s is mapped twice (line %d)", map_path, line, m, row->gate_map_line);
+        else if (ext >= 0 && claims_is_extension(row) != ext)
+            st = cs_err(CS_EINPUT, "%s:%d: field 'macro': %s is of kind %s: %s", map_path, line, m, row->kind,
+                        ext ? "this map judges the extension claims only" : "an extension claim is judged through " PATHS_GATE_MAP_EXT);
         else if (!strcmp(g, "-") || !gate_ref_ok(g) || strlen(g) >= sizeof row->gate)
             st = cs_err(CS_EINPUT, "%s:%d: field 'gate': '%s' is not 'file.gate:key'", map_path, line, g);
-        else { strcpy(row->gate, g); row->gate_map_line = line; }
+        else { strcpy(row->gate, g); row->gate_map_line = line; row->gate_map_ext = ext > 0; }
     }
     tsv_free(t);
     return st;
+}
+
+cs_status claims_apply_gate_map(claims *c, const char *map_path)
+{
+    return apply_map(c, map_path, -1, 1);
+}
+
+cs_status claims_apply_gate_maps(claims *c, const char *main_map, const char *ext_map)
+{
+    cs_status st = apply_map(c, main_map, 0, 1);
+    return st ? st : apply_map(c, ext_map, 1, 0);
 }
 
 const claim_row *claims_find(const claims *c, const char *macro)
@@ -224,7 +258,16 @@ void claims_eval(const claim_row *row, claim_result *res)
         claim_pending(res, "computing function %s not implemented yet", row->function);
         return;
     }
-    if (!strncmp(row->source, "frozen/", 7)) {
+    if (!strncmp(row->source, "frozen/", 7) && claims_awaited_source(row->source) && access(row->source, F_OK) != 0) {
+        /* a unit set is gathered by its function, which says what is missing;
+         * a reading's table not frozen yet is pending with its unit named */
+        if (!strstr(row->source, "*")) {
+            const study_experiment *ex = study_of_path(row->source);
+            claim_pending(res, "%s: not frozen yet (a unit of the generator readings, design.md §8, still to run: make %s, then make freeze)", row->source,
+                          ex ? ex->name : "reproduce");
+            return;
+        }
+    } else if (!strncmp(row->source, "frozen/", 7)) {
         struct stat sb;
         if (stat(row->source, &sb) != 0) {
             /* a registered file is never optional: deleting it (and
@@ -293,7 +336,7 @@ cs_status numbers_read(const char *path, numbers_tex *out)
     memset(out, 0, sizeof *out);
     FILE *f = fopen(path, "r");
     if (!f) return cs_err(CS_EINPUT, "%s: cannot open (run `crownshy numbers` to generate it)", path);
-    size_t cap = 256;
+    size_t cap = 1024;
     out->name = malloc(cap * sizeof *out->name);
     out->value = malloc(cap * sizeof *out->value);
     out->line = malloc(cap * sizeof *out->line);

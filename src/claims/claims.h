@@ -18,6 +18,7 @@ typedef struct {
      * when the two differ. gate_map_line: line of the map row, 0 if none. */
     char gate_reg[128];
     int gate_map_line;
+    int gate_map_ext; /* 1: the row's gate comes from PATHS_GATE_MAP_EXT */
 } claim_row;
 
 typedef struct {
@@ -35,12 +36,25 @@ typedef cs_status (*claim_fn)(const claim_row *row, claim_result *res);
 typedef struct { claim_row *rows; size_t n; } claims;
 
 /* Load and validate the registry (unique macros, known kinds, gate refs "file.gate:key").
- * For PATHS_CLAIMS the gate of every row comes from PATHS_GATE_MAP (see claims_apply_gate_map). */
+ * For PATHS_CLAIMS the gate of every row comes from PATHS_GATE_MAP and, for
+ * the rows of kind extension, from PATHS_GATE_MAP_EXT (see claims_apply_gate_map). */
 cs_status claims_load(const char *path, claims *out);
 /* Set every row's gate from a claim-to-gate map (TSV: macro, gate): a row the
  * map does not name has no gate. CS_EINPUT naming file, line and field for a
  * malformed map, an unknown or duplicate macro, or a gate not "file.gate:key". */
 cs_status claims_apply_gate_map(claims *c, const char *map_path);
+/* The two pinned maps: main_map may name no row of kind extension, ext_map
+ * only such rows (CS_EINPUT naming the map's file and line otherwise). */
+cs_status claims_apply_gate_maps(claims *c, const char *main_map, const char *ext_map);
+/* Kind extension: a claim of a generator reading added after the first
+ * verdict, gated by the same thresholds, never one of the reference paper's. */
+int claims_is_extension(const claim_row *row);
+/* A frozen source that is a reading's unit still being run: under one of the
+ * readings' folders of design.md §8 (the paper reading's, the pair
+ * reading's v2 main and extrapolation folders, the descriptive readings'; the
+ * list is in claims.c) or a unit set "<dir>/run_s*_*.tsv"; such a source
+ * missing is pending, never a failure. */
+int claims_awaited_source(const char *source);
 void claims_free(claims *c);
 const claim_row *claims_find(const claims *c, const char *macro);
 /* Where a computing function is defined: the file of src/claims/ holding its

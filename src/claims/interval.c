@@ -99,6 +99,13 @@ cs_status iv_stat_eval(const double *x, size_t n, size_t m, const void *ctx, dou
         if (!(st = col_median(x, n, m, s->a, &ma)) && !(st = col_median(x, n, m, s->b, &mb))) *out = ma / mb;
         break;
     case IV_WILCOXON: st = stats_wilcoxon_exact(cb, ca, n, out, NULL, NULL); break;
+    case IV_QUANTILE: st = stats_quantile(ca, n, s->q, out); break;
+    case IV_ZERO_PCT: {
+        size_t z = 0;
+        for (size_t i = 0; i < n; i++) z += ca[i] == 0;
+        *out = 100.0 * ((double)z / (double)n);
+        break;
+    }
     default: st = cs_err(CS_EINVARIANT, "interval: unknown statistic %d", (int)s->kind);
     }
     free(ca);

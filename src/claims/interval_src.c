@@ -350,49 +350,49 @@ static int models_of(const tsv *t, char *buf, size_t n)
     return 1;
 }
 
+/* E7 (design.md §7 E7): the claims are statistics over the patches of
+ * dist_patches.tsv beside their dist_summary.tsv (the median; a *Range
+ * macro's value is the 5 % quantile; the share of patches without an
+ * overlapping crown), bootstrapped over the patches. */
 static cs_status comp_patches(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
 {
-    (void)res;
+    (void)res; (void)sp;
     d->unit = "patch";
-    d->method = "range";
+    d->method = "bootstrap";
     tsv *src;
     cs_status st = tsv_read(row->source, &src);
     if (st) return st;
-    char want[280], got[280];
+    char want[280], got[280], path[520];
     int ok = models_of(src, want, sizeof want);
     tsv_free(src);
     if (!ok) return cs_err(CS_EINPUT, "%s: header '# command:' names no --joint/--indep models", row->source);
-    /* the distribution beside the claim's table, else the one the statement names */
-    char cand[2][520];
     const char *slash = strrchr(row->source, '/');
-    snprintf(cand[0], sizeof cand[0], "%.*sdist_patches.tsv", slash ? (int)(slash - row->source + 1) : 0, row->source);
-    snprintf(cand[1], sizeof cand[1], "%s", sp->replicates);
-    tsv *t = NULL;
-    for (int k = 0; k < 2 && !t; k++) {
-        FILE *f = fopen(cand[k], "r");
-        if (!f) continue;
-        fclose(f);
-        if ((st = tsv_read(cand[k], &t))) return st;
-        if (!models_of(t, got, sizeof got) || strcmp(got, want)) { tsv_free(t); t = NULL; }
+    snprintf(path, sizeof path, "%.*sdist_patches.tsv", slash ? (int)(slash - row->source + 1) : 0, row->source);
+    tsv *t;
+    if ((st = tsv_read(path, &t))) return st;
+    if (!models_of(t, got, sizeof got) || strcmp(got, want)) {
+        tsv_free(t);
+        return cs_err(CS_EINVARIANT, "%s: drawn from models %s, its summary %s from %s", path, got, row->source, want);
     }
-    if (!t) {
-        d->method = "none";
-        snprintf(d->why, sizeof d->why, "no patch distribution drawn from the models of %s (%s) is frozen", row->source, want);
-        return CS_OK;
-    }
-    const char *s = strstr(row->macro, "Teach") ? "teacher" : strstr(row->macro, "Indep") ? "indep" : "joint";
-    const char *col = !strcmp(row->function, "claim_comp_overlap") ? "overlapping" : "median_nn_clearance_m";
+    const char *m = !strncmp(row->macro, "Pair", 4) ? row->macro + 4 : row->macro, *f = row->function;
+    const char *probe = !strcmp(f, "claim_comp_dart") ? "dart" : "comparison";
+    const char *s = !strcmp(f, "claim_comp_no_overlap") || !strncmp(m, "CompGen", 7) ? "joint" : strstr(m, "Teach") ? "teacher"
+                  : strstr(m, "Indep") ? "indep" : "joint";
+    const char *col = !strcmp(f, "claim_comp_overlap") || !strcmp(f, "claim_comp_no_overlap") ? "overlapping" : "median_nn_clearance_m";
+    size_t len = strlen(m);
+    int range = len >= 5 && !strcmp(m + len - 5, "Range");
+    d->stat = (iv_stat){!strcmp(f, "claim_comp_no_overlap") ? IV_ZERO_PCT : IV_QUANTILE, 0, 0, NULL, NULL, range ? 0.05 : 0.5};
     if (!(st = alloc_x(d, tsv_nrows(t), 1))) {
         size_t n = 0;
         for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
-            const char *probe = tsv_str(t, r, "probe"), *so = tsv_str(t, r, "source");
-            if (!probe || !so || strcmp(probe, "comparison") || strcmp(so, s)) continue;
+            const char *pr = tsv_str(t, r, "probe"), *so = tsv_str(t, r, "source");
+            if (!pr || !so || strcmp(pr, probe) || strcmp(so, s)) continue;
             st = tsv_double(t, r, col, &d->x[n++]);
         }
         d->n = n;
-        if (!st && n == 0) st = cs_err(CS_EINPUT, "%s: no comparison rows of source %s", tsv_path(t), s);
+        if (!st && n == 0) st = cs_err(CS_EINPUT, "%s: no %s rows of source %s", path, probe, s);
     }
-    snprintf(d->from, sizeof d->from, "%s (%s, %s, %zu patches of the same models)", tsv_path(t), s, col, d->n);
+    snprintf(d->from, sizeof d->from, "%s (%s, %s, %s; %zu patches)", path, probe, s, col, d->n);
     tsv_free(t);
     return st;
 }
@@ -470,7 +470,8 @@ static const struct { const char *function; iv_extract ex; } extractors[] = {
     {"claim_field_elong", fs_stands}, {"claim_aniso_lattice", fs_stands}, {"claim_aniso_lattice_counts", fs_stands},
     {"claim_jitter_heldout", fs_stands}, {"claim_aniso_rho", fs_stands}, {"claim_aniso_hardcore_overshoot", fs_stands},
     {"claim_field_calib_dieback", fs_stands}, {"claim_jitter_star", fs_stands},
-    {"claim_comp_k", comp_patches}, {"claim_comp_overlap", comp_patches},
+    {"claim_comp_k", comp_patches}, {"claim_comp_overlap", comp_patches}, {"claim_comp_dart", comp_patches},
+    {"claim_comp_no_overlap", comp_patches},
     {"claim_mech_ablation_k", figure_stands}, {"claim_mech_cover", figure_stands}, {"claim_mech_overlap", figure_stands},
     {"claim_hero_stems", figure_stands}, {"claim_pc_stand", figure_stands}, {"claim_pc_clearance", figure_stands},
 };

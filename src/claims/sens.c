@@ -68,6 +68,9 @@ static cs_status one(const claims *cl, const char *dir, const unstated_choice *c
     claim_row row = *reg;
     snprintf(row.gate, sizeof row.gate, "-");
     const char *rel = strncmp(reg->source, "frozen/", 7) ? reg->source : reg->source + 7;
+    /* the E3 reference levels are the teacher's alone, the same under every
+     * generator reading (design.md §8): a unit keeps them at main/ */
+    if (!strncmp(rel, "paper-reading/", 14)) rel += 14;
     char folder[64];
     if (c && unstated_touches(c, rel)) unstated_dirname(c, x, folder, sizeof folder);
     else snprintf(folder, sizeof folder, "%s", UNSTATED_CENTRE);

@@ -1,0 +1,311 @@
+/* Tests for the claims of a generator reading (design.md §8, §9;
+ * src/claims/mainruns.c, claim_main.c, claim_comp.c, the two gate maps):
+ * a reading's per-run tables gathered into its claims, pending while any unit
+ * of the design is missing (naming how many seeds are frozen and which units
+ * are not), and, with a fabricated 12-seed fixture written here (never under
+ * frozen/), the gated values and verdicts, equal bit for bit to the same
+ * claims computed from main-summary's runs.tsv; the extension map judging
+ * extension rows only; E7 medians and ranges from a comparison-dist summary. */
+#include "testutil.h"
+#include "claims.h"
+#include "mainruns.h"
+#include "mainsum.h"
+#include "paths.h"
+#include "stats.h"
+#include <unistd.h>
+
+/* The fixture's W1: joint near the paper reading's level, independent above,
+ * the shuffled joint arm barely worse (a ratio below the gate's 1.30). */
+static double w1_of(int seed, int indep, int probe, double d)
+{
+    double base = indep ? 0.78 + 0.004 * seed : 0.40 + 0.003 * seed;
+    double sp = 0.02 * (d - 5.0) + 0.001 * (seed % 3);
+    double mul = probe == 0 ? 1.0 : probe == 1 ? 1.02 + 0.001 * seed : 2.0;
+    return (base + sp) * mul;
+}
+
+/* One unit's run table: unseen 4, 5, 6 m x 3 probes, extrap 3.0 and 7.5 m generated. */
+static void write_unit(const char *dir, int seed, int indep)
+{
+    char p[1400], buf[4096];
+    static const char *probe[3] = {"generated", "shuffled", "rotated"};
+    snprintf(p, sizeof p, "%s/run_s%02d_%s.tsv", dir, seed, indep ? "indep" : "joint");
+    size_t o = (size_t)snprintf(buf, sizeof buf, "# model: T 24 P 24 width 64 blocks 3 heads 4 mlp 256 joint %d pair 0 params 159000 reading paper\n"
+                                "# train_time: train_s 1900 steps_per_s %g (this invocation)\nseed\tarm\tspacing\tsplit\tprobe\tw1\tn_gen\tn_teacher\n",
+                                !indep, 7.0 + seed + 0.5 * indep);
+    for (int k = 0; k < 3; k++)
+        for (int q = 0; q < 3; q++)
+            o += (size_t)snprintf(buf + o, sizeof buf - o, "%d\t%s\t%d\tunseen\t%s\t%.17g\t1536\t6145\n", seed, indep ? "indep" : "joint", 4 + k, probe[q],
+                                  w1_of(seed, indep, q, 4 + k));
+    const double ex[2] = {3.0, 7.5};
+    for (int k = 0; k < 2; k++)
+        o += (size_t)snprintf(buf + o, sizeof buf - o, "%d\t%s\t%g\textrap\tgenerated\t%.17g\t1536\t6128\n", seed, indep ? "indep" : "joint", ex[k],
+                              w1_of(seed, indep, 0, ex[k]) * (k ? 1.3 : 0.8));
+    tu_write(p, buf);
+}
+
+/* root/paper-reading/main/ with seeds 1..nseeds and the baselines. */
+static const char *fixture(const char *name, int nseeds)
+{
+    static char dir[600];
+    const char *root = tu_tmpdir(name);
+    snprintf(dir, sizeof dir, "%s/paper-reading/main", root);
+    char cmd[1400];
+    snprintf(cmd, sizeof cmd, "mkdir -p '%s' '%s/paper-reading/extrapolation'", dir, root);
+    assert_int_equal(system(cmd), 0);
+    for (int s = 1; s <= nseeds; s++) { write_unit(dir, s, 0); write_unit(dir, s, 1); }
+    char p[1400];
+    snprintf(p, sizeof p, "%s/baselines.tsv", dir);
+    tu_write(p, "spacing\tsplit\tdirection_blind_w1\tnoise_floor_w1\tteacher_shuffled_w1\tteacher_rotated_w1\tn_teacher\tn_half\n"
+                "4\tunseen\t0.6\t0.002\t0.36\t0.81\t6145\t3069\n5\tunseen\t0.8\t0.0017\t0.42\t1.04\t6155\t3071\n"
+                "6\tunseen\t0.95\t0.0018\t0.48\t1.21\t6137\t3069\n3\textrap\t0.47\t0.001\t0.29\t0.61\t6128\t3056\n"
+                "7.5\textrap\t0.86\t0.005\t0.6\t1.03\t6127\t3068\n");
+    return dir;
+}
+
+static void row_of(claim_row *r, const char *macro, const char *source, const char *fn, const char *gate, const char *fmt)
+{
+    memset(r, 0, sizeof *r);
+    snprintf(r->macro, sizeof r->macro, "%s", macro);
+    snprintf(r->kind, sizeof r->kind, "measured");
+    snprintf(r->source, sizeof r->source, "%s", source);
+    snprintf(r->function, sizeof r->function, "%s", fn);
+    snprintf(r->gate, sizeof r->gate, "%s", gate);
+    snprintf(r->format, sizeof r->format, "%s", fmt);
+}
+
+static claim_result eval(const char *macro, const char *source, const char *fn, const char *gate)
+{
+    claim_row r;
+    row_of(&r, macro, source, fn, gate, strstr(macro, "Seeds") ? "text" : "%.6f"); /* as the registry: a count is text */
+    claim_result res;
+    claims_eval(&r, &res);
+    return res;
+}
+
+/* the per-seed error as main-summary reduces it: mean over the unseen spacings in file order */
+static double err_of(int seed, int indep, int probe)
+{
+    double s = 0;
+    for (int k = 0; k < 3; k++) s += w1_of(seed, indep, probe, 4 + k);
+    return s / 3;
+}
+
+static double median_over_seeds(int indep, int probe)
+{
+    double x[12], m;
+    for (int s = 1; s <= 12; s++) x[s - 1] = err_of(s, indep, probe);
+    assert_int_equal(stats_median(x, 12, &m), CS_OK);
+    return m;
+}
+
+static void one_seed_is_pending_with_the_missing_units(void **st)
+{
+    (void)st;
+    const char *dir = fixture("reading_claims_one", 1);
+    char src[800];
+    snprintf(src, sizeof src, "%s/run_s*_*.tsv", dir);
+    claim_result r = eval("MainRel", src, "claim_main_rel", "main.gate:rel_improvement_min");
+    assert_int_equal(r.status, VERDICT_PENDING);
+    assert_int_equal(r.gate, VERDICT_PENDING);
+    assert_non_null(strstr(r.why, "1 of 12 seeds frozen"));
+    assert_non_null(strstr(r.why, "missing 22"));
+    assert_non_null(strstr(r.why, "s02_joint s02_indep"));
+    /* a main/runs.tsv not made yet reads the same units: pending too */
+    char runs[800];
+    snprintf(runs, sizeof runs, "%s/runs.tsv", dir);
+    r = eval("MainGeomRatio", runs, "claim_main_geom_ratio", "main.gate:shuffle_ratio_min");
+    assert_int_equal(r.status, VERDICT_PENDING);
+    assert_non_null(strstr(r.why, "1 of 12 seeds frozen"));
+    r = eval("ExtrapP", src, "claim_extrap_p", "extrapolation.gate:wilcoxon_p_max");
+    assert_int_equal(r.status, VERDICT_PENDING);
+    /* the blind level needs no run: computed, its precondition pending */
+    char base[800];
+    snprintf(base, sizeof base, "%s/baselines.tsv", dir);
+    r = eval("MainIso", base, "claim_main_iso", "main.gate:joint_over_direction_blind_max");
+    assert_int_equal(r.status, VERDICT_PASS);
+    ASSERT_NEAR(r.value, (0.6 + 0.8 + 0.95) / 3, 1e-15);
+    assert_int_equal(r.gate, VERDICT_PENDING);
+    assert_non_null(strstr(r.gate_detail, "1 of 12 seeds frozen"));
+    /* descriptive rows over the seeds frozen so far: labelled, never gated */
+    r = eval("MainFrozenSeeds", src, "claim_main_sofar", "-");
+    assert_int_equal(r.status, VERDICT_PASS);
+    assert_string_equal(r.text, "1");
+    r = eval("MainFrozenJoint", src, "claim_main_sofar", "-");
+    ASSERT_EXACT(r.value, err_of(1, 0, 0));
+    assert_int_equal(r.gate, VERDICT_PENDING);
+}
+
+static void units_missing_in_the_middle_are_named(void **st)
+{
+    (void)st;
+    const char *dir = fixture("reading_claims_gaps", 12);
+    char p[800], src[800];
+    snprintf(p, sizeof p, "%s/run_s05_indep.tsv", dir);
+    assert_int_equal(unlink(p), 0);
+    snprintf(p, sizeof p, "%s/run_s12_joint.tsv", dir);
+    assert_int_equal(unlink(p), 0);
+    snprintf(src, sizeof src, "%s/run_s*_*.tsv", dir);
+    claim_result r = eval("MainP", src, "claim_main_p", "main.gate:wilcoxon_p_max");
+    assert_int_equal(r.status, VERDICT_PENDING);
+    assert_non_null(strstr(r.why, "10 of 12 seeds frozen"));
+    assert_non_null(strstr(r.why, "missing 2: s05_indep s12_joint"));
+    r = eval("MainFrozenSeeds", src, "claim_main_sofar", "-");
+    assert_string_equal(r.text, "10");
+}
+
+static void twelve_seeds_give_the_gated_claims(void **st)
+{
+    (void)st;
+    const char *dir = fixture("reading_claims_full", 12);
+    char src[800], base[800];
+    snprintf(src, sizeof src, "%s/run_s*_*.tsv", dir);
+    snprintf(base, sizeof base, "%s/baselines.tsv", dir);
+    const double mj = median_over_seeds(0, 0), mi = median_over_seeds(1, 0), ms = median_over_seeds(0, 1);
+    claim_result r = eval("MainRel", src, "claim_main_rel", "main.gate:rel_improvement_min");
+    assert_int_equal(r.status, VERDICT_PASS);
+    ASSERT_EXACT(r.value, 100.0 * ((mi - mj) / mi));
+    assert_int_equal(r.gate, VERDICT_PASS);
+    r = eval("MainJoint", src, "claim_main_median", "-");
+    ASSERT_EXACT(r.value, mj);
+    r = eval("MainP", src, "claim_main_p", "main.gate:wilcoxon_p_max");
+    ASSERT_EXACT(r.value, 2.0 / 4096.0);
+    assert_int_equal(r.gate, VERDICT_PASS);
+    /* the shuffled joint arm barely worse: the precondition fails, a finding */
+    r = eval("MainGeomRatio", src, "claim_main_geom_ratio", "main.gate:shuffle_ratio_min");
+    ASSERT_EXACT(r.value, ms / mj);
+    assert_int_equal(r.gate, VERDICT_FAIL);
+    r = eval("MainIso", base, "claim_main_iso", "main.gate:joint_over_direction_blind_max");
+    assert_int_equal(r.gate, VERDICT_FAIL); /* joint ~0.42 over blind ~0.78 > 0.5 */
+    r = eval("MainFrozenRel", src, "claim_main_sofar", "-");
+    ASSERT_EXACT(r.value, 100.0 * (mi - mj) / mi);
+    /* the turned-geometry probe over the same seeds: median rotated / median joint */
+    r = eval("MainFrozenRotRatio", src, "claim_main_sofar", "-");
+    ASSERT_EXACT(r.value, median_over_seeds(0, 2) / mj);
+    r = eval("ExtrapLowRel", src, "claim_extrap_rel", "extrapolation.gate:rel_improvement_min");
+    assert_int_equal(r.status, VERDICT_PASS);
+    double j[12], i[12], a, b;
+    for (int s = 1; s <= 12; s++) { j[s - 1] = w1_of(s, 0, 0, 3.0) * 0.8; i[s - 1] = w1_of(s, 1, 0, 3.0) * 0.8; }
+    stats_median(j, 12, &a);
+    stats_median(i, 12, &b);
+    ASSERT_EXACT(r.value, 100.0 * ((b - a) / b));
+    assert_int_equal(r.gate, VERDICT_PASS);
+    r = eval("MainStepsPerSec", src, "claim_main_meta", "-");
+    ASSERT_EXACT(r.value, 13.75); /* median of 8..19 and 8.5..19.5: (13.5 + 14) / 2 */
+    r = eval("MainParams", src, "claim_main_meta", "-");
+    ASSERT_EXACT(r.value, 159000);
+}
+
+/* The unit set and main-summary's runs.tsv give the same claims, bit for bit. */
+static void unit_set_equals_main_summary(void **st)
+{
+    (void)st;
+    const char *dir = fixture("reading_claims_summary", 12);
+    char root[700], src[800], runs[800], ex[800];
+    snprintf(root, sizeof root, "%.*s", (int)(strlen(dir) - strlen("/main")), dir);
+    char *argv[] = {"crownshy", "main-summary"};
+    mainsum_summary_args a = {.dir = root, .seeds = 12, .argc = 2, .argv = argv};
+    assert_int_equal(mainsum_summary(&a), CS_OK);
+    snprintf(src, sizeof src, "%s/run_s*_*.tsv", dir);
+    snprintf(runs, sizeof runs, "%s/runs.tsv", dir);
+    snprintf(ex, sizeof ex, "%s/extrapolation/runs.tsv", root);
+    static const struct { const char *m, *fn; int ex; } k[] = {
+        {"MainRel", "claim_main_rel", 0}, {"MainJoint", "claim_main_median", 0}, {"MainIndepHi", "claim_main_range", 0},
+        {"MainP", "claim_main_p", 0}, {"MainGeomRatio", "claim_main_geom_ratio", 0}, {"MainRotRatio", "claim_main_probe", 0},
+        {"MainGeomRatioIndep", "claim_main_probe", 0}, {"ExtrapLowRel", "claim_extrap_rel", 1}, {"ExtrapHighRel", "claim_extrap_rel", 1},
+        {"ExtrapP", "claim_extrap_p", 1},
+    };
+    for (size_t q = 0; q < sizeof k / sizeof *k; q++) {
+        claim_result u = eval(k[q].m, src, k[q].fn, "-"), s = eval(k[q].m, k[q].ex ? ex : runs, k[q].fn, "-");
+        if (u.status != VERDICT_PASS || s.status != VERDICT_PASS) fail_msg("%s: %s / %s", k[q].m, u.why, s.why);
+        if (u.value != s.value) fail_msg("%s: units %.17g, main-summary %.17g", k[q].m, u.value, s.value);
+    }
+}
+
+static void extension_map_judges_extension_rows_only(void **st)
+{
+    (void)st;
+    claims c;
+    assert_int_equal(claims_load(PATHS_CLAIMS, &c), CS_OK);
+    const claim_row *p = claims_find(&c, "PairMainRel"), *m = claims_find(&c, "MainRel");
+    assert_non_null(p);
+    assert_non_null(m);
+    assert_string_equal(p->gate, "main.gate:rel_improvement_min");
+    assert_true(p->gate_map_ext && claims_is_extension(p));
+    assert_string_equal(m->gate, "main.gate:rel_improvement_min");
+    assert_false(m->gate_map_ext || claims_is_extension(m));
+    /* the paper's claims read the paper reading; the pair extension its own tables */
+    assert_non_null(strstr(m->source, "frozen/paper-reading/"));
+    assert_string_equal(p->source, "frozen/main/runs.tsv");
+    const char *dir = tu_tmpdir("reading_claims_maps");
+    char bad[1200], cmd[4000];
+    snprintf(bad, sizeof bad, "%s/ext.tsv", dir);
+    tu_write(bad, "macro\tgate\nMainJoint\tmain.gate:rel_improvement_min\n");
+    assert_int_equal(claims_apply_gate_maps(&c, PATHS_GATE_MAP, bad), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "extension claims only"));
+    snprintf(bad, sizeof bad, "%s/main.tsv", dir);
+    snprintf(cmd, sizeof cmd, "cp %s %s && printf 'PairMainP\\tmain.gate:wilcoxon_p_max\\n' >> %s", PATHS_GATE_MAP, bad, bad);
+    assert_int_equal(system(cmd), 0);
+    assert_int_equal(claims_apply_gate_maps(&c, bad, PATHS_GATE_MAP_EXT), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), PATHS_GATE_MAP_EXT));
+    claims_free(&c);
+}
+
+static void comparison_medians_and_ranges(void **st)
+{
+    (void)st;
+    const char *dir = tu_tmpdir("reading_claims_comp");
+    char p[700];
+    snprintf(p, sizeof p, "%s/dist_summary.tsv", dir);
+    tu_write(p, "probe\tsource\tpatches\tmedian_nn_q05\tmedian_nn_q50\tmedian_nn_q95\toverlapping_q05\toverlapping_q50\toverlapping_q95\tno_overlap_fraction\n"
+                "comparison\tteacher\t256\t0.28\t0.30\t0.32\t0\t0\t0\t1\n"
+                "comparison\tjoint\t256\t0.23\t0.28\t0.33\t0\t2\t4\t0.46875\n"
+                "comparison\tindep\t256\t-0.4\t-0.12\t0.14\t14\t20\t23\t0\n"
+                "dart\tteacher\t256\t0.2\t0.23\t0.26\t0\t0\t0\t1\n"
+                "dart\tjoint\t256\t-0.3\t-0.14\t0.02\t16\t20\t23\t0\n");
+    claim_row r;
+    claim_result res;
+    row_of(&r, "CompIndepOverlap", p, "claim_comp_overlap", "-", "%.0f");
+    claims_eval(&r, &res);
+    assert_string_equal(res.text, "20");
+    row_of(&r, "PairCompGenOverlapRange", p, "claim_comp_overlap", "-", "text");
+    claims_eval(&r, &res);
+    assert_string_equal(res.text, "0 to 4");
+    row_of(&r, "GenCompIndepKRange", p, "claim_comp_k", "-", "text");
+    claims_eval(&r, &res);
+    assert_string_equal(res.text, "-0.400 to +0.140");
+    row_of(&r, "DartProbeGenK", p, "claim_comp_dart", "-", "%+.3f");
+    claims_eval(&r, &res);
+    assert_string_equal(res.text, "-0.140");
+    row_of(&r, "CompGenNoOverlap", p, "claim_comp_no_overlap", "-", "%.0f");
+    claims_eval(&r, &res);
+    assert_string_equal(res.text, "47");
+}
+
+/* A reading's table not frozen yet is pending; any other missing frozen file fails. */
+static void awaited_tables_pend_others_fail(void **st)
+{
+    (void)st;
+    claim_result r = eval("CompGenOverlap", "frozen/paper-reading/comparison/none.tsv", "claim_comp_overlap", "-");
+    assert_int_equal(r.status, VERDICT_PENDING);
+    assert_non_null(strstr(r.why, "not frozen yet"));
+    r = eval("CompGenOverlap", "frozen/comparison/none.tsv", "claim_comp_overlap", "-");
+    assert_int_equal(r.status, VERDICT_FAIL);
+    r = eval("PlainMainJoint", "frozen/model-readings/plain/main/run_s*_*.tsv", "claim_main_median", "-");
+    assert_int_equal(r.status, VERDICT_PENDING);
+    assert_non_null(strstr(r.why, "of 4 seeds frozen"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest t[] = {
+        cmocka_unit_test(one_seed_is_pending_with_the_missing_units),
+        cmocka_unit_test(units_missing_in_the_middle_are_named),
+        cmocka_unit_test(twelve_seeds_give_the_gated_claims),
+        cmocka_unit_test(unit_set_equals_main_summary),
+        cmocka_unit_test(extension_map_judges_extension_rows_only),
+        cmocka_unit_test(comparison_medians_and_ranges),
+        cmocka_unit_test(awaited_tables_pend_others_fail),
+    };
+    return cmocka_run_group_tests(t, NULL, NULL);
+}
