@@ -14,7 +14,8 @@
  *              its row must equal the claim's value bit for bit;
  *   none       no replicate unit frozen for it: the interval is absent, with
  *              the reason, and counted as such.
- * Intervals are in the claim's display units (as claim_result.value). */
+ * Extension claims (a reading added after the first verdict) get theirs
+ * the same way. Intervals are in the claim's display units (as claim_result.value). */
 #ifndef INTERVAL_H
 #define INTERVAL_H
 #include "boot.h"
