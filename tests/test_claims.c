@@ -4,12 +4,17 @@
  * text, and the gate verdict the paper states. A claim whose experiment has
  * not been frozen must appear as \pending in numbers.tex, with a reason.
  * An honest gate FAIL is consistent (the paper must say FAIL); it is verify,
- * not this test, that reports the failed gate. */
+ * not this test, that reports the failed gate. A measured claim's 95 %
+ * interval is recomputed from its replicates and must equal
+ * paper/intervals.tsv bit for bit. */
 #include "testutil.h"
 #include "claims.h"
 #include "verify.h"
+#include "agree.h"
+#include "paths.h"
 
 static numbers_tex g_nt;
+static interval_table g_it;
 
 static void claim_test(void **state)
 {
@@ -23,6 +28,12 @@ static void claim_test(void **state)
     if (r.status == VERDICT_PASS && !r.text[0]) fail_msg("%s computed but empty", row->macro);
     if (r.status == VERDICT_PASS && strcmp(row->format, "text") && !isfinite(r.value))
         fail_msg("%s: non-finite value %.17g", row->macro, r.value);
+    /* its 95 % interval recomputed from the replicates, bit for bit (design.md §6.1) */
+    claim_interval ci;
+    if (interval_eval(&g_it, row, &r, &ci) != CS_OK) fail_msg("%s: interval: %s", row->macro, cs_errmsg());
+    if (agree_check_interval(PATHS_INTERVALS_OUT, row, &ci, msg, sizeof msg) == VERDICT_FAIL) fail_msg("%s", msg);
+    if (!strcmp(row->kind, "measured") && r.status == VERDICT_PASS && !ci.has && !ci.why[0])
+        fail_msg("%s: measured, computed, without an interval and without a reason", row->macro);
 }
 
 /* Every W1 of the frozen E3/E4 run tables and of the baselines recomputed
@@ -42,6 +53,7 @@ int main(void)
     claims c;
     if (claims_load("audit/claims.tsv", &c) != CS_OK) { fprintf(stderr, "%s\n", cs_errmsg()); return 1; }
     if (numbers_read("paper/numbers.tex", &g_nt) != CS_OK) { fprintf(stderr, "%s\n", cs_errmsg()); return 1; }
+    if (interval_table_load(PATHS_INTERVALS, &g_it) != CS_OK) { fprintf(stderr, "%s\n", cs_errmsg()); return 1; }
     struct CMUnitTest *t = calloc(c.n + 1, sizeof *t);
     char (*names)[80] = calloc(c.n, sizeof *names);
     for (size_t i = 0; i < c.n; i++) {
@@ -55,6 +67,7 @@ int main(void)
     int rc = _cmocka_run_group_tests("claims", t, c.n + 1, NULL, NULL);
     free(t); free(names);
     numbers_free(&g_nt);
+    interval_table_free(&g_it);
     claims_free(&c);
     return rc;
 }

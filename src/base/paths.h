@@ -38,7 +38,13 @@
 #define PATHS_DESIGN_NUMBERS "audit/design_numbers.tsv"
 /* The claim-computing code, pinned file by file. */
 #define PATHS_CLAIMS_SRC_DIR "src/claims"
+/* How each measured claim's interval is computed (design.md §6.1; pinned). */
+#define PATHS_INTERVALS "audit/intervals.tsv"
 #define PATHS_NUMBERS "paper/numbers.tex"
+/* Every measured claim's interval, %.17g (generated; the claim tests' reference). */
+#define PATHS_INTERVALS_OUT "paper/intervals.tsv"
+/* The one-page reproduction summary that opens the write-up (generated). */
+#define PATHS_SUMMARY_TEX "paper/summary.tex"
 #define PATHS_COMPARISON "paper/comparison.tex"
 #define PATHS_READINGS_TEX "paper/readings.tex"
 #define PATHS_READINGS_DIR "frozen/readings"

@@ -25,13 +25,18 @@ cs_status attrib_load(const char *readings_summary, const char *sens_summary, at
 void attrib_free(attrib_data *d);
 /* The verdict of one claim (ATTRIB_NA: not a measured number with a reference). */
 void attrib_judge(const attrib_data *d, const claim_row *row, const claim_result *res, attrib_result *out);
+/* Against our interval [lo, hi] (design.md §6.1): does a reading or an
+ * unstated choice move our interval onto the paper's value p? A run reading
+ * of value x does when [lo, hi] + (x - v) holds p (v: our value); a choice's
+ * sensitivity value x does when [lo, hi] + (x - c) holds p (c: the centre
+ * unit, v without one), or, for a non-categorical choice, when p lies
+ * between v and v + (x - c). 1 when reached, `by` naming what reaches it
+ * ("reading R", or the choice); 0 otherwise (*tested = 0 when nothing was
+ * measured for the claim). */
+int attrib_reached(const attrib_data *d, const claim_row *row, const claim_result *res, double lo, double hi,
+                   char *by, size_t n, int *tested);
 typedef struct { size_t measured, in10, in25, attributed, unexplained, untested; } attrib_counts;
 void attrib_count(const attrib_data *d, const claims *c, const claim_result *res, attrib_counts *k);
 /* The one summary line (plain text; tex != 0: LaTeX percent signs). */
 void attrib_line(const attrib_counts *k, int tex, char *buf, size_t n);
-/* Write paper/comparison.tex: every claim, the reference paper's value, ours,
- * the gate verdict, whether the values agree and, beyond 10 %, what reaches
- * the paper's value (at NULL: nothing measured); generated, atomic. */
-cs_status attrib_write_comparison(const char *path, const claims *c, const claim_result *res, const attrib_data *at);
-
 #endif

@@ -74,7 +74,7 @@ static void registry_row_pins(pin *p, size_t *k)
 /* The design constants no gate carries (design.md §2, §3, §7) and the claim
  * tests (the registry's test column names tests/test_claims.c). */
 static const char *const design_files[] = {"src/base/design.h", "src/forest/crown.h", NULL};
-static const char *const claim_tests[] = {"tests/test_claims.c", "tests/test_field_claims.c", "tests/testutil.h", "tests/tamper.sh", NULL};
+static const char *const claim_tests[] = {"tests/test_claims.c", "tests/test_field_claims.c", "tests/test_interval.c", "tests/testutil.h", "tests/tamper.sh", NULL};
 
 /* Every pin of the instrument as it is now; *n entries (at most MAXPINS). */
 static void current_pins(pin *p, size_t *n)
@@ -101,6 +101,8 @@ static void current_pins(pin *p, size_t *n)
     paths_list_free(&cc);
     add_file_pin(p, &k, "registry_sha256", PATHS_CLAIMS);
     registry_row_pins(p, &k);
+    /* how every interval is computed (design.md §6.1) */
+    add_file_pin(p, &k, "intervals_sha256", PATHS_INTERVALS);
     add_file_pin(p, &k, "aggregates_sha256", PATHS_AGGREGATES);
     /* what else a number rests on: the record of superseded readings, the
      * design grids and the preregistered gates' hashes, the design constants
@@ -265,6 +267,8 @@ static void check_pins(const claims *c, checklist *cl)
                         if (pass ? c->rows[i].gate_map_line != 0 : strcmp(c->rows[i].gate, c->rows[i].gate_reg) != 0)
                             off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
                 if (!cnt) snprintf(affected, sizeof affected, "every gated claim");
+            } else if (!strcmp(key, "intervals_sha256")) {
+                snprintf(affected, sizeof affected, "the interval of every measured claim (%s)", path);
             } else if (!strcmp(key, "registry_sha256") || !strcmp(key, "aggregates_sha256")) {
                 snprintf(affected, sizeof affected, "every claim (%s)", path);
             } else if (!strcmp(key, "estimator_sha256") || !strcmp(key, "teacher_sha256") || !strcmp(key, "teacher_version")) {

@@ -4,6 +4,7 @@
  * exemption, every relative link resolves. Limits: a marker lies on one line;
  * a number is a plain decimal token ("1.2.0" and "127.0.0.1" are not numbers). */
 #include "audit_docs.h"
+#include "agree.h"
 #include "afile.h"
 #include "audit_evidence.h"
 #include "tsv.h"
@@ -106,19 +107,28 @@ static void findings_rows(sbuf *b, const claims *c, const claim_result *res, int
  * the extension's claims in rows of their own, never in the paper's tally. */
 static void findings(sbuf *b, const claims *c, const claim_result *res)
 {
-    size_t k[3] = {0}, ke[3] = {0}, sup = 0, m, a10, a25;
+    size_t k[3] = {0}, ke[3] = {0}, sup = 0;
     for (size_t i = 0; i < c->n; i++) {
         if (!strcmp(c->rows[i].gate, "-")) continue;
         if (claims_is_extension(&c->rows[i])) { ke[judged(&c->rows[i], &res[i])]++; continue; }
         k[judged(&c->rows[i], &res[i])]++;
         sup += superseded(&c->rows[i]) != 0;
     }
-    claims_within(c, res, &m, &a10, &a25);
+    /* the agreement classes against our own intervals (design.md §6.1) */
+    const claim_interval *ci = NULL;
+    agree_counts ak = {0};
+    attrib_data at = {0};
+    if (!agree_intervals_cached(c, res, &ci) && !attrib_load(PATHS_READINGS_SUMMARY, PATHS_SENS_SUMMARY, &at)) {
+        agree_count(&at, c, res, ci, &ak);
+        attrib_free(&at);
+    }
     sb_printf(b, "The reference paper's gated claims (E3/E4: its generator as written), judged by the preregistered gates: "
                  "**%zu reproduced, %zu not reproduced, %zu pending** (pending: data not on this machine, or units still running%s). "
                  "The pair extension, same thresholds (rows marked pair): %zu meet, %zu do not, %zu pending. "
-                 "Of %zu measured numbers, %zu lie within 10 %% and %zu within 25 %% of the paper's value.\n\n", k[0], k[1], k[2],
-              sup ? ", or a table made by a superseded reading of the pinned code, until its unit is re-run" : "", ke[0], ke[1], ke[2], m, a10, a25);
+                 "Against our 95 %% intervals (`crownshy report`): %zu inside, %zu reached by a reading or choice, "
+                 "%zu unexplained, %zu without one.\n\n", k[0], k[1], k[2],
+              sup ? ", or a table made by a superseded reading of the pinned code, until its unit is re-run" : "", ke[0], ke[1], ke[2],
+              ak.inside, ak.reached, ak.unexplained, ak.nointerval);
     sb_printf(b, "| gate | reproduced | not reproduced | pending | claims: ours / paper |\n|---|---|---|---|---|\n");
     findings_rows(b, c, res, 0);
     findings_rows(b, c, res, 1);

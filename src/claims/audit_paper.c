@@ -3,6 +3,7 @@
  * The hand-written text is read by audit_tex.c. */
 #include "audit_paper.h"
 #include "afile.h"
+#include "agree.h"
 #include "attrib.h"
 #include "readings.h"
 #include "sens.h"
@@ -14,7 +15,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-static const char *const generated[] = {PATHS_NUMBERS, PATHS_COMPARISON, PATHS_READINGS_TEX, PATHS_SENS_TEX, NULL};
+static const char *const generated[] = {PATHS_NUMBERS, PATHS_COMPARISON, PATHS_READINGS_TEX, PATHS_SENS_TEX, PATHS_INTERVALS_OUT, PATHS_SUMMARY_TEX, NULL};
 
 int paper_is_generated(const char *path)
 {
@@ -63,8 +64,15 @@ cs_status paper_generate(const claims *c, const claim_result *res, const char *d
     /* the comparison last: its attribution column reads the two summaries just checked */
     attrib_data at;
     if (!st) st = attrib_load(PATHS_READINGS_SUMMARY, PATHS_SENS_SUMMARY, &at);
+    const claim_interval *ci = NULL;
+    if (!st) st = agree_intervals_cached(c, res, &ci);
+    snprintf(p, sizeof p, "%s/intervals.tsv", dir);
+    if (!st) st = agree_write_intervals(p, c, ci);
+    snprintf(p, sizeof p, "%s/summary.tex", dir);
+    if (!st) st = agree_write_summary(p, c, res, ci, &at);
     snprintf(p, sizeof p, "%s/comparison.tex", dir);
-    if (!st) { st = attrib_write_comparison(p, c, res, &at); attrib_free(&at); }
+    if (!st) st = agree_write_comparison(p, c, res, &at, ci);
+    attrib_free(&at);
     return st;
 }
 

@@ -1,5 +1,6 @@
 /* verify: the `make verify` driver and `crownshy trace` (design.md §9). */
 #include "verify.h"
+#include "agree.h"
 #include "attrib.h"
 #include "study.h"
 #include <stdio.h>
@@ -105,8 +106,64 @@ static cs_status install_file(const char *src, const char *dst)
     return afile_commit(&a);
 }
 
+/* verify draws the figures while it audits: every script's gnuplot is started
+ * in the background, two at a time, into build/figures.<pid>/ (status in
+ * <script>.rc); verify_figures then waits and compares. */
+static pid_t g_fig_pid = -1;
+
+static void figures_outdir(char *buf, size_t n)
+{
+    snprintf(buf, n, "build/figures.%ld", (long)getpid());
+}
+
+void verify_figures_launch(void)
+{
+    char outdir[128], jobs[200], cmd[400];
+    figures_outdir(outdir, sizeof outdir);
+    if (afile_mkdir_parents(outdir) || (mkdir(outdir, 0777) && errno != EEXIST) || !has_gnuplot()) return;
+    paths_list gps;
+    if (paths_list_files(PATHS_FIGURES_DIR, ".gp", 0, &gps)) return;
+    /* one shell line per script; xargs runs two at a time */
+    snprintf(jobs, sizeof jobs, "%s/jobs", outdir);
+    FILE *f = fopen(jobs, "w");
+    for (size_t i = 0; f && i < gps.n; i++) {
+        const char *base = gps.p[i] + strlen(PATHS_FIGURES_DIR) + 1;
+        fprintf(f, "gnuplot -e \"outdir='%s'\" '%s' > '%s/%s.log' 2>&1; echo $? > '%s/%s.rc'\n", outdir, gps.p[i], outdir, base, outdir, base);
+    }
+    paths_list_free(&gps);
+    if (!f || fclose(f)) return;
+    snprintf(cmd, sizeof cmd, "xargs -P 2 -d '\\n' -I{} sh -c {} < '%s'", jobs);
+    fflush(stdout);
+    pid_t pid = fork();
+    if (pid == 0) {
+        execl("/bin/sh", "sh", "-c", cmd, (char *)NULL);
+        _exit(127);
+    }
+    g_fig_pid = pid;
+}
+
+/* The launched redraw of one script: its exit status, or -1 when not launched. */
+static int launched_status(const char *outdir, const char *base)
+{
+    if (g_fig_pid < 0) return -1;
+    char p[400];
+    snprintf(p, sizeof p, "%s/%s.rc", outdir, base);
+    FILE *f = fopen(p, "r");
+    int rc = 1;
+    if (f) { if (fscanf(f, "%d", &rc) != 1) rc = 1; fclose(f); }
+    return rc;
+}
+
+static void figures_wait(void)
+{
+    if (g_fig_pid <= 0) return;
+    int ws;
+    while (waitpid(g_fig_pid, &ws, 0) < 0 && errno == EINTR) {}
+}
+
 void verify_figures(checklist *cl, int install, const claims *c)
 {
+    figures_wait();
     paths_list gps;
     if (paths_list_files(PATHS_FIGURES_DIR, ".gp", 0, &gps)) { checklist_add(cl, VERDICT_FAIL, "figures", "%s", cs_errmsg()); return; }
     int gp = has_gnuplot();
@@ -114,7 +171,7 @@ void verify_figures(checklist *cl, int install, const claims *c)
      * with the committed PNG and never writes into figures/; `crownshy
      * figures` installs a redraw only when its script succeeded */
     char outdir[128];
-    snprintf(outdir, sizeof outdir, "build/figures.%ld", (long)getpid());
+    figures_outdir(outdir, sizeof outdir);
     if (afile_mkdir_parents(outdir) || (mkdir(outdir, 0777) && errno != EEXIST)) {
         checklist_add(cl, VERDICT_FAIL, "figures", "%s: cannot create: %s", outdir, strerror(errno));
         paths_list_free(&gps);
@@ -151,7 +208,9 @@ void verify_figures(checklist *cl, int install, const claims *c)
         if (!gp) { checklist_add(cl, VERDICT_FAIL, item, "gnuplot not installed (make deps)"); continue; }
         char cmd[1400];
         snprintf(cmd, sizeof cmd, "gnuplot -e \"outdir='%s'\" '%s' > %s/%s.log 2>&1", outdir, script, outdir, base);
-        if (system(cmd) != 0) { checklist_add(cl, VERDICT_FAIL, item, "gnuplot %s failed (see %s/%s.log); claims: %s", script, outdir, base, feeds); continue; }
+        int rc = launched_status(outdir, base);
+        if (rc < 0) rc = system(cmd);
+        if (rc != 0) { checklist_add(cl, VERDICT_FAIL, item, "gnuplot %s failed (see %s/%s.log); claims: %s", script, outdir, base, feeds); continue; }
         char drawn[300];
         snprintf(drawn, sizeof drawn, "%s/%s.png", outdir, stem);
         if (install) {
@@ -246,11 +305,22 @@ static void tally_extension(const claim_row *row, const claim_result *r, verdict
 /* One line per claim: consistent or not, and its gate's verdict (a table
  * made by a superseded reading is pending, never reproduced nor not). */
 static void print_claims(const claims *c, const claim_result *res, const numbers_tex *nt, const attrib_data *at,
-                         size_t count[3], gate_tally *t)
+                         const claim_interval *ci, size_t count[3], gate_tally *t)
 {
     for (size_t i = 0; i < c->n; i++) {
         char msg[1200];
         verdict v = verify_consistent(&c->rows[i], &res[i], nt, msg, sizeof msg);
+        /* the interval recomputed from its replicates, against the generated table */
+        if (v != VERDICT_FAIL && ci[i].why[0] && !strncmp(ci[i].why, "interval error: ", 16)) {
+            v = VERDICT_FAIL;
+            snprintf(msg, sizeof msg, "%s: %s", c->rows[i].macro, ci[i].why);
+        } else if (v != VERDICT_FAIL && res[i].status == VERDICT_PASS) {
+            char imsg[1200];
+            if (agree_check_interval(PATHS_INTERVALS_OUT, &c->rows[i], &ci[i], imsg, sizeof imsg) == VERDICT_FAIL) {
+                v = VERDICT_FAIL;
+                snprintf(msg, sizeof msg, "%s", imsg);
+            }
+        }
         int gated = strcmp(c->rows[i].gate, "-") != 0;
         const char *label = verdict_name(v);
         const int ext = gated && claims_is_extension(&c->rows[i]);
@@ -290,11 +360,15 @@ static void print_claims(const claims *c, const claim_result *res, const numbers
         {
             attrib_result ar;
             attrib_judge(at, &c->rows[i], &res[i], &ar);
-            snprintf(dist, sizeof dist, " [paper %s: %+.1f %%%s%.240s]", c->rows[i].reference, 100.0 * rel,
+            agree_result ag;
+            agree_judge(at, &c->rows[i], &res[i], &ci[i], &ag);
+            snprintf(dist, sizeof dist, " [paper %s: %+.1f %%%s%.160s; %s%s%.120s]", c->rows[i].reference, 100.0 * rel,
                      ar.kind == ATTRIB_EXPLAINED ? "; reached by " : ar.kind == ATTRIB_UNEXPLAINED ? "; unexplained"
-                     : ar.kind == ATTRIB_UNTESTED ? "; unexplained, not varied" : "", ar.kind == ATTRIB_EXPLAINED ? ar.by : "");
+                     : ar.kind == ATTRIB_UNTESTED ? "; unexplained, not varied" : "", ar.kind == ATTRIB_EXPLAINED ? ar.by : "",
+                     agree_name(ag.kind), ag.by[0] ? ": " : "", ag.by);
         }
-        printf("  %-7s %-19s %-12s %-10s %-8s %s%s\n", label, c->rows[i].macro, val, c->rows[i].kind, g, msg, dist);
+        const char *iv = !strcmp(c->rows[i].kind, "measured") ? (ci[i].has ? ci[i].text : "none") : "-";
+        printf("  %-7s %-19s %-12s %-22s %-10s %-8s %s%s\n", label, c->rows[i].macro, val, iv, c->rows[i].kind, g, msg, dist);
         count[v]++;
     }
 }
@@ -305,8 +379,9 @@ cs_status verify_run(const verify_opts *o)
     claim_result *res;
     cs_status st = verify_preflight();
     if (st) return st;
-    if ((st = verify_load_eval(&c, &res))) return st;
-    if ((st = verify_external_inputs(&c, res, "verify"))) { free(res); claims_free(&c); return st; }
+    if (!o->no_figures) verify_figures_launch();
+    if ((st = verify_load_eval(&c, &res))) { figures_wait(); return st; }
+    if ((st = verify_external_inputs(&c, res, "verify"))) { figures_wait(); free(res); claims_free(&c); return st; }
     numbers_tex nt;
     int have_nt = numbers_read(PATHS_NUMBERS, &nt) == CS_OK;
     char nterr[512];
@@ -321,13 +396,17 @@ cs_status verify_run(const verify_opts *o)
     checklist_free(&cl);
 
     printf("\n== claims (recomputed from frozen/ and compared with paper/numbers.tex; a failing gate is a finding: NOTREP)\n");
-    printf("  %-7s %-19s %-12s %-10s %-8s %s\n", "status", "macro", "value", "kind", "gate", "source / reason");
+    printf("  %-7s %-19s %-12s %-22s %-10s %-8s %s\n", "status", "macro", "value", "95 % interval", "kind", "gate", "source / reason");
     if (!have_nt) { printf("  FAIL    paper/numbers.tex unreadable: %s\n", nterr); count[VERDICT_FAIL]++; }
     gate_tally gt = {0};
     /* the attribution of each difference (attrib.h), from the frozen summaries */
     attrib_data at = {0};
     int at_ok = attrib_load(PATHS_READINGS_SUMMARY, PATHS_SENS_SUMMARY, &at) == CS_OK;
-    print_claims(&c, res, have_nt ? &nt : NULL, &at, count, &gt);
+    const claim_interval *ci = NULL;
+    cs_status ist = agree_intervals_cached(&c, res, &ci);
+    if (ist) printf("  FAIL    intervals: %s\n", cs_errmsg());
+    if (ist) count[VERDICT_FAIL]++;
+    print_claims(&c, res, have_nt ? &nt : NULL, &at, ci, count, &gt);
     const size_t rep = gt.rep, notrep = gt.notrep, gpend = gt.gpend;
     const char *notrep_list = gt.notrep_list;
 
@@ -345,11 +424,15 @@ cs_status verify_run(const verify_opts *o)
     if (!at_ok) printf("(attribution: %s)\n", cs_errmsg());
     attrib_counts ak;
     attrib_count(&at, &c, res, &ak);
+    agree_counts gk;
+    agree_count(&at, &c, res, ci, &gk);
     attrib_free(&at);
-    char aline[600];
+    char aline[600], gline[800];
     attrib_line(&ak, 0, aline, sizeof aline);
+    agree_line(&gk, 0, gline, sizeof gline);
     printf("\n%zu pending (input data missing on this machine, or a reading's units not yet frozen: reason above; never counted as passed)\n", count[VERDICT_PENDING]);
     printf("%s (distance, not a verdict)\n", aline);
+    printf("%s\n", gline);
     printf("reference paper's gated claims: %zu reproduced, %zu not reproduced%s%s%s, %zu pending\n", rep, notrep,
            notrep ? " (" : "", notrep_list, notrep ? ")" : "", gpend);
     if (gt.ext[0] + gt.ext[1] + gt.ext[2])

@@ -42,6 +42,7 @@ static int cli_cmd_version(int argc, char **argv)
 
 static const cli_cmd cli_cmds[] = {
     {"verify", cli_cmd_verify, G_REVIEW, "audit, recompute every claim, judge the gates, redraw the figures (start here)"},
+    {"report", cli_cmd_report, G_REVIEW, "the reproduction summary: paper vs ours with its 95 % interval, gate, agreement class"},
     {"trace", cli_cmd_trace, G_REVIEW, "one paper macro: its value, frozen file, computing function, gate, test"},
     {"audit", cli_cmd_audit, G_REVIEW, "the audit alone: pins, frozen hashes, provenance, registry, paper files"},
     {"gates", cli_cmd_gates, G_REVIEW, "parse and list the preregistered gate files"},

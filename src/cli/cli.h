@@ -10,6 +10,7 @@ int cli_cmd_verify(int argc, char **argv);
 int cli_cmd_numbers(int argc, char **argv);
 int cli_cmd_audit(int argc, char **argv);
 int cli_cmd_trace(int argc, char **argv);
+int cli_cmd_report(int argc, char **argv);
 int cli_cmd_pin(int argc, char **argv);
 int cli_cmd_hash_frozen(int argc, char **argv);
 int cli_cmd_gates(int argc, char **argv);

@@ -13,6 +13,7 @@
 #include "verify.h"
 #include "audit_paper.h"
 #include "audit_docs.h"
+#include "agree.h"
 #include <unistd.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -85,18 +86,18 @@ int cli_cmd_numbers(int argc, char **argv)
     int readings = 0;
     st = paper_generate(&c, res, dir, &readings);
     /* readings: bit 1 readings.tex, bit 2 sensitivity.tex were generated */
-    const char *names[] = {"numbers.tex", "comparison.tex", "readings.tex", "sensitivity.tex"},
-               *dst[] = {PATHS_NUMBERS, PATHS_COMPARISON, PATHS_READINGS_TEX, PATHS_SENS_TEX};
-    for (int i = 0; i < 4; i++) {
+    const char *names[] = {"numbers.tex", "comparison.tex", "intervals.tsv", "summary.tex", "readings.tex", "sensitivity.tex"},
+               *dst[] = {PATHS_NUMBERS, PATHS_COMPARISON, PATHS_INTERVALS_OUT, PATHS_SUMMARY_TEX, PATHS_READINGS_TEX, PATHS_SENS_TEX};
+    for (int i = 0; i < 6; i++) {
         char p[256];
         snprintf(p, sizeof p, "%s/%s", dir, names[i]);
-        if (!st && (i < 2 || (readings & (i == 2 ? 1 : 2))) && rename(p, dst[i]) != 0) st = cs_err(CS_EIO, "%s: cannot move to %s", p, dst[i]);
+        if (!st && (i < 4 || (readings & (i == 4 ? 1 : 2))) && rename(p, dst[i]) != 0) st = cs_err(CS_EIO, "%s: cannot move to %s", p, dst[i]);
         unlink(p);
     }
     rmdir(dir);
     size_t pend = 0;
     for (size_t i = 0; i < c.n; i++) pend += res[i].status != VERDICT_PASS;
-    if (!st) printf("wrote %s, %s%s%s: %zu claims (%zu pending)\n", PATHS_NUMBERS, PATHS_COMPARISON, readings & 1 ? ", " PATHS_READINGS_TEX : "",
+    if (!st) printf("wrote %s, %s, %s, %s%s%s: %zu claims (%zu pending)\n", PATHS_NUMBERS, PATHS_COMPARISON, PATHS_INTERVALS_OUT, PATHS_SUMMARY_TEX, readings & 1 ? ", " PATHS_READINGS_TEX : "",
                     readings & 2 ? ", " PATHS_SENS_TEX : "", c.n, pend);
     size_t pages = 0; /* the generated regions of the documentation pages */
     if (!st && !(st = docs_refresh(&c, res, &pages)) && pages) printf("refreshed the generated regions of %zu documentation page(s)\n", pages);
@@ -236,3 +237,26 @@ int cli_cmd_figures(int argc, char **argv)
     return count[VERDICT_FAIL] ? 1 : 0;
 }
 
+
+int cli_cmd_report(int argc, char **argv)
+{
+    const opts_cmd oc = {"report", "", "Print the reproduction summary (the table that opens the write-up, paper/summary.tex):\n"
+                         "every measured claim with a paper value or a gate, ours with its 95 % interval over the\n"
+                         "independent replicate unit, the gate verdict and the agreement class (colour only on a terminal).",
+                         NULL, 0, 0, 0};
+    int r = opts_parse(&oc, argc, argv, NULL, NULL);
+    if (r) return opts_exit_code(r);
+    claims c;
+    claim_result *res;
+    cs_status st = verify_load_eval(&c, &res);
+    if (st) return cli_fail("report", st);
+    const claim_interval *ci;
+    attrib_data at = {0};
+    if (!(st = agree_intervals_cached(&c, res, &ci)) && !(st = attrib_load(PATHS_READINGS_SUMMARY, PATHS_SENS_SUMMARY, &at))) {
+        agree_print_report(stdout, &c, res, ci, &at, isatty(STDOUT_FILENO));
+        attrib_free(&at);
+    }
+    free(res);
+    claims_free(&c);
+    return st ? cli_fail("report", st) : 0;
+}

@@ -217,6 +217,51 @@ cs_status exp_mechanism_ablation(const exp_opts *o)
                           d, beta, o->stands, res);
 }
 
+/* Stand k of the figure stand's family (k = 0: the stand shown) grown in
+ * the three ablation arms: *sd, *r (3 x n x NS radii, arm-major) owned by
+ * the caller, *worst the worst overlap over the arms, fres the arms' numbers. */
+static cs_status figure_stand_grow(const exp_opts *o, unsigned k, double d, const double beta[3], stand **sd, double **r,
+                                   double *worst, cell_result fres[3])
+{
+    *r = NULL;
+    cs_status st = exp_stand_alloc(&o->rd, sd, stems_hardcore, d, EXP_FIG_L, exp_fig_c(&o->rd), "fig/mechanism", k);
+    if (st) return st;
+    size_t n = (*sd)->s->n;
+    *r = malloc(3 * n * NS * sizeof **r);
+    if (!*r) return cs_err(CS_ENOMEM, "experiments: out of memory");
+    for (int a = 0; a < 3 && !st; a++) {
+        teacher_params p;
+        EXP_TEACHER_PARAMS(&o->rd, &p);
+        p.coupled = ablation_coupled[a];
+        p.beta = beta[a];
+        st = stand_grow(*sd, &p, NULL, *r + (size_t)a * n * NS, NULL, worst);
+    }
+    for (int a = 0; a < 3 && !st; a++) st = stand_cell(*sd, *r + (size_t)a * n * NS, &fres[a]);
+    return st;
+}
+
+cs_status exp_mechanism_figure_stand(const exp_opts *o, unsigned k, exp_fig_arm out[3])
+{
+    double d, beta[3], worst = 0.0;
+    cs_status st = ablation_gate(&d, beta);
+    if (st) return st;
+    stand *sd = NULL;
+    double *r = NULL;
+    cell_result fres[3];
+    st = figure_stand_grow(o, k, d, beta, &sd, &r, &worst, fres);
+    for (int a = 0; a < 3 && !st; a++) {
+        snprintf(out[a].arm, sizeof out[a].arm, "%s", ablation_arms[a]);
+        out[a].d = d;
+        for (int q = 0; q < 3; q++) out[a].k[q] = fres[a].k[q];
+        out[a].cover = fres[a].cover;
+        out[a].overlap = fres[a].overlap;
+        out[a].trees = fres[a].trees;
+    }
+    free(r);
+    stand_free(sd);
+    return st;
+}
+
 cs_status exp_mechanism_figure(const exp_opts *o)
 {
     prov pv;
@@ -225,25 +270,14 @@ cs_status exp_mechanism_figure(const exp_opts *o)
     cs_status st = ablation_gate(&d, beta);
     if (st) return st;
     stand *sd = NULL;
-    st = exp_stand_alloc(&o->rd, &sd, stems_hardcore, d, EXP_FIG_L, exp_fig_c(&o->rd), "fig/mechanism", 0);
-    if (st) return st;
+    double *r = NULL, worst = 0.0;
+    cell_result fres[3];
+    st = figure_stand_grow(o, 0, d, beta, &sd, &r, &worst, fres);
+    if (st) { free(r); stand_free(sd); return st; }
     size_t n = sd->s->n;
-    double *r = malloc(3 * n * NS * sizeof *r);
-    if (!r) { stand_free(sd); return cs_err(CS_ENOMEM, "experiments: out of memory"); }
     const char *const *arms = ablation_arms;
-    const int *coupled = ablation_coupled;
-    double worst = 0.0;
-    for (int a = 0; a < 3 && !st; a++) {
-        teacher_params p;
-        EXP_TEACHER_PARAMS(&o->rd, &p);
-        p.coupled = coupled[a];
-        p.beta = beta[a];
-        st = stand_grow(sd, &p, NULL, r + (size_t)a * n * NS, NULL, &worst);
-    }
     /* The ablation numbers on the stand shown (figure_stats.tsv), written
      * before the crowns table that make counts as the unit's target. */
-    cell_result fres[3];
-    for (int a = 0; a < 3 && !st; a++) st = stand_cell(sd, r + (size_t)a * n * NS, &fres[a]);
     if (!st) {
         prov sp = pv;
         sp.worst_overlap_m = worst;

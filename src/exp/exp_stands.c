@@ -77,6 +77,55 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
     return st;
 }
 
+/* Stand k of the point-cloud family at spacing d (k = 0: the figure's). */
+cs_status exp_pointcloud_stand(const exp_opts *o, double d, double beta, unsigned k, exp_pc_row *row, double *worst)
+{
+    stand *sd = NULL;
+    cs_status st = exp_stand_alloc(&o->rd, &sd, stems_hardcore, d, EXP_FIG_L, exp_fig_c(&o->rd), "fig/pointcloud", k);
+    if (st) return st;
+    size_t n = sd->s->n;
+    double *rc = malloc(n * NS * sizeof *rc), *ru = malloc(n * NS * sizeof *ru);
+    unsigned char *fz = malloc(n * NS);
+    if (!rc || !ru || !fz) st = cs_err(CS_ENOMEM, "experiments: out of memory");
+    teacher_params p;
+    EXP_TEACHER_PARAMS(&o->rd, &p);
+    p.beta = beta;
+    p.frozen_out = fz;
+    if (!st) st = stand_grow(sd, &p, NULL, rc, NULL, worst);
+    p.coupled = 0;
+    p.frozen_out = NULL;
+    if (!st) st = stand_grow(sd, &p, NULL, ru, NULL, NULL);
+    size_t m = 0, contact = 0, oc = 0, ou = 0;
+    for (size_t i = 0; i < n && !st; i++) {
+        if (!stems_interior(sd->s, i)) continue;
+        m++;
+        int any = 0;
+        for (int s = 0; s < NS; s++) any |= fz[i * NS + s];
+        contact += (size_t)any;
+        int c_ov = 0, u_ov = 0;
+        for (size_t j = 0; j < n; j++) {
+            if (j == i) continue;
+            const stems *S = sd->s;
+            if (est_clearance(S->x[i], S->y[i], rc + i * NS, S->x[j], S->y[j], rc + j * NS) < 0.0) c_ov = 1;
+            if (est_clearance(S->x[i], S->y[i], ru + i * NS, S->x[j], S->y[j], ru + j * NS) < 0.0) u_ov = 1;
+        }
+        oc += (size_t)c_ov;
+        ou += (size_t)u_ov;
+    }
+    if (!st) {
+        row->stems = n;
+        row->trees = m;
+        row->contact = (double)contact / (double)m;
+        row->ovl_c = (double)oc / (double)m;
+        row->ovl_u = (double)ou / (double)m;
+        row->k1_c = exp_stand_k1(sd, rc);
+        row->k1_u = exp_stand_k1(sd, ru);
+    }
+    free(rc); free(ru); free(fz);
+    stand_free(sd);
+    return st;
+}
+
 /* E8 numbers on the point-cloud stands: per spacing, the share of interior
  * crowns that made contact during coupled growth (a sector froze), the share
  * of interior crowns that interpenetrate a neighbour (some g(i,j) < 0) in
@@ -85,54 +134,10 @@ static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size
 {
     prov pv;
     exp_prov_begin(&pv, "pointcloud", &o->rd, o->argc, o->argv);
-    typedef struct { size_t trees; double contact, ovl_c, ovl_u, k1_c, k1_u; } pc_row;
-    pc_row rows[8];
+    exp_pc_row rows[8];
     double worst = 0.0;
     cs_status st = CS_OK;
-    for (size_t a = 0; a < nd && !st; a++) {
-        stand *sd = NULL;
-        st = exp_stand_alloc(&o->rd, &sd, stems_hardcore, ds[a], EXP_FIG_L, exp_fig_c(&o->rd), "fig/pointcloud", 0);
-        if (st) break;
-        size_t n = sd->s->n;
-        double *rc = malloc(n * NS * sizeof *rc), *ru = malloc(n * NS * sizeof *ru);
-        unsigned char *fz = malloc(n * NS);
-        if (!rc || !ru || !fz) st = cs_err(CS_ENOMEM, "experiments: out of memory");
-        teacher_params p;
-        EXP_TEACHER_PARAMS(&o->rd, &p);
-        p.beta = beta;
-        p.frozen_out = fz;
-        if (!st) st = stand_grow(sd, &p, NULL, rc, NULL, &worst);
-        p.coupled = 0;
-        p.frozen_out = NULL;
-        if (!st) st = stand_grow(sd, &p, NULL, ru, NULL, NULL);
-        size_t m = 0, contact = 0, oc = 0, ou = 0;
-        for (size_t i = 0; i < n && !st; i++) {
-            if (!stems_interior(sd->s, i)) continue;
-            m++;
-            int any = 0;
-            for (int s = 0; s < NS; s++) any |= fz[i * NS + s];
-            contact += (size_t)any;
-            int c_ov = 0, u_ov = 0;
-            for (size_t j = 0; j < n; j++) {
-                if (j == i) continue;
-                const stems *S = sd->s;
-                if (est_clearance(S->x[i], S->y[i], rc + i * NS, S->x[j], S->y[j], rc + j * NS) < 0.0) c_ov = 1;
-                if (est_clearance(S->x[i], S->y[i], ru + i * NS, S->x[j], S->y[j], ru + j * NS) < 0.0) u_ov = 1;
-            }
-            oc += (size_t)c_ov;
-            ou += (size_t)u_ov;
-        }
-        if (!st) {
-            rows[a].trees = m;
-            rows[a].contact = (double)contact / (double)m;
-            rows[a].ovl_c = (double)oc / (double)m;
-            rows[a].ovl_u = (double)ou / (double)m;
-            rows[a].k1_c = exp_stand_k1(sd, rc);
-            rows[a].k1_u = exp_stand_k1(sd, ru);
-        }
-        free(rc); free(ru); free(fz);
-        stand_free(sd);
-    }
+    for (size_t a = 0; a < nd && !st; a++) st = exp_pointcloud_stand(o, ds[a], beta, 0, &rows[a], &worst);
     tsv_writer *w = NULL;
     char path[512];
     if (!st) st = unit_out_open(o, "pointcloud", "stats.tsv", &w, path, sizeof path);
@@ -158,6 +163,15 @@ static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size
     return unit_out_finish(w, &pv, path);
 }
 
+
+cs_status exp_hero_stems(const exp_opts *o, double d, unsigned k, size_t *stems_n)
+{
+    stand *sd = NULL;
+    cs_status st = exp_stand_alloc(&o->rd, &sd, stems_hardcore, d, EXP_FIG_L, exp_fig_c(&o->rd), "fig/hero", k);
+    if (!st) *stems_n = sd->s->n;
+    stand_free(sd);
+    return st;
+}
 
 cs_status exp_hero_figure(const exp_opts *o)
 {

@@ -31,15 +31,19 @@ TEACHER_STANDS := 8
 endif
 TEACHER_DEPS := gates/mechanism.gate gates/irreducibility.gate
 
+# Replicate stands of the one-stand figure numbers (design.md §6.1): 100 per
+# family at full scale, 3 at smoke scale.
 # E5, E6: 28 held-out stands (E5, E6 lattice, E6 held-out) and 12 per sweep
 # level at full scale; 3 and 2 at smoke scale. Calibration seeds come from
 # gates/field.gate; E6 and E2's field rows run at beta_field, so they depend
 # on the E5 calibration.
 ifeq ($(SCALE),smoke)
 FIELD_STANDS := 3
+REPLICATE_STANDS := 3
 ANISO_SWEEP_STANDS := 2
 else
 FIELD_STANDS := 28
+REPLICATE_STANDS := 100
 ANISO_SWEEP_STANDS := 12
 endif
 

@@ -247,10 +247,6 @@ void fs_fraction_text(double v, char *buf, size_t n)
     snprintf(buf, n, "%.3f", v);
 }
 
-/* Jitter amplitude is stated in whole percent of the spacing (the paper's
- * JitterStarPct), so a* is rounded to 0.01. */
-#define FS_JITTER_STEP 0.01
-
 static cs_status fs_curve_calibrate(const char *path, const double *x, const double *y, const int *lines, size_t n,
                                     double target, double step, fs_calibration *out)
 {

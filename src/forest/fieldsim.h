@@ -78,6 +78,9 @@ void fs_fraction_text(double v, char *buf, size_t n);
  * step (dieback_grid). *line_lo gets the file line of the lower bracketing row. */
 typedef struct { double target, interp, value, step; int bracketed, line_lo; size_t points; } fs_calibration;
 cs_status fs_beta_field(const char *calibration_path, fs_calibration *out);
+/* Jitter amplitude is stated in whole percent of the spacing (the paper's
+ * JitterStarPct), so a* is rounded to 0.01. */
+#define FS_JITTER_STEP 0.01
 /* E6: a* from the jitter calibration table (columns level, aniso_median):
  * interpolated to gates/anisotropy.gate field_median, rounded to 0.01. */
 cs_status fs_jitter_star(const char *path, fs_calibration *out);

@@ -1,0 +1,484 @@
+/* interval_src: the replicate units of each family of claims, read from
+ * frozen/ (design.md §6.1): seeds of the E3/E4 run tables, unseen spacings of
+ * the baselines, stands of the E5/E6 per-tree tables, patches of the E7
+ * distribution, replicate stands of the figure stands. Each extractor hands
+ * back units and the claim's statistic over them; interval.c checks that the
+ * frozen units give the claim's own value. */
+#include "interval.h"
+#include "estimator.h"
+#include "fieldsim.h"
+#include "gate.h"
+#include "paths.h"
+#include "stats.h"
+#include "tsv.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAXSEED 64
+
+/* The macro without a reading prefix (PairMainRel -> MainRel). */
+static const char *base_macro(const char *m)
+{
+    const char *a = strstr(m, "Main"), *b = strstr(m, "Extrap");
+    if (a && (!b || a < b)) return a;
+    return b ? b : m;
+}
+
+static cs_status alloc_x(iv_data *d, size_t n, size_t m)
+{
+    d->x = calloc(n * m > 0 ? n * m : 1, sizeof *d->x);
+    d->n = n;
+    d->m = m;
+    return d->x ? CS_OK : cs_err(CS_ENOMEM, "interval: out of memory");
+}
+
+/* ---- E3: seeds of runs.tsv; columns as claim_main.c's kinds ---- */
+
+static int run_col(const char *arm, const char *probe)
+{
+    int a = !strcmp(arm, "joint") ? 0 : !strcmp(arm, "indep") ? 1 : -1;
+    int q = !strcmp(probe, "generated") ? 0 : !strcmp(probe, "shuffled") ? 1 : !strcmp(probe, "rotated") ? 2 : -1;
+    return a < 0 || q < 0 ? -1 : 2 * q + a; /* 0 joint, 1 indep, 2 joint shuffled, 3 indep shuffled, 4/5 rotated */
+}
+
+static cs_status main_seeds(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
+{
+    (void)res; (void)sp;
+    tsv *t;
+    cs_status st = tsv_read(row->source, &t);
+    if (st) return st;
+    double v[MAXSEED][6];
+    int maxs = 0;
+    for (int i = 0; i < MAXSEED; i++) for (int k = 0; k < 6; k++) v[i][k] = NAN;
+    for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+        long s;
+        double e;
+        const char *arm = tsv_str(t, r, "arm"), *probe = tsv_str(t, r, "probe");
+        if ((st = tsv_long(t, r, "seed", &s)) || (st = tsv_double(t, r, "error", &e))) break;
+        int k = arm && probe ? run_col(arm, probe) : -1;
+        if (s < 1 || s > MAXSEED || k < 0) { st = cs_err(CS_EINPUT, "%s:%d: field 'seed'/'arm'/'probe': unexpected row", row->source, tsv_line(t, r)); break; }
+        v[s - 1][k] = e;
+        if (s > maxs) maxs = (int)s;
+    }
+    tsv_free(t);
+    if (!st) st = alloc_x(d, (size_t)maxs, 6);
+    if (st) return st;
+    for (int i = 0; i < maxs; i++) memcpy(d->x + (size_t)i * 6, v[i], sizeof v[i]);
+    d->unit = "seed";
+    d->method = "bootstrap";
+    snprintf(d->from, sizeof d->from, "%s (%d seeds)", row->source, maxs);
+    const char *m = base_macro(row->macro);
+    static const struct { const char *macro; iv_kind k; size_t a, b; } map[] = {
+        {"MainJoint", IV_MEDIAN, 0, 0}, {"MainIndep", IV_MEDIAN, 1, 0},
+        {"MainJointLo", IV_MIN, 0, 0}, {"MainJointHi", IV_MAX, 0, 0}, {"MainIndepLo", IV_MIN, 1, 0}, {"MainIndepHi", IV_MAX, 1, 0},
+        {"MainRel", IV_REL, 0, 1}, {"MainP", IV_WILCOXON, 0, 1}, {"MainGeomRatio", IV_RATIO, 2, 0},
+        {"MainShufJoint", IV_MEDIAN, 2, 0}, {"MainShufIndep", IV_MEDIAN, 3, 0}, {"MainGeomRatioIndep", IV_RATIO, 3, 1},
+        {"MainRotJoint", IV_MEDIAN, 4, 0}, {"MainRotIndep", IV_MEDIAN, 5, 0}, {"MainRotRatio", IV_RATIO, 4, 0},
+        {"MainRotRatioIndep", IV_RATIO, 5, 1},
+    };
+    for (size_t i = 0; i < sizeof map / sizeof *map; i++)
+        if (!strcmp(m, map[i].macro)) {
+            d->stat = (iv_stat){map[i].k, map[i].a, map[i].b, NULL, NULL};
+            return CS_OK;
+        }
+    return cs_err(CS_EINVARIANT, "interval: no seed statistic for %s", row->macro);
+}
+
+/* ---- E3 baselines: the unseen spacings, mean over them ---- */
+
+static cs_status main_spacings(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
+{
+    (void)res; (void)sp;
+    char path[256];
+    const char *src = row->source, *leaf = "baselines.tsv";
+    size_t ls = strlen(src), lb = strlen(leaf);
+    if (ls >= lb && !strcmp(src + ls - lb, leaf)) snprintf(path, sizeof path, "%s", src);
+    else {
+        const char *cut = NULL;
+        for (const char *q = src; (q = strstr(q, "/main/")); q++) cut = q;
+        for (const char *q = src; (q = strstr(q, "/extrapolation/")); q++) if (!cut || q > cut) cut = q;
+        snprintf(path, sizeof path, "%.*s/main/%s", cut ? (int)(cut - src) : 6, cut ? src : "frozen", leaf);
+    }
+    const char *col = !strcmp(row->function, "claim_main_noise") ? "noise_floor_w1"
+                    : !strcmp(row->function, "claim_main_iso") ? "direction_blind_w1"
+                    : strstr(row->macro, "Rot") ? "teacher_rotated_w1" : "teacher_shuffled_w1";
+    tsv *t;
+    cs_status st = tsv_read(path, &t);
+    if (st) return st;
+    if (!(st = alloc_x(d, tsv_nrows(t), 1))) {
+        size_t n = 0;
+        for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+            const char *split = tsv_str(t, r, "split");
+            if (!split || strcmp(split, "unseen")) continue;
+            st = tsv_double(t, r, col, &d->x[n++]);
+        }
+        d->n = n;
+    }
+    tsv_free(t);
+    d->unit = "spacing";
+    d->method = "bootstrap";
+    d->stat = (iv_stat){IV_MEAN, 0, 0, NULL, NULL};
+    snprintf(d->from, sizeof d->from, "%s (%s, %zu unseen spacings)", path, col, d->n);
+    return st;
+}
+
+/* ---- E4: seeds of extrapolation/runs.tsv ---- */
+
+static cs_status extrap_seeds(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
+{
+    (void)res; (void)sp;
+    tsv *t;
+    cs_status st = tsv_read(row->source, &t);
+    if (st) return st;
+    /* per seed: joint and indep W1 at each of up to 4 spacings (file order) */
+    double dd[4], w[MAXSEED][4][2];
+    int nd = 0, maxs = 0;
+    for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+        long s;
+        double sp_m, w1;
+        const char *arm = tsv_str(t, r, "arm");
+        if ((st = tsv_long(t, r, "seed", &s)) || (st = tsv_double(t, r, "spacing", &sp_m)) || (st = tsv_double(t, r, "w1", &w1))) break;
+        int k = 0;
+        while (k < nd && fabs(dd[k] - sp_m) > 1e-9) k++;
+        if (k == nd && nd < 4) dd[nd++] = sp_m;
+        int a = arm && !strcmp(arm, "joint") ? 0 : arm && !strcmp(arm, "indep") ? 1 : -1;
+        if (k == 4 || a < 0 || s < 1 || s > MAXSEED) { st = cs_err(CS_EINPUT, "%s:%d: unexpected row", row->source, tsv_line(t, r)); break; }
+        w[s - 1][k][a] = w1;
+        if (s > maxs) maxs = (int)s;
+    }
+    tsv_free(t);
+    if (st) return st;
+    d->unit = "seed";
+    d->method = "bootstrap";
+    snprintf(d->from, sizeof d->from, "%s (%d seeds)", row->source, maxs);
+    if (!strcmp(row->function, "claim_extrap_p")) {
+        /* claim_extrap_p: per seed, the mean over the spacings of each arm */
+        if ((st = alloc_x(d, (size_t)maxs, 2))) return st;
+        for (int i = 0; i < maxs; i++) {
+            double a = 0, b = 0;
+            for (int k = 0; k < nd; k++) { a += w[i][k][1] / nd; b += w[i][k][0] / nd; }
+            d->x[2 * i] = b;
+            d->x[2 * i + 1] = a;
+        }
+        d->stat = (iv_stat){IV_WILCOXON, 0, 1, NULL, NULL};
+        return CS_OK;
+    }
+    /* ExtrapLowRel: the lowest spacing, ExtrapHighRel: the highest */
+    int lowk = 0, highk = 0;
+    for (int k = 1; k < nd; k++) { if (dd[k] < dd[lowk]) lowk = k; if (dd[k] > dd[highk]) highk = k; }
+    int k = strstr(base_macro(row->macro), "Low") ? lowk : highk;
+    if ((st = alloc_x(d, (size_t)maxs, 2))) return st;
+    for (int i = 0; i < maxs; i++) { d->x[2 * i] = w[i][k][0]; d->x[2 * i + 1] = w[i][k][1]; }
+    d->stat = (iv_stat){IV_REL, 0, 1, NULL, NULL};
+    return CS_OK;
+}
+
+/* ---- E5/E6: stands of a per-tree table, regrouped by fs_group ---- */
+
+typedef enum { FS_ELONG, FS_ANISO, FS_ANISO_TREES, FS_STANDS, FS_RHO, FS_OVERSHOOT, FS_CAL_BETA, FS_CAL_JITTER } fs_kind;
+typedef struct {
+    fs_trees t;
+    fs_kind kind;
+    double level[32];  /* coupled buildable levels, file order */
+    size_t nlevel;
+    unsigned nstand;   /* stand ids 0..nstand-1 */
+    size_t **of;       /* of[s]: tree indices of stand s, count in cnt[s] */
+    size_t *cnt;
+    double *an;        /* per tree: est_anisotropy, where an_ok */
+    int *an_ok;
+    double *buf;       /* scratch: one value per tree of a draw */
+    double target, step, scale; /* the calibrations: fs_beta_field, fs_jitter_star */
+} fs_ctx;
+
+static void fs_ctx_free(void *p)
+{
+    fs_ctx *c = p;
+    if (!c) return;
+    for (unsigned s = 0; c->of && s < c->nstand; s++) free(c->of[s]);
+    free(c->of);
+    free(c->cnt);
+    free(c->an);
+    free(c->an_ok);
+    free(c->buf);
+    fs_trees_free(&c->t);
+    free(c);
+}
+
+/* The group statistics of the drawn stands (draw b is a stand of its own):
+ * the medians fs_group takes (est_median of the trees' elongation; of the
+ * anisotropy of the trees est_anisotropy defines, as field_summarize), from
+ * per-tree values computed once. */
+static cs_status fs_level_stat(const fs_ctx *c, const double *x, size_t n, double level, double *buf, double *out)
+{
+    size_t m = 0, stands = 0;
+    for (size_t b = 0; b < n; b++) {
+        unsigned s = (unsigned)x[b];
+        size_t any = 0;
+        for (size_t q = 0; q < c->cnt[s]; q++) {
+            size_t k = c->of[s][q];
+            if (!c->t.coupled[k] || c->t.level[k] != level) continue;
+            any = 1;
+            if (c->kind == FS_ELONG) buf[m++] = c->t.elong[k];
+            else if (c->kind == FS_CAL_BETA) buf[m++] = est_tree_mean(c->t.gap[k]); /* tree_mean_median, as field_summarize */
+            else if (c->an_ok[k]) buf[m++] = c->an[k];
+        }
+        stands += any;
+    }
+    if (c->kind == FS_STANDS) { *out = (double)stands; return CS_OK; }
+    if (c->kind == FS_ANISO_TREES) { *out = (double)m; return CS_OK; }
+    if (m == 0) { *out = NAN; return CS_OK; }
+    return est_median(buf, m, out);
+}
+
+static cs_status fs_stat(const double *x, size_t n, size_t m, const void *ctx, double *out)
+{
+    (void)m;
+    const fs_ctx *c = ctx;
+    double an[32];
+    cs_status st = CS_OK;
+    size_t nl = c->kind == FS_ELONG || c->kind == FS_ANISO || c->kind == FS_ANISO_TREES || c->kind == FS_STANDS ? 1 : c->nlevel;
+    for (size_t l = 0; l < nl && !st; l++) st = fs_level_stat(c, x, n, c->level[l], c->buf, &an[l]);
+    if (st) return st;
+    if (c->kind == FS_CAL_BETA || c->kind == FS_CAL_JITTER) {
+        /* the calibrated grid value: the curve interpolated to the target, rounded to the step */
+        double interp;
+        int bracketed;
+        if ((st = fs_interp_target(c->level, an, c->nlevel, c->target, &interp, &bracketed))) return st;
+        *out = c->scale * fs_round_step(interp, c->step);
+        return CS_OK;
+    }
+    if (c->kind == FS_RHO) return stats_spearman(c->level, an, c->nlevel, out);
+    if (c->kind == FS_OVERSHOOT) {
+        size_t k = 0;
+        for (size_t l = 1; l < c->nlevel; l++) if (c->level[l] > c->level[k]) k = l;
+        *out = an[k];
+        return CS_OK;
+    }
+    *out = an[0];
+    return CS_OK;
+}
+
+/* Coupled levels with trees, in the order of the summary table. */
+static cs_status fs_levels(const char *summary, fs_ctx *c, int first_only)
+{
+    tsv *t;
+    cs_status st = tsv_read(summary, &t);
+    if (st) return st;
+    for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+        const char *arm = tsv_col(t, "arm") >= 0 ? tsv_str(t, r, "arm") : "coupled";
+        long trees;
+        double lv;
+        if (!arm || strcmp(arm, "coupled")) continue;
+        if ((st = tsv_long(t, r, tsv_col(t, "trees") >= 0 ? "trees" : "aniso_trees", &trees)) || (st = tsv_double(t, r, "level", &lv))) break;
+        if (trees == 0) continue;
+        if (c->nlevel == 32) { st = cs_err(CS_EINPUT, "%s: more than 32 levels", summary); break; }
+        c->level[c->nlevel++] = lv;
+        if (first_only) break;
+    }
+    tsv_free(t);
+    return st;
+}
+
+static cs_status fs_stands(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
+{
+    (void)res; (void)sp;
+    fs_ctx *c = calloc(1, sizeof *c);
+    if (!c) return cs_err(CS_ENOMEM, "interval: out of memory");
+    d->stat = (iv_stat){IV_CALLBACK, 0, 0, fs_stat, c};
+    d->cleanup = fs_ctx_free;
+    const char *m = row->macro, *f = row->function;
+    c->kind = !strcmp(f, "claim_aniso_rho") ? FS_RHO : !strcmp(f, "claim_aniso_hardcore_overshoot") ? FS_OVERSHOOT
+            : !strcmp(f, "claim_field_calib_dieback") ? FS_CAL_BETA : !strcmp(f, "claim_jitter_star") ? FS_CAL_JITTER
+            : strstr(m, "Elong") ? FS_ELONG : strstr(m, "Stands") ? FS_STANDS : !strcmp(m, "AnisoTrees") ? FS_ANISO_TREES : FS_ANISO;
+    char tp[512];
+    cs_status st = CS_OK;
+    c->scale = 1.0;
+    if (c->kind == FS_CAL_JITTER) {
+        /* a* is calibrated on the sweep beside it (anisotropy/jitter.tsv and its trees) */
+        const char *slash = strrchr(row->source, '/');
+        snprintf(tp, sizeof tp, "%.*sjitter_trees.tsv", slash ? (int)(slash - row->source + 1) : 0, row->source);
+        c->step = FS_JITTER_STEP;
+        c->scale = !strcmp(m, "JitterStarPct") ? 100.0 : 1.0;
+        st = gate_read_value(PATHS_GATE("anisotropy"), "field_median", 0, &c->target);
+    } else {
+        fs_trees_path(row->source, tp, sizeof tp);
+        if (c->kind == FS_CAL_BETA && !(st = gate_read_value(PATHS_GATE("field"), "calibration_target_m", 0, &c->target)))
+            st = gate_read_value(PATHS_GATE("field"), "dieback_grid", 2, &c->step);
+    }
+    int all_levels = c->kind == FS_RHO || c->kind == FS_OVERSHOOT || c->kind == FS_CAL_BETA || c->kind == FS_CAL_JITTER;
+    if (!st) st = fs_levels(row->source, c, !all_levels);
+    if (!st) st = fs_trees_read(tp, &c->t);
+    for (size_t k = 0; k < c->t.n && !st; k++) if (c->t.stand[k] + 1 > c->nstand) c->nstand = c->t.stand[k] + 1;
+    if (!st && (c->nstand == 0 || c->nlevel == 0)) st = cs_err(CS_EINPUT, "%s: no stands or no buildable coupled level", tp);
+    if (!st) {
+        c->of = calloc(c->nstand, sizeof *c->of);
+        c->cnt = calloc(c->nstand, sizeof *c->cnt);
+        if (!c->of || !c->cnt) st = cs_err(CS_ENOMEM, "interval: out of memory");
+    }
+    for (unsigned s = 0; s < c->nstand && !st; s++) {
+        c->of[s] = malloc((c->t.n ? c->t.n : 1) * sizeof **c->of);
+        if (!c->of[s]) { st = cs_err(CS_ENOMEM, "interval: out of memory"); break; }
+        for (size_t k = 0; k < c->t.n; k++) if (c->t.stand[k] == s) c->of[s][c->cnt[s]++] = k;
+    }
+    if (!st) {
+        size_t nt = c->t.n ? c->t.n : 1, maxs = 0;
+        for (unsigned s = 0; s < c->nstand; s++) if (c->cnt[s] > maxs) maxs = c->cnt[s];
+        c->an = malloc(nt * sizeof *c->an);
+        c->an_ok = malloc(nt * sizeof *c->an_ok);
+        c->buf = malloc((c->nstand * maxs > 0 ? c->nstand * maxs : 1) * sizeof *c->buf);
+        if (!c->an || !c->an_ok || !c->buf) st = cs_err(CS_ENOMEM, "interval: out of memory");
+        for (size_t k = 0; k < c->t.n && !st; k++) c->an_ok[k] = est_anisotropy(c->t.gap[k], &c->an[k]);
+    }
+    if (!st) st = alloc_x(d, c->nstand, 1);
+    for (unsigned s = 0; s < c->nstand && !st; s++) d->x[s] = s;
+    d->unit = "stand";
+    d->method = "bootstrap";
+    snprintf(d->from, sizeof d->from, "%s (%u stands)", tp, c->nstand);
+    return st;
+}
+
+/* ---- E7: patches of a distribution table drawn from the same models ---- */
+
+/* "--joint X --indep Y" of a table's command line. */
+static int models_of(const tsv *t, char *buf, size_t n)
+{
+    const char *c = tsv_meta(t, "command"), *j = c ? strstr(c, "--joint ") : NULL, *i = c ? strstr(c, "--indep ") : NULL;
+    if (!j || !i) return 0;
+    snprintf(buf, n, "%.*s|%.*s", (int)strcspn(j + 8, " "), j + 8, (int)strcspn(i + 8, " "), i + 8);
+    return 1;
+}
+
+/* E7 (design.md §7 E7): the claims are statistics over the patches of
+ * dist_patches.tsv beside their dist_summary.tsv (the median; a *Range
+ * macro's value is the 5 % quantile; the share of patches without an
+ * overlapping crown), bootstrapped over the patches. */
+static cs_status comp_patches(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
+{
+    (void)res; (void)sp;
+    d->unit = "patch";
+    d->method = "bootstrap";
+    tsv *src;
+    cs_status st = tsv_read(row->source, &src);
+    if (st) return st;
+    char want[280], got[280], path[520];
+    int ok = models_of(src, want, sizeof want);
+    tsv_free(src);
+    if (!ok) return cs_err(CS_EINPUT, "%s: header '# command:' names no --joint/--indep models", row->source);
+    const char *slash = strrchr(row->source, '/');
+    snprintf(path, sizeof path, "%.*sdist_patches.tsv", slash ? (int)(slash - row->source + 1) : 0, row->source);
+    tsv *t;
+    if ((st = tsv_read(path, &t))) return st;
+    if (!models_of(t, got, sizeof got) || strcmp(got, want)) {
+        tsv_free(t);
+        return cs_err(CS_EINVARIANT, "%s: drawn from models %s, its summary %s from %s", path, got, row->source, want);
+    }
+    const char *m = !strncmp(row->macro, "Pair", 4) ? row->macro + 4 : row->macro, *f = row->function;
+    const char *probe = !strcmp(f, "claim_comp_dart") ? "dart" : "comparison";
+    const char *s = !strcmp(f, "claim_comp_no_overlap") || !strncmp(m, "CompGen", 7) ? "joint" : strstr(m, "Teach") ? "teacher"
+                  : strstr(m, "Indep") ? "indep" : "joint";
+    const char *col = !strcmp(f, "claim_comp_overlap") || !strcmp(f, "claim_comp_no_overlap") ? "overlapping" : "median_nn_clearance_m";
+    size_t len = strlen(m);
+    int range = len >= 5 && !strcmp(m + len - 5, "Range");
+    d->stat = (iv_stat){!strcmp(f, "claim_comp_no_overlap") ? IV_ZERO_PCT : IV_QUANTILE, 0, 0, NULL, NULL, range ? 0.05 : 0.5};
+    if (!(st = alloc_x(d, tsv_nrows(t), 1))) {
+        size_t n = 0;
+        for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+            const char *pr = tsv_str(t, r, "probe"), *so = tsv_str(t, r, "source");
+            if (!pr || !so || strcmp(pr, probe) || strcmp(so, s)) continue;
+            st = tsv_double(t, r, col, &d->x[n++]);
+        }
+        d->n = n;
+        if (!st && n == 0) st = cs_err(CS_EINPUT, "%s: no %s rows of source %s", path, probe, s);
+    }
+    snprintf(d->from, sizeof d->from, "%s (%s, %s, %s; %zu patches)", path, probe, s, col, d->n);
+    tsv_free(t);
+    return st;
+}
+
+/* ---- one-stand claims: the replicate stands of the same family ---- */
+
+/* The replicate table's family and column for a figure-stand claim. */
+static int figure_column(const claim_row *row, char *family, size_t fn, char *arm, size_t an, double *d, const char **col)
+{
+    const char *m = row->macro, *f = row->function;
+    if (!strcmp(f, "claim_mech_ablation_k") || !strcmp(f, "claim_mech_cover") || !strcmp(f, "claim_mech_overlap")) {
+        snprintf(family, fn, "mechanism");
+        snprintf(arm, an, "%s", !strncmp(m, "MechCoupOff", 11) ? "coupling_off" : !strcmp(m, "MechAbrOff") ? "abrasion_off" : "both_on");
+        *d = 3.5;
+        *col = !strcmp(f, "claim_mech_cover") ? "cover" : !strcmp(f, "claim_mech_overlap") ? "overlap_m"
+             : strstr(m, "KTwo") ? "k2_m" : strstr(m, "KThree") ? "k3_m" : "k1_m";
+        return 1;
+    }
+    if (!strcmp(f, "claim_hero_stems")) {
+        snprintf(family, fn, "hero");
+        snprintf(arm, an, "beta_train");
+        *d = !strcmp(m, "HeroStemsDense") ? 3.0 : 6.5;
+        *col = "stems";
+        return 1;
+    }
+    if (!strcmp(f, "claim_pc_stand") || !strcmp(f, "claim_pc_clearance")) {
+        snprintf(family, fn, "pointcloud");
+        *d = strstr(m, "OtherA") ? 5.0 : strstr(m, "OtherB") ? 4.0 : 3.0;
+        snprintf(arm, an, "%s", !strcmp(m, "PcUncoupled") ? "uncoupled" : "coupled");
+        *col = !strcmp(f, "claim_pc_clearance") ? "k1_m" : strstr(m, "Trees") ? "stems" : "contact_pct";
+        return 1;
+    }
+    return 0;
+}
+
+static cs_status figure_stands(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
+{
+    (void)res;
+    d->unit = "stand";
+    d->method = "range";
+    char family[32], arm[32];
+    double dd;
+    const char *col;
+    if (!figure_column(row, family, sizeof family, arm, sizeof arm, &dd, &col))
+        return cs_err(CS_EINVARIANT, "interval: no replicate stands for %s", row->macro);
+    tsv *t;
+    cs_status st = tsv_read(sp->replicates, &t);
+    if (st) return st;
+    if (!(st = alloc_x(d, tsv_nrows(t), 1))) {
+        size_t n = 0;
+        for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+            const char *fa = tsv_str(t, r, "family"), *a = tsv_str(t, r, "arm");
+            double sd;
+            long stand;
+            if ((st = tsv_double(t, r, "spacing_m", &sd)) || (st = tsv_long(t, r, "stand", &stand))) break;
+            if (!fa || !a || strcmp(fa, family) || strcmp(a, arm) || fabs(sd - dd) > 1e-9) continue;
+            if (stand == 0) d->own = (int)n; /* the figure stand itself */
+            st = tsv_double(t, r, col, &d->x[n++]);
+        }
+        d->n = n;
+        if (!st && n < 2) st = cs_err(CS_EINPUT, "%s: %zu replicate stands of %s/%s at %.1f m", sp->replicates, n, family, arm, dd);
+    }
+    snprintf(d->from, sizeof d->from, "%s (%s, %s at %.1f m, %s; %zu stands)", sp->replicates, family, arm, dd, col, d->n);
+    tsv_free(t);
+    return st;
+}
+
+/* ---- dispatch ---- */
+
+static const struct { const char *function; iv_extract ex; } extractors[] = {
+    {"claim_main_median", main_seeds}, {"claim_main_range", main_seeds}, {"claim_main_rel", main_seeds},
+    {"claim_main_p", main_seeds}, {"claim_main_geom_ratio", main_seeds}, {"claim_main_probe", main_seeds},
+    {"claim_main_noise", main_spacings}, {"claim_main_iso", main_spacings}, {"claim_main_teach_probe", main_spacings},
+    {"claim_extrap_rel", extrap_seeds}, {"claim_extrap_p", extrap_seeds},
+    {"claim_field_elong", fs_stands}, {"claim_aniso_lattice", fs_stands}, {"claim_aniso_lattice_counts", fs_stands},
+    {"claim_jitter_heldout", fs_stands}, {"claim_aniso_rho", fs_stands}, {"claim_aniso_hardcore_overshoot", fs_stands},
+    {"claim_field_calib_dieback", fs_stands}, {"claim_jitter_star", fs_stands},
+    {"claim_comp_k", comp_patches}, {"claim_comp_overlap", comp_patches}, {"claim_comp_dart", comp_patches},
+    {"claim_comp_no_overlap", comp_patches},
+    {"claim_mech_ablation_k", figure_stands}, {"claim_mech_cover", figure_stands}, {"claim_mech_overlap", figure_stands},
+    {"claim_hero_stems", figure_stands}, {"claim_pc_stand", figure_stands}, {"claim_pc_clearance", figure_stands},
+};
+
+iv_extract interval_extractor(const char *function)
+{
+    for (size_t i = 0; i < sizeof extractors / sizeof *extractors; i++)
+        if (!strcmp(extractors[i].function, function)) return extractors[i].ex;
+    return NULL;
+}
