@@ -8,6 +8,7 @@
  * extension rows only; E7 medians and ranges from a comparison-dist summary. */
 #include "testutil.h"
 #include "claims.h"
+#include "interval.h"
 #include "mainruns.h"
 #include "mainsum.h"
 #include "paths.h"
@@ -209,6 +210,8 @@ static void unit_set_equals_main_summary(void **st)
     snprintf(src, sizeof src, "%s/run_s*_*.tsv", dir);
     snprintf(runs, sizeof runs, "%s/runs.tsv", dir);
     snprintf(ex, sizeof ex, "%s/extrapolation/runs.tsv", root);
+    interval_table it;
+    assert_int_equal(interval_table_load(PATHS_INTERVALS, &it), CS_OK);
     static const struct { const char *m, *fn; int ex; } k[] = {
         {"MainRel", "claim_main_rel", 0}, {"MainJoint", "claim_main_median", 0}, {"MainIndepHi", "claim_main_range", 0},
         {"MainP", "claim_main_p", 0}, {"MainGeomRatio", "claim_main_geom_ratio", 0}, {"MainRotRatio", "claim_main_probe", 0},
@@ -219,7 +222,18 @@ static void unit_set_equals_main_summary(void **st)
         claim_result u = eval(k[q].m, src, k[q].fn, "-"), s = eval(k[q].m, k[q].ex ? ex : runs, k[q].fn, "-");
         if (u.status != VERDICT_PASS || s.status != VERDICT_PASS) fail_msg("%s: %s / %s", k[q].m, u.why, s.why);
         if (u.value != s.value) fail_msg("%s: units %.17g, main-summary %.17g", k[q].m, u.value, s.value);
+        /* the seed bootstrap reads the unit set as it reads runs.tsv: the same interval */
+        claim_row ru, rs;
+        row_of(&ru, k[q].m, src, k[q].fn, "-", "%.6f");
+        row_of(&rs, k[q].m, k[q].ex ? ex : runs, k[q].fn, "-", "%.6f");
+        claim_interval iu, is;
+        cs_status su = interval_eval(&it, &ru, &u, &iu), ss = interval_eval(&it, &rs, &s, &is);
+        if (su || ss) fail_msg("%s: interval: %s", k[q].m, cs_errmsg());
+        if (!iu.has || !is.has || iu.n != 12) fail_msg("%s: interval has %d/%d over %zu seeds: %s", k[q].m, iu.has, is.has, iu.n, iu.why);
+        if (iu.lo != is.lo || iu.hi != is.hi)
+            fail_msg("%s: interval from the units [%.17g, %.17g], from main-summary [%.17g, %.17g]", k[q].m, iu.lo, iu.hi, is.lo, is.hi);
     }
+    interval_table_free(&it);
 }
 
 static void extension_map_judges_extension_rows_only(void **st)

@@ -5,6 +5,7 @@
  * back units and the claim's statistic over them; interval.c checks that the
  * frozen units give the claim's own value. */
 #include "interval.h"
+#include "mainruns.h"
 #include "estimator.h"
 #include "fieldsim.h"
 #include "gate.h"
@@ -43,16 +44,35 @@ static int run_col(const char *arm, const char *probe)
     return a < 0 || q < 0 ? -1 : 2 * q + a; /* 0 joint, 1 indep, 2 joint shuffled, 3 indep shuffled, 4/5 rotated */
 }
 
+/* A reading's unit set (<dir>/run_s*_*.tsv): the per-seed errors as
+ * mainruns gathers them for the claims (main-summary's reduction); only
+ * asked for once every unit is frozen (a pending claim has no interval). */
+static cs_status unit_set_seeds(const char *dir, double v[MAXSEED][6], int *maxs)
+{
+    static mainruns m;
+    int want;
+    cs_status st = mainruns_wanted(dir, &want);
+    if (!st) st = mainruns_load(dir, want, &m);
+    if (st) return st;
+    if (m.complete != want) return cs_err(CS_EINVARIANT, "%s: %d of %d seeds frozen: no interval before the set is complete", dir, m.complete, want);
+    for (int s = 0; s < want && s < MAXSEED; s++)
+        for (int q = 0; q < 3; q++)
+            for (int a = 0; a < 2; a++) v[s][2 * q + a] = m.has[a][q] ? m.err[a][q][s] : NAN;
+    *maxs = want;
+    return CS_OK;
+}
+
 static cs_status main_seeds(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
 {
     (void)res; (void)sp;
-    tsv *t;
-    cs_status st = tsv_read(row->source, &t);
-    if (st) return st;
     double v[MAXSEED][6];
     int maxs = 0;
     for (int i = 0; i < MAXSEED; i++) for (int k = 0; k < 6; k++) v[i][k] = NAN;
-    for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+    char dir[300];
+    tsv *t = NULL;
+    cs_status st = mainruns_unit_set(row->source, dir, sizeof dir) ? unit_set_seeds(dir, v, &maxs) : tsv_read(row->source, &t);
+    if (st) return st;
+    for (size_t r = 0; t && r < tsv_nrows(t) && !st; r++) {
         long s;
         double e;
         const char *arm = tsv_str(t, r, "arm"), *probe = tsv_str(t, r, "probe");
@@ -126,16 +146,35 @@ static cs_status main_spacings(const claim_row *row, const claim_result *res, co
 
 /* ---- E4: seeds of extrapolation/runs.tsv ---- */
 
+/* The extrapolation rows of a reading's unit set, as mainruns gathers them. */
+static cs_status unit_set_extrap(const char *dir, double dd[4], double w[MAXSEED][4][2], int *nd, int *maxs)
+{
+    static mainruns m;
+    int want;
+    cs_status st = mainruns_wanted(dir, &want);
+    if (!st) st = mainruns_load(dir, want, &m);
+    if (st) return st;
+    if (m.complete != want) return cs_err(CS_EINVARIANT, "%s: %d of %d seeds frozen: no interval before the set is complete", dir, m.complete, want);
+    *nd = m.nex < 4 ? m.nex : 4;
+    for (int k = 0; k < *nd; k++) {
+        dd[k] = m.exd[k];
+        for (int s = 0; s < want && s < MAXSEED; s++) { w[s][k][0] = m.ex[0][k][s]; w[s][k][1] = m.ex[1][k][s]; }
+    }
+    *maxs = want;
+    return CS_OK;
+}
+
 static cs_status extrap_seeds(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
 {
     (void)res; (void)sp;
-    tsv *t;
-    cs_status st = tsv_read(row->source, &t);
-    if (st) return st;
     /* per seed: joint and indep W1 at each of up to 4 spacings (file order) */
     double dd[4], w[MAXSEED][4][2];
     int nd = 0, maxs = 0;
-    for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
+    char dir[300];
+    tsv *t = NULL;
+    cs_status st = mainruns_unit_set(row->source, dir, sizeof dir) ? unit_set_extrap(dir, dd, w, &nd, &maxs) : tsv_read(row->source, &t);
+    if (st) return st;
+    for (size_t r = 0; t && r < tsv_nrows(t) && !st; r++) {
         long s;
         double sp_m, w1;
         const char *arm = tsv_str(t, r, "arm");
