@@ -44,10 +44,9 @@ static int run_col(const char *arm, const char *probe)
     return a < 0 || q < 0 ? -1 : 2 * q + a; /* 0 joint, 1 indep, 2 joint shuffled, 3 indep shuffled, 4/5 rotated */
 }
 
-/* A reading's unit set (<dir>/run_s*_*.tsv): the per-seed errors as
- * mainruns gathers them for the claims (main-summary's reduction); only
- * asked for once every unit is frozen (a pending claim has no interval). */
-static cs_status unit_set_seeds(const char *dir, double v[MAXSEED][6], int *maxs)
+/* Every unit of a reading's unit set, or an error: a claim still pending has
+ * no interval, so an incomplete set here is an inconsistency. */
+static cs_status unit_set_load(const char *dir, const mainruns **out)
 {
     static mainruns m;
     int want;
@@ -55,9 +54,22 @@ static cs_status unit_set_seeds(const char *dir, double v[MAXSEED][6], int *maxs
     if (!st) st = mainruns_load(dir, want, &m);
     if (st) return st;
     if (m.complete != want) return cs_err(CS_EINVARIANT, "%s: %d of %d seeds frozen: no interval before the set is complete", dir, m.complete, want);
+    *out = &m;
+    return CS_OK;
+}
+
+/* A reading's unit set (<dir>/run_s*_*.tsv): the per-seed errors as
+ * mainruns gathers them for the claims (main-summary's reduction); only
+ * asked for once every unit is frozen (a pending claim has no interval). */
+static cs_status unit_set_seeds(const char *dir, double v[MAXSEED][6], int *maxs)
+{
+    const mainruns *m;
+    cs_status st = unit_set_load(dir, &m);
+    if (st) return st;
+    const int want = m->want;
     for (int s = 0; s < want && s < MAXSEED; s++)
         for (int q = 0; q < 3; q++)
-            for (int a = 0; a < 2; a++) v[s][2 * q + a] = m.has[a][q] ? m.err[a][q][s] : NAN;
+            for (int a = 0; a < 2; a++) v[s][2 * q + a] = m->has[a][q] ? m->err[a][q][s] : NAN;
     *maxs = want;
     return CS_OK;
 }
@@ -149,16 +161,14 @@ static cs_status main_spacings(const claim_row *row, const claim_result *res, co
 /* The extrapolation rows of a reading's unit set, as mainruns gathers them. */
 static cs_status unit_set_extrap(const char *dir, double dd[4], double w[MAXSEED][4][2], int *nd, int *maxs)
 {
-    static mainruns m;
-    int want;
-    cs_status st = mainruns_wanted(dir, &want);
-    if (!st) st = mainruns_load(dir, want, &m);
+    const mainruns *m;
+    cs_status st = unit_set_load(dir, &m);
     if (st) return st;
-    if (m.complete != want) return cs_err(CS_EINVARIANT, "%s: %d of %d seeds frozen: no interval before the set is complete", dir, m.complete, want);
-    *nd = m.nex < 4 ? m.nex : 4;
+    const int want = m->want;
+    *nd = m->nex < 4 ? m->nex : 4;
     for (int k = 0; k < *nd; k++) {
-        dd[k] = m.exd[k];
-        for (int s = 0; s < want && s < MAXSEED; s++) { w[s][k][0] = m.ex[0][k][s]; w[s][k][1] = m.ex[1][k][s]; }
+        dd[k] = m->exd[k];
+        for (int s = 0; s < want && s < MAXSEED; s++) { w[s][k][0] = m->ex[0][k][s]; w[s][k][1] = m->ex[1][k][s]; }
     }
     *maxs = want;
     return CS_OK;
