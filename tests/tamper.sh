@@ -233,6 +233,16 @@ fresh
 rm -f "$scratch/frozen/main/weights_s03_indep.ckpt" "$scratch/frozen/main/samples_s03_indep.tsv"
 reseal
 expect "weights and samples deleted together" "frozen/main/weights_s03_indep.ckpt" "missing" "MainRel"
+# a whole unit of a complete reading deleted and the rest resealed: its frozen
+# summary (an aggregate of the units) names it; with the summary deleted too,
+# the design grid of the summary fails; never pending
+fresh
+rm -f "$scratch"/frozen/paper-reading/main/{run,samples,weights}_s05_joint.*
+reseal
+expect "a complete reading's unit deleted (resealed)" "frozen/paper-reading/main/runs.tsv" "run_s05_joint.tsv" "MainRel"
+rm -f "$scratch/frozen/paper-reading/main/runs.tsv"
+reseal
+expect "a complete reading's unit and summary deleted (resealed)" "frozen/paper-reading/main/runs.tsv" "design grids"
 # 23. a table's rows against its design grid: a duplicated sweep row
 fresh
 awk '!/^#/ && n++==3 {print} {print}' "$scratch/frozen/mechanism/sweep.tsv" > "$scratch/x" && mv "$scratch/x" "$scratch/frozen/mechanism/sweep.tsv"

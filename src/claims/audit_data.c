@@ -248,6 +248,25 @@ void audit_feeds(const claims *c, const char *path, char *buf, size_t n)
         }
         free(s);
     }
+    /* An aggregate the claims do not read (a reading's runs.tsv beside the
+     * unit set the claims read) names the claims its parts feed. */
+    if (!cnt && !aggr_load(PATHS_AGGREGATES, &s, &m)) {
+        for (size_t k = 0; k < m && !cnt; k++) {
+            if (strcmp(s[k].aggregate, path)) continue;
+            char glob[sizeof s[k].parts];
+            size_t o = 0;
+            for (const char *p = s[k].parts; *p; p++) {
+                if (*p == '{') { glob[o++] = '*'; p = strchr(p, '}'); }
+                else glob[o++] = *p;
+            }
+            glob[o] = '\0';
+            for (size_t i = 0; i < c->n && off < n; i++)
+                if (!strcmp(c->rows[i].source, glob) || fnmatch(glob, c->rows[i].source, FNM_PATHNAME) == 0)
+                    off += (size_t)snprintf(buf + off, n - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
+            if (cnt && off < n) snprintf(buf + off, n - off, " (via its parts %s)", glob);
+        }
+        free(s);
+    }
     if (!cnt && !strncmp(path, PATHS_READINGS_DIR "/", strlen(PATHS_READINGS_DIR) + 1)) { snprintf(buf, n, "the readings table %s", PATHS_READINGS_TEX); cnt = 1; }
     if (!cnt && !strncmp(path, PATHS_SENS_DIR "/", strlen(PATHS_SENS_DIR) + 1)) { snprintf(buf, n, "the sensitivity table %s", PATHS_SENS_TEX); cnt = 1; }
     if (!cnt) snprintf(buf, n, "(no claim)");

@@ -278,7 +278,9 @@ void audit_grids(const claims *c, checklist *cl)
         if (again) continue;
         glob_t g;
         if (strncmp(pat, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1) || glob(pat, 0, NULL, &g) != 0) {
-            checklist_add(cl, VERDICT_FAIL, "design grids", "%s:%d: field 'table': no frozen table matches %s", PATHS_GRIDS, tsv_line(spec, r), pat);
+            char affected[600];
+            audit_feeds(c, pat, affected, sizeof affected);
+            checklist_add(cl, VERDICT_FAIL, "design grids", "%s:%d: field 'table': no frozen table matches %s; claims affected: %s", PATHS_GRIDS, tsv_line(spec, r), pat, affected);
             bad++;
             continue;
         }
