@@ -123,7 +123,7 @@ DEEP := $(B)/deep
 .PHONY: verify-deep
 verify-deep: deps
 	@$(MAKE) --no-print-directory $(CLI)
-	@DEEP='$(DEEP)' JOBS=2 CLI='$(CLI)' MAKE='$(MAKE)' DEEP_UNITS='$(patsubst $(RESULTS)/%,$(DEEP)/%,$(DEEP_UNITS))' bash src/exp/verify_deep.sh
+	@DEEP='$(DEEP)' JOBS=2 READING_NSEEDS='$(READING_NSEEDS)' CLI='$(CLI)' MAKE='$(MAKE)' DEEP_UNITS='$(patsubst $(RESULTS)/%,$(DEEP)/%,$(DEEP_UNITS))' bash src/exp/verify_deep.sh
 
 audit: deps
 	@$(MAKE) --no-print-directory $(CLI)

@@ -10,7 +10,7 @@
 # redraws the unit's clearance samples and they are compared the same way.
 # Exit 0: every rerun table equals frozen/; 1: a difference, a missing model or a
 # failed unit. The last line is always the summary, with the exit status.
-# Called from the Makefile with DEEP, JOBS, CLI, MAKE and DEEP_UNITS set.
+# Called from the Makefile with DEEP, JOBS, CLI, MAKE, DEEP_UNITS and READING_NSEEDS set.
 set -uo pipefail
 : "${DEEP:?}" "${CLI:?}" "${DEEP_UNITS:?}"
 JOBS=${JOBS:-2}
@@ -67,43 +67,69 @@ echo "verify-deep: teacher part: $same tables bit-identical to frozen/, $differ 
 [ $((differ + missing)) -eq 0 ] || status=1
 
 # ---- the model part: redraw samples from the frozen weights ----
-# Every frozen/main/weights_s<seed>_<arm>.ckpt is loaded by `crownshy main-redraw`,
-# which draws the unit's clearance samples again (no training) into
-# $DEEP/model/; each must equal frozen/main/samples_s<seed>_<arm>.tsv (data rows).
-# Two redraws run at a time (about 40 s each on one core).
-# The list comes from the design (gates/main.gate seeds x the two arms), not
-# from the files that happen to exist: a deleted weights/samples pair fails.
+# Every frozen model of every experiment whose manifest row says "redraw"
+# (src/base/manifest.h): each UNIT row of such an experiment that writes
+# run_s%_joint.tsv names a set of units (main/: the pair runs at volume v1;
+# paper-reading/main/, extension-pair/main/, model-readings/*/main/: the
+# readings at v2). For every seed x arm of the design the unit's frozen run
+# table must be there; its "# weights:" line names the weights beside it, or
+# else its command's --weights (a re-evaluation, whose weights are another
+# experiment's frozen file); its "# eval:" line gives the volume.
+# `crownshy main-redraw` draws the unit's clearance samples again (no training)
+# into $DEEP/model/<set>/ and each must equal the frozen samples_s<seed>_<arm>.tsv
+# (data rows). The list comes from the design (gates/main.gate seeds, or
+# READING_NSEEDS for a set whose summary reads READING_SEED_LIST, x the two
+# arms), not from the files that happen to exist: a deleted unit fails.
 nseeds=$(awk '$1 == "seeds" {print $2}' gates/main.gate 2>/dev/null)
-weights=() absent=0 redrawn=0 redraw_bad=0
-for ((s = 1; s <= ${nseeds:-0}; s++)); do
-    for a in joint indep; do
-        w=$(printf 'frozen/main/weights_s%02d_%s.ckpt' "$s" "$a")
-        if [ -f "$w" ]; then weights+=("$w"); else echo "  FAIL    $w: missing (the design has seed $s, arm $a; gates/main.gate)"; absent=$((absent + 1)); fi
-    done
-done
+absent=0 redrawn=0 redraw_bad=0 jobs_list=() designed=0
+rows=$(bash src/base/manifest.sh rows)
+sets=$(awk -F'\t' '$1 == "EXPERIMENT" && $8 == "redraw" {r[$2] = 1}
+  $1 == "UNIT" && r[$2] && $3 ~ /run_s%_joint\.tsv$/ {d = $3; sub(/\/?run_s%_joint\.tsv$/, "", d); print $2 "\t" d}
+  $1 == "UNIT" && r[$2] && $3 ~ /runs\.tsv$/ && $4 ~ /READING_SEED_LIST/ {d = $3; sub(/\/runs\.tsv$/, "", d); print $2 "\t" d "\treading"}' <<<"$rows")
 if [ -z "$nseeds" ]; then
     echo "  FAIL    gates/main.gate: no 'seeds' line: the model part cannot be listed"; status=1
-elif [ ${#weights[@]} -gt 0 ]; then
-    mkdir -p "$DEEP/model"
-    echo "verify-deep: redrawing the samples of ${#weights[@]} frozen models (2 at a time)"
+fi
+while IFS=$'\t' read -r exp sub kind; do
+    [ -n "$exp" ] && [ -z "$kind" ] || continue
+    dir="frozen/$exp${sub:+/$sub}"
+    n=${nseeds:-0}
+    grep -qxF "$exp"$'\t'"$sub"$'\t'reading <<<"$sets" && n=${READING_NSEEDS:?}
+    for ((s = 1; s <= n; s++)); do
+        for a in joint indep; do
+            designed=$((designed + 1))
+            t=$(printf '%s/run_s%02d_%s.tsv' "$dir" "$s" "$a")
+            if [ ! -f "$t" ]; then echo "  FAIL    $t: missing (the design has seed $s, arm $a)"; absent=$((absent + 1)); continue; fi
+            w=$(sed -n 's/^# weights: \([^ ]*\) .*/\1/p' "$t" | head -n 1)
+            if [ -n "$w" ]; then w="$dir/$w"
+            else w=$(sed -n 's/^# command: .* --weights \([^ ]*\).*/\1/p' "$t" | head -n 1 | sed 's|^build/results/|frozen/|'); fi
+            v=v1; grep -q '^# eval: volume v2' "$t" && v=v2
+            jobs_list+=("$w $s $a $v $dir $exp${sub:+/$sub}")
+        done
+    done
+done <<<"$sets"
+if [ ${#jobs_list[@]} -gt 0 ]; then
+    echo "verify-deep: redrawing the samples of ${#jobs_list[@]} frozen models ($JOBS at a time)"
     redraw() {
-        local w=$1 b s a out
-        b=$(basename "$w" .ckpt); s=${b#weights_s}; s=${s%%_*}; a=${b##*_}
-        out="$DEEP/model/samples_s${s}_${a}.tsv"
-        if ! "$CLI" main-redraw --weights "$w" --seed "$((10#$s))" --arm "$a" --out "$out" > "$out.log" 2>&1; then
+        local w=$1 s=$2 a=$3 v=$4 dir=$5 set=$6 out ss
+        ss=$(printf '%02d' "$s")
+        mkdir -p "$DEEP/model/$set"
+        out="$DEEP/model/$set/samples_s${ss}_${a}.tsv"
+        local fz="$dir/samples_s${ss}_${a}.tsv"
+        if [ ! -f "$w" ]; then echo "  FAIL    $w: missing (the weights of $dir/run_s${ss}_${a}.tsv)"; return 1; fi
+        if [ ! -f "$fz" ]; then echo "  FAIL    $fz: missing beside $dir/run_s${ss}_${a}.tsv"; return 1; fi
+        if ! "$CLI" main-redraw --weights "$w" --seed "$s" --arm "$a" --volume "$v" --out "$out" > "$out.log" 2>&1; then
             echo "  FAIL    $w: crownshy main-redraw failed (see $out.log)"; return 1; fi
-        local fz="frozen/main/samples_s${s}_${a}.tsv"
-        if [ ! -f "$fz" ]; then echo "  FAIL    $fz: missing beside $w"; return 1; fi
         if ! cmp -s <(grep -v '^#' "$out") <(grep -v '^#' "$fz"); then echo "  FAIL    $fz: redrawn samples differ ($out)"; return 1; fi
-        echo "  PASS    $fz: redrawn from $w, bit-identical"
+        echo "  PASS    $fz: redrawn from $w (volume $v), bit-identical"
     }
     export -f redraw; export DEEP CLI
-    printf '%s\n' "${weights[@]}" | xargs -P "$JOBS" -I{} bash -c 'redraw "$@"' _ {} | tee "$DEEP/model/redraw.log"
+    mkdir -p "$DEEP/model"
+    printf '%s\n' "${jobs_list[@]}" | xargs -P "$JOBS" -L 1 bash -c 'redraw "$@"' _ | tee "$DEEP/model/redraw.log"
     redrawn=$(grep -c '^  PASS ' "$DEEP/model/redraw.log" || true)
-    redraw_bad=$(( ${#weights[@]} - redrawn ))
+    redraw_bad=$(( ${#jobs_list[@]} - redrawn ))
 fi
 [ $((absent + redraw_bad)) -eq 0 ] || status=1
 failed_units=$([ $rc -ne 0 ] && echo "a unit failed (make exit $rc, $log)" || echo "every unit ran")
 verdict=PASS; [ $status -eq 0 ] || verdict=FAIL
-echo "verify-deep: $verdict: teacher part $same of $((same + differ + missing)) tables bit-identical ($differ differ, $missing not frozen; $failed_units); model part $redrawn of $(( ${nseeds:-0} * 2 )) models redrawn bit-identical ($redraw_bad differ or failed, $absent missing); $((SECONDS - t0)) s; exit $status"
+echo "verify-deep: $verdict: teacher part $same of $((same + differ + missing)) tables bit-identical ($differ differ, $missing not frozen; $failed_units); model part $redrawn of $designed models redrawn bit-identical ($redraw_bad differ or failed, $absent missing); $((SECONDS - t0)) s; exit $status"
 exit $status
