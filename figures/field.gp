@@ -25,7 +25,8 @@ nst = col("frozen/field/heldout.tsv", "coupled", 4)
 if (!exists("outdir")) outdir = 'figures'
 do for [fmt in "png pdf"] {
   if (fmt eq "png") { set terminal pngcairo size 1500,480 font "Sans,11"; set output outdir.'/field.png' } \
-  else { set terminal pdfcairo size 15in,4.8in font "Sans,11"; set output outdir.'/field.pdf' }
+  else { set terminal pdfcairo size 7in,2.4in font "Sans,7"; set output outdir.'/field.pdf' }
+  K = (fmt eq "png") ? 1 : 0.5   # point sizes of the printed (pdf) figure
   set datafile separator "\t"
   set multiplot layout 1,3
   # ---- left: calibration
@@ -39,7 +40,7 @@ do for [fmt in "png pdf"] {
   set yrange [0:1.5]
   set arrow 1 from bfield, graph 0 to bfield, graph 1 nohead dt 3 lc rgb "#555555"
   set label 1 sprintf("{/Symbol b}_{field} = %.2f", bfield) at bfield, graph 0.08 offset 0.5,0
-  plot "frozen/field/calibration.tsv" using (strcol(1) eq "coupled" ? $2 : NaN):7 with linespoints pt 7 ps 0.7 lc rgb "#1f77b4" title "simulated (lattice, d = 4 m, L = 36 m)", \
+  plot "frozen/field/calibration.tsv" using (strcol(1) eq "coupled" ? $2 : NaN):7 with linespoints pt 7 ps 0.7*K lc rgb "#1f77b4" title "simulated (lattice, d = 4 m, L = 36 m)", \
        target with lines dt 2 lw 2 lc rgb "#d62728" title sprintf("field target %.3f m", target)
   # ---- centre: spread
   unset arrow; unset label
@@ -52,7 +53,7 @@ do for [fmt in "png pdf"] {
   set xtics ("coupled" 0, "uncoupled twin" 1)
   set style fill solid 0.7
   set boxwidth 0.5
-  set label 2 "field spread: needs the raw field table\n(FIELD_TABLE=path, Dryad 10.5061/dryad.34tmpg4hk;\nnot on this machine) -> ratio band 0.5-2.0\nnot drawable: SpreadRatio, ControlSpread PENDING" at graph 0.03, graph 0.95 noenhanced font "Sans,9" tc rgb "#b00000"
+  set label 2 "field spread: needs the raw field table\n(FIELD_TABLE=path, Dryad 10.5061/dryad.34tmpg4hk;\nnot on this machine) -> ratio band 0.5-2.0\nnot drawable: SpreadRatio, ControlSpread PENDING" at graph 0.03, graph 0.95 noenhanced font (fmt eq "png" ? "Sans,9" : "Sans,5.5") tc rgb "#b00000"
   set label 3 sprintf("%.3f m", sp_c) at 0, sp_c center offset 0,0.8
   set label 4 sprintf("%.3f m", sp_u) at 1, sp_u center offset 0,0.8
   unset key
@@ -70,8 +71,8 @@ do for [fmt in "png pdf"] {
   set label 5 sprintf("field band %.2f-%.2f", elo, ehi) at graph 0.03, first ehi offset 0,-0.8 tc rgb "#1a6b1a"
   set label 6 sprintf("%.3f", el_c) at 0, el_c offset 1.5,0
   set label 7 sprintf("%.3f", el_u) at 1, el_u offset 1.5,0
-  plot "+" using (0):(el_c) every ::0::0 with points pt 7 ps 2 lc rgb "#1f77b4", \
-       "+" using (1):(el_u) every ::0::0 with points pt 6 ps 2 lc rgb "#555555"
+  plot "+" using (0):(el_c) every ::0::0 with points pt 7 ps 2*K lc rgb "#1f77b4", \
+       "+" using (1):(el_u) every ::0::0 with points pt 6 ps 2*K lc rgb "#555555"
   unset object 1
   unset multiplot
   unset output

@@ -15,7 +15,7 @@ nrows = have_field ? 2 : 1
 rows = "beta_train beta_field"
 do for [term = 1:2] {
   if (term == 1) { set terminal pngcairo size 2000,(nrows*270+40) font ",13"; set output outdir.'/hero.png' }
-  else { set terminal pdfcairo size 10in,(nrows*1.35+0.2)*1.0in font ",8"; set output outdir.'/hero.pdf' }
+  else { set terminal pdfcairo size 7in,(nrows*1.35+0.2)*0.7in font ",7"; set output outdir.'/hero.pdf' }
   set multiplot layout nrows,8 margins 0.03,0.995,0.02,0.86 spacing 0.006,0.04
   do for [b = 1:nrows] {
     do for [a = 1:8] {

@@ -24,7 +24,7 @@ pd(a) = real(word("5.0 4.0 3.0 3.0", a))
 val(row, col) = real(system(sprintf("awk -F'\t' '!/^#/ && n++ == %d {print $%d}' '%s'", row, col, fs)))
 do for [term = 1:2] {
   if (term == 1) { set terminal pngcairo size 1800,520 font ",14"; set output outdir.'/pointcloud-stand.png' }
-  else { set terminal pdfcairo size 9in,2.6in font ",9"; set output outdir.'/pointcloud-stand.pdf' }
+  else { set terminal pdfcairo size 7in,2.05in font ",8"; set output outdir.'/pointcloud-stand.pdf' }
   set multiplot layout 1,4
   do for [a = 1:4] {
     f = file(a)

@@ -21,7 +21,7 @@ titles = "'(b) teacher' '(c) joint model' '(d) attention ablated'"
 W = 15.0
 do for [term = 1:2] {
   if (term == 1) { set terminal pngcairo size 1800,520 font ",14"; set output outdir.'/teaser.png' }
-  else { set terminal pdfcairo size 9in,2.6in font ",9"; set output outdir.'/teaser.pdf' }
+  else { set terminal pdfcairo size 7in,2.05in font ",8"; set output outdir.'/teaser.pdf' }
   set multiplot layout 1,4
   set title "(a) lidar canopy height model"
   unset xlabel   # panel d's label must not leak into this one on the second pass
