@@ -200,7 +200,7 @@ cs_status agree_write_summary(const char *path, const claims *c, const claim_res
                "Every measured number of the reference paper beside ours, our 95\\,\\%% interval over the independent replicate unit\n"
                "(percentile bootstrap over seeds, stands or spacings; for a number resting on one stand or patch, the range over\n"
                "replicate stands or patches of the same family), the verdict of its preregistered gate, and the agreement class.\n"
-               "%s.\n\n{\\scriptsize\\setlength{\\tabcolsep}{3pt}\n\\begin{longtable}{lrrllll}\n\\toprule\n"
+               "%s.\n\n{\\scriptsize\\setlength{\\tabcolsep}{3pt}\n\\begin{longtable}{lrrlllp{4.4cm}}\n\\toprule\n"
                "claim & paper & ours & 95\\,\\%% interval & unit, $n$ & gate & agreement\\\\\n\\midrule\n\\endhead\n", line);
     for (size_t i = 0; i < c->n; i++) {
         if (!summary_row(&c->rows[i])) continue;
@@ -278,7 +278,7 @@ cs_status agree_write_comparison(const char *path, const claims *c, const claim_
                "%% beyond 10 %%: which run reading (frozen/readings/) or unstated choice (frozen/sensitivity/) reaches the\n"
                "%% reference value (src/claims/attrib.c), or unexplained; untested: no reading or choice varies it.\n"
                "%% 95 %% interval and agreement: design.md section 6.1 (src/claims/interval.c, agree.c).\n"
-               "\\begin{longtable}{llrrrrllp{3.0cm}l}\n\\toprule\n"
+               "\\begin{longtable}{llrrrrllp{4.6cm}l}\n\\toprule\n"
                "claim & kind & reference & ours & 95\\,\\%% interval & rel.\\ diff & gate & status & beyond 10\\,\\%%: reached by & agreement\\\\\n\\midrule\n\\endhead\n");
     for (size_t i = 0; i < c->n; i++) {
         char ref[160], ours[192], name[96], by[300];
