@@ -21,11 +21,12 @@ static void test_table_from_constructed_runs(void **s)
     char p[700], cmd[1200];
     snprintf(cmd, sizeof cmd, "mkdir -p %s/paper-reading/main %s/paper-reading/extrapolation", root, root);
     assert_int_equal(system(cmd), 0);
-    /* 3 seeds: joint 0.1 0.2 0.3, indep 0.5 0.6 0.7, shuffled joint 0.4 0.4 0.4 */
+    /* 3 seeds: joint 0.1 0.3 0.2, indep 0.5 0.7 0.6, shuffled joint 0.4 0.35 0.4
+     * (own ratios 4, 1.17, 2: two seeds pass main.gate's 1.3 on their own) */
     snprintf(p, sizeof p, "%s/paper-reading/main/runs.tsv", root);
     put(p, "seed\tarm\tprobe\terror\n"
            "1\tjoint\tgenerated\t0.1\n1\tjoint\tshuffled\t0.4\n1\tindep\tgenerated\t0.5\n"
-           "2\tjoint\tgenerated\t0.3\n2\tjoint\tshuffled\t0.4\n2\tindep\tgenerated\t0.7\n"
+           "2\tjoint\tgenerated\t0.3\n2\tjoint\tshuffled\t0.35\n2\tindep\tgenerated\t0.7\n"
            "3\tjoint\tgenerated\t0.2\n3\tjoint\tshuffled\t0.4\n3\tindep\tgenerated\t0.6\n");
     snprintf(p, sizeof p, "%s/paper-reading/extrapolation/runs.tsv", root);
     put(p, "seed\tarm\tspacing\tw1\n1\tjoint\t3\t0.1\n1\tjoint\t7.5\t0.3\n1\tindep\t3\t0.2\n1\tindep\t7.5\t0.4\n");
@@ -51,6 +52,7 @@ static void test_table_from_constructed_runs(void **s)
     ASSERT_NEAR(r->rel, 2.0 / 3.0, 1e-12);
     ASSERT_NEAR(r->p, 0.25, 1e-12); /* 3 seeds, all one sign: 2 / 2^3 */
     ASSERT_NEAR(r->shuf_joint, 2.0, 1e-12);
+    assert_int_equal(r->coupled, 2);
     assert_true(isnan(r->shuf_indep) && isnan(r->rot_joint));
     ASSERT_NEAR(r->ex_lo, 0.5, 1e-12);
     ASSERT_NEAR(r->ex_hi, 0.25, 1e-12);
@@ -71,6 +73,15 @@ static void test_table_from_constructed_runs(void **s)
     fclose(f);
     assert_int_equal(meta, 1);
     assert_int_equal(cols, 1);
+    /* the written table checks against the rows it came from; one changed cell
+     * is refused, naming the file, the line and the column */
+    assert_int_equal(model_readings_check(out, rows, n), CS_OK);
+    char cmd2[1400];
+    snprintf(cmd2, sizeof cmd2, "sed -i 's/\\t0.59999999999999998\\t/\\t0.61\\t/' %s", out);
+    assert_int_equal(system(cmd2), 0);
+    assert_int_equal(model_readings_check(out, rows, n), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), "summary.tsv:"));
+    assert_non_null(strstr(cs_errmsg(), "'indep'"));
     /* a seed missing a probe row is refused, naming the file */
     snprintf(p, sizeof p, "%s/paper-reading/main/runs.tsv", root);
     put(p, "seed\tarm\tprobe\terror\n1\tjoint\tgenerated\t0.1\n1\tjoint\tshuffled\t0.4\n1\tindep\tgenerated\t0.5\n"

@@ -52,6 +52,7 @@
 #define PATHS_SENS_TEX "paper/sensitivity.tex"
 #define PATHS_SENS_DIR "frozen/sensitivity"
 #define PATHS_SENS_SUMMARY "frozen/sensitivity/summary.tsv"
+#define PATHS_MODEL_READINGS_SUMMARY "frozen/model-readings/summary.tsv"
 #define PATHS_PAPER_DIR "paper"
 #define PATHS_FIGURES_DIR "figures"
 #define PATHS_FROZEN_DIR "frozen"

@@ -5,6 +5,7 @@
 #include "afile.h"
 #include "agree.h"
 #include "attrib.h"
+#include "model_readings.h"
 #include "readings.h"
 #include "sens.h"
 #include <ctype.h>
@@ -57,6 +58,14 @@ cs_status paper_generate(const claims *c, const claim_result *res, const char *d
         if (!st) st = readings_write_tex(p, rows, nr);
         free(rows);
         *readings = !st;
+    }
+    /* the generator readings table (design.md §8), when frozen, against its
+     * readings' frozen per-run summaries */
+    if (!st && stat(PATHS_MODEL_READINGS_SUMMARY, &sb) == 0) {
+        model_readings_row mr[4];
+        size_t nm = 0;
+        st = model_readings_compute(PATHS_FROZEN_DIR, mr, &nm);
+        if (!st) st = model_readings_check(PATHS_MODEL_READINGS_SUMMARY, mr, nm);
     }
     int sens = 0;
     if (!st) st = sens_generate(c, dir, &sens);

@@ -188,6 +188,24 @@ cs_status claim_main_median(const claim_row *row, claim_result *res)
     return CS_OK;
 }
 
+/* How many seeds' joint arm passes the preregistered shuffle threshold on its
+ * own (its shuffled error over its error, main.gate:shuffle_ratio_min): a
+ * reading whose seeds split into two kinds of solution shows it here, where a
+ * ratio of medians would hide it. */
+cs_status claim_main_coupled(const claim_row *row, claim_result *res)
+{
+    main_runs r;
+    cs_status st = read_runs(row->source, &r, res);
+    if (st || res->status == VERDICT_PENDING) return st;
+    double thr;
+    if ((st = gate_read_value(PATHS_GATE("main"), "shuffle_ratio_min", 0, &thr))) return st;
+    if (!r.has[2]) return cs_err(CS_EINPUT, "%s: no shuffled rows for the joint arm", row->source);
+    int n = 0;
+    for (int s = 0; s < r.n; s++) n += r.v[2][s] / r.v[0][s] >= thr;
+    claim_set_value(row, res, n);
+    return CS_OK;
+}
+
 cs_status claim_main_range(const claim_row *row, claim_result *res)
 {
     main_runs r;

@@ -1,5 +1,7 @@
 /* model_readings: the generator readings table; see model_readings.h. */
 #include "model_readings.h"
+#include "gate.h"
+#include "paths.h"
 #include "prov.h"
 #include "stats.h"
 #include "tsv.h"
@@ -125,6 +127,9 @@ cs_status model_readings_compute(const char *root, model_readings_row *rows, siz
 {
     *n = 0;
     const double blind = blind_level(root);
+    double thr;
+    cs_status gst = gate_read_value(PATHS_GATE("main"), "shuffle_ratio_min", 0, &thr);
+    if (gst) return gst;
     for (size_t k = 0; k < NREAD; k++) {
         char dir[1024], p[1100];
         snprintf(dir, sizeof dir, "%s/%s", root, READ[k].dir);
@@ -147,6 +152,7 @@ cs_status model_readings_compute(const char *root, model_readings_row *rows, siz
         r->shuf_joint = has[0][1] ? med(e[0][1], (size_t)ns) / r->joint : NAN;
         r->shuf_indep = has[1][1] ? med(e[1][1], (size_t)ns) / r->indep : NAN;
         r->rot_joint = has[0][2] ? med(e[0][2], (size_t)ns) / r->joint : NAN;
+        for (int q = 0; q < ns && has[0][1]; q++) r->coupled += e[0][1][q] / e[0][0][q] >= thr;
         snprintf(p, sizeof p, "%s/extrapolation/runs.tsv", dir);
         if ((st = extrap_rel(p, &r->ex_lo, &r->ex_hi))) return st;
         run_meta(dir, ns, &r->params, &r->steps_per_s);
@@ -175,15 +181,42 @@ cs_status model_readings_write(const char *path, const char *root, const model_r
         snprintf(key, sizeof key, "steps_per_s_%s", rows[i].reading);
         tsv_writer_meta(w, key, "%.4g (median over its units' training, wall clock)", rows[i].steps_per_s);
     }
-    tsv_writer_columns(w, "reading\trole\tdir\tseeds\tparams\tjoint\tindep\tdirection_blind\trel_improvement\twilcoxon_p\t"
+    tsv_writer_columns(w, "reading\trole\tdir\tseeds\tcoupled_seeds\tparams\tjoint\tindep\tdirection_blind\trel_improvement\twilcoxon_p\t"
                           "shuffle_ratio_joint\tshuffle_ratio_indep\trotation_ratio_joint\textrap_low_rel\textrap_high_rel");
     for (size_t i = 0; i < n; i++) {
         const model_readings_row *r = &rows[i];
         tsv_writer_str(w, r->reading); tsv_writer_str(w, r->role); tsv_writer_str(w, r->dir);
-        tsv_writer_long(w, r->seeds); tsv_writer_long(w, r->params);
+        tsv_writer_long(w, r->seeds); tsv_writer_long(w, r->coupled); tsv_writer_long(w, r->params);
         const double v[] = {r->joint, r->indep, r->blind, r->rel, r->p, r->shuf_joint, r->shuf_indep, r->rot_joint, r->ex_lo, r->ex_hi};
         for (size_t k = 0; k < sizeof v / sizeof *v; k++) tsv_writer_dbl(w, v[k]);
         tsv_writer_endrow(w);
     }
     return tsv_writer_commit(w);
+}
+
+static int same_cell(double a, double b) { return (isnan(a) && isnan(b)) || a == b; }
+
+cs_status model_readings_check(const char *path, const model_readings_row *rows, size_t n)
+{
+    tsv *t;
+    cs_status st = tsv_read(path, &t);
+    if (st) return st;
+    if (tsv_nrows(t) != n) st = cs_err(CS_EINPUT, "%s: %zu rows, the run tables give %zu readings", path, tsv_nrows(t), n);
+    static const char *col[] = {"seeds", "coupled_seeds", "params", "joint", "indep", "direction_blind", "rel_improvement", "wilcoxon_p",
+                                "shuffle_ratio_joint", "shuffle_ratio_indep", "rotation_ratio_joint", "extrap_low_rel", "extrap_high_rel"};
+    for (size_t i = 0; i < n && !st; i++) {
+        const model_readings_row *r = &rows[i];
+        const char *name = tsv_str(t, i, "reading");
+        if (!name || strcmp(name, r->reading)) { st = cs_err(CS_EINPUT, "%s:%d: field 'reading': expected %s", path, tsv_line(t, i), r->reading); break; }
+        const double want[] = {r->seeds, r->coupled, (double)r->params, r->joint, r->indep, r->blind, r->rel, r->p,
+                               r->shuf_joint, r->shuf_indep, r->rot_joint, r->ex_lo, r->ex_hi};
+        for (size_t c = 0; c < sizeof col / sizeof *col && !st; c++) {
+            double v;
+            if ((st = tsv_double_nf(t, i, col[c], &v))) break;
+            if (!same_cell(v, want[c]))
+                st = cs_err(CS_EINPUT, "%s:%d: field '%s': says %.17g but the run tables give %.17g (reading %s)", path, tsv_line(t, i), col[c], v, want[c], r->reading);
+        }
+    }
+    tsv_free(t);
+    return st;
 }

@@ -13,7 +13,10 @@
  * baselines (<root>/paper-reading/main/baselines.tsv; the same evaluation volume for every reading); the relative
  * improvement and the exact Wilcoxon p of the paired seeds (main.gate); the
  * shuffled-geometry ratio of each arm and the rotation ratio of the joint arm
- * (median probe error / median error); the relative improvement at each
+ * (median probe error / median error); how many seeds' joint arm passes the
+ * preregistered shuffle threshold on its own (coupled seeds, main.gate
+ * shuffle_ratio_min: a reading whose seeds split into two kinds of solution
+ * shows it); the relative improvement at each
  * extrapolation spacing; the median training steps/s over the units that
  * recorded a training time (NaN when none did). No verdicts: the gates judge
  * the paper and pair readings through their claims. Returns cs_status. */
@@ -24,13 +27,17 @@
 
 typedef struct {
     const char *reading, *role, *dir; /* dir relative to the root */
-    int seeds;
+    int seeds, coupled;
     long params;
     double joint, indep, blind, rel, p, shuf_joint, shuf_indep, rot_joint, ex_lo, ex_hi, steps_per_s;
 } model_readings_row;
 
 /* Rows of every reading whose main/runs.tsv exists under root (rows[4]). */
 cs_status model_readings_compute(const char *root, model_readings_row *rows, size_t *n);
+/* The frozen table at path against rows computed afresh: the same readings in
+ * the same order and every data cell equal bit for bit (NaN equal to NaN);
+ * CS_EINPUT names the file, line and column of the first difference. */
+cs_status model_readings_check(const char *path, const model_readings_row *rows, size_t n);
 /* The table, with provenance, atomically. */
 cs_status model_readings_write(const char *path, const char *root, const model_readings_row *rows, size_t n,
                                int argc, char **argv);
