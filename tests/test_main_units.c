@@ -76,6 +76,33 @@ static void test_unit_samples_redraw_bit_for_bit_and_recompute_w1(void **s)
         int below = 0, equal_before = 0;
         for (int k = 0; k < 5; k++) { below += jm[k] < jm[fig]; equal_before += jm[k] == jm[fig] && k < fig; }
         assert_int_equal(below + equal_before, 2); /* rank floor((5 - 1) / 2) */
+        /* the figure patch's crowns, per source: its trees ringed as overlapping
+         * are the overlapping count of its row in dist_patches.tsv */
+        int want[3] = {-1, -1, -1};
+        snprintf(p, sizeof p, "%s/comparison/dist_patches.tsv", dir);
+        assert_int_equal(tsv_read(p, &t), CS_OK);
+        static const char *srcs[3] = {"teacher", "joint", "indep"};
+        for (size_t i = 0; i < tsv_nrows(t); i++) {
+            long k, o;
+            assert_int_equal(tsv_long(t, i, "patch", &k), CS_OK);
+            if (k != fig || strcmp(tsv_str(t, i, "probe"), "comparison")) continue;
+            assert_int_equal(tsv_long(t, i, "overlapping", &o), CS_OK);
+            for (int a = 0; a < 3; a++) if (!strcmp(tsv_str(t, i, "source"), srcs[a])) want[a] = (int)o;
+        }
+        tsv_free(t);
+        snprintf(p, sizeof p, "%s/comparison/figure_crowns.tsv", dir);
+        assert_int_equal(tsv_read(p, &t), CS_OK);
+        assert_int_equal(atoi(tsv_meta(t, "figure_patch")), fig);
+        assert_int_equal(tsv_nrows(t), 3 * 24 * 97);
+        int ringed[3] = {0, 0, 0};
+        for (size_t i = 0; i < tsv_nrows(t); i += 97) {
+            long tree, o;
+            assert_int_equal(tsv_long(t, i, "tree", &tree), CS_OK);
+            assert_int_equal(tsv_long(t, i, "overlapping", &o), CS_OK);
+            ringed[tree / 24] += (int)o;
+        }
+        tsv_free(t);
+        for (int a = 0; a < 3; a++) assert_int_equal(ringed[a], want[a]);
     }
     char msg[1024];
     int nchecked = 0;

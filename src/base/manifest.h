@@ -127,7 +127,7 @@ UNIT(anisotropy, "jitter.tsv", "@R@/field/calibration.tsv", "$(CLI) anisotropy-j
 UNIT(anisotropy, "jitter_calibration.tsv", "@R@/anisotropy/jitter.tsv", "$(CLI) anisotropy-jitter-calibrate --sweep $< --out $@", "top readings")
 UNIT(anisotropy, "heldout.tsv", "@R@/field/calibration.tsv @R@/anisotropy/jitter_calibration.tsv", "$(CLI) anisotropy-heldout @TEACHER@ @LAYOUT@ --calibration @R@/field/calibration.tsv --jitter-calibration @R@/anisotropy/jitter_calibration.tsv --stands $(FIELD_STANDS) --out $@", "top readings")
 
-EXPERIMENT(comparison, "E7", "src/exp/exp_comp.c", "-", "src/claims/claim_comp.c", "figures/teaser.gp", "-", "a 24-tree patch at 5.0 m by the teacher, the joint and the independent model of seed 1, and the dart probe")
+EXPERIMENT(comparison, "E7", "src/exp/exp_comp.c", "-", "src/claims/claim_comp.c", "-", "-", "a 24-tree patch at 5.0 m by the teacher, the joint and the independent model of seed 1, and the dart probe")
 COMMAND(comparison, "comparison-run", cli_comparison_run, "E7: comparison patch (teacher, joint, independent) and dart probe")
 COMMAND(comparison, "comparison-dist", cli_comparison_dist, "E7: the comparison patch and the dart probe as distributions over fresh patches")
 UNIT(comparison, "patch.tsv", "@R@/main/run_s01_joint.tsv @R@/main/run_s01_indep.tsv", "$(CLI) comparison-run --joint @R@/main/weights_s01_joint.ckpt --indep @R@/main/weights_s01_indep.ckpt --out @R@", "top")

@@ -4,6 +4,7 @@
 #include "exp_compdist.h"
 #include "design.h"
 #include "estimator.h"
+#include "figdata.h"
 #include "gate.h"
 #include "model.h"
 #include "patch.h"
@@ -44,7 +45,8 @@ static cs_status patch_stats(const double *x, const double *y, const double *r, 
 }
 
 /* The central-stem patch of stand k of `key` (lattice or hard-core) into ps. */
-static cs_status add_patch(const char *key, const stems_type *kind, double shape, double d, double beta, unsigned k, patch_set *ps)
+static cs_status add_patch(const char *key, const stems_type *kind, double shape, double d, double beta, unsigned k, patch_set *ps,
+                           double *h /* [PATCH_T] heights of the patch trees, or NULL */)
 {
     stand *sd;
     cs_status st = stand_alloc(&sd, kind, d, 12.0 * d, shape, key, k);
@@ -61,6 +63,7 @@ static cs_status add_patch(const char *key, const stems_type *kind, double shape
     if (!st) st = patch_stand_init(&pst, (int)sd->s->n, sd->s->x, sd->s->y, r, sd->h, d);
     if (!st) st = stems_focal(sd->s, &focal);
     if (!st) st = patch_build(&pst, (int)focal, &p);
+    for (int i = 0; i < PATCH_T && !st && h; i++) h[i] = sd->h[p.idx[i]];
     if (!st) st = patch_set_add(ps, &p);
     free(r);
     stand_free(sd);
@@ -69,13 +72,15 @@ static cs_status add_patch(const char *key, const stems_type *kind, double shape
 
 /* Per patch and source (nsrc sources: teacher, then the models m[0..nm)):
  * med[s * n + k], ovl[s * n + k]. */
-static cs_status measure(const patch_set *ps, model *const *m, int nm, const char *key, double d, double *med, int *ovl)
+static cs_status measure(const patch_set *ps, model *const *m, int nm, const char *key, double d, double *med, int *ovl,
+                         double *keep /* [(nm + 1) * n * T * P] every source's radii, or NULL */)
 {
     const int n = ps->n;
     const size_t tp = (size_t)PATCH_T * PATCH_P;
-    double *r = malloc((size_t)n * tp * sizeof *r);
-    cs_status st = r ? CS_OK : cs_err(CS_ENOMEM, "out of memory");
+    double *own = keep ? NULL : malloc((size_t)n * tp * sizeof *own);
+    cs_status st = keep || own ? CS_OK : cs_err(CS_ENOMEM, "out of memory");
     for (int s = 0; s <= nm && !st; s++) {
+        double *r = keep ? keep + (size_t)s * n * tp : own;
         if (s == 0)
             for (int k = 0; k < n; k++) patch_set_radii(ps, k, ps->x1 + (size_t)k * tp, r + (size_t)k * tp);
         else {
@@ -89,8 +94,45 @@ static cs_status measure(const patch_set *ps, model *const *m, int nm, const cha
             st = patch_stats(ps->px + (size_t)k * PATCH_T, ps->py + (size_t)k * PATCH_T, r + (size_t)k * tp,
                              &med[(size_t)s * n + k], &ovl[(size_t)s * n + k]);
     }
-    free(r);
+    free(own);
     return st;
+}
+
+/* The figure patch's crowns for the teaser panels: every source side by side
+ * (source s shifted by 40 m in x), each tree flagged when its crown runs into
+ * another patch tree's (as patch_stats counts them). r: every source's radii. */
+static cs_status write_figure(const char *dir, prov *pv, const char *cj, const char *ci, const patch_set *ps, const double *r,
+                              const double *h, int fig)
+{
+    const size_t tp = (size_t)PATCH_T * PATCH_P;
+    const int n = ps->n;
+    double X[CD_NSRC * PATCH_T], Y[CD_NSRC * PATCH_T], H[CD_NSRC * PATCH_T], R[CD_NSRC * PATCH_T * PATCH_P];
+    int fl[CD_NSRC * PATCH_T];
+    const double *px = ps->px + (size_t)fig * PATCH_T, *py = ps->py + (size_t)fig * PATCH_T;
+    for (int s = 0; s < CD_NSRC; s++) {
+        const double *rs = r + ((size_t)s * n + fig) * tp;
+        memcpy(R + (size_t)s * tp, rs, tp * sizeof *R);
+        for (int i = 0; i < PATCH_T; i++) {
+            int hit = 0;
+            for (int j = 0; j < PATCH_T && !hit; j++)
+                if (j != i && est_clearance(px[i], py[i], rs + (size_t)i * CROWN_NSEC, px[j], py[j], rs + (size_t)j * CROWN_NSEC) < 0) hit = 1;
+            X[s * PATCH_T + i] = px[i] + 40.0 * s; Y[s * PATCH_T + i] = py[i]; H[s * PATCH_T + i] = h[(size_t)fig * PATCH_T + i];
+            fl[s * PATCH_T + i] = hit;
+        }
+    }
+    char path[1024];
+    snprintf(path, sizeof path, "%s/comparison/figure_crowns.tsv", dir);
+    tsv_writer *w;
+    cs_status st = tsv_writer_open(&w, path);
+    if (st) return st;
+    if ((st = prov_write(w, pv))) { tsv_writer_abort(w); return st; }
+    tsv_writer_meta(w, "models", "joint %s, independent %s", cj, ci);
+    tsv_writer_meta(w, "figure_patch", "%d: the rule fixed before the run, the lower median of the joint arm's per-patch medians (rank floor((N - 1) / 2), ties by patch index)", fig);
+    tsv_writer_meta(w, "what", "crown outlines of the figure patch (probe comparison) for the teaser panels; positions relative to the focal stem; %d rows per tree per source", FIGDATA_ROWS);
+    tsv_writer_meta(w, "layout", "teacher at x offset 0, joint at 40 m, independent at 80 m; tree = source x %d + patch tree", PATCH_T);
+    st = figdata_write_polygons(w, CD_NSRC * PATCH_T, X, Y, H, R, fl, "overlapping");
+    if (st) { tsv_writer_abort(w); return st; }
+    return tsv_writer_commit(w);
 }
 
 /* Quantiles 0.05, 0.5, 0.95 of x[n] and the fraction of zeros of o[n]. */
@@ -193,20 +235,24 @@ cs_status exp_compdist_run(const exp_compdist_args *a)
     double *med = malloc((size_t)CD_NSRC * n * sizeof *med), *dmed = malloc((size_t)2 * n * sizeof *dmed);
     int *ovl = malloc((size_t)CD_NSRC * n * sizeof *ovl), *dovl = malloc((size_t)2 * n * sizeof *dovl);
     if (!st && (!med || !dmed || !ovl || !dovl)) st = cs_err(CS_ENOMEM, "out of memory");
+    double *keep = malloc((size_t)CD_NSRC * n * PATCH_T * PATCH_P * sizeof *keep), *hts = malloc((size_t)n * PATCH_T * sizeof *hts);
+    if (!st && (!keep || !hts)) st = cs_err(CS_ENOMEM, "out of memory");
     if (!st) st = patch_set_alloc(&ps, n);
     if (!st) st = patch_set_alloc(&dp, n);
     for (int k = 0; k < n && !st; k++) {
-        st = add_patch("comparison-dist", stems_lattice, jitter, d, beta, (unsigned)k, ps);
-        if (!st) st = add_patch("comparison-dist-dart", stems_hardcore, CD_HARDCORE_C, d, beta, (unsigned)k, dp);
+        st = add_patch("comparison-dist", stems_lattice, jitter, d, beta, (unsigned)k, ps, hts + (size_t)k * PATCH_T);
+        if (!st) st = add_patch("comparison-dist-dart", stems_hardcore, CD_HARDCORE_C, d, beta, (unsigned)k, dp, NULL);
     }
     if (!st) st = patch_set_standardise(ps, sj);
     if (!st) st = patch_set_standardise(dp, sj);
-    if (!st) st = measure(ps, m, 2, "comparison-dist", d, med, ovl);
-    if (!st) st = measure(dp, m, 1, "comparison-dist-dart", d, dmed, dovl);
+    if (!st) st = measure(ps, m, 2, "comparison-dist", d, med, ovl, keep);
+    if (!st) st = measure(dp, m, 1, "comparison-dist-dart", d, dmed, dovl, NULL);
     snprintf(pv.seeds, sizeof pv.seeds, "patches seed_derive(comparison-dist[-dart], 5.0, 0..%d, stems|crowns); sampling seed_derive(comparison-dist[-dart], 5.0, 0, joint|indep)", n - 1);
     pv.worst_overlap_m = -1;
-    if (!st) st = write_tables(dir, &pv, cj, ci, n, n, med, ovl, dmed, dovl, figure_patch(med + (size_t)CD_JOINT * n, n));
-    free(med); free(dmed); free(ovl); free(dovl);
+    const int fig = st ? 0 : figure_patch(med + (size_t)CD_JOINT * n, n);
+    if (!st) st = write_tables(dir, &pv, cj, ci, n, n, med, ovl, dmed, dovl, fig);
+    if (!st) st = write_figure(dir, &pv, cj, ci, ps, keep, hts, fig);
+    free(med); free(dmed); free(ovl); free(dovl); free(keep); free(hts);
     patch_set_free(ps); patch_set_free(dp);
     model_free(m[0]); model_free(m[1]);
     return st;
