@@ -1,9 +1,12 @@
 /* Smoke tests for src/exp/ (exp_mechanism.c, exp_irreducibility.c, exp_stands.c): units run at one stand per cell into a
  * scratch directory, write provenance and the documented columns, and keep the
- * ablation's ordering (coupling off interpenetrates, both on opens gaps). */
+ * ablation's ordering (coupling off interpenetrates, both on opens gaps).
+ * With --stand-rows the E1 sweep and the E2 units also write the per-stand
+ * rows their pooled rows are made of. */
 #include "testutil.h"
 #include "cli.h"
 #include "tsv.h"
+#include <unistd.h>
 
 static int run(const char *unit, const char *out)
 {
@@ -75,6 +78,35 @@ static void test_reduction_unit_reports_a_pooled_sigma(void **st)
     tsv_free(t);
 }
 
+static int run_rows(const char *unit, const char *out, int rows)
+{
+    char *argv[] = {"crownshy", (char *)unit, "--stands", "2", "--out", (char *)out, "--stand-rows", NULL};
+    return cli_main(rows ? 7 : 6, argv);
+}
+
+static void test_stand_rows_only_when_asked(void **st)
+{
+    (void)st;
+    const char *dir = tu_tmpdir("exp_rows_off");
+    char path[600];
+    assert_int_equal(run_rows("irreducibility-perturb", dir, 0), 0);
+    snprintf(path, sizeof path, "%s/irreducibility/perturb_train_stands.tsv", dir);
+    assert_int_not_equal(access(path, F_OK), 0); /* the sensitivity units run without */
+    char cmd[1600];
+    snprintf(cmd, sizeof cmd, "grep -v '^#' %s/irreducibility/perturb_train.tsv > %s/pooled_without", dir, dir);
+    assert_int_equal(system(cmd), 0);
+    assert_int_equal(run_rows("irreducibility-perturb", dir, 1), 0);
+    /* the pooled table's data rows do not depend on the per-stand rows */
+    snprintf(cmd, sizeof cmd, "grep -v '^#' %s/irreducibility/perturb_train.tsv | cmp -s - %s/pooled_without", dir, dir);
+    assert_int_equal(system(cmd), 0);
+    tsv *t = NULL;
+    assert_int_equal(tsv_read(path, &t), CS_OK);
+    assert_int_equal(tsv_nrows(t), 5 * 2);
+    assert_non_null(tsv_meta(t, "teacher_version"));
+    assert_string_equal(tsv_str(t, 1, "stand"), "1");
+    tsv_free(t);
+}
+
 static void test_bad_usage_exits_2(void **st)
 {
     (void)st;
@@ -94,6 +126,7 @@ int main(void)
         cmocka_unit_test(test_ablation_unit_writes_three_arms_in_order),
         cmocka_unit_test(test_perturb_unit_judges_four_neighbours_per_stand),
         cmocka_unit_test(test_reduction_unit_reports_a_pooled_sigma),
+        cmocka_unit_test(test_stand_rows_only_when_asked),
         cmocka_unit_test(test_bad_usage_exits_2),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
