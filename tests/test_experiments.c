@@ -2,9 +2,14 @@
  * scratch directory, write provenance and the documented columns, and keep the
  * ablation's ordering (coupling off interpenetrates, both on opens gaps).
  * With --stand-rows the E1 sweep and the E2 units also write the per-stand
- * rows their pooled rows are made of. */
+ * rows their pooled rows are made of, and the claims' stand bootstrap
+ * recomputes the pooled values from them bit for bit. */
 #include "testutil.h"
+#include "agree.h"
+#include "claims.h"
 #include "cli.h"
+#include "interval.h"
+#include "paths.h"
 #include "tsv.h"
 #include <unistd.h>
 
@@ -107,6 +112,43 @@ static void test_stand_rows_only_when_asked(void **st)
     tsv_free(t);
 }
 
+/* The claims of each family, pointed at the 2-stand tables: computed, and
+ * their stand bootstrap accepted (the pooled values recomputed from the
+ * per-stand rows bit for bit) over 2 units. */
+static void test_stand_rows_give_the_pooled_values(void **st)
+{
+    (void)st;
+    const char *dir = tu_tmpdir("exp_rows");
+    const char *units[] = {"mechanism-sweep", "irreducibility-perturb", "irreducibility-refine", "irreducibility-reduction"};
+    for (int u = 0; u < 4; u++) assert_int_equal(run_rows(units[u], dir, 1), 0);
+    static const struct { const char *macro, *table; } c[] = {
+        {"MechHits", "mechanism/sweep.tsv"}, {"IrredTrainRespLo", "irreducibility/perturb_train.tsv"},
+        {"IrredRespHi", "irreducibility/perturb_train.tsv"}, {"IrredTrainShrink", "irreducibility/refine_train.tsv"},
+        {"IrredStepShrink", "irreducibility/refine_train.tsv"}, {"IrredTrainSteps", "irreducibility/reduction_train.tsv"},
+        {"IrredMiss", "irreducibility/reduction_train.tsv"},
+    };
+    claims reg;
+    interval_table it;
+    assert_int_equal(claims_load(PATHS_CLAIMS, &reg), CS_OK);
+    assert_int_equal(interval_table_load(PATHS_INTERVALS, &it), CS_OK);
+    for (size_t i = 0; i < sizeof c / sizeof *c; i++) {
+        const claim_row *orig = claims_find(&reg, c[i].macro);
+        assert_non_null(orig);
+        claim_row row = *orig;
+        if (snprintf(row.source, sizeof row.source, "%.100s/%s", dir, c[i].table) >= (int)sizeof row.source) fail_msg("path too long");
+        claim_result r;
+        claims_eval(&row, &r);
+        if (r.status != VERDICT_PASS) fail_msg("%s from %s: %s", c[i].macro, row.source, r.why);
+        claim_interval ci;
+        if (interval_eval(&it, &row, &r, &ci) != CS_OK) fail_msg("%s: %s", c[i].macro, cs_errmsg());
+        if (!ci.has) fail_msg("%s: no interval (%s)", c[i].macro, ci.why);
+        assert_int_equal(ci.n, 2);
+        assert_true(ci.lo <= ci.hi);
+    }
+    interval_table_free(&it);
+    claims_free(&reg);
+}
+
 static void test_bad_usage_exits_2(void **st)
 {
     (void)st;
@@ -127,6 +169,7 @@ int main(void)
         cmocka_unit_test(test_perturb_unit_judges_four_neighbours_per_stand),
         cmocka_unit_test(test_reduction_unit_reports_a_pooled_sigma),
         cmocka_unit_test(test_stand_rows_only_when_asked),
+        cmocka_unit_test(test_stand_rows_give_the_pooled_values),
         cmocka_unit_test(test_bad_usage_exits_2),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
