@@ -1,9 +1,17 @@
 /* Smoke tests for src/exp/ (exp_mechanism.c, exp_irreducibility.c, exp_stands.c): units run at one stand per cell into a
  * scratch directory, write provenance and the documented columns, and keep the
- * ablation's ordering (coupling off interpenetrates, both on opens gaps). */
+ * ablation's ordering (coupling off interpenetrates, both on opens gaps).
+ * With --stand-rows the E1 sweep and the E2 units also write the per-stand
+ * rows their pooled rows are made of, and the claims' stand bootstrap
+ * recomputes the pooled values from them bit for bit. */
 #include "testutil.h"
+#include "agree.h"
+#include "claims.h"
 #include "cli.h"
+#include "interval.h"
+#include "paths.h"
 #include "tsv.h"
+#include <unistd.h>
 
 static int run(const char *unit, const char *out)
 {
@@ -75,6 +83,72 @@ static void test_reduction_unit_reports_a_pooled_sigma(void **st)
     tsv_free(t);
 }
 
+static int run_rows(const char *unit, const char *out, int rows)
+{
+    char *argv[] = {"crownshy", (char *)unit, "--stands", "2", "--out", (char *)out, "--stand-rows", NULL};
+    return cli_main(rows ? 7 : 6, argv);
+}
+
+static void test_stand_rows_only_when_asked(void **st)
+{
+    (void)st;
+    const char *dir = tu_tmpdir("exp_rows_off");
+    char path[600];
+    assert_int_equal(run_rows("irreducibility-perturb", dir, 0), 0);
+    snprintf(path, sizeof path, "%s/irreducibility/perturb_train_stands.tsv", dir);
+    assert_int_not_equal(access(path, F_OK), 0); /* the sensitivity units run without */
+    char cmd[1600];
+    snprintf(cmd, sizeof cmd, "grep -v '^#' %s/irreducibility/perturb_train.tsv > %s/pooled_without", dir, dir);
+    assert_int_equal(system(cmd), 0);
+    assert_int_equal(run_rows("irreducibility-perturb", dir, 1), 0);
+    /* the pooled table's data rows do not depend on the per-stand rows */
+    snprintf(cmd, sizeof cmd, "grep -v '^#' %s/irreducibility/perturb_train.tsv | cmp -s - %s/pooled_without", dir, dir);
+    assert_int_equal(system(cmd), 0);
+    tsv *t = NULL;
+    assert_int_equal(tsv_read(path, &t), CS_OK);
+    assert_int_equal(tsv_nrows(t), 5 * 2);
+    assert_non_null(tsv_meta(t, "teacher_version"));
+    assert_string_equal(tsv_str(t, 1, "stand"), "1");
+    tsv_free(t);
+}
+
+/* The claims of each family, pointed at the 2-stand tables: computed, and
+ * their stand bootstrap accepted (the pooled values recomputed from the
+ * per-stand rows bit for bit) over 2 units. */
+static void test_stand_rows_give_the_pooled_values(void **st)
+{
+    (void)st;
+    const char *dir = tu_tmpdir("exp_rows");
+    const char *units[] = {"mechanism-sweep", "irreducibility-perturb", "irreducibility-refine", "irreducibility-reduction"};
+    for (int u = 0; u < 4; u++) assert_int_equal(run_rows(units[u], dir, 1), 0);
+    static const struct { const char *macro, *table; } c[] = {
+        {"MechHits", "mechanism/sweep.tsv"}, {"IrredTrainRespLo", "irreducibility/perturb_train.tsv"},
+        {"IrredRespHi", "irreducibility/perturb_train.tsv"}, {"IrredTrainShrink", "irreducibility/refine_train.tsv"},
+        {"IrredStepShrink", "irreducibility/refine_train.tsv"}, {"IrredTrainSteps", "irreducibility/reduction_train.tsv"},
+        {"IrredMiss", "irreducibility/reduction_train.tsv"},
+    };
+    claims reg;
+    interval_table it;
+    assert_int_equal(claims_load(PATHS_CLAIMS, &reg), CS_OK);
+    assert_int_equal(interval_table_load(PATHS_INTERVALS, &it), CS_OK);
+    for (size_t i = 0; i < sizeof c / sizeof *c; i++) {
+        const claim_row *orig = claims_find(&reg, c[i].macro);
+        assert_non_null(orig);
+        claim_row row = *orig;
+        if (snprintf(row.source, sizeof row.source, "%.100s/%s", dir, c[i].table) >= (int)sizeof row.source) fail_msg("path too long");
+        claim_result r;
+        claims_eval(&row, &r);
+        if (r.status != VERDICT_PASS) fail_msg("%s from %s: %s", c[i].macro, row.source, r.why);
+        claim_interval ci;
+        if (interval_eval(&it, &row, &r, &ci) != CS_OK) fail_msg("%s: %s", c[i].macro, cs_errmsg());
+        if (!ci.has) fail_msg("%s: no interval (%s)", c[i].macro, ci.why);
+        assert_int_equal(ci.n, 2);
+        assert_true(ci.lo <= ci.hi);
+    }
+    interval_table_free(&it);
+    claims_free(&reg);
+}
+
 static void test_bad_usage_exits_2(void **st)
 {
     (void)st;
@@ -94,6 +168,8 @@ int main(void)
         cmocka_unit_test(test_ablation_unit_writes_three_arms_in_order),
         cmocka_unit_test(test_perturb_unit_judges_four_neighbours_per_stand),
         cmocka_unit_test(test_reduction_unit_reports_a_pooled_sigma),
+        cmocka_unit_test(test_stand_rows_only_when_asked),
+        cmocka_unit_test(test_stand_rows_give_the_pooled_values),
         cmocka_unit_test(test_bad_usage_exits_2),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

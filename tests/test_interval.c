@@ -152,6 +152,103 @@ static void test_replicates_that_miss_the_claim_value_are_refused(void **s)
     unlink(tmp);
 }
 
+/* The E2 claims and the E1 sweep's count rest on tables that pool 8 stands
+ * per row; the per-stand rows beside each pooled table (<table>_stands,
+ * _sectors, sweep_trees) are their replicate units. For each claim: the
+ * stand bootstrap over the frozen rows is the generated interval, a copy of
+ * the rows gives it too, and the copy with one per-stand row changed fails
+ * the claim's test, naming it. */
+static const struct { const char *macro, *table, *key; int col; double delta; } stand_cases[] = {
+    {"IrredRespLo", "perturb_field_stands.tsv", "6.5\t2\t", 3, -1.0},
+    {"IrredTrainRespLo", "perturb_train_stands.tsv", "6.5\t2\t", 3, -1.0},
+    {"IrredRespHi", "perturb_field_stands.tsv", "3\t5\t", 3, -1.0},
+    {"IrredRespShrink", "refine_field_sectors.tsv", "384\t5.5\t1\t2\t7\t", 5, 0.01},
+    {"IrredTrainShrink", "refine_train_sectors.tsv", "384\t5.5\t1\t2\t7\t", 5, 0.01},
+    {"IrredStepShrink", "refine_field_sectors.tsv", "384\t3\t4\t1\t0\t", 6, 0.001},
+    {"IrredSteps", "reduction_field_sectors.tsv", "4.5\t3\t", 4, 0.05},
+    {"IrredMiss", "reduction_field_sectors.tsv", "6.5\t6\t", 4, -0.05},
+    {"IrredTrainSteps", "reduction_train_sectors.tsv", "4.5\t3\t", 4, 0.05},
+    {"MechHits", "sweep_trees.tsv", "0.089999999999999997\t3.5\t0\t", 7, -0.02},
+};
+
+/* Copy src to dst unchanged. */
+static void plain_copy(const char *src, const char *dst)
+{
+    char cmd[3000];
+    snprintf(cmd, sizeof cmd, "cp '%s' '%s'", src, dst);
+    assert_int_equal(system(cmd), 0);
+}
+
+static void test_pooled_claims_get_a_stand_bootstrap(void **s)
+{
+    (void)s;
+    for (size_t i = 0; i < sizeof stand_cases / sizeof *stand_cases; i++) {
+        const char *macro = stand_cases[i].macro;
+        const claim_row *row = claims_find(&g_c, macro);
+        assert_non_null(row);
+        claim_interval ci;
+        char msg[1600];
+        if (eval_with(macro, NULL, NULL, &ci, msg, sizeof msg) != VERDICT_PASS) fail_msg("%s: %s", macro, msg);
+        if (!ci.has) fail_msg("%s: no interval (%s)", macro, ci.why);
+        assert_string_equal(ci.unit, "stand");
+        assert_string_equal(ci.method, "bootstrap");
+        assert_int_equal(ci.n, 8);
+        assert_true(ci.lo <= ci.hi);
+        /* the pooled table and its per-stand rows, copied side by side */
+        const char *dir = tu_tmpdir("interval_stands");
+        const char *slash = strrchr(row->source, '/');
+        char src[700], rows[1400], copy[1400], copy_rows[1400];
+        snprintf(src, sizeof src, "%s", row->source);
+        snprintf(rows, sizeof rows, "%.*s/%s", (int)(slash - row->source), row->source, stand_cases[i].table);
+        snprintf(copy, sizeof copy, "%s%s", dir, slash);
+        snprintf(copy_rows, sizeof copy_rows, "%s/%s", dir, stand_cases[i].table);
+        plain_copy(src, copy);
+        plain_copy(rows, copy_rows);
+        claim_interval same;
+        if (eval_with(macro, copy, NULL, &same, msg, sizeof msg) != VERDICT_PASS) fail_msg("%s from the copy: %s", macro, msg);
+        ASSERT_EXACT(same.lo, ci.lo);
+        ASSERT_EXACT(same.hi, ci.hi);
+        perturb_copy(rows, copy_rows, stand_cases[i].key, stand_cases[i].col, stand_cases[i].delta);
+        claim_interval bad;
+        if (eval_with(macro, copy, NULL, &bad, msg, sizeof msg) != VERDICT_FAIL)
+            fail_msg("%s: one changed row of %s did not fail its claim test", macro, stand_cases[i].table);
+        if (!strstr(msg, macro)) fail_msg("%s: the failure does not name the claim: %s", macro, msg);
+    }
+}
+
+/* The stand bootstrap rests on which stand responded, not only on the pooled
+ * counts: one missed response moved from stand 2 to stand 5 at 6.5 m (stand
+ * 5 also misses one at 5.5 m) keeps every pooled row and the claim, and
+ * moves the interval; the claim test fails, naming the claim. */
+static void test_a_moved_response_changes_the_interval_not_the_claim(void **s)
+{
+    (void)s;
+    const char *dir = tu_tmpdir("interval_moved");
+    char src[200], mid[200], rows[200];
+    snprintf(src, sizeof src, "%.100s/perturb_field.tsv", dir);
+    snprintf(mid, sizeof mid, "%.100s/moved.tsv", dir);
+    snprintf(rows, sizeof rows, "%.100s/perturb_field_stands.tsv", dir);
+    plain_copy("frozen/irreducibility/perturb_field.tsv", src);
+    perturb_copy("frozen/irreducibility/perturb_field_stands.tsv", mid, "6.5\t2\t4\t2\t", 3, 1.0);
+    perturb_copy(mid, rows, "6.5\t5\t4\t4\t", 3, -1.0);
+    claim_interval ref, ci;
+    char msg[1600];
+    assert_int_equal(eval_with("IrredRespLo", NULL, NULL, &ref, msg, sizeof msg), VERDICT_PASS);
+    const claim_row *orig = claims_find(&g_c, "IrredRespLo");
+    claim_row row = *orig;
+    snprintf(row.source, sizeof row.source, "%s", src);
+    claim_result r0, r;
+    claims_eval(orig, &r0);
+    claims_eval(&row, &r);
+    assert_int_equal(r.status, VERDICT_PASS);
+    ASSERT_EXACT(r.value, r0.value);
+    assert_int_equal(eval_with("IrredRespLo", src, NULL, &ci, msg, sizeof msg), VERDICT_FAIL);
+    assert_true(ci.has);
+    assert_true(ci.lo != ref.lo || ci.hi != ref.hi);
+    assert_non_null(strstr(msg, "IrredRespLo"));
+    assert_non_null(strstr(msg, "the replicates it rests on changed"));
+}
+
 static void test_a_misstated_method_is_refused(void **s)
 {
     (void)s;
@@ -217,6 +314,8 @@ int main(void)
         cmocka_unit_test(test_one_perturbed_seed_fails_the_claim_test_naming_it),
         cmocka_unit_test(test_one_perturbed_replicate_stand_fails_the_claim_test_naming_it),
         cmocka_unit_test(test_replicates_that_miss_the_claim_value_are_refused),
+        cmocka_unit_test(test_pooled_claims_get_a_stand_bootstrap),
+        cmocka_unit_test(test_a_moved_response_changes_the_interval_not_the_claim),
         cmocka_unit_test(test_a_misstated_method_is_refused),
         cmocka_unit_test(test_agreement_classes),
     };

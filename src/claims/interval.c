@@ -130,6 +130,13 @@ static cs_status check_own(const claim_row *row, const claim_result *res, const 
     if (!strcmp(d->method, "bootstrap")) {
         cs_status st = iv_stat_eval(d->x, d->n, d->m, &d->stat, &v);
         if (st) return st;
+        if (d->has_own_exact) {
+            /* the resamples' statistic sums in another order: the same statistic, to rounding */
+            if (!(fabs(v - d->own_exact) <= 1e-12 * fabs(d->own_exact)))
+                return cs_err(CS_EINVARIANT, "%s: the resample statistic gives %.17g on the frozen units, the claim's own order %.17g: it is not the claim's statistic",
+                              row->macro, v, d->own_exact);
+            v = d->own_exact;
+        }
     } else if (d->own >= 0) v = d->x[d->own];
     else return CS_OK;
     if (v != res->value && !(isnan(v) && isnan(res->value)))

@@ -69,6 +69,10 @@ typedef struct {
     size_t n, m;
     iv_stat stat;
     int own;                   /* range: index of the claim's own unit in x, -1 when not among them */
+    int has_own_exact;         /* bootstrap: own_exact is the statistic of the frozen units in the claim's own
+                                * summation order (stat sums per-unit partial sums: the same sums in another
+                                * order); it must be the claim's value bit for bit, stat within 1e-12 of it */
+    double own_exact;
     char from[600], why[700];
     void (*cleanup)(void *);   /* frees stat.ctx when set */
 } iv_data;

@@ -1,10 +1,13 @@
 /* interval_src: the replicate units of each family of claims, read from
  * frozen/ (design.md §6.1): seeds of the E3/E4 run tables, unseen spacings of
  * the baselines, stands of the E5/E6 per-tree tables, patches of the E7
- * distribution, replicate stands of the figure stands. Each extractor hands
+ * distribution, replicate stands of the figure stands (and, in
+ * interval_stands.c and interval_irred.c, the stands of the pooled E1 sweep
+ * and E2 tables). Each extractor hands
  * back units and the claim's statistic over them; interval.c checks that the
  * frozen units give the claim's own value. */
 #include "interval.h"
+#include "interval_stands.h"
 #include "mainruns.h"
 #include "estimator.h"
 #include "fieldsim.h"
@@ -523,6 +526,9 @@ static const struct { const char *function; iv_extract ex; } extractors[] = {
     {"claim_comp_no_overlap", comp_patches},
     {"claim_mech_ablation_k", figure_stands}, {"claim_mech_cover", figure_stands}, {"claim_mech_overlap", figure_stands},
     {"claim_hero_stems", figure_stands}, {"claim_pc_stand", figure_stands}, {"claim_pc_clearance", figure_stands},
+    {"claim_mech_hits", iv_sweep_stands}, {"claim_irred_resp_lo", iv_perturb_stands}, {"claim_irred_resp_hi", iv_perturb_stands},
+    {"claim_irred_resp_shrink", iv_refine_stands}, {"claim_irred_step_shrink", iv_refine_stands},
+    {"claim_irred_steps", iv_reduction_stands}, {"claim_irred_miss", iv_reduction_stands},
 };
 
 iv_extract interval_extractor(const char *function)

@@ -17,7 +17,7 @@
 #include <string.h>
 
 /* What a teacher unit's table takes besides --out and --teacher. */
-enum { U_STANDS = 1, U_BETA = 2, U_TAG = 4 };
+enum { U_STANDS = 1, U_BETA = 2, U_TAG = 4, U_ROWS = 8 };
 
 typedef struct {
     const char *cmd, *about;
@@ -31,7 +31,8 @@ static int teacher_unit_run(const teacher_unit *u, int argc, char **argv)
     long stands = EXP_STANDS_DEFAULT;
     double beta = NAN;
     const char *out = "build/results", *tag = "train", *teacher = NULL, *vary = NULL;
-    opt_spec spec[6];
+    int rows = 0;
+    opt_spec spec[7];
     size_t n = 0;
     spec[n++] = (opt_spec){"out", OPT_STR, &out, 0, 0, "results root; the unit writes DIR/<experiment>/<file>.tsv (default build/results)"};
     spec[n++] = (opt_spec)CLI_OPT_TEACHER(teacher);
@@ -41,11 +42,13 @@ static int teacher_unit_run(const teacher_unit *u, int argc, char **argv)
         spec[n++] = (opt_spec){"beta", OPT_DOUBLE, &beta, 0, 0.999,
                                u->irred ? "die-back (default: the gate's dieback_train)" : "beta_field: adds its row (default: no beta_field row)"};
     if (u->takes & U_TAG) spec[n++] = (opt_spec){"tag", OPT_STR, &tag, 0, 0, "output tag: train or field (default train; field needs --beta)"};
+    if (u->takes & U_ROWS)
+        spec[n++] = (opt_spec){"stand-rows", OPT_FLAG, &rows, 0, 0, "also write the per-stand rows the pooled table is made of (<table>_stands/_sectors/_trees.tsv)"};
     const opts_cmd c = {u->cmd, "[options]", u->about, spec, n, 0, 0};
     int r = opts_parse(&c, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     if (strcmp(tag, "train") && strcmp(tag, "field")) { opts_usage_error(u->cmd, "--tag: must be train or field, not '%s'", tag); return 2; }
-    exp_opts o = {.out = out, .stands = (int)stands, .beta = beta, .tag = tag, .argc = argc, .argv = argv};
+    exp_opts o = {.out = out, .stands = (int)stands, .beta = beta, .tag = tag, .stand_rows = rows, .argc = argc, .argv = argv};
     if (exp_reading_parse(teacher, NULL, &o.rd) || exp_reading_vary(vary, &o.rd)) { opts_usage_error(u->cmd, "%s", cs_errmsg()); return 2; }
     cs_status st = CS_OK;
     if (u->irred) {
@@ -61,8 +64,8 @@ static int teacher_unit_run(const teacher_unit *u, int argc, char **argv)
 
 int cli_mechanism_sweep(int argc, char **argv)
 {
-    static const teacher_unit u = {"mechanism-sweep", "E1: 16 rows beta x d on the controlled lattice -> DIR/mechanism/sweep.tsv",
-                                   U_STANDS, exp_mechanism_sweep, NULL};
+    static const teacher_unit u = {"mechanism-sweep", "E1: 16 rows beta x d on the controlled lattice -> DIR/mechanism/sweep.tsv (and sweep_trees.tsv)",
+                                   U_STANDS | U_ROWS, exp_mechanism_sweep, NULL};
     return teacher_unit_run(&u, argc, argv);
 }
 
@@ -84,22 +87,22 @@ int cli_mechanism_figure(int argc, char **argv)
 
 int cli_irreducibility_perturb(int argc, char **argv)
 {
-    static const teacher_unit u = {"irreducibility-perturb", "E2: one tree 30% taller, 5 spacings -> DIR/irreducibility/perturb_<tag>.tsv",
-                                   U_STANDS | U_BETA | U_TAG, NULL, exp_irreducibility_perturb};
+    static const teacher_unit u = {"irreducibility-perturb", "E2: one tree 30% taller, 5 spacings -> DIR/irreducibility/perturb_<tag>.tsv (and _stands.tsv)",
+                                   U_STANDS | U_BETA | U_TAG | U_ROWS, NULL, exp_irreducibility_perturb};
     return teacher_unit_run(&u, argc, argv);
 }
 
 int cli_irreducibility_refine(int argc, char **argv)
 {
-    static const teacher_unit u = {"irreducibility-refine", "E2: N in {48,96,192,384} -> DIR/irreducibility/refine_<tag>.tsv",
-                                   U_STANDS | U_BETA | U_TAG, NULL, exp_irreducibility_refine};
+    static const teacher_unit u = {"irreducibility-refine", "E2: N in {48,96,192,384} -> DIR/irreducibility/refine_<tag>.tsv (and _sectors.tsv)",
+                                   U_STANDS | U_BETA | U_TAG | U_ROWS, NULL, exp_irreducibility_refine};
     return teacher_unit_run(&u, argc, argv);
 }
 
 int cli_irreducibility_reduction(int argc, char **argv)
 {
-    static const teacher_unit u = {"irreducibility-reduction", "E2: best-fit Voronoi reduction -> DIR/irreducibility/reduction_<tag>.tsv",
-                                   U_STANDS | U_BETA | U_TAG, NULL, exp_irreducibility_reduction};
+    static const teacher_unit u = {"irreducibility-reduction", "E2: best-fit Voronoi reduction -> DIR/irreducibility/reduction_<tag>.tsv (and _sectors.tsv)",
+                                   U_STANDS | U_BETA | U_TAG | U_ROWS, NULL, exp_irreducibility_reduction};
     return teacher_unit_run(&u, argc, argv);
 }
 

@@ -86,6 +86,7 @@ typedef struct {
     int stands;       /* stands per cell */
     double beta;      /* NAN: the gate's dieback_train (E2), no beta_field row (hero) */
     const char *tag;  /* E2 output tag: "train" | "field" */
+    int stand_rows;   /* E1 sweep, E2: also write the per-stand rows of the pooled tables (design.md §6.1) */
     int argc;         /* the command line, for the provenance block */
     char **argv;
 } exp_opts;

@@ -15,7 +15,16 @@
  *                          judged responded magnitude_m step_m step_ratio
  *                          magnitude_ratio   (pooled rows first; gate on pooled N=384)
  *  irreducibility/reduction_<tag>.tsv scope spacing_m sectors sigma_m miss_m step_m
- *                          miss_steps own_sigma_m own_miss_m (pooled row first) */
+ *                          miss_steps own_sigma_m own_miss_m (pooled row first)
+ * With --stand-rows (the make units; design.md §6.1), the rows the pooled
+ * tables are made of, in the order they were pooled, written before them:
+ *  irreducibility/perturb_<tag>_stands.tsv  spacing_m stand judged responded
+ *                          magnitude_m step_m   (one row per stand)
+ *  irreducibility/refine_<tag>_sectors.tsv  nres spacing_m stand neighbour
+ *                          sector dr_m step_m   (one row per judged sector)
+ *  irreducibility/reduction_<tag>_sectors.tsv spacing_m stand tree sector
+ *                          r_teacher_m r_star_m territory_m step_m
+ *                          (one row per interior sector) */
 #include "exp_irreducibility.h"
 #include "exp_common.h"
 #include "unit_out.h"
@@ -29,13 +38,21 @@
 #include <string.h>
 
 #define NS CROWN_NSEC
+#define MAXJUDGE 16
 
 typedef struct { size_t judged, responded, sectors; double abs_sum, step_sum; int stands; } perturb_acc;
 
-/* One stand at resolution nres: baseline and perturbed growth, accumulated. */
+/* One stand's own numbers beside the pooled accumulation (--stand-rows):
+ * its judged and responding neighbours, |dr| of every judged sector
+ * (neighbour-major) and their sum, its growth step. */
+typedef struct { size_t judged, responded; double abs_sum, step, dr[MAXJUDGE * NS]; } stand_own;
+
+/* One stand at resolution nres: baseline and perturbed growth, accumulated
+ * into acc (and, when own is not NULL, the stand's own numbers into own). */
 static cs_status perturb_stand(const stand *sd, const exp_reading *rd, double beta, int nres, double hfac, double tol, int njudge,
-                               perturb_acc *acc, double *worst)
+                               perturb_acc *acc, stand_own *own, double *worst)
 {
+    if (own) memset(own, 0, sizeof *own);
     size_t n = sd->s->n;
     double *ra = malloc(n * NS * sizeof *ra), *rb = malloc(n * NS * sizeof *rb), *h2 = malloc(n * sizeof *h2);
     cs_status st = (!ra || !rb || !h2) ? cs_err(CS_ENOMEM, "experiments: out of memory") : CS_OK;
@@ -61,12 +78,15 @@ static cs_status perturb_stand(const stand *sd, const exp_reading *rd, double be
                 if (dr > tol) resp = 1;
                 acc->abs_sum += dr;
                 acc->sectors++;
+                if (own) { own->dr[(k - 1) * NS + s] = dr; own->abs_sum += dr; }
             }
             acc->judged++;
             acc->responded += (size_t)resp;
+            if (own) { own->judged++; own->responded += (size_t)resp; }
         }
         acc->step_sum += ia.step;
         acc->stands++;
+        if (own) own->step = ia.step;
     }
     free(ra); free(rb); free(h2);
     return st;
@@ -83,6 +103,8 @@ static cs_status irred_cfg_load(irred_cfg *c)
     if (!st) st = gate_read_value(PATHS_GATE("irreducibility"), "neighbours_judged", 0, &v);
     if (!st) c->njudge = (int)v;
     if (!st) st = gate_read_values(PATHS_GATE("irreducibility"), "refine_levels", c->levels, 8, &c->nlev);
+    if (!st && (c->njudge < 1 || c->njudge > MAXJUDGE))
+        st = cs_err(CS_EINPUT, "%s: neighbours_judged %d outside 1..%d", PATHS_GATE("irreducibility"), c->njudge, MAXJUDGE);
     return st;
 }
 
@@ -101,13 +123,14 @@ static cs_status irred_stand(const exp_reading *rd, stand **sd, double d, int k)
     return exp_stand_alloc(rd, sd, stems_lattice, d, 12.0 * d, 0.04, "irreducibility", (unsigned)k);
 }
 
-/* Open irreducibility/<prefix>_<tag>.tsv and write the provenance block and
- * the shared metadata; on failure nothing is left open. */
-static cs_status irred_open(const exp_opts *o, const char *prefix, double beta, prov *pv,
+/* Open irreducibility/<prefix>_<tag><rows>.tsv (rows: "" for the pooled
+ * table, "_stands" or "_sectors" for its per-stand rows) and write the
+ * provenance block and the shared metadata; on failure nothing is left open. */
+static cs_status irred_open(const exp_opts *o, const char *prefix, const char *rows, double beta, prov *pv,
                             double worst, tsv_writer **w, char *path, size_t pathsz)
 {
     char file[64];
-    snprintf(file, sizeof file, "%s_%s.tsv", prefix, o->tag);
+    snprintf(file, sizeof file, "%s_%s%s.tsv", prefix, o->tag, rows);
     cs_status st = unit_out_open(o, "irreducibility", file, w, path, pathsz);
     if (st) return st;
     pv->worst_overlap_m = worst;
@@ -115,7 +138,74 @@ static cs_status irred_open(const exp_opts *o, const char *prefix, double beta, 
     st = prov_write(*w, pv);
     if (st) { tsv_writer_abort(*w); return st; }
     irred_meta(*w, o, beta);
+    if (rows[0]) tsv_writer_meta(*w, "rows", "the per-stand rows of %s_%s.tsv, in the order they were pooled (design.md §6.1)", prefix, o->tag);
     return CS_OK;
+}
+
+/* Room for n stand_own records (--stand-rows), or NULL without the rows. */
+static cs_status owns_alloc(const exp_opts *o, size_t n, stand_own **out)
+{
+    *out = NULL;
+    if (!o->stand_rows) return CS_OK;
+    *out = calloc(n ? n : 1, sizeof **out);
+    return *out ? CS_OK : cs_err(CS_ENOMEM, "experiments: out of memory");
+}
+
+/* irreducibility/perturb_<tag>_stands.tsv: one row per stand (spacing-major). */
+static cs_status write_perturb_stands(const exp_opts *o, double beta, const prov *pv, double worst, const irred_cfg *c,
+                                      const stand_own *own)
+{
+    prov rp = *pv;
+    tsv_writer *w = NULL;
+    char path[512];
+    const size_t ns = (size_t)o->stands;
+    cs_status st = irred_open(o, "perturb", "_stands", beta, &rp, worst, &w, path, sizeof path);
+    if (st) return st;
+    tsv_writer_columns(w, "spacing_m\tstand\tjudged\tresponded\tmagnitude_m\tstep_m");
+    for (size_t a = 0; a < c->nd; a++)
+        for (size_t k = 0; k < ns; k++) {
+            const stand_own *x = &own[a * ns + k];
+            tsv_writer_dbl(w, c->ds[a]);
+            tsv_writer_long(w, (long)k);
+            tsv_writer_long(w, (long)x->judged);
+            tsv_writer_long(w, (long)x->responded);
+            tsv_writer_dbl(w, x->abs_sum / (double)(x->judged * NS));
+            tsv_writer_dbl(w, x->step);
+            tsv_writer_endrow(w);
+        }
+    return unit_out_finish(w, &rp, path);
+}
+
+/* irreducibility/refine_<tag>_sectors.tsv: one row per judged sector (level,
+ * spacing, stand, neighbour, sector). */
+static cs_status write_refine_sectors(const exp_opts *o, double beta, const prov *pv, double worst, const irred_cfg *c,
+                                      const stand_own *own)
+{
+    prov rp = *pv;
+    tsv_writer *w = NULL;
+    char path[512];
+    const size_t ns = (size_t)o->stands;
+    cs_status st = irred_open(o, "refine", "_sectors", beta, &rp, worst, &w, path, sizeof path);
+    if (st) return st;
+    tsv_writer_meta(w, "sectors", "|dr| of each sector of each judged neighbour (1..%d by distance to the focal tree); step_m is the stand's growth step", c->njudge);
+    tsv_writer_columns(w, "nres\tspacing_m\tstand\tneighbour\tsector\tdr_m\tstep_m");
+    for (size_t l = 0; l < c->nlev; l++)
+        for (size_t a = 0; a < c->nd; a++)
+            for (size_t k = 0; k < ns; k++) {
+                const stand_own *x = &own[(l * c->nd + a) * ns + k];
+                for (size_t j = 0; j < x->judged; j++)
+                    for (int q = 0; q < NS; q++) {
+                        tsv_writer_long(w, (long)c->levels[l]);
+                        tsv_writer_dbl(w, c->ds[a]);
+                        tsv_writer_long(w, (long)k);
+                        tsv_writer_long(w, (long)j + 1);
+                        tsv_writer_long(w, q);
+                        tsv_writer_dbl(w, x->dr[j * NS + (size_t)q]);
+                        tsv_writer_dbl(w, x->step);
+                        tsv_writer_endrow(w);
+                    }
+            }
+    return unit_out_finish(w, &rp, path);
 }
 
 cs_status exp_irreducibility_perturb(const exp_opts *o, double beta)
@@ -128,11 +218,15 @@ cs_status exp_irreducibility_perturb(const exp_opts *o, double beta)
     perturb_acc acc[8];
     memset(acc, 0, sizeof acc);
     double worst = 0.0;
+    stand_own *own = NULL;
+    const size_t ns = (size_t)o->stands;
+    st = owns_alloc(o, c.nd * ns, &own);
     for (size_t a = 0; a < c.nd && !st; a++) {
         for (int k = 0; k < o->stands && !st; k++) {
             stand *sd = NULL;
             st = irred_stand(&o->rd, &sd, c.ds[a], k);
-            if (!st) st = perturb_stand(sd, &o->rd, beta, exp_nres(&o->rd), c.hfac, c.tol, c.njudge, &acc[a], &worst);
+            if (!st) st = perturb_stand(sd, &o->rd, beta, exp_nres(&o->rd), c.hfac, c.tol, c.njudge, &acc[a],
+                                        own ? &own[a * ns + (size_t)k] : NULL, &worst);
             stand_free(sd);
         }
         if (!st) fprintf(stderr, "irreducibility perturb (%s): d=%.1f responded %zu/%zu\n", o->tag, c.ds[a],
@@ -140,7 +234,9 @@ cs_status exp_irreducibility_perturb(const exp_opts *o, double beta)
     }
     tsv_writer *w = NULL;
     char path[512];
-    if (!st) st = irred_open(o, "perturb", beta, &pv, worst, &w, path, sizeof path);
+    if (!st && own) st = write_perturb_stands(o, beta, &pv, worst, &c, own);
+    free(own);
+    if (!st) st = irred_open(o, "perturb", "", beta, &pv, worst, &w, path, sizeof path);
     if (st) return st;
     tsv_writer_columns(w, "spacing_m\tbeta\tnres\tstands\tjudged\tresponded\tresponse_fraction\tmagnitude_m\tstep_m");
     for (size_t a = 0; a < c.nd; a++) {
@@ -169,12 +265,16 @@ cs_status exp_irreducibility_refine(const exp_opts *o, double beta)
     memset(acc, 0, sizeof acc);
     memset(pool, 0, sizeof pool);
     double worst = 0.0;
+    stand_own *own = NULL;
+    const size_t ns = (size_t)o->stands;
+    st = owns_alloc(o, c.nlev * c.nd * ns, &own);
     for (size_t l = 0; l < c.nlev && !st; l++) {
         for (size_t a = 0; a < c.nd && !st; a++)
             for (int k = 0; k < o->stands && !st; k++) {
                 stand *sd = NULL;
                 st = irred_stand(&o->rd, &sd, c.ds[a], k);
-                if (!st) st = perturb_stand(sd, &o->rd, beta, (int)c.levels[l], c.hfac, c.tol, c.njudge, &acc[l][a], &worst);
+                if (!st) st = perturb_stand(sd, &o->rd, beta, (int)c.levels[l], c.hfac, c.tol, c.njudge, &acc[l][a],
+                                            own ? &own[(l * c.nd + a) * ns + (size_t)k] : NULL, &worst);
                 stand_free(sd);
                 if (!st && k == o->stands - 1)
                     fprintf(stderr, "irreducibility refine (%s): %3.0f%% (N=%.0f d=%.1f done, %.1f s)\n", o->tag,
@@ -194,7 +294,9 @@ cs_status exp_irreducibility_refine(const exp_opts *o, double beta)
     }
     tsv_writer *w = NULL;
     char path[512];
-    if (!st) st = irred_open(o, "refine", beta, &pv, worst, &w, path, sizeof path);
+    if (!st && own) st = write_refine_sectors(o, beta, &pv, worst, &c, own);
+    free(own);
+    if (!st) st = irred_open(o, "refine", "", beta, &pv, worst, &w, path, sizeof path);
     if (st) return st;
     tsv_writer_meta(w, "scope", "pooled rows (spacing_m = 0) pool every judged sector of every spacing; gate on pooled");
     tsv_writer_columns(w, "scope\tspacing_m\tnres\tstands\tjudged\tresponded\tmagnitude_m\tstep_m\tstep_ratio\tmagnitude_ratio");
@@ -241,13 +343,20 @@ static double territory(const stems *s, size_t i, double th)
 #define SIG_LO (-1.0)
 #define SIG_STEP 0.001
 #define SIG_N 4001
-#define SIGMA(q) ((double)((q) - 1000) / 1000.0)
+#define SIG_Q0 1000
+#define SIG_DEN 1000
+#define SIGMA(q) ((double)((q) - SIG_Q0) / (double)SIG_DEN)
+
+/* Where each sector of the reduction comes from (--stand-rows): per
+ * spacing, each sector's stand and tree; per stand (spacing-major), its
+ * growth step. */
+typedef struct { dvec stand[8], tree[8]; double *step; } reduction_rows;
 
 /* The reduction's inputs: per spacing a, the teacher radius, the target and
  * the Voronoi territory of every interior sector of every stand, and the
- * summed growth steps. */
+ * summed growth steps; rows (may be NULL) receives where each came from. */
 static cs_status reduction_gather(const exp_opts *o, double beta, const irred_cfg *c, dvec rt[8], dvec rs[8],
-                                  dvec bb[8], double step_sum[8], double *worst)
+                                  dvec bb[8], double step_sum[8], reduction_rows *rows, double *worst)
 {
     cs_status st = CS_OK;
     for (size_t a = 0; a < c->nd && !st; a++)
@@ -262,18 +371,50 @@ static cs_status reduction_gather(const exp_opts *o, double beta, const irred_cf
             teacher_info inf;
             st = r ? stand_grow(sd, &p, NULL, r, &inf, worst) : cs_err(CS_ENOMEM, "experiments: out of memory");
             if (!st) step_sum[a] += inf.step;
+            if (!st && rows) rows->step[a * (size_t)o->stands + (size_t)k] = inf.step;
             for (size_t i = 0; i < sd->s->n && !st; i++) {
                 if (!stems_interior(sd->s, i)) continue;
                 for (int s = 0; s < NS && !st; s++) {
                     st = dvec_push(&rt[a], r[i * NS + s]);
                     if (!st) st = dvec_push(&rs[a], sd->rstar[i * NS + s]);
                     if (!st) st = dvec_push(&bb[a], territory(sd->s, i, crown_theta(s)));
+                    if (!st && rows) st = dvec_push(&rows->stand[a], (double)k);
+                    if (!st && rows) st = dvec_push(&rows->tree[a], (double)i);
                 }
             }
             free(r);
             stand_free(sd);
         }
     return st;
+}
+
+/* irreducibility/reduction_<tag>_sectors.tsv: one row per interior sector
+ * (spacing, stand, tree, sector), with the sigma grid it is searched on. */
+static cs_status write_reduction_sectors(const exp_opts *o, double beta, const prov *pv, double worst, const irred_cfg *c,
+                                         const dvec rt[8], const dvec rs[8], const dvec bb[8], const reduction_rows *rows)
+{
+    prov rp = *pv;
+    tsv_writer *w = NULL;
+    char path[512];
+    cs_status st = irred_open(o, "reduction", "_sectors", beta, &rp, worst, &w, path, sizeof path);
+    if (st) return st;
+    tsv_writer_meta(w, "sectors", "every interior sector: the teacher's radius, the target r* and the territory b (Eq. 4); step_m is the stand's growth step");
+    tsv_writer_meta(w, "sigma_grid", "sigma_q = (q - %d) / %d m, q = 0..%d", SIG_Q0, SIG_DEN, SIG_N - 1);
+    tsv_writer_columns(w, "spacing_m\tstand\ttree\tsector\tr_teacher_m\tr_star_m\tterritory_m\tstep_m");
+    for (size_t a = 0; a < c->nd; a++)
+        for (size_t e = 0; e < rt[a].n; e++) {
+            size_t k = (size_t)rows->stand[a].v[e];
+            tsv_writer_dbl(w, c->ds[a]);
+            tsv_writer_long(w, (long)k);
+            tsv_writer_long(w, (long)rows->tree[a].v[e]);
+            tsv_writer_long(w, (long)(e % NS));
+            tsv_writer_dbl(w, rt[a].v[e]);
+            tsv_writer_dbl(w, rs[a].v[e]);
+            tsv_writer_dbl(w, bb[a].v[e]);
+            tsv_writer_dbl(w, rows->step[a * (size_t)o->stands + k]);
+            tsv_writer_endrow(w);
+        }
+    return unit_out_finish(w, &rp, path);
 }
 
 cs_status exp_irreducibility_reduction(const exp_opts *o, double beta)
@@ -287,7 +428,13 @@ cs_status exp_irreducibility_reduction(const exp_opts *o, double beta)
     dvec rt[8], rs[8], bb[8];
     memset(rt, 0, sizeof rt); memset(rs, 0, sizeof rs); memset(bb, 0, sizeof bb);
     double step_sum[8] = {0}, worst = 0.0;
-    st = reduction_gather(o, beta, &c, rt, rs, bb, step_sum, &worst);
+    reduction_rows rows;
+    memset(&rows, 0, sizeof rows);
+    if (o->stand_rows) {
+        rows.step = calloc(c.nd * (size_t)o->stands, sizeof *rows.step);
+        if (!rows.step) st = cs_err(CS_ENOMEM, "experiments: out of memory");
+    }
+    if (!st) st = reduction_gather(o, beta, &c, rt, rs, bb, step_sum, o->stand_rows ? &rows : NULL, &worst);
     /* miss[a][q]: summed |r_t - min(r*, b - sigma_q)| for spacing a. */
     double *miss = st ? NULL : calloc(c.nd * SIG_N, sizeof *miss);
     if (!st && !miss) st = cs_err(CS_ENOMEM, "experiments: out of memory");
@@ -304,7 +451,8 @@ cs_status exp_irreducibility_reduction(const exp_opts *o, double beta)
     }
     tsv_writer *w = NULL;
     char path[512];
-    if (!st) st = irred_open(o, "reduction", beta, &pv, worst, &w, path, sizeof path);
+    if (!st && o->stand_rows) st = write_reduction_sectors(o, beta, &pv, worst, &c, rt, rs, bb, &rows);
+    if (!st) st = irred_open(o, "reduction", "", beta, &pv, worst, &w, path, sizeof path);
     if (!st) {
         int qbest = 0;
         double best = INFINITY;
@@ -343,7 +491,8 @@ cs_status exp_irreducibility_reduction(const exp_opts *o, double beta)
         st = unit_out_finish(w, &pv, path);
     }
     free(miss);
-    for (size_t a = 0; a < 8; a++) { free(rt[a].v); free(rs[a].v); free(bb[a].v); }
+    free(rows.step);
+    for (size_t a = 0; a < 8; a++) { free(rt[a].v); free(rs[a].v); free(bb[a].v); free(rows.stand[a].v); free(rows.tree[a].v); }
     return st;
 }
 

@@ -11,7 +11,11 @@
  *                          hard-core figure stand (the paper's "measured on the
  *                          stand shown": the Mech* macros, design.md §7 E1);
  *                          the gate stays judged on ablation.tsv (lattice)
- *  mechanism/figure_crowns.tsv, figure_poly_<panel>_<d>.tsv (exp_common.h) */
+ *  mechanism/figure_crowns.tsv, figure_poly_<panel>_<d>.tsv (exp_common.h)
+ *  mechanism/sweep_trees.tsv (--stand-rows; design.md §6.1, written before
+ *                          sweep.tsv) beta spacing_m stand tree k1_m k2_m k3_m
+ *                          stand_cover: the interior trees each sweep row pools,
+ *                          in the order it pooled them, with their stand's cover */
 #include "exp_mechanism.h"
 #include "exp_common.h"
 #include "unit_out.h"
@@ -27,6 +31,18 @@
 #define NS CROWN_NSEC
 
 typedef struct { double k[3], cover, overlap; size_t trees; } cell_result;
+
+/* The rows a cell pools (--stand-rows): per interior tree its stand, its
+ * index and its k = 1..3 clearances; per stand its cover. */
+typedef struct { dvec stand, tree, k[3]; double *cover; } cell_rows;
+
+static void cell_rows_free(cell_rows *c)
+{
+    free(c->stand.v);
+    free(c->tree.v);
+    for (int k = 0; k < 3; k++) free(c->k[k].v);
+    free(c->cover);
+}
 
 /* One grown stand's share of a cell: its interior trees' k = 1..3 clearances
  * appended to g, its interior cover and its worst overlap. */
@@ -48,14 +64,20 @@ static cs_status cell_close(dvec g[3], double cover, double overlap, size_t tree
     return st;
 }
 
-/* One (stem process, d, params) cell over o->stands stands of key `key`. */
+/* One (stem process, d, params) cell over o->stands stands of key `key`;
+ * rows (may be NULL) receives what it pools. */
 static cs_status run_cell(const exp_opts *o, const char *key, const stems_type *kind, double d, double shape,
-                          const teacher_params *p, cell_result *res, double *worst)
+                          const teacher_params *p, cell_result *res, cell_rows *rows, double *worst)
 {
     dvec g[3] = {{0}, {0}, {0}};
     double cov_sum = 0.0, ovl = 0.0;
     size_t trees = 0;
     cs_status st = CS_OK;
+    if (rows) {
+        memset(rows, 0, sizeof *rows);
+        rows->cover = calloc((size_t)o->stands, sizeof *rows->cover);
+        if (!rows->cover) st = cs_err(CS_ENOMEM, "experiments: out of memory");
+    }
     for (int k = 0; k < o->stands && !st; k++) {
         stand *sd = NULL;
         st = exp_stand_alloc(&o->rd, &sd, kind, d, 12.0 * d, shape, key, (unsigned)k);
@@ -64,13 +86,57 @@ static cs_status run_cell(const exp_opts *o, const char *key, const stems_type *
         if (!r) st = cs_err(CS_ENOMEM, "experiments: out of memory");
         if (!st) st = stand_grow(sd, p, NULL, r, NULL, worst);
         double cov = 0.0, w = 0.0;
+        size_t from = g[0].n;
         if (!st) st = stand_stats(sd, r, g, &cov, &w, &trees);
+        if (!st && rows) {
+            /* exp_stand_metrics appends the interior trees in index order */
+            rows->cover[k] = cov;
+            for (size_t i = 0, q = from; i < sd->s->n && !st; i++) {
+                if (!stems_interior(sd->s, i)) continue;
+                st = dvec_push(&rows->stand, (double)k);
+                if (!st) st = dvec_push(&rows->tree, (double)i);
+                for (int j = 0; j < 3 && !st; j++) st = dvec_push(&rows->k[j], g[j].v[q]);
+                q++;
+            }
+            if (!st && rows->tree.n != g[0].n) st = cs_err(CS_EINVARIANT, "experiments: %zu interior trees recorded, %zu pooled", rows->tree.n, g[0].n);
+        }
         cov_sum += cov;
         if (w > ovl) ovl = w;
         free(r);
         stand_free(sd);
     }
     return cell_close(g, cov_sum / (double)o->stands, ovl, trees, st, res);
+}
+
+/* mechanism/sweep_trees.tsv: the trees each sweep row pools (file order
+ * of sweep.tsv: spacing-major), with their stand's cover. */
+static cs_status write_sweep_trees(const exp_opts *o, const prov *pv, const double *betas, size_t nb, const double *ds,
+                                   size_t nd, const cell_rows *rows)
+{
+    tsv_writer *w = NULL;
+    char path[512];
+    prov rp = *pv;
+    cs_status st = unit_out_open(o, "mechanism", "sweep_trees.tsv", &w, path, sizeof path);
+    if (st) return st;
+    if ((st = prov_write(w, &rp))) { tsv_writer_abort(w); return st; }
+    unit_out_meta(w, o);
+    tsv_writer_meta(w, "stems", "controlled lattice a = 0.04, L = 12 d");
+    tsv_writer_meta(w, "rows", "the interior trees each row of sweep.tsv pools, in the order it pooled them; stand_cover is their stand's interior cover (design.md §6.1)");
+    tsv_writer_columns(w, "beta\tspacing_m\tstand\ttree\tk1_m\tk2_m\tk3_m\tstand_cover");
+    for (size_t a = 0; a < nd; a++)
+        for (size_t b = 0; b < nb; b++) {
+            const cell_rows *c = &rows[a * nb + b];
+            for (size_t i = 0; i < c->tree.n; i++) {
+                tsv_writer_dbl(w, betas[b]);
+                tsv_writer_dbl(w, ds[a]);
+                tsv_writer_long(w, (long)c->stand.v[i]);
+                tsv_writer_long(w, (long)c->tree.v[i]);
+                for (int k = 0; k < 3; k++) tsv_writer_dbl(w, c->k[k].v[i]);
+                tsv_writer_dbl(w, c->cover[(size_t)c->stand.v[i]]);
+                tsv_writer_endrow(w);
+            }
+        }
+    return unit_out_finish(w, &rp, path);
 }
 
 cs_status exp_mechanism_sweep(const exp_opts *o)
@@ -88,24 +154,28 @@ cs_status exp_mechanism_sweep(const exp_opts *o)
     if (!st) st = gate_read_value(PATHS_GATE("mechanism"), "dieback_train", 0, &btrain);
     if (st) return st;
     cell_result *res = calloc(nb * nd, sizeof *res);
-    if (!res) return cs_err(CS_ENOMEM, "experiments: out of memory");
+    cell_rows *rows = o->stand_rows ? calloc(nb * nd, sizeof *rows) : NULL;
+    if (!res || (o->stand_rows && !rows)) { free(res); free(rows); return cs_err(CS_ENOMEM, "experiments: out of memory"); }
     double worst = 0.0;
     for (size_t a = 0; a < nd && !st; a++)
         for (size_t b = 0; b < nb && !st; b++) {
             teacher_params p;
             EXP_TEACHER_PARAMS(&o->rd, &p);
             p.beta = betas[b];
-            st = run_cell(o, "mechanism", stems_lattice, ds[a], 0.04, &p, &res[a * nb + b], &worst);
+            st = run_cell(o, "mechanism", stems_lattice, ds[a], 0.04, &p, &res[a * nb + b], rows ? &rows[a * nb + b] : NULL, &worst);
             if (!st) fprintf(stderr, "mechanism sweep: d=%.1f beta=%.2f k1=%+.3f k2=%+.3f k3=%+.3f cover=%.3f\n",
                              ds[a], betas[b], res[a * nb + b].k[0], res[a * nb + b].k[1],
                              res[a * nb + b].k[2], res[a * nb + b].cover);
         }
     tsv_writer *w = NULL;
     char path[512];
-    if (!st) st = unit_out_open(o, "mechanism", "sweep.tsv", &w, path, sizeof path);
-    if (st) { free(res); return st; }
     pv.worst_overlap_m = worst;
     snprintf(pv.seeds, sizeof pv.seeds, "seed_derive(mechanism,d,k,stems|crowns) k=0..%d", o->stands - 1);
+    if (!st && rows) st = write_sweep_trees(o, &pv, betas, nb, ds, nd, rows);
+    for (size_t i = 0; rows && i < nb * nd; i++) cell_rows_free(&rows[i]);
+    free(rows);
+    if (!st) st = unit_out_open(o, "mechanism", "sweep.tsv", &w, path, sizeof path);
+    if (st) { free(res); return st; }
     st = prov_write(w, &pv);
     if (st) { tsv_writer_abort(w); free(res); return st; }
     unit_out_meta(w, o);
@@ -205,7 +275,7 @@ cs_status exp_mechanism_ablation(const exp_opts *o)
         EXP_TEACHER_PARAMS(&o->rd, &p);
         p.coupled = coupled[a];
         p.beta = beta[a];
-        st = run_cell(o, "mechanism", stems_lattice, d, 0.04, &p, &res[a], &worst);
+        st = run_cell(o, "mechanism", stems_lattice, d, 0.04, &p, &res[a], NULL, &worst);
         if (!st) fprintf(stderr, "mechanism ablation: %s k1=%+.3f k2=%+.3f k3=%+.3f cover=%.3f overlap=%.3g\n",
                          arms[a], res[a].k[0], res[a].k[1], res[a].k[2], res[a].cover, res[a].overlap);
     }
