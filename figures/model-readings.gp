@@ -5,13 +5,13 @@
 # joint arm under the shuffled-geometry probe, and the direction-blind level of
 # the reading's evaluation volume. Drawn from the per-run tables alone, so a
 # reading shows the seeds frozen so far; a reading with none says "not run".
-# paper: the reading the preregistered gates judge (v2); pair: the extension
-# (frozen/main, v1); paper-fourier, plain: descriptive (4 seeds, v2).
+# paper: the reading the preregistered gates judge; pair: the extension (its
+# models re-evaluated); paper-fourier, plain: descriptive (4 seeds); all at v2.
 # Usage: gnuplot figures/model-readings.gp   (dir='build/results' for unfrozen data)
 # data: frozen/paper-reading/main/run_s*_*.tsv
 # data: frozen/paper-reading/main/baselines.tsv
-# data: frozen/main/run_s*_*.tsv
-# data: frozen/main/baselines.tsv
+# data: frozen/extension-pair/main/run_s*_*.tsv
+# data: frozen/extension-pair/main/baselines.tsv
 # data: frozen/model-readings/paper-fourier/main/run_s*_*.tsv
 # data: frozen/model-readings/plain/main/run_s*_*.tsv
 if (!exists("dir")) dir = 'frozen'
@@ -19,8 +19,8 @@ if (!exists("outdir")) outdir = 'figures'
 set datafile separator "\t"
 set datafile columnheaders
 NR = 4
-array RD[NR] = ['paper-reading/main', 'main', 'model-readings/paper-fourier/main', 'model-readings/plain/main']
-array NAME[NR] = ['paper', 'pair (extension, v1)', 'paper-fourier', 'plain']
+array RD[NR] = ['paper-reading/main', 'extension-pair/main', 'model-readings/paper-fourier/main', 'model-readings/plain/main']
+array NAME[NR] = ['paper', 'pair (extension)', 'paper-fourier', 'plain']
 array WANT[NR] = [12, 12, 4, 4]
 NS = 12
 # E[((r - 1) * NS + s - 1) * 3 + k]: k 1 joint, 2 independent, 3 joint shuffled

@@ -367,7 +367,7 @@ static void print_claims(const claims *c, const claim_result *res, const numbers
                      : ar.kind == ATTRIB_UNTESTED ? "; unexplained, not varied" : "", ar.kind == ATTRIB_EXPLAINED ? ar.by : "",
                      agree_name(ag.kind), ag.by[0] ? ": " : "", ag.by);
         }
-        const char *iv = !strcmp(c->rows[i].kind, "measured") ? (ci[i].has ? ci[i].text : "none") : "-";
+        const char *iv = !strcmp(c->rows[i].kind, "measured") || !strcmp(c->rows[i].kind, "extension") ? (ci[i].has ? ci[i].text : "none") : "-";
         printf("  %-7s %-19s %-12s %-22s %-10s %-8s %s%s\n", label, c->rows[i].macro, val, iv, c->rows[i].kind, g, msg, dist);
         count[v]++;
     }
