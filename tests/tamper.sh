@@ -243,6 +243,16 @@ expect "a complete reading's unit deleted (resealed)" "frozen/paper-reading/main
 rm -f "$scratch/frozen/paper-reading/main/runs.tsv"
 reseal
 expect "a complete reading's unit and summary deleted (resealed)" "frozen/paper-reading/main/runs.tsv" "design grids"
+# a summary table recomputed by verify, one cell changed and resealed: the
+# readings table (paper/readings.tex) and the generator readings table
+fresh
+awk -F'\t' 'BEGIN{OFS="\t"} !/^#/ && $1 != "quantity" && !done {$4 = $4 + 0.25; done = 1} {print}' "$scratch/frozen/readings/summary.tsv" > "$scratch/x" && mv "$scratch/x" "$scratch/frozen/readings/summary.tsv"
+reseal
+expect "readings summary cell (resealed)" "frozen/readings/summary.tsv"
+fresh
+awk -F'\t' 'BEGIN{OFS="\t"} !/^#/ && $1 == "plain" {$7 = $7 + 0.01} {print}' "$scratch/frozen/model-readings/summary.tsv" > "$scratch/x" && mv "$scratch/x" "$scratch/frozen/model-readings/summary.tsv"
+reseal
+expect "generator readings table cell (resealed)" "frozen/model-readings/summary.tsv" "field 'joint'" "reading plain"
 # 23. a table's rows against its design grid: a duplicated sweep row
 fresh
 awk '!/^#/ && n++==3 {print} {print}' "$scratch/frozen/mechanism/sweep.tsv" > "$scratch/x" && mv "$scratch/x" "$scratch/frozen/mechanism/sweep.tsv"

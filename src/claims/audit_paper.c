@@ -71,7 +71,7 @@ cs_status paper_generate(const claims *c, const claim_result *res, const char *d
     if (!st) st = sens_generate(c, dir, &sens);
     if (sens) *readings |= 2;
     /* the comparison last: its attribution column reads the two summaries just checked */
-    attrib_data at;
+    attrib_data at = {0};
     if (!st) st = attrib_load(PATHS_READINGS_SUMMARY, PATHS_SENS_SUMMARY, &at);
     const claim_interval *ci = NULL;
     if (!st) st = agree_intervals_cached(c, res, &ci);
