@@ -218,6 +218,18 @@ void audit_aggregates(const claims *c, checklist *cl)
 
 /* The claims a file feeds: its own (source column) or, for a per-run table,
  * those of the aggregates made from it (audit/aggregates.tsv lineage). */
+/* A parts template as a glob: every {col} or {col:0N} cell becomes '*'.
+ * glob holds at least strlen(parts) + 1 bytes. */
+static void parts_glob(const char *parts, char *glob)
+{
+    size_t o = 0;
+    for (const char *p = parts; *p; p++) {
+        if (*p == '{') { glob[o++] = '*'; p = strchr(p, '}'); if (!p) break; }
+        else glob[o++] = *p;
+    }
+    glob[o] = '\0';
+}
+
 void audit_feeds(const claims *c, const char *path, char *buf, size_t n)
 {
     size_t off = 0, cnt = 0;
@@ -231,12 +243,7 @@ void audit_feeds(const claims *c, const char *path, char *buf, size_t n)
     if (!aggr_load(PATHS_AGGREGATES, &s, &m)) {
         for (size_t k = 0; k < m && !cnt; k++) {
             char glob[sizeof s[k].parts];
-            size_t o = 0;
-            for (const char *p = s[k].parts; *p; p++) {
-                if (*p == '{') { glob[o++] = '*'; p = strchr(p, '}'); }
-                else glob[o++] = *p;
-            }
-            glob[o] = '\0';
+            parts_glob(s[k].parts, glob);
             if (fnmatch(glob, path, FNM_PATHNAME) != 0 || !strcmp(s[k].aggregate, path)) continue;
             for (size_t i = 0; i < c->n && off < n; i++)
                 if (!strcmp(c->rows[i].source, s[k].aggregate)) off += (size_t)snprintf(buf + off, n - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
@@ -254,12 +261,7 @@ void audit_feeds(const claims *c, const char *path, char *buf, size_t n)
         for (size_t k = 0; k < m && !cnt; k++) {
             if (strcmp(s[k].aggregate, path)) continue;
             char glob[sizeof s[k].parts];
-            size_t o = 0;
-            for (const char *p = s[k].parts; *p; p++) {
-                if (*p == '{') { glob[o++] = '*'; p = strchr(p, '}'); }
-                else glob[o++] = *p;
-            }
-            glob[o] = '\0';
+            parts_glob(s[k].parts, glob);
             for (size_t i = 0; i < c->n && off < n; i++)
                 if (!strcmp(c->rows[i].source, glob) || fnmatch(glob, c->rows[i].source, FNM_PATHNAME) == 0)
                     off += (size_t)snprintf(buf + off, n - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);

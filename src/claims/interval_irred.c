@@ -148,11 +148,10 @@ cs_status iv_refine_stands(const claim_row *row, const claim_result *res, const 
 {
     (void)res; (void)sp;
     char path[600];
-    iv_rows_path(row->source, "_sectors", path, sizeof path);
-    refine_ctx *c = calloc(1, sizeof *c);
-    if (!c) return cs_err(CS_ENOMEM, "interval: out of memory");
-    d->stat = (iv_stat){IV_CALLBACK, 0, 0, refine_stat, c};
-    d->cleanup = refine_ctx_free;
+    void *cv;
+    cs_status bst = iv_stands_begin(row, "_sectors", path, sizeof path, sizeof(refine_ctx), refine_stat, refine_ctx_free, d, &cv);
+    if (bst) return bst;
+    refine_ctx *c = cv;
     c->steps = !strcmp(row->function, "claim_irred_step_shrink");
     double tol, ds[IV_MAXD];
     cs_status st = gate_read_values(PATHS_GATE("irreducibility"), "refine_levels", c->level, 8, &c->nl);
@@ -324,11 +323,10 @@ cs_status iv_reduction_stands(const claim_row *row, const claim_result *res, con
 {
     (void)res; (void)sp;
     char path[600];
-    iv_rows_path(row->source, "_sectors", path, sizeof path);
-    reduction_ctx *c = calloc(1, sizeof *c);
-    if (!c) return cs_err(CS_ENOMEM, "interval: out of memory");
-    d->stat = (iv_stat){IV_CALLBACK, 0, 0, reduction_stat, c};
-    d->cleanup = reduction_ctx_free;
+    void *cv;
+    cs_status bst = iv_stands_begin(row, "_sectors", path, sizeof path, sizeof(reduction_ctx), reduction_stat, reduction_ctx_free, d, &cv);
+    if (bst) return bst;
+    reduction_ctx *c = cv;
     c->steps = !strcmp(row->function, "claim_irred_steps");
     tsv *p = NULL, *t = NULL;
     cs_status st = tsv_read(row->source, &p);

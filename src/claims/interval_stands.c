@@ -31,6 +31,17 @@ void iv_rows_path(const char *source, const char *suffix, char *out, size_t n)
     snprintf(out, n, "%.*s%s.tsv", cut, source, suffix);
 }
 
+cs_status iv_stands_begin(const claim_row *row, const char *suffix, char *path, size_t np, size_t size, boot_stat fn,
+                          void (*cleanup)(void *), iv_data *d, void **ctx)
+{
+    iv_rows_path(row->source, suffix, path, np);
+    *ctx = calloc(1, size);
+    if (!*ctx) return cs_err(CS_ENOMEM, "interval: out of memory");
+    d->stat = (iv_stat){IV_CALLBACK, 0, 0, fn, *ctx};
+    d->cleanup = cleanup;
+    return CS_OK;
+}
+
 /* The units handed to the bootstrap: x[k] = k, k = 0..ns-1. */
 cs_status iv_stand_units(iv_data *d, size_t ns, const char *rows, const char *what)
 {
@@ -121,11 +132,10 @@ cs_status iv_perturb_stands(const claim_row *row, const claim_result *res, const
 {
     (void)res; (void)sp;
     char path[600];
-    iv_rows_path(row->source, "_stands", path, sizeof path);
-    perturb_ctx *c = calloc(1, sizeof *c);
-    if (!c) return cs_err(CS_ENOMEM, "interval: out of memory");
-    d->stat = (iv_stat){IV_CALLBACK, 0, 0, perturb_stat, c};
-    d->cleanup = free;
+    void *cv;
+    cs_status bst = iv_stands_begin(row, "_stands", path, sizeof path, sizeof(perturb_ctx), perturb_stat, free, d, &cv);
+    if (bst) return bst;
+    perturb_ctx *c = cv;
     c->hi = !strcmp(row->function, "claim_irred_resp_hi");
     tsv *p = NULL, *t = NULL;
     cs_status st = tsv_read(row->source, &p);
@@ -326,11 +336,10 @@ cs_status iv_sweep_stands(const claim_row *row, const claim_result *res, const i
 {
     (void)res; (void)sp;
     char path[600];
-    iv_rows_path(row->source, "_trees", path, sizeof path);
-    sweep_ctx *c = calloc(1, sizeof *c);
-    if (!c) return cs_err(CS_ENOMEM, "interval: out of memory");
-    d->stat = (iv_stat){IV_CALLBACK, 0, 0, sweep_stat, c};
-    d->cleanup = sweep_ctx_free;
+    void *cv;
+    cs_status bst = iv_stands_begin(row, "_trees", path, sizeof path, sizeof(sweep_ctx), sweep_stat, sweep_ctx_free, d, &cv);
+    if (bst) return bst;
+    sweep_ctx *c = cv;
     const char *gk[4] = {"clearance_k1_min_m", "clearance_k2_min_m", "clearance_k3_min_m", "cover_min"};
     cs_status st = CS_OK;
     for (int i = 0; i < 4 && !st; i++) st = gate_read_value(PATHS_GATE("mechanism"), gk[i], 0, &c->thr[i]);

@@ -16,6 +16,11 @@ cs_status iv_perturb_stands(const claim_row *row, const claim_result *res, const
 cs_status iv_refine_stands(const claim_row *row, const claim_result *res, const interval_spec *spec, iv_data *d);
 cs_status iv_reduction_stands(const claim_row *row, const claim_result *res, const interval_spec *spec, iv_data *d);
 
+/* The start of every extractor: path = the per-stand rows <base><suffix>.tsv
+ * beside row's pooled table, and *ctx a zeroed context of size bytes handed
+ * to the bootstrap as the data of its statistic fn (freed by cleanup). */
+cs_status iv_stands_begin(const claim_row *row, const char *suffix, char *path, size_t np, size_t size, boot_stat fn,
+                          void (*cleanup)(void *), iv_data *d, void **ctx);
 /* <dir>/<base><suffix>.tsv beside the pooled table <dir>/<base>.tsv. */
 void iv_rows_path(const char *source, const char *suffix, char *out, size_t n);
 /* Hand the bootstrap the units x[k] = k, k = 0..ns-1, read from rows. */
