@@ -38,6 +38,7 @@ static patch_set *toy_set(int n, int mode, unsigned long seed)
         float sign = mode ? (sum > 0 ? 1.f : -1.f) : 1.f;
         for (int i = 0; i < PATCH_T; i++) {
             float *f = s->feat + ((size_t)k * PATCH_T + i) * PATCH_NFEAT;
+            memset(f, 0, sizeof(float) * PATCH_NFEAT); /* the features not drawn below are 0 */
             f[0] = (float)gsl_ran_gaussian(g, 1.0);
             f[1] = (float)gsl_ran_gaussian(g, 1.0);
             f[2] = mode ? a[i] : 0.5f;
