@@ -76,10 +76,10 @@ static void test_adamw_first_step_by_hand(void **s)
 }
 
 /* The vectorised update equals the scalar expression of adamw.h bit for bit
- * (n = 1003: full vectors, a decay boundary inside a vector, and a tail). */
-static void test_adamw_matches_scalar_expression(void **s)
+ * (n = 1003: full vectors, a decay boundary inside a vector, and a tail), on
+ * every gemm path (the update takes the path's vector width). */
+static void adamw_check(void)
 {
-    (void)s;
     enum { n = 1003, nd = 517 };
     static float p[n], g[n], m[n], v[n], p2[n], m2[n], v2[n];
     unsigned st = 71;
@@ -106,6 +106,17 @@ static void test_adamw_matches_scalar_expression(void **s)
         ASSERT_EXACT(m[i], mi);
         ASSERT_EXACT(v[i], vi);
         ASSERT_EXACT(p[i], pi);
+    }
+}
+
+static void test_adamw_matches_scalar_expression(void **s)
+{
+    (void)s;
+    for (int isa = GEMM_SCALAR; isa <= GEMM_AVX512; isa++) {
+        if (!gemm_isa_available((gemm_isa)isa)) continue;
+        gemm_isa before = gemm_set_isa((gemm_isa)isa);
+        adamw_check();
+        gemm_set_isa(before);
     }
 }
 
