@@ -218,6 +218,44 @@ static void check_attention24(gemm_isa isa)
     gemm_set_isa(before);
 }
 
+/* The layer norm on every path against the baseline copy: rows in fours and
+ * one at a time (11 rows), widths whose element-wise passes take 16 lanes on
+ * the AVX-512 path (64, 48) and one that does not (40); means, reciprocal
+ * deviations, outputs and all three gradients. */
+static void check_layernorm(gemm_isa isa)
+{
+    if (!gemm_isa_available(isa)) { print_message("path %d not on this CPU: skipped\n", (int)isa); return; }
+    gemm_isa before = gemm_set_isa(isa);
+    enum { M = 11, CMAX = 64 };
+    const int widths[3] = {64, 48, 40};
+    unsigned st = 31;
+    for (int w = 0; w < 3; w++) {
+        const int C = widths[w];
+        float x[M * CMAX], dy[M * CMAX], g[CMAX], b[CMAX], y1[M * CMAX], y2[M * CMAX];
+        float dx1[M * CMAX], dx2[M * CMAX], mu1[M], mu2[M], rs1[M], rs2[M];
+        float dg1[CMAX], dg2[CMAX], db1[CMAX], db2[CMAX];
+        tu_fill(x, (size_t)M * C, 3, &st); tu_fill(dy, (size_t)M * C, 1, &st);
+        tu_fill(g, C, 1, &st); tu_fill(b, C, 1, &st); tu_fill(dx1, (size_t)M * C, 1, &st);
+        memcpy(dx2, dx1, sizeof(float) * M * C);
+        tu_fill(dg1, C, 1, &st); memcpy(dg2, dg1, sizeof(float) * C);
+        tu_fill(db1, C, 1, &st); memcpy(db2, db1, sizeof(float) * C);
+        nn_layernorm_forward(y1, mu1, rs1, x, g, b, M, C);
+        base_layernorm_forward(y2, mu2, rs2, x, g, b, M, C);
+        same(mu1, mu2, M, "layernorm mean");
+        same(rs1, rs2, M, "layernorm 1/sd");
+        same(y1, y2, (size_t)M * C, "layernorm forward (rows in fours and alone)");
+        nn_layernorm_backward(dx1, dg1, db1, dy, x, mu1, rs1, g, M, C);
+        base_layernorm_backward(dx2, dg2, db2, dy, x, mu2, rs2, g, M, C);
+        same(dx1, dx2, (size_t)M * C, "layernorm input gradient");
+        same(dg1, dg2, C, "layernorm dg");
+        same(db1, db2, C, "layernorm db");
+    }
+    gemm_set_isa(before);
+}
+
+static void test_layernorm_avx512(void **s) { (void)s; check_layernorm(GEMM_AVX512); }
+static void test_layernorm_avx2(void **s) { (void)s; check_layernorm(GEMM_AVX2); }
+
 static void test_reference_shape_attention_avx512(void **s) { (void)s; check_attention24(GEMM_AVX512); }
 static void test_reference_shape_attention_avx2(void **s) { (void)s; check_attention24(GEMM_AVX2); }
 
@@ -232,6 +270,8 @@ int main(void)
         cmocka_unit_test(test_avx2_kernels_agree_with_baseline),
         cmocka_unit_test(test_scalar_path_kernels_agree_with_baseline),
         cmocka_unit_test(test_reference_shape_attention_avx512),
+        cmocka_unit_test(test_layernorm_avx512),
+        cmocka_unit_test(test_layernorm_avx2),
         cmocka_unit_test(test_reference_shape_attention_avx2),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
