@@ -175,6 +175,90 @@ static void check_path(gemm_isa isa)
     gemm_set_isa(before);
 }
 
+/* Attention at the reference head shape (T = 24, hd = 16), which the AVX-512
+ * and AVX2 paths run in register blocks of their own, against the generic
+ * kernels of the baseline copy: six patches, unbiased and biased, with scores
+ * large enough that the exponential's clamp is reached and with exact zeros
+ * (signed zeros and the clamp are where a reordered or contracted operation
+ * would show first). */
+static void check_attention24(gemm_isa isa)
+{
+    if (!gemm_isa_available(isa)) { print_message("path %d not on this CPU: skipped\n", (int)isa); return; }
+    gemm_isa before = gemm_set_isa(isa);
+    enum { B = 6, T = 24, C = 64, H = 4, N = B * T };
+    unsigned st = 29;
+    const size_t nq = (size_t)N * 3 * C, no = (size_t)N * C, np = (size_t)B * H * T * T;
+    float *qkv = malloc(sizeof(float) * nq), *dout = malloc(sizeof(float) * no);
+    float *o1 = malloc(sizeof(float) * nq), *o2 = malloc(sizeof(float) * nq);
+    float *p1 = malloc(sizeof(float) * np), *p2 = malloc(sizeof(float) * np);
+    float *sb = malloc(sizeof(float) * np), *dpx = malloc(sizeof(float) * np);
+    float *scr1 = malloc(sizeof(float) * nn_attention_scratch_len(T, C, H));
+    float *scr2 = malloc(sizeof(float) * nn_attention_scratch_len(T, C, H));
+    tu_fill(qkv, nq, 3, &st); tu_fill(dout, no, 1, &st); tu_fill(sb, np, 2, &st); tu_fill(dpx, np, 1, &st);
+    for (size_t i = 0; i < nq; i += 7) qkv[i] = 0.f;
+    for (size_t i = 3; i < nq; i += 11) qkv[i] = -0.f;
+    for (size_t i = 0; i < (size_t)T * 3 * C; i += 5) qkv[i] *= 40.f; /* patch 0: clamped scores */
+    for (size_t i = 0; i < no; i += 9) dout[i] = 0.f;
+    for (int biased = 0; biased < 2; biased++) {
+        nn_attention_forward_biased(o1, p1, qkv, biased ? sb : NULL, B, T, C, H, NN_ATTN_JOINT, scr1);
+        base_attention_forward_biased(o2, p2, qkv, biased ? sb : NULL, B, T, C, H, NN_ATTN_JOINT, scr2);
+        same(o1, o2, no, "reference-shape attention forward");
+        same(p1, p2, np, "reference-shape attention probabilities");
+        for (int b = 0; b < B; b++) {
+            const size_t r = (size_t)b * T, ph = (size_t)b * H * T * T;
+            nn_attention_backward_biased(o1 + r * 3 * C, dout + r * C, qkv + r * 3 * C, p1 + ph,
+                                         biased ? dpx + ph : NULL, 1, T, C, H, NN_ATTN_JOINT, scr1);
+            base_attention_backward_biased(o2 + r * 3 * C, dout + r * C, qkv + r * 3 * C, p1 + ph,
+                                           biased ? dpx + ph : NULL, 1, T, C, H, NN_ATTN_JOINT, scr2);
+            same(scr1, scr2, (size_t)H * T * T, "reference-shape attention dS");
+        }
+        same(o1, o2, nq, "reference-shape attention backward");
+    }
+    free(qkv); free(dout); free(o1); free(o2); free(p1); free(p2); free(sb); free(dpx); free(scr1); free(scr2);
+    gemm_set_isa(before);
+}
+
+/* The layer norm on every path against the baseline copy: rows in fours and
+ * one at a time (11 rows), widths whose element-wise passes take 16 lanes on
+ * the AVX-512 path (64, 48) and one that does not (40); means, reciprocal
+ * deviations, outputs and all three gradients. */
+static void check_layernorm(gemm_isa isa)
+{
+    if (!gemm_isa_available(isa)) { print_message("path %d not on this CPU: skipped\n", (int)isa); return; }
+    gemm_isa before = gemm_set_isa(isa);
+    enum { M = 11, CMAX = 64 };
+    const int widths[3] = {64, 48, 40};
+    unsigned st = 31;
+    for (int w = 0; w < 3; w++) {
+        const int C = widths[w];
+        float x[M * CMAX], dy[M * CMAX], g[CMAX], b[CMAX], y1[M * CMAX], y2[M * CMAX];
+        float dx1[M * CMAX], dx2[M * CMAX], mu1[M], mu2[M], rs1[M], rs2[M];
+        float dg1[CMAX], dg2[CMAX], db1[CMAX], db2[CMAX];
+        tu_fill(x, (size_t)M * C, 3, &st); tu_fill(dy, (size_t)M * C, 1, &st);
+        tu_fill(g, C, 1, &st); tu_fill(b, C, 1, &st); tu_fill(dx1, (size_t)M * C, 1, &st);
+        memcpy(dx2, dx1, sizeof(float) * M * C);
+        tu_fill(dg1, C, 1, &st); memcpy(dg2, dg1, sizeof(float) * C);
+        tu_fill(db1, C, 1, &st); memcpy(db2, db1, sizeof(float) * C);
+        nn_layernorm_forward(y1, mu1, rs1, x, g, b, M, C);
+        base_layernorm_forward(y2, mu2, rs2, x, g, b, M, C);
+        same(mu1, mu2, M, "layernorm mean");
+        same(rs1, rs2, M, "layernorm 1/sd");
+        same(y1, y2, (size_t)M * C, "layernorm forward (rows in fours and alone)");
+        nn_layernorm_backward(dx1, dg1, db1, dy, x, mu1, rs1, g, M, C);
+        base_layernorm_backward(dx2, dg2, db2, dy, x, mu2, rs2, g, M, C);
+        same(dx1, dx2, (size_t)M * C, "layernorm input gradient");
+        same(dg1, dg2, C, "layernorm dg");
+        same(db1, db2, C, "layernorm db");
+    }
+    gemm_set_isa(before);
+}
+
+static void test_layernorm_avx512(void **s) { (void)s; check_layernorm(GEMM_AVX512); }
+static void test_layernorm_avx2(void **s) { (void)s; check_layernorm(GEMM_AVX2); }
+
+static void test_reference_shape_attention_avx512(void **s) { (void)s; check_attention24(GEMM_AVX512); }
+static void test_reference_shape_attention_avx2(void **s) { (void)s; check_attention24(GEMM_AVX2); }
+
 static void test_avx512_kernels_agree_with_baseline(void **s) { (void)s; check_path(GEMM_AVX512); }
 static void test_avx2_kernels_agree_with_baseline(void **s) { (void)s; check_path(GEMM_AVX2); }
 static void test_scalar_path_kernels_agree_with_baseline(void **s) { (void)s; check_path(GEMM_SCALAR); }
@@ -185,6 +269,10 @@ int main(void)
         cmocka_unit_test(test_avx512_kernels_agree_with_baseline),
         cmocka_unit_test(test_avx2_kernels_agree_with_baseline),
         cmocka_unit_test(test_scalar_path_kernels_agree_with_baseline),
+        cmocka_unit_test(test_reference_shape_attention_avx512),
+        cmocka_unit_test(test_layernorm_avx512),
+        cmocka_unit_test(test_layernorm_avx2),
+        cmocka_unit_test(test_reference_shape_attention_avx2),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -7,9 +7,9 @@
 #include <string.h>
 
 enum { GEMM_KC = 256 }; /* k-chunk of a long product without epilogue (see run) */
-/* Rows of a super-strip (gemm_tile.inc): 2 strips measured fastest in a
- * training step (1, 2, 4 and 8 strips tried). */
-enum { GEMM_SUPER = 2 * GEMM_STRIP };
+/* Rows of a register tile, and of a super-strip (gemm_tile.inc): one
+ * epilogue strip, 2 tiles; 1, 2, 4 and 8 tiles measured alike or slower. */
+enum { GEMM_TILE = 6, GEMM_SUPER = GEMM_STRIP };
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define GEMM_X86 1

@@ -153,6 +153,19 @@ cs_status model_norm_fit(model *m, const float *feat, int n)
     return CS_OK;
 }
 
+/* Zeroed floats on a 64-byte boundary: a 512-bit load of a row that starts
+ * there touches one cache line, not two (every row length of the reference
+ * configuration is a multiple of 16 floats, so the rows stay aligned). */
+enum { MODEL_ALIGN = 16 }; /* floats per 64 bytes */
+static size_t pad16(size_t n) { return (n + MODEL_ALIGN - 1) / MODEL_ALIGN * MODEL_ALIGN; }
+static float *falloc(size_t n)
+{
+    const size_t bytes = sizeof(float) * pad16(n ? n : 1);
+    float *p = aligned_alloc(64, bytes);
+    if (p) memset(p, 0, bytes);
+    return p;
+}
+
 void model_free(model *m)
 {
     if (!m) return;
@@ -181,9 +194,9 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
     m->ln2 = m->xm + L; m->mu2 = m->ln2 + L; m->rs2 = m->mu2 + L; m->h = m->rs2 + L; m->hs = m->h + L; m->hg = m->hs + L;
     m->Phi = m->hg + L;
     m->nparams = layout(cfg, m, &m->ndecay);
-    m->params = calloc(m->nparams, sizeof(float));
-    m->grads = calloc(m->nparams, sizeof(float));
-    m->wtall = calloc(m->ndecay, sizeof(float));
+    m->params = falloc(m->nparams);
+    m->grads = falloc(m->nparams);
+    m->wtall = falloc(m->ndecay);
     m->nnorm = model_nnorm(cfg);
     m->norm = calloc(m->nnorm ? m->nnorm : 1, sizeof(float));
     if (m->norm) { /* identity z-scores (mean 0, 1/sd 1) until model_norm_fit */
@@ -199,34 +212,32 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
     const size_t Phin = cfg->pair ? N * cfg->H * PAIRATTN_Q : 0;
     const size_t ascrn = cfg->pair ? pairattn_scratch_len(cfg->T, cfg->C, cfg->H)
                                    : nn_attention_scratch_len(cfg->T, cfg->C, cfg->H);
-    size_t per_block = N * C * 4 + N * 4 + N * 3 * C + probn + N * F * 3 + Phin;
-    size_t total = N * I + B * E + 3 * B * C + N * C + 2 * N + N * cfg->P
-                 + (size_t)(L + 1) * N * C + (size_t)L * per_block
-                 + 3 * N * C + N * 3 * C + N * F + 2 * B * C
-                 + ascrn + 4 * B * TP + B + 2 * B * TTQ;
-    m->mem = calloc(total, sizeof(float));
-    if (!m->params || !m->grads || !m->wtall || !m->mem || !m->norm) { model_free(m); return cs_err(CS_ENOMEM, "model: out of memory"); }
-    float *p = m->mem;
-#define TAKE(n) (p += (n), p - (n))
-    m->tin = TAKE(N * I); m->cin = TAKE(B * E);
-    m->e1 = TAKE(B * C); m->e1g = TAKE(B * C); m->e = TAKE(B * C);
-    m->lnf = TAKE(N * C); m->muf = TAKE(N); m->rsf = TAKE(N); m->out = TAKE(N * cfg->P);
-    for (int l = 0; l <= L; l++) m->x[l] = TAKE(N * C);
-    for (int l = 0; l < L; l++) {
-        m->ln1[l] = TAKE(N * C); m->mu1[l] = TAKE(N); m->rs1[l] = TAKE(N);
-        m->qkv[l] = TAKE(N * 3 * C); m->prob[l] = TAKE(probn); m->att[l] = TAKE(N * C);
-        m->xm[l] = TAKE(N * C); m->ln2[l] = TAKE(N * C); m->mu2[l] = TAKE(N); m->rs2[l] = TAKE(N);
-        m->h[l] = TAKE(N * F); m->hs[l] = TAKE(N * F); m->hg[l] = TAKE(N * F);
-        m->Phi[l] = TAKE(Phin);
-    }
-    m->dx = TAKE(N * C); m->dtmp = TAKE(N * C); m->dln = TAKE(N * C);
-    m->dqkv = TAKE(N * 3 * C); m->dh = TAKE(N * F); m->de = TAKE(B * C); m->de1 = TAKE(B * C);
-    m->ascr = TAKE(ascrn);
-    m->fm_xt = TAKE(B * TP); m->fm_u = TAKE(B * TP); m->fm_v = TAKE(B * TP); m->fm_dv = TAKE(B * TP);
-    m->fm_t = TAKE(B);
-    m->phi = TAKE(B * TTQ); m->phit = TAKE(B * TTQ);
+    if (!m->params || !m->grads || !m->wtall || !m->norm) { model_free(m); return cs_err(CS_ENOMEM, "model: out of memory"); }
+    /* Pass 0 counts the floats (every array rounded up to 64 bytes, so each
+     * starts on a cache line), pass 1 hands them out. */
+    for (int pass = 0; pass < 2; pass++) {
+        size_t o = 0;
+#define TAKE(n) (o += pad16(n), pass ? m->mem + o - pad16(n) : NULL)
+        m->tin = TAKE(N * I); m->cin = TAKE(B * E);
+        m->e1 = TAKE(B * C); m->e1g = TAKE(B * C); m->e = TAKE(B * C);
+        m->lnf = TAKE(N * C); m->muf = TAKE(N); m->rsf = TAKE(N); m->out = TAKE(N * cfg->P);
+        for (int l = 0; l <= L; l++) m->x[l] = TAKE(N * C);
+        for (int l = 0; l < L; l++) {
+            m->ln1[l] = TAKE(N * C); m->mu1[l] = TAKE(N); m->rs1[l] = TAKE(N);
+            m->qkv[l] = TAKE(N * 3 * C); m->prob[l] = TAKE(probn); m->att[l] = TAKE(N * C);
+            m->xm[l] = TAKE(N * C); m->ln2[l] = TAKE(N * C); m->mu2[l] = TAKE(N); m->rs2[l] = TAKE(N);
+            m->h[l] = TAKE(N * F); m->hs[l] = TAKE(N * F); m->hg[l] = TAKE(N * F);
+            m->Phi[l] = TAKE(Phin);
+        }
+        m->dx = TAKE(N * C); m->dtmp = TAKE(N * C); m->dln = TAKE(N * C);
+        m->dqkv = TAKE(N * 3 * C); m->dh = TAKE(N * F); m->de = TAKE(B * C); m->de1 = TAKE(B * C);
+        m->ascr = TAKE(ascrn);
+        m->fm_xt = TAKE(B * TP); m->fm_u = TAKE(B * TP); m->fm_v = TAKE(B * TP); m->fm_dv = TAKE(B * TP);
+        m->fm_t = TAKE(B);
+        m->phi = TAKE(B * TTQ); m->phit = TAKE(B * TTQ);
 #undef TAKE
-    if ((size_t)(p - m->mem) != total) { model_free(m); return cs_err(CS_EINVARIANT, "model: activation layout mismatch"); }
+        if (!pass && !(m->mem = falloc(o))) { model_free(m); return cs_err(CS_ENOMEM, "model: out of memory"); }
+    }
     *out = m;
     return CS_OK;
 }

@@ -75,8 +75,10 @@ HOT static void softmax_backward_rows(float *ds, const float *P, int T, float sc
  * 8-lane reductions of softmax_row / softmax_backward_rows (the same chunk
  * order and butterfly), so the values are those of the generic kernels
  * (test_nn_clones compares the two builds bit for bit). */
-#ifdef NN_AVX512
+#if defined(NN_AVX512) || defined(NN_AVX2)
 #include <immintrin.h>
+#endif
+#ifdef NN_AVX512
 #define A512 __attribute__((target("avx512f,fma"), always_inline)) static inline
 
 /* S[12 x 24] (row stride 24) = A[12 x 16] (row stride ars) Bt[16 x 24]. */
@@ -191,6 +193,132 @@ __attribute__((target("avx512f,fma"))) static void attention_backward24(float *g
 }
 #endif
 
+/* ---- attention on AVX2 at the reference head shape ------------------------------- */
+/* The same register blocking on 8-lane vectors, sized for the 16 ymm
+ * registers: a score block is 4 rows x 24 (12 accumulators), an hd-wide
+ * block 6 rows x 16 (12 accumulators). Every element is one fma chain over
+ * k ascending from +0 and the softmax keeps softmax_row's operations, so the
+ * values are those of the generic kernels (test_nn_clones). */
+#ifdef NN_AVX2
+#define A256 __attribute__((target("avx2,fma"), always_inline)) static inline
+
+/* S[4 x 24] (row stride 24) = A[4 x 16] (row stride ars) Bt[16 x 24]. */
+A256 void tt_block8(float *S, const float *A, ptrdiff_t ars, const float *Bt)
+{
+    __m256 c[4][3];
+    _Pragma("GCC unroll 4") for (int r = 0; r < 4; r++)
+        _Pragma("GCC unroll 3") for (int q = 0; q < 3; q++) c[r][q] = _mm256_setzero_ps();
+    for (int d = 0; d < 16; d++) {
+        const __m256 b0 = _mm256_loadu_ps(Bt + d * 24), b1 = _mm256_loadu_ps(Bt + d * 24 + 8);
+        const __m256 b2 = _mm256_loadu_ps(Bt + d * 24 + 16);
+        _Pragma("GCC unroll 4") for (int r = 0; r < 4; r++) {
+            const __m256 x = _mm256_broadcast_ss(A + r * ars + d);
+            c[r][0] = _mm256_fmadd_ps(x, b0, c[r][0]);
+            c[r][1] = _mm256_fmadd_ps(x, b1, c[r][1]);
+            c[r][2] = _mm256_fmadd_ps(x, b2, c[r][2]);
+        }
+    }
+    _Pragma("GCC unroll 4") for (int r = 0; r < 4; r++)
+        _Pragma("GCC unroll 3") for (int q = 0; q < 3; q++) _mm256_storeu_ps(S + r * 24 + 8 * q, c[r][q]);
+}
+
+/* Cm[6 x 16] (row stride ldc) = sum over k < 24 of A(r, k) B[k][0..15],
+ * A(r, k) = A[r * ars + k * aks]; ars and aks are literals at every call. */
+A256 void hw_block8(float *Cm, ptrdiff_t ldc, const float *A, const ptrdiff_t ars, const ptrdiff_t aks,
+                    const float *B, ptrdiff_t ldb)
+{
+    __m256 c[6][2];
+    _Pragma("GCC unroll 6") for (int r = 0; r < 6; r++) { c[r][0] = _mm256_setzero_ps(); c[r][1] = _mm256_setzero_ps(); }
+    for (int k = 0; k < 24; k++) {
+        const __m256 b0 = _mm256_loadu_ps(B + k * ldb), b1 = _mm256_loadu_ps(B + k * ldb + 8);
+        _Pragma("GCC unroll 6") for (int r = 0; r < 6; r++) {
+            const __m256 x = _mm256_broadcast_ss(A + r * ars + k * aks);
+            c[r][0] = _mm256_fmadd_ps(x, b0, c[r][0]);
+            c[r][1] = _mm256_fmadd_ps(x, b1, c[r][1]);
+        }
+    }
+    _Pragma("GCC unroll 6") for (int r = 0; r < 6; r++) {
+        _mm256_storeu_ps(Cm + r * ldc, c[r][0]);
+        _mm256_storeu_ps(Cm + r * ldc + 8, c[r][1]);
+    }
+}
+
+/* softmax_row on 12 rows of 24 in three passes over the rows (maxima;
+ * exponentials and sums; scaling), as softmax24x12. */
+A256 void softmax24x12_8(float *s)
+{
+    float mx[12], inv[12];
+    for (int r = 0; r < 12; r++) mx[r] = vmaxv(s + r * 24, 24);
+    for (int r = 0; r < 12; r++) {
+        float *row = s + r * 24;
+        const vf vm = splat(mx[r]);
+        st(row, vexp(ld(row) - vm));
+        st(row + 8, vexp(ld(row + 8) - vm));
+        st(row + 16, vexp(ld(row + 16) - vm));
+        inv[r] = vsum(row, 24);
+    }
+    for (int r = 0; r < 12; r++) inv[r] = 1.f / inv[r];
+    for (int r = 0; r < 12; r++) {
+        float *row = s + r * 24;
+        st(row, ld(row) * inv[r]);
+        st(row + 8, ld(row + 8) * inv[r]);
+        st(row + 16, ld(row + 16) * inv[r]);
+    }
+}
+
+/* softmax_backward_rows on one row of 24: d = p (d - p.d) scale. */
+A256 void softmax_backward24_8(float *d, const float *p, float scale)
+{
+    const float dot = vdot(p, d, 24);
+    for (int j = 0; j < 24; j += 8) st(d + j, ld(p + j) * (ld(d + j) - dot) * scale);
+}
+
+/* One patch (24 tokens), all heads: the values of nn_attention_forward. */
+__attribute__((target("avx2,fma"))) static void attention_forward24_avx2(float *out, float *prob,
+                                                                         const float *qkv, int C, int H,
+                                                                         float *kt, const float *sb)
+{
+    const int C3 = 3 * C;
+    const float scale = 1.f / sqrtf(16.f);
+    for (int h = 0; h < H; h++) {
+        float *P = prob + (size_t)h * 576;
+        gemm_transpose_scaled(kt, 24, qkv + C + h * 16, C3, 24, 16, scale);
+        for (int i0 = 0; i0 < 24; i0 += 12) {
+            for (int r = i0; r < i0 + 12; r += 4) tt_block8(P + r * 24, qkv + (size_t)r * C3 + h * 16, C3, kt);
+            if (sb) add_rows(P + i0 * 24, sb + (size_t)h * 576 + i0 * 24, 12 * 24);
+            softmax24x12_8(P + i0 * 24);
+            for (int r = i0; r < i0 + 12; r += 6)
+                hw_block8(out + (size_t)r * C + h * 16, C, P + r * 24, 24, 1, qkv + 2 * C + h * 16, C3);
+        }
+    }
+}
+
+/* One patch, all heads: the values of nn_attention_backward. */
+__attribute__((target("avx2,fma"))) static void attention_backward24_avx2(float *g, const float *dO,
+                                                                          const float *qkv,
+                                                                          const float *prob, int C,
+                                                                          int H, float *ds, float *vt,
+                                                                          const float *dpx)
+{
+    const int C3 = 3 * C;
+    const float scale = 1.f / sqrtf(16.f);
+    for (int h = 0; h < H; h++) {
+        const float *P = prob + (size_t)h * 576, *q = qkv + h * 16, *k = qkv + C + h * 16;
+        float *dsh = ds + (size_t)h * 576;
+        gemm_transpose_scaled(vt, 24, qkv + 2 * C + h * 16, C3, 24, 16, 1.f);
+        for (int r = 0; r < 24; r += 4) tt_block8(dsh + r * 24, dO + (size_t)r * C + h * 16, C, vt);
+        if (dpx) add_rows(dsh, dpx + (size_t)h * 576, 576);
+        for (int r = 0; r < 24; r++) softmax_backward24_8(dsh + r * 24, P + r * 24, scale);
+        for (int i0 = 0; i0 < 24; i0 += 6) {
+            const size_t o = (size_t)i0 * C3 + h * 16;
+            hw_block8(g + 2 * C + o, C3, P + i0, 1, 24, dO + h * 16, C);  /* dV = P^T dO */
+            hw_block8(g + o, C3, dsh + i0 * 24, 24, 1, k, C3);             /* dQ = dS K */
+            hw_block8(g + C + o, C3, dsh + i0, 1, 24, q, C3);              /* dK = dS^T Q */
+        }
+    }
+}
+#endif
+
 void nn_attention_forward(float *out, float *prob, const float *qkv,
                           int B, int T, int C, int H, nn_attn_mode mode, float *scratch)
 {
@@ -213,6 +341,15 @@ void nn_attention_forward_biased(float *out, float *prob, const float *qkv, cons
             attention_forward24(out + (size_t)b * T * C, prob + (size_t)b * H * T * T,
                                 qkv + (size_t)b * T * C3, C, H, scratch,
                                 sbias ? sbias + (size_t)b * H * T * T : NULL);
+        return;
+    }
+#endif
+#ifdef NN_AVX2
+    if (T == 24 && hd == 16 && gemm_get_isa() == GEMM_AVX2) {
+        for (int b = 0; b < B; b++)
+            attention_forward24_avx2(out + (size_t)b * T * C, prob + (size_t)b * H * T * T,
+                                     qkv + (size_t)b * T * C3, C, H, scratch,
+                                     sbias ? sbias + (size_t)b * H * T * T : NULL);
         return;
     }
 #endif
@@ -262,6 +399,15 @@ void nn_attention_backward_biased(float *dqkv, const float *dout, const float *q
             attention_backward24(dqkv + (size_t)b * T * C3, dout + (size_t)b * T * C,
                                  qkv + (size_t)b * T * C3, prob + (size_t)b * H * T * T, C, H, ds, vt,
                                  dpadd ? dpadd + (size_t)b * H * T * T : NULL);
+        return;
+    }
+#endif
+#ifdef NN_AVX2
+    if (T == 24 && hd == 16 && gemm_get_isa() == GEMM_AVX2) {
+        for (int b = 0; b < B; b++)
+            attention_backward24_avx2(dqkv + (size_t)b * T * C3, dout + (size_t)b * T * C,
+                                      qkv + (size_t)b * T * C3, prob + (size_t)b * H * T * T, C, H, ds, vt,
+                                      dpadd ? dpadd + (size_t)b * H * T * T : NULL);
         return;
     }
 #endif

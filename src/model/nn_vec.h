@@ -20,10 +20,12 @@
 #endif
 #define INL static inline __attribute__((always_inline))
 /* AVX-512 forms of the GELU and of attention at the reference head shape,
- * taken at run time on the AVX-512 gemm path (gemm_get_isa; absent from the
+ * taken at run time on the AVX-512 gemm path, and an AVX2 form of that
+ * attention taken on the AVX2 path (gemm_get_isa; both absent from the
  * baseline copy that test_nn_clones compares them with). */
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(NN_NO_CLONES)
 #define NN_AVX512 1
+#define NN_AVX2 1
 #endif
 
 typedef float vf __attribute__((vector_size(32)));

@@ -47,6 +47,15 @@ double speed_forward_flops(const model_cfg *c, int B)
 typedef struct { int in, out, mult, dinp; } layer;
 typedef struct { float *a, *w, *c, *d, *dw; int R, n; layer l[6]; } pass_set;
 
+/* n zeroed floats on a 64-byte boundary */
+static float *falloc(size_t n)
+{
+    const size_t bytes = (sizeof(float) * (n ? n : 1) + 63) / 64 * 64;
+    float *p = aligned_alloc(64, bytes);
+    if (p) memset(p, 0, bytes);
+    return p;
+}
+
 static cs_status pass_alloc(pass_set *p, const model_cfg *c)
 {
     const int NI = c->P + c->nfeat, C = c->C, F = c->F, L = c->L;
@@ -57,11 +66,12 @@ static cs_status pass_alloc(pass_set *p, const model_cfg *c)
     int mx = 1;
     for (int k = 0; k < p->n; k++) mx = l[k].in > mx ? l[k].in : l[k].out > mx ? l[k].out : mx;
     const size_t ra = (size_t)p->R * mx, ww = (size_t)mx * mx;
-    p->a = malloc(sizeof(float) * ra);
-    p->c = malloc(sizeof(float) * ra);
-    p->d = malloc(sizeof(float) * ra);
-    p->w = malloc(sizeof(float) * ww);
-    p->dw = calloc(ww, sizeof(float));
+    /* on cache lines, as the model's arrays (model_alloc) */
+    p->a = falloc(ra);
+    p->c = falloc(ra);
+    p->d = falloc(ra);
+    p->w = falloc(ww);
+    p->dw = falloc(ww);
     if (!p->a || !p->c || !p->d || !p->w || !p->dw) return cs_err(CS_ENOMEM, "bench: out of memory");
     for (size_t i = 0; i < ra; i++) p->a[i] = (float)((i % 17) * 0.01 - 0.08);
     for (size_t i = 0; i < ww; i++) p->w[i] = (float)((i % 13) * 0.01 - 0.06);
