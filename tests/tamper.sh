@@ -24,7 +24,12 @@ fresh() {
 VERIFY_ARGS=--no-figures
 expect() {
   local name=$1; shift
-  local out rc lines
+  local out rc lines d same=1
+  # a case whose edit did not apply (a pattern that no longer matches) tests nothing
+  for d in README.md LICENSE CITATION.cff src gates frozen audit paper figures tests; do
+    if ! diff -rq "$root/$d" "$scratch/$d" >/dev/null 2>&1; then same=0; break; fi
+  done
+  if [ $same = 1 ]; then bad "$name" "the tamper edit did not apply: the scratch copy equals the repository"; return; fi
   out=$(cd "$scratch" && "$cli" verify $VERIFY_ARGS 2>&1); rc=$?
   if [ $rc -ne 1 ]; then bad "$name" "verify exit $rc, expected 1"; return; fi
   lines=$(grep -E '^  FAIL ' <<<"$out")
@@ -270,9 +275,14 @@ if [ $have_git = 1 ] && fresh_git; then
   launder
   expect "made-up superseded hash in frozen/main, re-pinned (.git)" "audit/pins_superseded.tsv" "no past version of src/forest/teacher.c"
   out=$(cd "$scratch" && "$cli" verify --no-figures 2>&1)
-  if grep -q '^  PENDING PairMainRel .*superseded reading' <<<"$out" && ! grep -q '^  PASS    PairMainRel ' <<<"$out"; then ok "claims of a superseded table are pending, never reproduced"
-  else bad "claims of a superseded table are pending, never reproduced" "$(grep -E 'PairMainRel ' <<<"$out" | head -2)"; fi
+  if grep -q '^  PENDING PairVoneMainRel .*superseded reading' <<<"$out" && ! grep -q '^  PASS    PairVoneMainRel ' <<<"$out"; then ok "claims of a superseded table are pending, never reproduced"
+  else bad "claims of a superseded table are pending, never reproduced" "$(grep -E '^  [A-Z]+ +PairVoneMainRel ' <<<"$out" | head -2)"; fi
 else echo "[  SKIPPED ] made-up superseded hash (.git): no git history here"; fi
+# 24b. a pin row deleted: every part of the instrument the code pins must be
+# pinned (the last rows too: the set of pins grows with the registry)
+fresh
+grep -v '^claim_test_sha256.*tests/tamper.sh$' "$scratch/audit/pins.tsv" > "$scratch/x" && mv "$scratch/x" "$scratch/audit/pins.tsv"
+expect "last pin row deleted" "tests/tamper.sh is not pinned"
 # 25. a design constant (no gate carries it)
 fresh
 sed -i 's/^#define DESIGN_FIELD_SPACING_M 4.0/#define DESIGN_FIELD_SPACING_M 5.0/' "$scratch/src/base/design.h"
@@ -290,7 +300,7 @@ sed -i 's/^\\input{numbers.tex}$/\\input{numbers.tex}\n\\usepackage{local}/' "$s
 expect "a local .sty pulled in" "paper/local.sty" "MechHits"
 fresh
 printf 'Of the sweep, 14 of 16 rows pass.\n' > "$scratch/paper/extra.txt"
-sed -i 's/^\\input{comparison.tex}$/\\input{comparison.tex}\n\\input{extra.txt}/' "$scratch/paper/main.tex"
+sed -i 's/^\\input{summary.tex}$/\\input{summary.tex}\n\\input{extra.txt}/' "$scratch/paper/main.tex"
 expect "an \\input file not *.tex, a wrong typed integer" "paper/extra.txt:1" "'14'"
 fresh
 printf '\nThe median clearance was 0.37~m.\n' >> "$scratch/paper/main.tex"

@@ -248,9 +248,10 @@ static void extension_map_judges_extension_rows_only(void **st)
     assert_true(p->gate_map_ext && claims_is_extension(p));
     assert_string_equal(m->gate, "main.gate:rel_improvement_min");
     assert_false(m->gate_map_ext || claims_is_extension(m));
-    /* the paper's claims read the paper reading; the pair extension its own tables */
+    /* the paper's claims read the paper reading; the pair extension its own
+     * units, re-evaluated at the readings' volume */
     assert_non_null(strstr(m->source, "frozen/paper-reading/"));
-    assert_string_equal(p->source, "frozen/main/runs.tsv");
+    assert_string_equal(p->source, "frozen/extension-pair/main/run_s*_*.tsv");
     const char *dir = tu_tmpdir("reading_claims_maps");
     char bad[1200], cmd[4000];
     snprintf(bad, sizeof bad, "%s/ext.tsv", dir);
@@ -305,7 +306,8 @@ static void awaited_tables_pend_others_fail(void **st)
     assert_non_null(strstr(r.why, "not frozen yet"));
     r = eval("CompGenOverlap", "frozen/comparison/none.tsv", "claim_comp_overlap", "-");
     assert_int_equal(r.status, VERDICT_FAIL);
-    r = eval("PlainMainJoint", "frozen/model-readings/plain/main/run_s*_*.tsv", "claim_main_median", "-");
+    /* a reading none of whose units is frozen (every real reading is complete) */
+    r = eval("PlainMainJoint", "frozen/model-readings/unrun/main/run_s*_*.tsv", "claim_main_median", "-");
     assert_int_equal(r.status, VERDICT_PENDING);
     assert_non_null(strstr(r.why, "of 4 seeds frozen"));
 }

@@ -35,26 +35,36 @@ static void claims_of(const claims *c, const char *path, const char *gatefile, c
 }
 
 /* ---- pins ---- */
-#define MAXPINS 256
+/* The instrument's pins grow with the registry (one per claim row): a set
+ * that grows, never one that silently drops its tail. */
 typedef struct { char key[64], value[80], path[256]; } pin;
+typedef struct { pin *p; size_t n, cap; int oom; } pinset;
 
-static void add_pin(pin *p, size_t *k, const char *key, const char *path, const char *value)
+static void pinset_free(pinset *s) { free(s->p); memset(s, 0, sizeof *s); }
+
+static void add_pin(pinset *s, const char *key, const char *path, const char *value)
 {
-    if (*k >= MAXPINS) return;
-    snprintf(p[*k].key, sizeof p[*k].key, "%s", key);
-    snprintf(p[*k].path, sizeof p[*k].path, "%s", path);
-    snprintf(p[*k].value, sizeof p[*k].value, "%s", value);
-    (*k)++;
+    if (s->n == s->cap) {
+        size_t cap = s->cap ? 2 * s->cap : 512;
+        pin *q = realloc(s->p, cap * sizeof *q);
+        if (!q) { s->oom = 1; return; }
+        s->p = q;
+        s->cap = cap;
+    }
+    pin *e = &s->p[s->n++];
+    snprintf(e->key, sizeof e->key, "%s", key);
+    snprintf(e->path, sizeof e->path, "%s", path);
+    snprintf(e->value, sizeof e->value, "%s", value);
 }
 
-static void add_file_pin(pin *p, size_t *k, const char *key, const char *path)
+static void add_file_pin(pinset *s, const char *key, const char *path)
 {
     char hex[65];
-    add_pin(p, k, key, path, file_exists(path) && !prov_sha256_file(path, hex) ? hex : "absent");
+    add_pin(s, key, path, file_exists(path) && !prov_sha256_file(path, hex) ? hex : "absent");
 }
 
 /* One pin per registry row (path "audit/claims.tsv:Macro"): an edited row names its claim. */
-static void registry_row_pins(pin *p, size_t *k)
+static void registry_row_pins(pinset *s)
 {
     FILE *f = fopen(PATHS_CLAIMS, "r");
     char line[4096];
@@ -66,7 +76,7 @@ static void registry_row_pins(pin *p, size_t *k)
         if (sscanf(line, "%63[^\t\n]", macro) != 1) continue;
         snprintf(path, sizeof path, "%s:%s", PATHS_CLAIMS, macro);
         sha256_hex(line, strlen(line), hex);
-        add_pin(p, k, "claim_row_sha256", path, hex);
+        add_pin(s, "claim_row_sha256", path, hex);
     }
     if (f) fclose(f);
 }
@@ -76,44 +86,44 @@ static void registry_row_pins(pin *p, size_t *k)
 static const char *const design_files[] = {"src/base/design.h", "src/forest/crown.h", NULL};
 static const char *const claim_tests[] = {"tests/test_claims.c", "tests/test_field_claims.c", "tests/test_interval.c", "tests/testutil.h", "tests/tamper.sh", NULL};
 
-/* Every pin of the instrument as it is now; *n entries (at most MAXPINS). */
-static void current_pins(pin *p, size_t *n)
+/* Every pin of the instrument as it is now, into an empty set *s (freed by
+ * the caller, also on failure). */
+static cs_status current_pins(pinset *s)
 {
-    size_t k = 0;
     char v[80];
     if (prov_teacher_version(v, sizeof v)) snprintf(v, sizeof v, "absent");
-    add_pin(p, &k, "teacher_version", PATHS_TEACHER_HDR, v);
-    add_file_pin(p, &k, "teacher_sha256", PATHS_TEACHER_SRC);
-    add_file_pin(p, &k, "estimator_sha256", PATHS_ESTIMATOR_SRC);
+    add_pin(s, "teacher_version", PATHS_TEACHER_HDR, v);
+    add_file_pin(s, "teacher_sha256", PATHS_TEACHER_SRC);
+    add_file_pin(s, "estimator_sha256", PATHS_ESTIMATOR_SRC);
     char hex[65];
-    add_pin(p, &k, "gates_sha256", PATHS_GATES_DIR, prov_gates_sha256(PATHS_GATES_DIR, hex) ? "absent" : hex);
+    add_pin(s, "gates_sha256", PATHS_GATES_DIR, prov_gates_sha256(PATHS_GATES_DIR, hex) ? "absent" : hex);
     paths_list g = {0};
     paths_list_every(PATHS_GATES_DIR, 1, &g);
-    for (size_t i = 0; i < g.n; i++) add_file_pin(p, &k, "gate_sha256", g.p[i]);
+    for (size_t i = 0; i < g.n; i++) add_file_pin(s, "gate_sha256", g.p[i]);
     paths_list_free(&g);
     /* pinned with the gates: which claim each gate judges */
-    add_file_pin(p, &k, "gate_map_sha256", PATHS_GATE_MAP);
-    add_file_pin(p, &k, "gate_map_sha256", PATHS_GATE_MAP_EXT);
+    add_file_pin(s, "gate_map_sha256", PATHS_GATE_MAP);
+    add_file_pin(s, "gate_map_sha256", PATHS_GATE_MAP_EXT);
     /* the claim-computing code and the registry: an edit changes a verdict's inputs */
     paths_list cc = {0};
     paths_list_files(PATHS_CLAIMS_SRC_DIR, ".c", 0, &cc);
-    for (size_t i = 0; i < cc.n; i++) add_file_pin(p, &k, "claim_code_sha256", cc.p[i]);
+    for (size_t i = 0; i < cc.n; i++) add_file_pin(s, "claim_code_sha256", cc.p[i]);
     paths_list_free(&cc);
-    add_file_pin(p, &k, "registry_sha256", PATHS_CLAIMS);
-    registry_row_pins(p, &k);
+    add_file_pin(s, "registry_sha256", PATHS_CLAIMS);
+    registry_row_pins(s);
     /* how every interval is computed (design.md §6.1) */
-    add_file_pin(p, &k, "intervals_sha256", PATHS_INTERVALS);
-    add_file_pin(p, &k, "aggregates_sha256", PATHS_AGGREGATES);
+    add_file_pin(s, "intervals_sha256", PATHS_INTERVALS);
+    add_file_pin(s, "aggregates_sha256", PATHS_AGGREGATES);
     /* what else a number rests on: the record of superseded readings, the
      * design grids and the preregistered gates' hashes, the design constants
      * no gate carries (and the list the paper may type), the claim tests */
-    add_file_pin(p, &k, "superseded_sha256", PATHS_PINS_SUPERSEDED);
-    add_file_pin(p, &k, "grids_sha256", PATHS_GRIDS);
-    add_file_pin(p, &k, "gates_prereg_sha256", PATHS_GATES_PREREG);
-    add_file_pin(p, &k, "design_numbers_sha256", PATHS_DESIGN_NUMBERS);
-    for (size_t i = 0; design_files[i]; i++) add_file_pin(p, &k, "design_sha256", design_files[i]);
-    for (size_t i = 0; claim_tests[i]; i++) add_file_pin(p, &k, "claim_test_sha256", claim_tests[i]);
-    *n = k;
+    add_file_pin(s, "superseded_sha256", PATHS_PINS_SUPERSEDED);
+    add_file_pin(s, "grids_sha256", PATHS_GRIDS);
+    add_file_pin(s, "gates_prereg_sha256", PATHS_GATES_PREREG);
+    add_file_pin(s, "design_numbers_sha256", PATHS_DESIGN_NUMBERS);
+    for (size_t i = 0; design_files[i]; i++) add_file_pin(s, "design_sha256", design_files[i]);
+    for (size_t i = 0; claim_tests[i]; i++) add_file_pin(s, "claim_test_sha256", claim_tests[i]);
+    return s->oom ? cs_err(CS_ENOMEM, "pins: out of memory after %zu pins", s->n) : CS_OK;
 }
 
 /* Claims computed by a function defined in the claim-code file `path`. */
@@ -168,18 +178,25 @@ static int superseded_line(const tsv *t, const char *key, const char *value)
 
 /* Keep every earlier pin of a reading that changes now, with the commit it
  * was superseded at: frozen results it made stay traceable until re-run. */
-static cs_status supersede(const pin *cur, size_t n)
+static cs_status supersede(const pinset *ps)
 {
+    const pin *cur = ps->p;
+    size_t n = ps->n;
     tsv *old = NULL, *sup = NULL;
     if (tsv_read(PATHS_PINS, &old)) return CS_OK; /* first pinning: nothing superseded */
     tsv_read(PATHS_PINS_SUPERSEDED, &sup);        /* absent: none yet */
     size_t add = 0;
-    const char *newv[MAXPINS] = {0};
+    const char **newv = calloc(tsv_nrows(old) + 1, sizeof *newv);
+    if (!newv) {
+        tsv_free(old);
+        if (sup) tsv_free(sup);
+        return cs_err(CS_ENOMEM, "pin: out of memory");
+    }
     for (size_t r = 0; r < tsv_nrows(old); r++) {
         const char *key = tsv_str(old, r, "key"), *val = tsv_str(old, r, "value");
         if (!key || !val || !reading_key(key)) continue;
         for (size_t i = 0; i < n; i++)
-            if (!strcmp(cur[i].key, key) && strcmp(cur[i].value, val) && !superseded_line(sup, key, val)) { newv[r < MAXPINS ? r : MAXPINS - 1] = val; add++; }
+            if (!strcmp(cur[i].key, key) && strcmp(cur[i].value, val) && !superseded_line(sup, key, val)) { newv[r] = val; add++; }
     }
     cs_status st = CS_OK;
     if (add) {
@@ -196,7 +213,7 @@ static cs_status supersede(const pin *cur, size_t n)
                 for (int k = 0; k < 4; k++) tsv_writer_str(w, c[k] ? c[k] : "-");
                 tsv_writer_endrow(w);
             }
-            for (size_t r = 0; r < tsv_nrows(old) && r < MAXPINS; r++) {
+            for (size_t r = 0; r < tsv_nrows(old); r++) {
                 if (!newv[r]) continue;
                 tsv_writer_str(w, tsv_str(old, r, "key")); tsv_writer_str(w, newv[r]);
                 tsv_writer_str(w, tsv_str(old, r, "path")); tsv_writer_str(w, commit);
@@ -205,6 +222,7 @@ static cs_status supersede(const pin *cur, size_t n)
             st = tsv_writer_commit(w);
         }
     }
+    free(newv);
     tsv_free(old);
     if (sup) tsv_free(sup);
     return st;
@@ -212,15 +230,16 @@ static cs_status supersede(const pin *cur, size_t n)
 
 cs_status audit_pin(void)
 {
-    static pin p[MAXPINS];
-    size_t n;
-    current_pins(p, &n);
-    cs_status st = supersede(p, n);
-    if (st) return st;
-    current_pins(p, &n); /* the superseded record is pinned as supersede left it */
-    tsv_writer *w;
-    st = tsv_writer_open(&w, PATHS_PINS);
-    if (st) return st;
+    pinset ps = {0};
+    cs_status st = current_pins(&ps);
+    if (!st) st = supersede(&ps);
+    pinset_free(&ps);
+    if (!st) st = current_pins(&ps); /* the superseded record is pinned as supersede left it */
+    tsv_writer *w = NULL;
+    if (!st) st = tsv_writer_open(&w, PATHS_PINS);
+    if (st) { pinset_free(&ps); return st; }
+    const pin *p = ps.p;
+    size_t n = ps.n;
     tsv_writer_meta(w, "what", "pins of the instrument: teacher version and source hash, estimator source hash, gate hashes and the claim-to-gate map; the claim code, the registry (whole and per row) and the aggregate map");
     tsv_writer_meta(w, "regenerate", "crownshy pin (deliberate: afterwards frozen/ must be regenerated with make reproduce freeze)");
     tsv_writer_columns(w, "key\tvalue\tpath");
@@ -228,6 +247,7 @@ cs_status audit_pin(void)
         tsv_writer_str(w, p[i].key); tsv_writer_str(w, p[i].value); tsv_writer_str(w, p[i].path);
         tsv_writer_endrow(w);
     }
+    pinset_free(&ps);
     return tsv_writer_commit(w);
 }
 
@@ -238,9 +258,15 @@ static void check_pins(const claims *c, checklist *cl)
         checklist_add(cl, VERDICT_FAIL, "pins", "%s", cs_errmsg());
         return;
     }
-    static pin cur[MAXPINS];
-    size_t n;
-    current_pins(cur, &n);
+    pinset ps = {0};
+    if (current_pins(&ps)) {
+        checklist_add(cl, VERDICT_FAIL, "pins", "%s", cs_errmsg());
+        pinset_free(&ps);
+        tsv_free(t);
+        return;
+    }
+    const pin *cur = ps.p;
+    size_t n = ps.n;
     for (size_t r = 0; r < tsv_nrows(t); r++) {
         const char *key = tsv_str(t, r, "key"), *val = tsv_str(t, r, "value"), *path = tsv_str(t, r, "path");
         if (!key || !val || !path) { checklist_add(cl, VERDICT_FAIL, "pins", "%s:%d: missing key/value/path", PATHS_PINS, tsv_line(t, r)); continue; }
@@ -299,6 +325,7 @@ static void check_pins(const claims *c, checklist *cl)
             checklist_add(cl, VERDICT_FAIL, name, "%s is not pinned in %s (run crownshy pin deliberately)", cur[i].path, PATHS_PINS);
         }
     }
+    pinset_free(&ps);
     tsv_free(t);
 }
 
@@ -396,9 +423,14 @@ static void check_frozen(const claims *c, checklist *cl, paths_list *frozen_file
 
 static void check_provenance(const claims *c, checklist *cl, const paths_list *frozen_files)
 {
-    static pin cur[MAXPINS];
-    size_t n;
-    current_pins(cur, &n);
+    pinset ps = {0};
+    if (current_pins(&ps)) {
+        checklist_add(cl, VERDICT_FAIL, "provenance", "%s", cs_errmsg());
+        pinset_free(&ps);
+        return;
+    }
+    const pin *cur = ps.p;
+    size_t n = ps.n;
     tsv *sup = NULL;
     tsv_read(PATHS_PINS_SUPERSEDED, &sup); /* absent: no superseded reading */
     struct { char dir[256], old[256], claims[700]; int line; size_t files; } sups[32];
@@ -484,6 +516,7 @@ static void check_provenance(const claims *c, checklist *cl, const paths_list *f
         tsv_free(t);
     }
     if (sup) tsv_free(sup);
+    pinset_free(&ps);
     for (size_t k = 0; k < nsup; k++)
         checklist_add(cl, VERDICT_PENDING, "provenance", "%s/: %zu tables made by a superseded reading (%s; %s:%d), their numbers that reading's until re-run; claims: %s",
                       sups[k].dir, sups[k].files, sups[k].old, PATHS_PINS_SUPERSEDED, sups[k].line,
