@@ -495,7 +495,7 @@ static void check_provenance(const claims *c, checklist *cl, const paths_list *f
                 snprintf(dir, sizeof dir, "%.*s", (int)(strrchr(p, '/') - p), p);
                 size_t k = 0;
                 while (k < nsup && (strcmp(sups[k].dir, dir) || strcmp(sups[k].old, old))) k++;
-                if (k == nsup && nsup < 32) {
+                if (k == nsup && nsup < sizeof sups / sizeof *sups) {
                     snprintf(sups[k].dir, sizeof sups[k].dir, "%s", dir);
                     snprintf(sups[k].old, sizeof sups[k].old, "%s", old);
                     sups[k].line = first_line;
@@ -503,7 +503,10 @@ static void check_provenance(const claims *c, checklist *cl, const paths_list *f
                     sups[k].claims[0] = '\0';
                     nsup++;
                 }
-                if (k < nsup) {
+                if (k == nsup) {
+                    checklist_add(cl, VERDICT_FAIL, "provenance", "%s: more than %zu folder/reading pairs made by superseded readings: re-run them", p, sizeof sups / sizeof *sups);
+                    bad++;
+                } else {
                     char affected[600];
                     claims_of(c, p, NULL, affected, sizeof affected);
                     size_t l = strlen(sups[k].claims);

@@ -144,7 +144,10 @@ static cs_status grid_source(const char *src, grid_axis *ax, const char *where)
     if (!strncmp(src, "list ", 5)) {
         char buf[1024];
         snprintf(buf, sizeof buf, "%s", src + 5);
-        for (char *s = NULL, *t = strtok_r(buf, ",", &s); t && ax->n < GRID_MAXV; t = strtok_r(NULL, ",", &s)) snprintf(ax->v[ax->n++], 48, "%s", t);
+        for (char *s = NULL, *t = strtok_r(buf, ",", &s); t; t = strtok_r(NULL, ",", &s)) {
+            if (ax->n == GRID_MAXV) return cs_err(CS_EINPUT, "%s: field 'values': more than %d values in a list", where, GRID_MAXV);
+            snprintf(ax->v[ax->n++], 48, "%s", t);
+        }
         return ax->n ? CS_OK : cs_err(CS_EINPUT, "%s: field 'values': empty list", where);
     }
     char kind[8], file[128], key[64];
@@ -159,7 +162,8 @@ static cs_status grid_source(const char *src, grid_axis *ax, const char *where)
     else if (!strcmp(kind, "seq") && n == 1 && v[0] >= 1 && v[0] <= GRID_MAXV) for (int i = 1; i <= (int)v[0]; i++) snprintf(ax->v[ax->n++], 48, "%d", i);
     else if (!strcmp(kind, "range") && n == 3 && v[2] > 0) {
         long m = lround((v[1] - v[0]) / v[2]);
-        for (long i = 0; i <= m && ax->n < GRID_MAXV; i++) snprintf(ax->v[ax->n++], 48, "%.17g", v[0] + (double)i * v[2]);
+        if (m < 0 || m >= GRID_MAXV) return cs_err(CS_EINPUT, "%s: field 'values': '%s' spans %ld values (1..%d)", where, src, m + 1, GRID_MAXV);
+        for (long i = 0; i <= m; i++) snprintf(ax->v[ax->n++], 48, "%.17g", v[0] + (double)i * v[2]);
     } else return cs_err(CS_EINPUT, "%s: field 'values': '%s' does not fit %s:%s", where, src, file, key);
     return CS_OK;
 }
