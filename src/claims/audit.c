@@ -251,22 +251,15 @@ cs_status audit_pin(void)
     return tsv_writer_commit(w);
 }
 
-static void check_pins(const claims *c, checklist *cl)
+static void check_pins(const claims *c, checklist *cl, const pinset *ps)
 {
     tsv *t;
     if (tsv_read(PATHS_PINS, &t)) {
         checklist_add(cl, VERDICT_FAIL, "pins", "%s", cs_errmsg());
         return;
     }
-    pinset ps = {0};
-    if (current_pins(&ps)) {
-        checklist_add(cl, VERDICT_FAIL, "pins", "%s", cs_errmsg());
-        pinset_free(&ps);
-        tsv_free(t);
-        return;
-    }
-    const pin *cur = ps.p;
-    size_t n = ps.n;
+    const pin *cur = ps->p;
+    size_t n = ps->n;
     for (size_t r = 0; r < tsv_nrows(t); r++) {
         const char *key = tsv_str(t, r, "key"), *val = tsv_str(t, r, "value"), *path = tsv_str(t, r, "path");
         if (!key || !val || !path) { checklist_add(cl, VERDICT_FAIL, "pins", "%s:%d: missing key/value/path", PATHS_PINS, tsv_line(t, r)); continue; }
@@ -325,7 +318,6 @@ static void check_pins(const claims *c, checklist *cl)
             checklist_add(cl, VERDICT_FAIL, name, "%s is not pinned in %s (run crownshy pin deliberately)", cur[i].path, PATHS_PINS);
         }
     }
-    pinset_free(&ps);
     tsv_free(t);
 }
 
@@ -421,16 +413,10 @@ static void check_frozen(const claims *c, checklist *cl, paths_list *frozen_file
     if (!bad) checklist_add(cl, VERDICT_PASS, "frozen hashes", "%zu frozen files match %s", ok, PATHS_FROZEN_HASHES);
 }
 
-static void check_provenance(const claims *c, checklist *cl, const paths_list *frozen_files)
+static void check_provenance(const claims *c, checklist *cl, const paths_list *frozen_files, const pinset *ps)
 {
-    pinset ps = {0};
-    if (current_pins(&ps)) {
-        checklist_add(cl, VERDICT_FAIL, "provenance", "%s", cs_errmsg());
-        pinset_free(&ps);
-        return;
-    }
-    const pin *cur = ps.p;
-    size_t n = ps.n;
+    const pin *cur = ps->p;
+    size_t n = ps->n;
     tsv *sup = NULL;
     tsv_read(PATHS_PINS_SUPERSEDED, &sup); /* absent: no superseded reading */
     struct { char dir[256], old[256], claims[700]; int line; size_t files; } sups[32];
@@ -519,7 +505,6 @@ static void check_provenance(const claims *c, checklist *cl, const paths_list *f
         tsv_free(t);
     }
     if (sup) tsv_free(sup);
-    pinset_free(&ps);
     for (size_t k = 0; k < nsup; k++)
         checklist_add(cl, VERDICT_PENDING, "provenance", "%s/: %zu tables made by a superseded reading (%s; %s:%d), their numbers that reading's until re-run; claims: %s",
                       sups[k].dir, sups[k].files, sups[k].old, PATHS_PINS_SUPERSEDED, sups[k].line,
@@ -565,9 +550,14 @@ void audit_numbers(const claims *c, const claim_result *res, checklist *cl)
 cs_status audit_run(const claims *c, const claim_result *res, checklist *out)
 {
     paths_list frozen_files = {0};
-    check_pins(c, out);
+    /* the instrument as it is now, hashed once for both checks that read it */
+    pinset pins = {0};
+    int have_pins = current_pins(&pins) == CS_OK;
+    if (have_pins) check_pins(c, out, &pins);
+    else checklist_add(out, VERDICT_FAIL, "pins", "%s", cs_errmsg());
     check_frozen(c, out, &frozen_files);
-    check_provenance(c, out, &frozen_files);
+    if (have_pins) check_provenance(c, out, &frozen_files, &pins);
+    pinset_free(&pins);
     paths_list_free(&frozen_files);
     audit_aggregates(c, out);
     audit_evidence(c, out);
