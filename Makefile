@@ -42,7 +42,7 @@ CLI := $(B)/crownshy
 .PHONY: all deps check check-fast verify verify-deep bench reproduce freeze figures paper deps-paper audit numbers trace fuzz clean dist dist-version
 .DELETE_ON_ERROR:
 
-all: $(CLI) $(TESTS)
+all: $(CLI) $(TESTS) $(B)/bench/step_split
 
 # ---- dependencies -----------------------------------------------------------
 deps:
@@ -90,11 +90,18 @@ $(B)/asan/tests/%: tests/%.c $(ASAN_LIBS) $(wildcard tests/*.h) | $(B)/asan/test
 	$(CC) $(CPPFLAGS) -Itests $(CFLAGS) $(SANFLAGS) $< $(ASAN_LIBS) -lcmocka $(LDLIBS) -o $@
 $(B)/tests $(B)/asan/tests:
 	mkdir -p $@
+# The step split of `make bench` (tests/bench/step_split.c): the library as
+# every unit links it, with its four gemm entry points wrapped to time them.
+SPLIT := $(B)/bench/step_split
+SPLIT_WRAP := -Wl,--wrap=gemm_fma,--wrap=gemm_fma_epi,--wrap=gemm_fma_bias_epi,--wrap=gemm_fma_heads
+$(SPLIT): tests/bench/step_split.c $(B)/libcrownshy.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(CFLAGS) $< $(B)/libcrownshy.a $(SPLIT_WRAP) $(LDLIBS) -o $@
 
 # ---- tests ------------------------------------------------------------------
 # Every cmocka binary, then all of them again under ASan+UBSan; one aggregate line.
 check: deps
-	@$(MAKE) --no-print-directory $(CLI) $(TESTS) $(ASAN_TESTS)
+	@$(MAKE) --no-print-directory $(CLI) $(TESTS) $(ASAN_TESTS) $(SPLIT)
 	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/manifest.sh tests/citation.sh tests/docs.sh tests/readings_full.sh -- $(ASAN_TESTS)
 
 check-fast: deps
@@ -137,11 +144,13 @@ figures: deps
 # per 144-tree stand at N = 48 and 384; on every vector path of the CPU, the
 # core's FMA peak and, as fractions of it measured beside each, the own product,
 # sgemm, training and sampling of the plain and pair models, every goal judged,
-# and the projected wall time of E3+E4 (README "Speed").
+# and the projected wall time of E3+E4 (README "Speed"); then where a training
+# step's time goes (tests/bench/step_split.c, design.md §10.1).
 bench: deps
-	@$(MAKE) --no-print-directory $(CLI)
+	@$(MAKE) --no-print-directory $(CLI) $(SPLIT)
 	@$(CLI) bench-teacher
 	@$(CLI) bench-model
+	@$(SPLIT)
 
 numbers: deps
 	@$(MAKE) --no-print-directory $(CLI)
