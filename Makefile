@@ -38,11 +38,14 @@ TEST_SRC := $(wildcard tests/test_*.c)
 TESTS := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_SRC))
 ASAN_TESTS := $(patsubst tests/%.c,$(B)/asan/tests/%,$(TEST_SRC))
 CLI := $(B)/crownshy
+# The step split of `make bench` (tests/bench/step_split.c): the library as
+# every unit links it, with its four gemm entry points wrapped to time them.
+SPLIT := $(B)/bench/step_split
 
 .PHONY: all deps check check-fast verify verify-deep bench reproduce freeze figures paper deps-paper audit numbers trace fuzz clean dist dist-version
 .DELETE_ON_ERROR:
 
-all: $(CLI) $(TESTS) $(B)/bench/step_split
+all: $(CLI) $(TESTS) $(SPLIT)
 
 # ---- dependencies -----------------------------------------------------------
 deps:
@@ -90,9 +93,6 @@ $(B)/asan/tests/%: tests/%.c $(ASAN_LIBS) $(wildcard tests/*.h) | $(B)/asan/test
 	$(CC) $(CPPFLAGS) -Itests $(CFLAGS) $(SANFLAGS) $< $(ASAN_LIBS) -lcmocka $(LDLIBS) -o $@
 $(B)/tests $(B)/asan/tests:
 	mkdir -p $@
-# The step split of `make bench` (tests/bench/step_split.c): the library as
-# every unit links it, with its four gemm entry points wrapped to time them.
-SPLIT := $(B)/bench/step_split
 SPLIT_WRAP := -Wl,--wrap=gemm_fma,--wrap=gemm_fma_epi,--wrap=gemm_fma_bias_epi,--wrap=gemm_fma_heads
 $(SPLIT): tests/bench/step_split.c $(B)/libcrownshy.a
 	@mkdir -p $(dir $@)

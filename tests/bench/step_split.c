@@ -26,6 +26,7 @@
 #include "gemm.h"
 #include "model.h"
 #include "patch.h"
+#include "stats.h"
 #include "train.h"
 #include <stdio.h>
 #include <stdlib.h>
@@ -85,15 +86,6 @@ void __real_gemm_fma_bias_epi(int, int, int, const float *, ptrdiff_t, ptrdiff_t
                               float *, ptrdiff_t, const float *, gemm_epilogue, void *);
 void __real_gemm_fma_heads(int, int, int, int, const float *, ptrdiff_t, ptrdiff_t, ptrdiff_t, const float *,
                            ptrdiff_t, float *, ptrdiff_t);
-void __wrap_gemm_fma(int, int, int, const float *, ptrdiff_t, ptrdiff_t, const float *, ptrdiff_t, float *,
-                     ptrdiff_t, int);
-void __wrap_gemm_fma_epi(int, int, int, const float *, ptrdiff_t, ptrdiff_t, const float *, ptrdiff_t, float *,
-                         ptrdiff_t, int, gemm_epilogue, void *);
-void __wrap_gemm_fma_bias_epi(int, int, int, const float *, ptrdiff_t, ptrdiff_t, const float *, ptrdiff_t,
-                              float *, ptrdiff_t, const float *, gemm_epilogue, void *);
-void __wrap_gemm_fma_heads(int, int, int, int, const float *, ptrdiff_t, ptrdiff_t, ptrdiff_t, const float *,
-                           ptrdiff_t, float *, ptrdiff_t);
-
 typedef struct { gemm_epilogue epi; void *ctx; } epi_ctx;
 
 static void epi_timed(void *ctx, int i0, int rows)
@@ -162,9 +154,9 @@ static const char *const s_name[S_NS] = {"step_ms", "products_in_step_ms", "prod
                                          "products_hot_ms", "rest_ms", "bound_of_peak", "step_of_peak"};
 
 /* One round: a fresh model, `steps` timed steps, then the last step's
- * products replayed. v[S_*] for the round; returns 0 or 1 on failure. */
-static int round_run(const model_cfg *cfg, patch_set *ps, int steps, double peak, double v[S_NS],
-                     double *gflop_products)
+ * products replayed. v[S_STEP..S_REST] (ms) for the round; returns 0 or 1
+ * on failure. */
+static int round_run(const model_cfg *cfg, patch_set *ps, int steps, double v[S_NS], double *gflop_products)
 {
     train_opts o = train_opts_default();
     o.batch = BATCH;
@@ -199,30 +191,23 @@ static int round_run(const model_cfg *cfg, patch_set *ps, int steps, double peak
         hot += now_s() - t0;
     }
     train_free(t);
-    const double model_fl = model_train_flops(cfg, BATCH);
     v[S_STEP] = 1e3 * step / steps;
     v[S_IN] = 1e3 * in / steps;
     v[S_SEQ] = 1e3 * seq;
     v[S_HOT] = 1e3 * hot;
     v[S_REST] = v[S_STEP] - v[S_IN];
-    v[S_BOUND] = model_fl / ((v[S_HOT] + v[S_REST]) * 1e-3) / (peak * 1e9);
-    v[S_FRAC] = model_fl / (v[S_STEP] * 1e-3) / (peak * 1e9);
     *gflop_products = fl / 1e9;
     return 0;
 }
 
-static int cmp_dbl(const void *a, const void *b)
+/* median [min, max] of n >= 1 values (stats.h) */
+static double median_of(const double *x, int n, double *lo, double *hi)
 {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median_of(double *x, int n, double *lo, double *hi)
-{
-    qsort(x, (size_t)n, sizeof *x, cmp_dbl);
-    *lo = x[0];
-    *hi = x[n - 1];
-    return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
+    double m = 0;
+    stats_median(x, (size_t)n, &m); /* fails only on n = 0 or out of memory */
+    *lo = stats_min(x, (size_t)n);
+    *hi = stats_max(x, (size_t)n);
+    return m;
 }
 
 static int split_path(gemm_isa isa, patch_set *ps, int rounds, int steps)
@@ -234,21 +219,21 @@ static int split_path(gemm_isa isa, patch_set *ps, int rounds, int steps)
         model_cfg cfg = model_cfg_reference(PATCH_NCOND);
         cfg.pair = mk == 0;
         double v[S_NS][MAX_ROUNDS], pk[MAX_ROUNDS], gp = 0;
+        const double model_fl = model_train_flops(&cfg, BATCH) / 1e9;
         for (int q = 0; q < rounds; q++) {
             double p0 = gemm_peak_gflops(isa, 1L << 21), r[S_NS];
-            if (round_run(&cfg, ps, steps, p0, r, &gp)) {
+            if (round_run(&cfg, ps, steps, r, &gp)) {
                 fprintf(stderr, "step_split: a training step failed%s\n", overflow ? " (more gemm calls than recorded)" : "");
                 return 1;
             }
             double p1 = gemm_peak_gflops(isa, 1L << 21);
             pk[q] = 0.5 * (p0 + p1);
-            for (int s = 0; s < S_NS; s++) v[s][q] = r[s];
-            /* the fractions against the mean of the peaks before and after */
-            v[S_BOUND][q] *= p0 / pk[q];
-            v[S_FRAC][q] *= p0 / pk[q];
+            for (int s = S_STEP; s <= S_REST; s++) v[s][q] = r[s];
+            /* fractions against the mean of the peaks before and after the round */
+            v[S_BOUND][q] = model_fl / ((r[S_HOT] + r[S_REST]) * 1e-3) / pk[q];
+            v[S_FRAC][q] = model_fl / (r[S_STEP] * 1e-3) / pk[q];
         }
         double lo, hi, pmed = median_of(pk, rounds, &lo, &hi);
-        const double model_fl = model_train_flops(&cfg, BATCH) / 1e9;
         printf("%s_gflop_per_step\t%.3f\t(products %.3f)\n", model_name[mk], model_fl, gp);
         printf("%s_fma_peak_gflops\t%.1f\t[%.1f, %.1f]\n", model_name[mk], pmed, lo, hi);
         double med[S_NS];
