@@ -27,6 +27,9 @@ static const char *const VOLUMES[] = {"v1", "v2", NULL};
     {"ckpt", OPT_STR, &(a).ckpt, 0, 0, "checkpoint FILE, resumed from when it exists (default none)"}, \
     {"epochs", OPT_LONG, &(a).epochs, 1, 1000000, "exploration override of the plan's epochs (default: the plan's)"}, \
     {"train-stands", OPT_LONG, &(a).train_stands, 1, 10000, "exploration override of the plan's stands per training spacing (default: the plan's)"}, \
+    {"width", OPT_LONG, &(a).width, 8, 1024, "model width (a multiple of the 4 heads; MLP 4 x width; default the reference 64)"}, \
+    {"blocks", OPT_LONG, &(a).blocks, 1, 64, "transformer blocks (default the reference 3)"}, \
+    {"lr", OPT_DOUBLE, &(a).lr, 1e-6, 1.0, "peak learning rate (default the plan's 2e-3)"}, \
     {"reading", OPT_CHOICE, &(a).reading, 0, 0, "generator reading (model.h, design.md §8; default pair)", .choices = READINGS}, \
     {"pair", OPT_LONG, &pair, 0, 1, "1: the pair reading; 0: the plain reading (the form before --reading)"}
 

@@ -103,6 +103,8 @@ static cs_status unit_train(const unit_args *a, const mainset_design *ds, const 
     model_cfg cfg = model_cfg_reference(PATCH_NCOND);
     cfg.joint = !strcmp(a->arm, "joint");
     model_cfg_set_reading(&cfg, reading);
+    if (a->width) { cfg.C = (int)a->width; cfg.F = 4 * (int)a->width; } /* the reference keeps MLP = 4 x width */
+    if (a->blocks) cfg.L = (int)a->blocks;
     train_opts o = train_opts_default();
     o.batch = pl->batch;
     o.lr = pl->lr;
@@ -200,6 +202,7 @@ static cs_status unit_plan(const unit_args *a, mainset_design *ds, mainrun_plan 
     if (!st && a->volume) st = mainrun_plan_volume(pl, a->volume);
     if (!st && a->epochs) pl->epochs = (int)a->epochs;
     if (!st && a->train_stands) pl->train_stands = (int)a->train_stands;
+    if (!st && a->lr > 0) pl->lr = a->lr;
     return st;
 }
 

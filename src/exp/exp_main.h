@@ -37,6 +37,9 @@ typedef struct {
     const char *trained;     /* main-eval: the unit's training or run table */
     long epochs;             /* 0: the plan's; else an exploration override */
     long train_stands;       /* 0: the plan's; else an exploration override */
+    long width;              /* 0: the reference width (model.h); else the width, MLP 4 x width */
+    long blocks;             /* 0: the reference depth (model.h); else the number of blocks */
+    double lr;               /* 0: the plan's peak learning rate; else the peak learning rate */
     int pair;                /* -1 unset; 1 the pair reading, 0 the plain one (the form before reading) */
     int argc;
     char **argv;
