@@ -312,6 +312,35 @@ static void awaited_tables_pend_others_fail(void **st)
     assert_non_null(strstr(r.why, "of 4 seeds frozen"));
 }
 
+/* A training choice of the paper reading (generator-sensitivity/<choice>/main/,
+ * 4 seeds): each arm's median error over the paper reading's direction-blind
+ * level, pending while a unit is missing. The choice's units are the
+ * fixture's seeds 1-4; the blind level is (0.6 + 0.8 + 0.95) / 3. */
+static void training_choice_over_the_blind_level(void **st)
+{
+    (void)st;
+    const char *dir = fixture("reading_claims_gensens", 1);
+    char root[800], choice[900], cmd[1000], src[1000];
+    snprintf(root, sizeof root, "%.*s", (int)(strlen(dir) - strlen("/paper-reading/main")), dir);
+    snprintf(choice, sizeof choice, "%s/generator-sensitivity/stands-48/main", root);
+    snprintf(cmd, sizeof cmd, "mkdir -p '%s'", choice);
+    assert_int_equal(system(cmd), 0);
+    for (int s = 1; s <= 4; s++) { write_unit(choice, s, 0); if (s < 4) write_unit(choice, s, 1); }
+    snprintf(src, sizeof src, "%s/run_s*_*.tsv", choice);
+    claim_result r = eval("GenStandsJointBlind", src, "claim_gensens_joint_blind", "-");
+    assert_int_equal(r.status, VERDICT_PENDING);
+    assert_non_null(strstr(r.why, "s04_indep"));
+    write_unit(choice, 4, 1);
+    const double blind = (0.6 + 0.8 + 0.95) / 3;
+    const double want[2] = {(err_of(2, 0, 0) + err_of(3, 0, 0)) / 2 / blind, (err_of(2, 1, 0) + err_of(3, 1, 0)) / 2 / blind};
+    static const char *fn[2] = {"claim_gensens_joint_blind", "claim_gensens_indep_blind"};
+    for (int a = 0; a < 2; a++) {
+        r = eval(a ? "GenStandsIndepBlind" : "GenStandsJointBlind", src, fn[a], "-");
+        assert_int_equal(r.status, VERDICT_PASS);
+        if (r.value != want[a]) fail_msg("arm %d: observed %.17g, expected %.17g", a, r.value, want[a]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest t[] = {
@@ -322,6 +351,7 @@ int main(void)
         cmocka_unit_test(extension_map_judges_extension_rows_only),
         cmocka_unit_test(comparison_medians_and_ranges),
         cmocka_unit_test(awaited_tables_pend_others_fail),
+        cmocka_unit_test(training_choice_over_the_blind_level),
     };
     return cmocka_run_group_tests(t, NULL, NULL);
 }

@@ -20,7 +20,7 @@ int mainruns_unit_set(const char *source, char *dir, size_t n)
 
 cs_status mainruns_wanted(const char *dir, int *want)
 {
-    if (strstr(dir, "model-readings/")) { *want = MAINRUNS_READING_SEEDS; return CS_OK; }
+    if (strstr(dir, "model-readings/") || strstr(dir, "generator-sensitivity/")) { *want = MAINRUNS_READING_SEEDS; return CS_OK; }
     double w;
     cs_status st = gate_read_value(PATHS_GATE("main"), "seeds", 0, &w);
     if (st) return st;

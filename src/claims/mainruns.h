@@ -35,7 +35,8 @@ typedef struct {
 
 /* The seeds the design asks of the reading under `dir` (a main/ folder):
  * gates/main.gate's seeds, or MAINRUNS_READING_SEEDS for a descriptive
- * reading (a path holding "model-readings/"). */
+ * reading or a training choice of the paper reading (a path holding
+ * "model-readings/" or "generator-sensitivity/"). */
 cs_status mainruns_wanted(const char *dir, int *want);
 /* Read every unit of seeds 1..want present under dir. m->complete == want
  * and m->nmissing == 0 when the set is whole; otherwise the values of the

@@ -1,0 +1,83 @@
+/* gensens: claims of the generator sensitivity (design.md §8.3): the paper
+ * reading trained under one unstated training choice at a time (width,
+ * blocks, training stands, epochs, peak learning rate), 4 seeds x 2 arms at
+ * the paper reading's evaluation volume. The errors, shuffle and rotation
+ * ratios and coupled seeds of a choice come from claim_main.c's functions on
+ * its unit set; here are the two numbers that need the paper reading's
+ * baselines: an arm's error over the direction-blind error (the joint arm's is
+ * the main gate's second precondition, the independent arm's says how much
+ * the model learned of a crown from its own tree). Every choice is evaluated
+ * on the paper reading's evaluation stands, so its direction-blind level is
+ * that reading's: <root>/paper-reading/main/baselines.tsv beside the choice's
+ * <root>/generator-sensitivity/ (frozen/ in the registry). Descriptive: never
+ * gated. Pending, naming the missing units, until a choice's set is whole. */
+#include "claims.h"
+#include "mainruns.h"
+#include "stats.h"
+#include "tsv.h"
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define GENSENS_DIR "/generator-sensitivity/"
+
+/* The paper reading's baselines beside the choice folder dir. */
+static cs_status baselines_path(const char *dir, char *out, size_t n)
+{
+    const char *cut = strstr(dir, GENSENS_DIR);
+    if (!cut) return cs_err(CS_EINPUT, "%s: not under a generator-sensitivity/ folder", dir);
+    snprintf(out, n, "%.*s/paper-reading/main/baselines.tsv", (int)(cut - dir), dir);
+    return CS_OK;
+}
+
+/* Mean over the unseen spacings of the direction-blind W1 of table path. */
+static cs_status blind_level(const char *path, double *out)
+{
+    tsv *t;
+    cs_status st = tsv_read(path, &t);
+    if (st) return st;
+    double s = 0;
+    int n = 0;
+    for (size_t i = 0; i < tsv_nrows(t) && !st; i++) {
+        const char *sp = tsv_str(t, i, "split");
+        double v;
+        if (!sp) { st = cs_err(CS_EINPUT, "%s:%d: field 'split' missing", path, tsv_line(t, i)); break; }
+        if (strcmp(sp, "unseen")) continue;
+        if ((st = tsv_double(t, i, "direction_blind_w1", &v))) break;
+        s += v;
+        n++;
+    }
+    tsv_free(t);
+    if (!st && !n) st = cs_err(CS_EINPUT, "%s: no unseen rows", path);
+    if (!st) *out = s / n;
+    return st;
+}
+
+/* Median over seeds of arm a's error (0 joint, 1 indep) over the blind level. */
+static cs_status over_blind(const claim_row *row, claim_result *res, int a)
+{
+    char dir[300];
+    if (!mainruns_unit_set(row->source, dir, sizeof dir))
+        return cs_err(CS_EINPUT, "%s: the source must be a unit set <dir>/run_s*_*.tsv", row->source);
+    static mainruns m;
+    int want;
+    cs_status st = mainruns_wanted(dir, &want);
+    if (!st) st = mainruns_load(dir, want, &m);
+    if (st) return st;
+    if (m.nmissing) {
+        mainruns_pending_text(&m, dir, res->why, sizeof res->why);
+        res->status = VERDICT_PENDING;
+        return CS_OK;
+    }
+    char base[400];
+    double blind, med;
+    if ((st = baselines_path(dir, base, sizeof base)) || (st = blind_level(base, &blind))) return st;
+    if ((st = stats_median(m.err[a][0], (size_t)m.want, &med))) return st;
+    snprintf(res->where, sizeof res->where, "%.200s/run_s*_*.tsv (%d seeds, %s arm) over %.200s (direction_blind_w1, unseen)", dir, m.want,
+             a ? "indep" : "joint", base);
+    claim_set_value(row, res, med / blind);
+    return CS_OK;
+}
+
+cs_status claim_gensens_joint_blind(const claim_row *row, claim_result *res) { return over_blind(row, res, 0); }
+cs_status claim_gensens_indep_blind(const claim_row *row, claim_result *res) { return over_blind(row, res, 1); }
