@@ -341,6 +341,37 @@ static void training_choice_over_the_blind_level(void **st)
     }
 }
 
+/* What the paper's shuffle ratio requires of a teacher (src/claims/perfect.c)
+ * from a sensitivity table with three teachers' shuffled levels (other
+ * quantities' rows ignored), against the registry's paper values 0.415 m
+ * (MainJoint) and 2.50 (MainGeomRatio). */
+static void perfect_generator_levels(void **st)
+{
+    (void)st;
+    const char *dir = tu_tmpdir("reading_claims_perfect");
+    char src[800];
+    snprintf(src, sizeof src, "%s/summary.tsv", dir);
+    tu_write(src, "quantity\tchoice\tx\tvalue\tpaper\trel_diff\tsource\n"
+                  "MainIso\tcentre\tnan\t0.9\tnan\tnan\tc\n"
+                  "MainShufTeach\tcentre\tnan\t0.45\tnan\tnan\tc\n"
+                  "MainShufTeach\tcrown_R\t3\t0.40\tnan\tnan\tc\n"
+                  "MainShufTeach\tcrown_R\t5\t0.70\tnan\tnan\tc\n");
+    static const struct { const char *fn; double want; } c[] = {
+        {"claim_perfect_shuf_lo", 0.40}, {"claim_perfect_shuf_hi", 0.70}, {"claim_perfect_shuf_needed", (2.50 - 1.0) * 0.415},
+        {"claim_perfect_bound_max", 1.0 + 0.70 / 0.415}, {"claim_perfect_reaching", 1}, {"claim_perfect_teachers", 3},
+    };
+    for (size_t i = 0; i < sizeof c / sizeof *c; i++) {
+        claim_result r = eval("PerfectX", src, c[i].fn, "-");
+        assert_int_equal(r.status, VERDICT_PASS);
+        if (r.value != c[i].want) fail_msg("%s: observed %.17g, expected %.17g", c[i].fn, r.value, c[i].want);
+    }
+    /* a level that is not positive is refused, naming the line */
+    tu_write(src, "quantity\tchoice\tx\tvalue\tpaper\trel_diff\tsource\nMainShufTeach\tcentre\tnan\tnan\tnan\tnan\tc\n");
+    claim_result r = eval("PerfectX", src, "claim_perfect_shuf_hi", "-");
+    assert_int_equal(r.status, VERDICT_FAIL);
+    assert_non_null(strstr(r.why, "summary.tsv:2"));
+}
+
 int main(void)
 {
     const struct CMUnitTest t[] = {
@@ -352,6 +383,7 @@ int main(void)
         cmocka_unit_test(comparison_medians_and_ranges),
         cmocka_unit_test(awaited_tables_pend_others_fail),
         cmocka_unit_test(training_choice_over_the_blind_level),
+        cmocka_unit_test(perfect_generator_levels),
     };
     return cmocka_run_group_tests(t, NULL, NULL);
 }

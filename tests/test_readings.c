@@ -155,6 +155,18 @@ static void test_reading_switches_parse_strictly(void **s)
         exp_prov_begin(&pt, "test", &r, 1, av);
         assert_string_equal(pt.teacher_version, "teacher-2-target");
     }
+    /* the one-sided die-back as a sensitivity unit: the reading teacher-1 */
+    assert_int_equal(exp_reading_parse(NULL, NULL, &r), CS_OK);
+    assert_int_equal(exp_reading_vary("dieback=3", &r), CS_OK);
+    assert_int_equal(r.one_sided, 1);
+    assert_int_equal(r.dieback, TEACHER_DIEBACK_OWN);
+    {
+        prov pt;
+        char *av[] = {"x"};
+        exp_prov_begin(&pt, "test", &r, 1, av);
+        assert_string_equal(pt.teacher_version, "teacher-1");
+    }
+    assert_int_equal(exp_reading_vary("dieback=4", &r), CS_EINPUT);
     assert_int_equal(exp_reading_parse("teacher-2-arcs", NULL, &r), CS_EINPUT);
     assert_int_equal(exp_reading_parse("teacher-2x", NULL, &r), CS_EINPUT);
     assert_int_equal(exp_reading_parse("teacher-3", NULL, &r), CS_EINPUT);

@@ -20,8 +20,10 @@ static const unstated_choice CHOICES[] = {
     {"field_L", "field-stand footprint (m)", 36.0, 4, {28.0, 32.0, 44.0, 60.0}, UNSTATED_FIELD, 0},
     /* not an unstated number but the die-back readings (design.md §7 E0), run
      * here because a unit tolerates what a reading cannot build: 0 own sector
-     * (Eq. 3, ours), 1 the contact arc s-1..s+1 too, 2 beta of the target length */
-    {"dieback", "die-back reading: 1 = the contact arc s-1..s+1 dies back too, 2 = beta of the target length (against Eq. 3); ours 0 = the contacting sector (Eq. 3)", 0, 2, {1, 2}, UNSTATED_ALL, 1},
+     * of both crowns in contact (Eq. 3, ours), 1 the contact arc s-1..s+1 too,
+     * 2 beta of the target length, 3 one-sided (teacher-1: the advancing crown's
+     * sector alone) */
+    {"dieback", "die-back reading: 1 = the contact arc s-1..s+1 dies back too, 2 = beta of the target length (against Eq. 3), 3 = one-sided (only the advancing crown, teacher-1); ours 0 = the contacting sector of both crowns (Eq. 3)", 0, 3, {1, 2, 3}, UNSTATED_ALL, 1},
 };
 #define NCHOICES (sizeof CHOICES / sizeof CHOICES[0])
 

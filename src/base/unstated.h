@@ -25,7 +25,7 @@ typedef struct {
     const char *what;   /* what it sets, with its unit */
     double ours;        /* the design's value */
     int nvalues;        /* 2 (one either side) or 4 (two either side) */
-    double values[UNSTATED_MAXVALUES]; /* ascending: half below ours, half above (the die-back readings: both above) */
+    double values[UNSTATED_MAXVALUES]; /* ascending: half below ours, half above (the die-back readings: all above) */
     unstated_scope scope;
     int categorical;    /* 1: the values name rules, not points on a scale (no value lies between two) */
 } unstated_choice;

@@ -1,4 +1,4 @@
-/* gensens: claims of the generator sensitivity (design.md §8.3): the paper
+/* gensens: claims of the generator sensitivity (design.md §8.2): the paper
  * reading trained under one unstated training choice at a time (width,
  * blocks, training stands, epochs, peak learning rate), 4 seeds x 2 arms at
  * the paper reading's evaluation volume. The errors, shuffle and rotation

@@ -20,7 +20,7 @@ static const char *const QUANT[] = {
     "IrredTrainShrink",
     "CalibDieback", "Elong", "AnisoLattice", "AnisoTrees", "JitterStar", "JitterAniso", "JitterElong", "HardcoreOvershoot",
     "PcCoupled", "PcUncoupled", "PcContacted", "PcOtherAContacted", "PcOtherBContacted",
-    "MainIso", "MainNoise",
+    "MainIso", "MainNoise", "MainShufTeach", "MainRotTeach",
 };
 #define NQ (sizeof QUANT / sizeof QUANT[0])
 

@@ -91,7 +91,8 @@ static cs_status variant_set(exp_variant *v, const char *name, double x)
     else if (!strcmp(name, "field_d")) v->field_d = x;
     else if (!strcmp(name, "field_L")) v->field_L = x;
     else if (!strcmp(name, "dieback")) {
-        if (x != 1.0 && x != 2.0) return cs_err(CS_EINPUT, "--vary dieback: 1 (the contact arc) or 2 (beta of the target length), not %g", x);
+        if (x != 1.0 && x != 2.0 && x != 3.0)
+            return cs_err(CS_EINPUT, "--vary dieback: 1 (the contact arc), 2 (beta of the target length) or 3 (one-sided), not %g", x);
         v->dieback = (int)x;
     } else return cs_err(CS_EINPUT, "--vary: no unstated choice '%s'", name);
     return CS_OK;
@@ -122,7 +123,9 @@ cs_status exp_reading_vary(const char *vary, exp_reading *r)
     v->field_L = DESIGN_FIELD_L_M;
     cs_status st = variant_set(v, name, x);
     if (st) return st;
-    if (v->dieback) r->dieback = v->dieback;
+    /* 3: the one-sided reading (teacher-1: only the advancing crown dies back) */
+    if (v->dieback == 3) r->one_sided = 1;
+    else if (v->dieback) r->dieback = v->dieback;
     r->varied = 1;
     return CS_OK;
 }
