@@ -372,6 +372,45 @@ static void perfect_generator_levels(void **st)
     assert_non_null(strstr(r.why, "summary.tsv:2"));
 }
 
+/* What a generator uses (src/claims/claim_probe.c): a reading's probe tables
+ * for seeds 1-4 give the median probed error over the median unprobed one,
+ * pending while a seed is missing; the teacher's table gives its level. */
+static void generator_probe_ratios(void **st)
+{
+    (void)st;
+    const char *dir = tu_tmpdir("reading_claims_probes");
+    char p[900], src[900];
+    /* seed s: none 0.40 + 0.01 s at every spacing, self twice that at 4 m, 2.5 x at 5 and 6 m */
+    for (int s = 1; s <= 4; s++) {
+        const double e = 0.40 + 0.01 * s;
+        char buf[1024];
+        snprintf(buf, sizeof buf, "spacing\tprobe\tw1\tn_gen\tn_teacher\n"
+                 "4\tnone\t%.17g\t256\t1000\n4\tself\t%.17g\t256\t1000\n5\tnone\t%.17g\t256\t1000\n5\tself\t%.17g\t256\t1000\n"
+                 "6\tnone\t%.17g\t256\t1000\n6\tself\t%.17g\t256\t1000\n", e, 2 * e, e, 2.5 * e, e, 2.5 * e);
+        snprintf(p, sizeof p, "%s/probes_s%02d_joint.tsv", dir, s);
+        if (s < 4) tu_write(p, buf);
+        else {
+            snprintf(src, sizeof src, "%s/probes_s*_joint.tsv", dir);
+            claim_result r = eval("ProbeXSelfJoint", src, "claim_probe_self", "-");
+            assert_int_equal(r.status, VERDICT_PENDING);
+            assert_non_null(strstr(r.why, "3 of 4 seeds frozen; missing s04"));
+            tu_write(p, buf);
+        }
+    }
+    claim_result r = eval("ProbeXSelfJoint", src, "claim_probe_self", "-");
+    assert_int_equal(r.status, VERDICT_PASS);
+    /* per seed the self error is (2 + 2.5 + 2.5) / 3 e; medians over seeds of e = 0.425 */
+    ASSERT_NEAR(r.value, 7.0 / 3.0, 1e-12);
+    r = eval("ProbeXNnSwapJoint", src, "claim_probe_nnswap", "-");
+    assert_int_equal(r.status, VERDICT_FAIL);
+    assert_non_null(strstr(r.why, "no rows of the nnswap probe"));
+    snprintf(p, sizeof p, "%s/probes.tsv", dir);
+    tu_write(p, "spacing\tprobe\tw1\tn_gen\tn_teacher\n4\trot90\t0.3\t1000\t1000\n5\trot90\t0.4\t1000\t1000\n6\trot90\t0.5\t1000\t1000\n");
+    r = eval("ProbeTeacherRotNinety", p, "claim_probe_teacher_rot90", "-");
+    assert_int_equal(r.status, VERDICT_PASS);
+    ASSERT_NEAR(r.value, 0.4, 1e-15);
+}
+
 int main(void)
 {
     const struct CMUnitTest t[] = {
@@ -384,6 +423,7 @@ int main(void)
         cmocka_unit_test(awaited_tables_pend_others_fail),
         cmocka_unit_test(training_choice_over_the_blind_level),
         cmocka_unit_test(perfect_generator_levels),
+        cmocka_unit_test(generator_probe_ratios),
     };
     return cmocka_run_group_tests(t, NULL, NULL);
 }

@@ -130,7 +130,7 @@ int claims_is_extension(const claim_row *row)
 int claims_awaited_source(const char *source)
 {
     static const char *dirs[] = {PATHS_FROZEN_DIR "/paper-reading/", PATHS_FROZEN_DIR "/extension-pair/main/", PATHS_FROZEN_DIR "/extension-pair/extrapolation/",
-                                 PATHS_FROZEN_DIR "/model-readings/"};
+                                 PATHS_FROZEN_DIR "/model-readings/", PATHS_FROZEN_DIR "/generator-probes/"};
     size_t l = strlen(source), k = strlen("/run_s*_*.tsv");
     if (l > k && !strcmp(source + l - k, "/run_s*_*.tsv")) return 1;
     for (size_t i = 0; i < sizeof dirs / sizeof *dirs; i++)

@@ -8,6 +8,7 @@
 #include "exp_common.h"
 #include "exp_main.h"
 #include "exp_compdist.h"
+#include "genprobe.h"
 #include "mainsum.h"
 #include "model_readings.h"
 #include "afile.h"
@@ -228,4 +229,35 @@ int cli_comparison_run(int argc, char **argv)
     if (r) return opts_exit_code(r);
     cs_status st = exp_comp_run(&a);
     return st ? cli_fail("comparison-run", st) : 0;
+}
+
+int cli_generator_probes_run(int argc, char **argv)
+{
+    long seed = 0;
+    int perfect = 0;
+    genprobe_args a = {.scale = "full", .argc = argc, .argv = argv};
+    const opt_spec spec[] = {
+        {"weights", OPT_STR, &a.weights, 0, 0, "frozen weights FILE of one unit (not with --perfect)"},
+        {"trained", OPT_STR, &a.trained, 0, 0, "the unit's run table the weights were frozen with (recorded in the provenance)"},
+        {"seed", OPT_LONG, &seed, 1, 4294967295.0, "the unit's model seed (the probes' sampling seeds derive from it)"},
+        {"arm", OPT_CHOICE, &a.arm, 0, 0, "the weights' arm", .choices = CLI_ARMS},
+        {"reading", OPT_CHOICE, &a.reading, 0, 0, "the reading the weights must be (default: any)", .choices = READINGS},
+        {"perfect", OPT_FLAG, &perfect, 0, 0, "the teacher's own crowns under each probe that has a teacher's side, no model"},
+        {"scale", OPT_CHOICE, &a.scale, 0, 0, "the plan's scale (default full)", .choices = SCALES},
+        {"samples", OPT_STR, &a.samples, 0, 0, "also write the clearances behind every W1 to FILE.tsv (default none)"},
+        {"out", OPT_STR, &a.out, 0, 0, "the probe table FILE.tsv", .required = 1},
+    };
+    const opts_cmd c = {"generator-probes-run", "--weights FILE --seed S --arm joint|indep --out FILE.tsv [options] | --perfect --out FILE.tsv",
+                        "What a generator uses (design.md §8.4): one unit's frozen weights sampled at the unseen spacings\n"
+                        "with attention masked to the tree itself, the patch turned by 15, 45 and 90 degrees, the nearest\n"
+                        "neighbour's position exchanged with the 2nd-4th, positions snapped to the ideal lattice and the\n"
+                        "neighbours' sizes permuted; W1 of focal nearest-neighbour clearances against the teacher's.\n"
+                        "--perfect: the teacher's own crowns under each probe that has a teacher's side.",
+                        spec, sizeof spec / sizeof *spec, 0, 0};
+    int r = opts_parse(&c, argc, argv, NULL, NULL);
+    if (r) return opts_exit_code(r);
+    a.seed = (unsigned)seed;
+    a.perfect = perfect;
+    cs_status st = genprobe_run(&a);
+    return st ? cli_fail("generator-probes-run", st) : 0;
 }
