@@ -302,6 +302,67 @@ static void test_agreement_classes(void **s)
     assert_int_equal(a.kind, AGREE_NOINTERVAL);
 }
 
+/* "Reached" is one alternative that reaches the number while every other
+ * number of the same experiment that agrees today stays in agreement, at the
+ * same fraction of the choice (attrib_reached). Toy (1.5 in [1.2, 1.6],
+ * paper 1.00) and Other (2.0 in [1.9, 2.1], paper 2.05, inside) share a
+ * section; crown_R 3 moves Toy to 1.1 (reached from t = 0.5) but Other to
+ * 2.4 (out beyond t = 0.375); crown_R 5 moves Toy to 1.1 and Other to 2.1. */
+static void test_reached_keeps_the_experiment_in_agreement(void **s)
+{
+    (void)s;
+    claims c = {0};
+    claim_row rows[2];
+    memset(rows, 0, sizeof rows);
+    static const char *mac[2] = {"Toy", "Other"}, *ref[2] = {"1.00", "2.05"};
+    for (int i = 0; i < 2; i++) {
+        snprintf(rows[i].macro, sizeof rows[i].macro, "%s", mac[i]);
+        snprintf(rows[i].kind, sizeof rows[i].kind, "measured");
+        snprintf(rows[i].reference, sizeof rows[i].reference, "%s", ref[i]);
+        snprintf(rows[i].format, sizeof rows[i].format, "%%.2f");
+        snprintf(rows[i].source, sizeof rows[i].source, "nowhere/x.tsv");
+        snprintf(rows[i].section, sizeof rows[i].section, "3.2");
+    }
+    c.rows = rows;
+    c.n = 2;
+    claim_result res[2] = {{0}};
+    res[0].status = res[1].status = VERDICT_PASS;
+    res[0].value = 1.5;
+    res[1].value = 2.0;
+    claim_interval ci[2] = {{0}};
+    ci[0].has = ci[1].has = 1;
+    ci[0].lo = 1.2; ci[0].hi = 1.6;
+    ci[1].lo = 1.9; ci[1].hi = 2.1;
+    attrib_value v[6];
+    memset(v, 0, sizeof v);
+    static const struct { const char *q, *u; double x, val; } in[6] = {
+        {"Toy", "centre", NAN, 1.5}, {"Other", "centre", NAN, 2.0}, {"Toy", "crown_R", 3, 1.1}, {"Other", "crown_R", 3, 2.4},
+        {"Toy", "crown_R", 5, 1.1}, {"Other", "crown_R", 5, 2.1}};
+    for (int i = 0; i < 6; i++) {
+        snprintf(v[i].quantity, sizeof v[i].quantity, "%s", in[i].q);
+        snprintf(v[i].unit, sizeof v[i].unit, "%s", in[i].u);
+        v[i].x = in[i].x;
+        v[i].value = in[i].val;
+        v[i].sens = 1;
+    }
+    agree_result a;
+    attrib_data d = {v, 4, 0, 1};
+    agree_judge(&d, &rows[0], &res[0], &ci[0], &a); /* unbound: nothing else constrained */
+    assert_int_equal(a.kind, AGREE_REACHED);
+    attrib_bind(&d, &c, res, ci);
+    agree_judge(&d, &rows[0], &res[0], &ci[0], &a);
+    assert_int_equal(a.kind, AGREE_UNEXPLAINED);
+    assert_non_null(strstr(a.by, "crown_R 3 (moves Other out)"));
+    d.n = 6;
+    agree_judge(&d, &rows[0], &res[0], &ci[0], &a);
+    assert_int_equal(a.kind, AGREE_REACHED);
+    assert_string_equal(a.by, "crown_R 5");
+    /* a value the alternative could not compute constrains nothing */
+    v[5].value = NAN;
+    agree_judge(&d, &rows[0], &res[0], &ci[0], &a);
+    assert_int_equal(a.kind, AGREE_REACHED);
+}
+
 int main(void)
 {
     if (claims_load(PATHS_CLAIMS, &g_c) != CS_OK || interval_table_load(PATHS_INTERVALS, &g_it) != CS_OK) {
@@ -318,6 +379,7 @@ int main(void)
         cmocka_unit_test(test_a_moved_response_changes_the_interval_not_the_claim),
         cmocka_unit_test(test_a_misstated_method_is_refused),
         cmocka_unit_test(test_agreement_classes),
+        cmocka_unit_test(test_reached_keeps_the_experiment_in_agreement),
     };
     int rc = cmocka_run_group_tests(t, NULL, NULL);
     interval_table_free(&g_it);

@@ -61,23 +61,13 @@ const char *agree_name(agree_kind k)
     return n[k];
 }
 
-/* Half a unit in the last digit the paper prints (0.00049: 5e-6): the
- * paper's value is known to that precision only. */
-static double printed_half_unit(const char *ref)
-{
-    const char *dot = strchr(ref, '.');
-    int dec = 0;
-    if (dot) for (const char *q = dot + 1; *q >= '0' && *q <= '9'; q++) dec++;
-    return 0.5 * pow(10.0, -dec);
-}
-
 void agree_judge(const attrib_data *d, const claim_row *row, const claim_result *res, const claim_interval *ci, agree_result *out)
 {
     memset(out, 0, sizeof *out);
     double p, rel;
     if (!claims_rel_diff(row, res, &p, &rel)) return;
     if (!ci->has) { out->kind = AGREE_NOINTERVAL; return; }
-    double h = printed_half_unit(row->reference), lo = ci->lo - h, hi = ci->hi + h;
+    double h = attrib_half_unit(row->reference), lo = ci->lo - h, hi = ci->hi + h;
     if (lo <= p && p <= hi) { out->kind = AGREE_INSIDE; return; }
     int tested = 0;
     out->kind = d && attrib_reached(d, row, res, lo, hi, out->by, sizeof out->by, &tested) ? AGREE_REACHED : AGREE_UNEXPLAINED;

@@ -2,6 +2,7 @@
 #include "attrib.h"
 #include "afile.h"
 #include "tsv.h"
+#include "study.h"
 #include "unstated.h"
 #include <math.h>
 #include <stdio.h>
@@ -120,6 +121,83 @@ static void by_add(char *by, size_t n, const char *s)
     if (l + strlen(s) + 3 < n) snprintf(by + l, n - l, "%s%s", l ? ", " : "", s);
 }
 
+double attrib_half_unit(const char *ref)
+{
+    const char *dot = strchr(ref, '.');
+    int dec = 0;
+    if (dot) for (const char *q = dot + 1; *q >= '0' && *q <= '9'; q++) dec++;
+    return 0.5 * pow(10.0, -dec);
+}
+
+void attrib_bind(attrib_data *d, const claims *c, const claim_result *res, const claim_interval *ci)
+{
+    d->c = c;
+    d->res = res;
+    d->ci = ci;
+}
+
+/* The t in [0, 1] (only t = 1 for a categorical alternative) at which the
+ * interval [lo, hi] moved by t s holds p: [*a, *b], 0 when there is none. */
+static int t_range(double lo, double hi, double p, double s, int cont, double *a, double *b)
+{
+    double ta = -INFINITY, tb = INFINITY;
+    if (!isfinite(s)) return 0; /* the alternative could not compute the number */
+    if (s != 0) { ta = fmin((p - hi) / s, (p - lo) / s); tb = fmax((p - hi) / s, (p - lo) / s); }
+    else if (p < lo || p > hi) return 0;
+    if (!cont) { *a = *b = 1; return ta <= 1 && 1 <= tb; }
+    *a = fmax(ta, 0);
+    *b = fmin(tb, 1);
+    return *a <= *b;
+}
+
+/* The centre run's value of a quantity (v when the centre did not measure it). */
+static double centre_of(const attrib_data *d, const char *macro, double v)
+{
+    for (size_t i = 0; i < d->n; i++)
+        if (d->v[i].sens && !strcmp(d->v[i].quantity, macro) && !strcmp(d->v[i].unit, "centre")) return d->v[i].value;
+    return v;
+}
+
+/* The experiment a claim belongs to (its frozen folder's code), or its section. */
+static const char *experiment_of(const claim_row *row)
+{
+    const study_experiment *e = study_of_path(row->source);
+    return e ? e->code : row->section;
+}
+
+/* Alternative a (a reading, or one value of an unstated choice) moves every
+ * other number of the claim's experiment that agrees today (the paper's
+ * value inside our interval) by the same fraction t of its own shift; keep
+ * in *ta, *tb the t at which they all stay inside, and name the first that
+ * cannot in blocker. 0 when none is left. */
+static int consistent(const attrib_data *d, const claim_row *row, const attrib_value *a, int cont, double *ta, double *tb,
+                      char *blocker, size_t n)
+{
+    const char *ex = experiment_of(row);
+    for (size_t i = 0; i < d->c->n; i++) {
+        const claim_row *q = &d->c->rows[i];
+        const claim_result *qr = &d->res[i];
+        const claim_interval *qi = &d->ci[i];
+        double p, rel;
+        if (!strcmp(q->macro, row->macro) || !qi->has || !claims_rel_diff(q, qr, &p, &rel) || strcmp(experiment_of(q), ex)) continue;
+        const double h = attrib_half_unit(q->reference), lo = qi->lo - h, hi = qi->hi + h;
+        if (p < lo || p > hi) continue; /* not in agreement today: nothing to keep */
+        for (size_t j = 0; j < d->n; j++) {
+            const attrib_value *b = &d->v[j];
+            if (b->sens != a->sens || strcmp(b->unit, a->unit) || strcmp(b->quantity, q->macro)) continue;
+            if ((a->sens && !(b->x == a->x)) || !isfinite(b->value)) continue; /* not computable there: not measured */
+            double s = b->value - (b->sens ? centre_of(d, q->macro, qr->value) : qr->value), qa, qb;
+            if (!t_range(lo, hi, p, s, cont, &qa, &qb) || fmax(*ta, qa) > fmin(*tb, qb)) {
+                snprintf(blocker, n, "%s", q->macro);
+                return 0;
+            }
+            *ta = fmax(*ta, qa);
+            *tb = fmin(*tb, qb);
+        }
+    }
+    return 1;
+}
+
 int attrib_reached(const attrib_data *d, const claim_row *row, const claim_result *res, double lo, double hi,
                    char *by, size_t n, int *tested)
 {
@@ -127,23 +205,30 @@ int attrib_reached(const attrib_data *d, const claim_row *row, const claim_resul
     *tested = 0;
     double p, rel;
     if (!claims_rel_diff(row, res, &p, &rel)) return 0;
-    double v = res->value, centre = v;
-    for (size_t i = 0; i < d->n; i++)
-        if (d->v[i].sens && !strcmp(d->v[i].quantity, row->macro) && !strcmp(d->v[i].unit, "centre")) centre = d->v[i].value;
+    const double v = res->value, centre = centre_of(d, row->macro, v);
+    char blocked[240] = "";
     for (size_t i = 0; i < d->n; i++) {
         const attrib_value *a = &d->v[i];
         if (strcmp(a->quantity, row->macro) || (a->sens && !strcmp(a->unit, "centre"))) continue;
         *tested = 1;
-        double shift = a->value - (a->sens ? centre : v);
-        int inside = lo + shift <= p && p <= hi + shift;
         const unstated_choice *uc = a->sens ? unstated_find(a->unit) : NULL;
-        int between = a->sens && !(uc && uc->categorical) && fmin(v, v + shift) <= p && p <= fmax(v, v + shift);
-        if (!inside && !between) continue;
-        char s[64];
-        snprintf(s, sizeof s, a->sens ? "%s" : "reading %s", a->unit);
+        const int cont = a->sens && !(uc && uc->categorical);
+        double ta, tb;
+        if (!t_range(lo, hi, p, a->value - (a->sens ? centre : v), cont, &ta, &tb)) continue;
+        char s[64], blocker[64] = "";
+        if (a->sens) snprintf(s, sizeof s, "%s %g", a->unit, a->x);
+        else snprintf(s, sizeof s, "reading %s", a->unit);
+        if (d->c && !consistent(d, row, a, cont, &ta, &tb, blocker, sizeof blocker)) {
+            char b[140];
+            snprintf(b, sizeof b, "%s (moves %s out)", s, blocker);
+            if (!strstr(blocked, b)) by_add(blocked, sizeof blocked, b);
+            continue;
+        }
         if (!strstr(by, s)) by_add(by, n, s);
     }
-    return by[0] != '\0';
+    const int reached = by[0] != '\0';
+    if (!reached && blocked[0]) snprintf(by, n, "only with another number out: %s", blocked);
+    return reached;
 }
 
 void attrib_count(const attrib_data *d, const claims *c, const claim_result *res, attrib_counts *k)

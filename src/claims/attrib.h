@@ -12,12 +12,21 @@
 #define ATTRIB_H
 #include "claims.h"
 #include "cs.h"
+#include "interval.h"
 #include <stddef.h>
 
 typedef enum { ATTRIB_NA = 0, ATTRIB_WITHIN, ATTRIB_EXPLAINED, ATTRIB_UNEXPLAINED, ATTRIB_UNTESTED } attrib_kind;
 
 typedef struct { char quantity[64], unit[40]; double x, value; int sens; } attrib_value;
-typedef struct { attrib_value *v; size_t n; int have_readings, have_sens; } attrib_data;
+typedef struct {
+    attrib_value *v;
+    size_t n;
+    int have_readings, have_sens;
+    /* every claim, its result and interval (attrib_bind): what "reached" must keep in agreement */
+    const claims *c;
+    const claim_result *res;
+    const claim_interval *ci;
+} attrib_data;
 typedef struct { attrib_kind kind; char by[240]; } attrib_result;
 
 /* Load both summaries (either may be absent: then it contributes nothing). */
@@ -25,14 +34,27 @@ cs_status attrib_load(const char *readings_summary, const char *sens_summary, at
 void attrib_free(attrib_data *d);
 /* The verdict of one claim (ATTRIB_NA: not a measured number with a reference). */
 void attrib_judge(const attrib_data *d, const claim_row *row, const claim_result *res, attrib_result *out);
-/* Against our interval [lo, hi] (design.md §6.1): does a reading or an
- * unstated choice move our interval onto the paper's value p? A run reading
- * of value x does when [lo, hi] + (x - v) holds p (v: our value); a choice's
- * sensitivity value x does when [lo, hi] + (x - c) holds p (c: the centre
- * unit, v without one), or, for a non-categorical choice, when p lies
- * between v and v + (x - c). 1 when reached, `by` naming what reaches it
- * ("reading R", or the choice); 0 otherwise (*tested = 0 when nothing was
- * measured for the claim). */
+/* Half a unit in the last digit a printed reference value shows (0.00049:
+ * 5e-6): the paper's value is known to that precision only. */
+double attrib_half_unit(const char *ref);
+/* Bind every claim's result and interval to d (the arrays outlive d's use):
+ * attrib_reached then keeps the rest of a claim's experiment in agreement. */
+void attrib_bind(attrib_data *d, const claims *c, const claim_result *res, const claim_interval *ci);
+/* Against our interval [lo, hi] (design.md §6.1): does one reading or one
+ * value of an unstated choice move our interval onto the paper's value p,
+ * while every other number of the same experiment that agrees today stays
+ * in agreement? An alternative moves each number by its own shift s (its
+ * value there minus ours, or minus the centre run's for a choice): a run
+ * reading, or a categorical choice (the die-back rules), by the whole s; a
+ * numeric choice by a fraction t of s, t in [0, 1], the same t for every
+ * number of the experiment (the choice set between ours and the value run,
+ * read linearly). Reached when some t puts p inside [lo, hi] + t s and keeps
+ * each other agreeing number's paper value inside its own interval moved by
+ * t times its shift (numbers the alternative did not measure, or could not
+ * compute, are not constrained). 1 when reached, `by` naming each alternative that reaches it
+ * ("reading R" or "choice x"); 0 otherwise, `by` naming what reaches it only
+ * by moving another number out (*tested = 0 when nothing was measured for
+ * the claim). Without attrib_bind nothing else is constrained. */
 int attrib_reached(const attrib_data *d, const claim_row *row, const claim_result *res, double lo, double hi,
                    char *by, size_t n, int *tested);
 typedef struct { size_t measured, in10, in25, attributed, unexplained, untested; } attrib_counts;

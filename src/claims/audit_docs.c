@@ -119,6 +119,7 @@ static void findings(sbuf *b, const claims *c, const claim_result *res)
     agree_counts ak = {0};
     attrib_data at = {0};
     if (!agree_intervals_cached(c, res, &ci) && !attrib_load(PATHS_READINGS_SUMMARY, PATHS_SENS_SUMMARY, &at)) {
+        attrib_bind(&at, c, res, ci);
         agree_count(&at, c, res, ci, &ak);
         attrib_free(&at);
     }

@@ -75,6 +75,7 @@ cs_status paper_generate(const claims *c, const claim_result *res, const char *d
     if (!st) st = attrib_load(PATHS_READINGS_SUMMARY, PATHS_SENS_SUMMARY, &at);
     const claim_interval *ci = NULL;
     if (!st) st = agree_intervals_cached(c, res, &ci);
+    if (!st) attrib_bind(&at, c, res, ci);
     snprintf(p, sizeof p, "%s/intervals.tsv", dir);
     if (!st) st = agree_write_intervals(p, c, ci);
     snprintf(p, sizeof p, "%s/summary.tex", dir);

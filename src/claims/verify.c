@@ -406,6 +406,7 @@ cs_status verify_run(const verify_opts *o)
     cs_status ist = agree_intervals_cached(&c, res, &ci);
     if (ist) printf("  FAIL    intervals: %s\n", cs_errmsg());
     if (ist) count[VERDICT_FAIL]++;
+    if (at_ok && ci) attrib_bind(&at, &c, res, ci);
     print_claims(&c, res, have_nt ? &nt : NULL, &at, ci, count, &gt);
     const size_t rep = gt.rep, notrep = gt.notrep, gpend = gt.gpend;
     const char *notrep_list = gt.notrep_list;

@@ -253,6 +253,7 @@ int cli_cmd_report(int argc, char **argv)
     const claim_interval *ci;
     attrib_data at = {0};
     if (!(st = agree_intervals_cached(&c, res, &ci)) && !(st = attrib_load(PATHS_READINGS_SUMMARY, PATHS_SENS_SUMMARY, &at))) {
+        attrib_bind(&at, &c, res, ci);
         agree_print_report(stdout, &c, res, ci, &at, isatty(STDOUT_FILENO));
         attrib_free(&at);
     }
