@@ -107,7 +107,8 @@ COMMAND(main, "main-train", cli_main_train, "E3/E4: train one (seed, arm, readin
 COMMAND(main, "main-eval", cli_main_eval, "E3/E4: evaluate one unit from its weights, without training: run table and samples")
 UNIT(main, "run_s%_joint.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --seed $* --arm joint --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/main_s$*_joint.ckpt --samples @R@/main/samples_s$*_joint.tsv --weights @R@/main/weights_s$*_joint.ckpt --out $@", "-")
 UNIT(main, "run_s%_indep.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --seed $* --arm indep --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/main_s$*_indep.ckpt --samples @R@/main/samples_s$*_indep.tsv --weights @R@/main/weights_s$*_indep.ckpt --out $@", "-")
-UNIT(main, "baselines.tsv", "", "$(CLI) main-baselines --scale $(SCALE) --samples @R@/main/samples_baselines.tsv --out $@", "-")
+UNIT(main, "baselines.tsv", "", "$(CLI) main-baselines --scale $(SCALE) --samples @R@/main/samples_baselines.tsv --stand-rows --out $@", "-")
+UNIT(main, "baselines_stands.tsv", "@R@/main/baselines.tsv", "", "-")
 UNIT(main, "runs.tsv", "$(foreach s,$(MAIN_SEED_LIST),@R@/main/run_s$(s)_joint.tsv @R@/main/run_s$(s)_indep.tsv) @R@/main/baselines.tsv", "$(CLI) main-summary --dir @R@ --seeds $(MAIN_NSEEDS)", "top")
 
 EXPERIMENT(extrapolation, "E4", "src/exp/exp_main.c", "gates/extrapolation.gate", "src/claims/claim_main.c", "figures/main-pair.gp", "redraw", "E3's runs at the spacings outside the training range (3.0 m and 7.5 m), written by main-summary")
@@ -142,14 +143,16 @@ UNIT(comparison, "patch.tsv", "@R@/main/run_s01_joint.tsv @R@/main/run_s01_indep
 EXPERIMENT(paper-reading, "E3", "src/exp/exp_main.c", "gates/main.gate", "src/claims/claim_main.c", "figures/main.gp", "redraw", "the generator as the reference paper describes it (design.md §8 readings: tokens from the noisy profile, position and size, standardised; plain attention), 12 seeds x 2 arms at evaluation volume v2: the reading the preregistered main and extrapolation gates judge; its E7 distribution")
 UNIT(paper-reading, "main/run_s%_joint.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --reading paper --volume v2 --seed $* --arm joint --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/paper-main_s$*_joint.ckpt --samples @R@/paper-reading/main/samples_s$*_joint.tsv --weights @R@/paper-reading/main/weights_s$*_joint.ckpt --out $@", "-")
 UNIT(paper-reading, "main/run_s%_indep.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --reading paper --volume v2 --seed $* --arm indep --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/paper-main_s$*_indep.ckpt --samples @R@/paper-reading/main/samples_s$*_indep.tsv --weights @R@/paper-reading/main/weights_s$*_indep.ckpt --out $@", "-")
-UNIT(paper-reading, "main/baselines.tsv", "", "$(CLI) main-baselines --volume v2 --scale $(SCALE) --samples @R@/paper-reading/main/samples_baselines.tsv --out $@", "-")
+UNIT(paper-reading, "main/baselines.tsv", "", "$(CLI) main-baselines --volume v2 --scale $(SCALE) --samples @R@/paper-reading/main/samples_baselines.tsv --stand-rows --out $@", "-")
+UNIT(paper-reading, "main/baselines_stands.tsv", "@R@/paper-reading/main/baselines.tsv", "", "-")
 UNIT(paper-reading, "main/runs.tsv", "$(foreach s,$(MAIN_SEED_LIST),@R@/paper-reading/main/run_s$(s)_joint.tsv @R@/paper-reading/main/run_s$(s)_indep.tsv) @R@/paper-reading/main/baselines.tsv", "$(CLI) main-summary --dir @R@/paper-reading --seeds $(MAIN_NSEEDS)", "top")
 UNIT(paper-reading, "comparison/dist_summary.tsv", "@R@/paper-reading/main/run_s01_joint.tsv @R@/paper-reading/main/run_s01_indep.tsv", "$(CLI) comparison-dist --joint @R@/paper-reading/main/weights_s01_joint.ckpt --indep @R@/paper-reading/main/weights_s01_indep.ckpt --out @R@/paper-reading", "top")
 
 EXPERIMENT(extension-pair, "E3", "src/exp/exp_main.c", "-", "src/claims/claim_main.c", "figures/main-pair.gp", "redraw", "the pair-aware generator (design.md §8, an extension added after the first verdict): E3's frozen pair units re-evaluated from their weights at volume v2, and its E7 distribution")
 UNIT(extension-pair, "main/run_s%_joint.tsv", "@R@/main/run_s%_joint.tsv", "$(CLI) main-eval --reading pair --volume v2 --seed $* --arm joint --scale $(SCALE) --weights @R@/main/weights_s$*_joint.ckpt --trained @R@/main/run_s$*_joint.tsv --samples @R@/extension-pair/main/samples_s$*_joint.tsv --out $@", "-")
 UNIT(extension-pair, "main/run_s%_indep.tsv", "@R@/main/run_s%_indep.tsv", "$(CLI) main-eval --reading pair --volume v2 --seed $* --arm indep --scale $(SCALE) --weights @R@/main/weights_s$*_indep.ckpt --trained @R@/main/run_s$*_indep.tsv --samples @R@/extension-pair/main/samples_s$*_indep.tsv --out $@", "-")
-UNIT(extension-pair, "main/baselines.tsv", "", "$(CLI) main-baselines --volume v2 --scale $(SCALE) --samples @R@/extension-pair/main/samples_baselines.tsv --out $@", "-")
+UNIT(extension-pair, "main/baselines.tsv", "", "$(CLI) main-baselines --volume v2 --scale $(SCALE) --samples @R@/extension-pair/main/samples_baselines.tsv --stand-rows --out $@", "-")
+UNIT(extension-pair, "main/baselines_stands.tsv", "@R@/extension-pair/main/baselines.tsv", "", "-")
 UNIT(extension-pair, "main/runs.tsv", "$(foreach s,$(MAIN_SEED_LIST),@R@/extension-pair/main/run_s$(s)_joint.tsv @R@/extension-pair/main/run_s$(s)_indep.tsv) @R@/extension-pair/main/baselines.tsv", "$(CLI) main-summary --dir @R@/extension-pair --seeds $(MAIN_NSEEDS)", "top")
 UNIT(extension-pair, "comparison/dist_summary.tsv", "@R@/main/run_s01_joint.tsv @R@/main/run_s01_indep.tsv", "$(CLI) comparison-dist --joint @R@/main/weights_s01_joint.ckpt --indep @R@/main/weights_s01_indep.ckpt --out @R@/extension-pair", "top")
 

@@ -137,7 +137,6 @@ static cs_status main_spacings(const claim_row *row, const claim_result *res, co
         snprintf(path, sizeof path, "%.*s/main/%s", cut ? (int)(cut - src) : 6, cut ? src : "frozen", leaf);
     }
     const char *col = !strcmp(row->function, "claim_main_noise") ? "noise_floor_w1"
-                    : !strcmp(row->function, "claim_main_iso") ? "direction_blind_w1"
                     : strstr(row->macro, "Rot") ? "teacher_rotated_w1" : "teacher_shuffled_w1";
     tsv *t;
     cs_status st = tsv_read(path, &t);
@@ -521,7 +520,7 @@ static cs_status figure_stands(const claim_row *row, const claim_result *res, co
 static const struct { const char *function; iv_extract ex; } extractors[] = {
     {"claim_main_median", main_seeds}, {"claim_main_range", main_seeds}, {"claim_main_rel", main_seeds},
     {"claim_main_p", main_seeds}, {"claim_main_geom_ratio", main_seeds}, {"claim_main_probe", main_seeds},
-    {"claim_main_noise", main_spacings}, {"claim_main_iso", main_spacings}, {"claim_main_teach_probe", main_spacings},
+    {"claim_main_noise", main_spacings}, {"claim_main_iso", iv_blind_stands}, {"claim_main_teach_probe", main_spacings},
     {"claim_extrap_rel", extrap_seeds}, {"claim_extrap_p", extrap_seeds},
     {"claim_field_elong", fs_stands}, {"claim_aniso_lattice", fs_stands}, {"claim_aniso_lattice_counts", fs_stands},
     {"claim_jitter_heldout", fs_stands}, {"claim_aniso_rho", fs_stands}, {"claim_aniso_hardcore_overshoot", fs_stands},

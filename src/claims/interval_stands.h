@@ -15,6 +15,8 @@ cs_status iv_sweep_stands(const claim_row *row, const claim_result *res, const i
 cs_status iv_perturb_stands(const claim_row *row, const claim_result *res, const interval_spec *spec, iv_data *d);
 cs_status iv_refine_stands(const claim_row *row, const claim_result *res, const interval_spec *spec, iv_data *d);
 cs_status iv_reduction_stands(const claim_row *row, const claim_result *res, const interval_spec *spec, iv_data *d);
+/* interval_blind.c: the direction-blind level over the evaluation stands of baselines.tsv. */
+cs_status iv_blind_stands(const claim_row *row, const claim_result *res, const interval_spec *spec, iv_data *d);
 
 /* The start of every extractor: path = the per-stand rows <base><suffix>.tsv
  * beside row's pooled table, and *ctx a zeroed context of size bytes handed

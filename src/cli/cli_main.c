@@ -136,6 +136,7 @@ int cli_main_baselines(int argc, char **argv)
         {"samples", OPT_STR, &a.samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
         CLI_OPT_VARY(a.vary),
         {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume (src/exp/mainrun.h; default v1)", .choices = VOLUMES},
+        {"stand-rows", OPT_FLAG, &a.stand_rows, 0, 0, "also write baselines_stands.tsv beside FILE: the patches of each evaluation stand"},
     };
     const opts_cmd c = {"main-baselines", "--out FILE.tsv [--scale full|smoke] [--volume v1|v2] [--samples FILE.tsv]",
                         "Direction-blind baseline (every crown replaced by its circular mean), split-half noise floor\n"

@@ -50,6 +50,31 @@ static cs_status samples_baselines_write(const char *samples, prov *pv, size_t n
     return prov_sha256_file(samples, hex);
 }
 
+/* baselines_stands.tsv beside the table `out`: the patches of each stand. */
+static cs_status stand_rows_write(const char *out, prov *pv, size_t nall, const double *dd, const int *uns, int nst, int *const *per)
+{
+    char path[1024];
+    const char *slash = strrchr(out, '/');
+    snprintf(path, sizeof path, "%.*sbaselines_stands.tsv", slash ? (int)(slash - out + 1) : 0, out);
+    tsv_writer *w;
+    cs_status st = afile_mkdir_parents(path);
+    if (!st) st = tsv_writer_open(&w, path);
+    if (st) return st;
+    if ((st = prov_write(w, pv))) { tsv_writer_abort(w); return st; }
+    tsv_writer_meta(w, "what", "the evaluation stands behind baselines.tsv: per spacing, how many consecutive patches of samples_baselines.tsv each stand gave, "
+                    "in order (the replicate units of the stand bootstrap, design.md §6.1)");
+    tsv_writer_columns(w, "spacing\tsplit\tstand\tpatches");
+    for (size_t si = 0; si < nall; si++)
+        for (int k = 0; k < nst; k++) {
+            tsv_writer_dbl(w, dd[si]);
+            tsv_writer_str(w, uns[si] ? "unseen" : "extrap");
+            tsv_writer_long(w, k);
+            tsv_writer_long(w, per[si][k]);
+            tsv_writer_endrow(w);
+        }
+    return tsv_writer_commit(w);
+}
+
 cs_status mainsum_baselines(const mainsum_baselines_args *a)
 {
     const char *out = a->out, *scale = a->scale ? a->scale : "full", *samples = a->samples, *volume = a->volume ? a->volume : "v1";
@@ -73,6 +98,7 @@ cs_status mainsum_baselines(const mainsum_baselines_args *a)
     double blind[2 * MAXSP], noise[2 * MAXSP], tshuf[2 * MAXSP], trot[2 * MAXSP], dd[2 * MAXSP];
     double *smp[2 * MAXSP][4] = {{0}};
     int nt[2 * MAXSP] = {0}, half[2 * MAXSP] = {0}, uns[2 * MAXSP] = {0};
+    int *per[2 * MAXSP] = {0}, nst = pl.eval_stands;
     for (size_t si = 0; si < nall && !st; si++) {
         dd[si] = mainset_eval_spacing(&ds, si, &uns[si]);
         mainset_eval e;
@@ -91,6 +117,10 @@ cs_status mainsum_baselines(const mainsum_baselines_args *a)
         if (!st && (half[si] == 0 || half[si] == n)) st = cs_err(CS_EINPUT, "noise floor needs at least 2 eval stands");
         if (!st) st = est_w1(e.teach, (size_t)half[si], e.teach + half[si], (size_t)(n - half[si]), &noise[si]);
         nt[si] = n;
+        if (!st && a->stand_rows) {
+            if (!(per[si] = malloc((size_t)nst * sizeof *per[si]))) st = cs_err(CS_ENOMEM, "out of memory");
+            else memcpy(per[si], e.per_stand, (size_t)nst * sizeof *per[si]);
+        }
         mainset_eval_free(&e);
     }
     snprintf(pv.seeds, sizeof pv.seeds, "stands seed_derive(main-eval, d, k, stems|crowns), k < %d; teacher permutation seed_derive(main-teacher, d, 0, shuffle)", pl.eval_stands);
@@ -98,6 +128,8 @@ cs_status mainsum_baselines(const mainsum_baselines_args *a)
     char ssha[65] = "";
     tsv_writer *w = NULL;
     if (!st && samples) st = samples_baselines_write(samples, &pv, nall, dd, uns, nt, smp, ssha);
+    if (!st && a->stand_rows) st = stand_rows_write(out, &pv, nall, dd, uns, nst, per);
+    for (size_t si = 0; si < nall; si++) free(per[si]);
     if (!st) st = tsv_writer_open(&w, out);
     if (!st) st = prov_write(w, &pv);
     if (!st) {

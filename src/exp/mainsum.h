@@ -12,10 +12,15 @@ typedef struct {
     const char *out, *scale, *samples; /* samples: NULL for none */
     const char *volume;                /* "v1" or "v2" (NULL: v1; src/exp/mainrun.h) */
     const char *vary;                  /* sensitivity: NAME=VALUE (exp_common.h), NULL for the design */
+    int stand_rows;                    /* 1: also <dir of out>/baselines_stands.tsv, the patches of each stand */
     int argc;
     char **argv;
 } mainsum_baselines_args;
-/* The direction-blind baseline, the noise floor and the teacher under the probes. */
+/* The direction-blind baseline, the noise floor and the teacher under the
+ * probes. With stand_rows, written before the table: baselines_stands.tsv
+ * beside it (spacing, stand, patches: how many consecutive patches of the
+ * samples each evaluation stand gave, in order), the replicate units of a
+ * stand bootstrap of the baselines (design.md §6.1). */
 cs_status mainsum_baselines(const mainsum_baselines_args *a);
 
 typedef struct {
