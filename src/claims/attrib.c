@@ -1,6 +1,7 @@
 /* attrib: the explained / unexplained column of the comparison; see attrib.h. */
 #include "attrib.h"
 #include "afile.h"
+#include "interval.h"
 #include "tsv.h"
 #include "study.h"
 #include "unstated.h"
@@ -129,7 +130,7 @@ double attrib_half_unit(const char *ref)
     return 0.5 * pow(10.0, -dec);
 }
 
-void attrib_bind(attrib_data *d, const claims *c, const claim_result *res, const claim_interval *ci)
+void attrib_bind(attrib_data *d, const claims *c, const claim_result *res, const struct claim_interval *ci)
 {
     d->c = c;
     d->res = res;

@@ -12,12 +12,13 @@
 #define ATTRIB_H
 #include "claims.h"
 #include "cs.h"
-#include "interval.h"
 #include <stddef.h>
 
 typedef enum { ATTRIB_NA = 0, ATTRIB_WITHIN, ATTRIB_EXPLAINED, ATTRIB_UNEXPLAINED, ATTRIB_UNTESTED } attrib_kind;
 
 typedef struct { char quantity[64], unit[40]; double x, value; int sens; } attrib_value;
+struct claim_interval; /* interval.h */
+
 typedef struct {
     attrib_value *v;
     size_t n;
@@ -25,7 +26,7 @@ typedef struct {
     /* every claim, its result and interval (attrib_bind): what "reached" must keep in agreement */
     const claims *c;
     const claim_result *res;
-    const claim_interval *ci;
+    const struct claim_interval *ci;
 } attrib_data;
 typedef struct { attrib_kind kind; char by[240]; } attrib_result;
 
@@ -39,7 +40,7 @@ void attrib_judge(const attrib_data *d, const claim_row *row, const claim_result
 double attrib_half_unit(const char *ref);
 /* Bind every claim's result and interval to d (the arrays outlive d's use):
  * attrib_reached then keeps the rest of a claim's experiment in agreement. */
-void attrib_bind(attrib_data *d, const claims *c, const claim_result *res, const claim_interval *ci);
+void attrib_bind(attrib_data *d, const claims *c, const claim_result *res, const struct claim_interval *ci);
 /* Against our interval [lo, hi] (design.md §6.1): does one reading or one
  * value of an unstated choice move our interval onto the paper's value p,
  * while every other number of the same experiment that agrees today stays

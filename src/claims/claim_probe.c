@@ -9,8 +9,10 @@
  * the missing seeds, until the set is whole. The teacher's claims read
  * teacher/probes.tsv: the teacher's own crowns under the probe (a perfect
  * generator), mean W1 over the unseen spacings. Descriptive, never gated. */
+#include "claim_probe.h"
 #include "claims.h"
 #include "probekind.h"
+#include "prov.h"
 #include "mainruns.h"
 #include "stats.h"
 #include "tsv.h"
@@ -98,3 +100,42 @@ cs_status claim_probe_teacher_rot15(const claim_row *row, claim_result *res) { r
 cs_status claim_probe_teacher_rot45(const claim_row *row, claim_result *res) { return teacher_level(row, res, PROBEKIND_ROT45); }
 cs_status claim_probe_teacher_rot90(const claim_row *row, claim_result *res) { return teacher_level(row, res, PROBEKIND_ROT90); }
 cs_status claim_probe_teacher_nnswap(const claim_row *row, claim_result *res) { return teacher_level(row, res, PROBEKIND_NNSWAP); }
+
+/* ---- the summary table (generator-probes-summary) ---- */
+
+static const char *const SUM_READINGS[] = {"paper", "paper-fourier", "plain", "pair"};
+
+cs_status claim_probe_summary_write(const char *root, const char *out, int argc, char **argv)
+{
+    tsv_writer *w;
+    cs_status st = tsv_writer_open(&w, out);
+    if (st) return st;
+    prov pv;
+    prov_begin(&pv, "generator-probes", argc, argv);
+    snprintf(pv.seeds, sizeof pv.seeds, "those of each probe table under %.200s/generator-probes/", root);
+    pv.worst_overlap_m = -1;
+    if ((st = prov_write(w, &pv))) { tsv_writer_abort(w); return st; }
+    tsv_writer_meta(w, "what", "per reading, arm and probe: the median over seeds 1-%d of the mean W1 over the unseen spacings under the probe, over the same without it "
+                    "(the Probe* claims, design.md §8.4); 1 = the reading does not use what the probe removes", MAINRUNS_READING_SEEDS);
+    tsv_writer_columns(w, "reading\tarm\tprobe\tratio");
+    for (size_t r = 0; r < sizeof SUM_READINGS / sizeof *SUM_READINGS && !st; r++)
+        for (int a = 0; a < 2 && !st; a++)
+            for (int k = PROBEKIND_SELF; k < PROBEKIND_N && !st; k++) {
+                claim_row row;
+                memset(&row, 0, sizeof row);
+                snprintf(row.source, sizeof row.source, "%.150s/generator-probes/%s/probes_s*_%s.tsv", root, SUM_READINGS[r], a ? "indep" : "joint");
+                snprintf(row.format, sizeof row.format, "%%.17g");
+                claim_result res;
+                memset(&res, 0, sizeof res);
+                res.status = VERDICT_PASS;
+                if ((st = reading_ratio(&row, &res, (probekind)k))) break;
+                if (res.status != VERDICT_PASS) { st = cs_err(CS_EINPUT, "%s", res.why); break; }
+                tsv_writer_str(w, SUM_READINGS[r]);
+                tsv_writer_str(w, a ? "indep" : "joint");
+                tsv_writer_str(w, probekind_name((probekind)k));
+                tsv_writer_dbl(w, res.value);
+                tsv_writer_endrow(w);
+            }
+    if (st) { tsv_writer_abort(w); return st; }
+    return tsv_writer_commit(w);
+}

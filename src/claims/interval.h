@@ -22,7 +22,7 @@
 #include "claims.h"
 #include "cs.h"
 
-typedef struct {
+typedef struct claim_interval {
     int has;              /* 1: lo, hi computed */
     char unit[16], method[16];
     size_t n;             /* replicate units */

@@ -9,6 +9,7 @@
 #include "exp_main.h"
 #include "exp_compdist.h"
 #include "genprobe.h"
+#include "claim_probe.h"
 #include "mainsum.h"
 #include "model_readings.h"
 #include "afile.h"
@@ -261,4 +262,21 @@ int cli_generator_probes_run(int argc, char **argv)
     a.perfect = perfect;
     cs_status st = genprobe_run(&a);
     return st ? cli_fail("generator-probes-run", st) : 0;
+}
+
+int cli_generator_probes_summary(int argc, char **argv)
+{
+    const char *dir = NULL, *out = NULL;
+    const opt_spec spec[] = {
+        {"dir", OPT_STR, &dir, 0, 0, "results or frozen root holding generator-probes/", .required = 1},
+        {"out", OPT_STR, &out, 0, 0, "table FILE.tsv, e.g. DIR/generator-probes/summary.tsv", .required = 1},
+    };
+    const opts_cmd c = {"generator-probes-summary", "--dir DIR --out FILE.tsv",
+                        "What each generator reading uses: per reading, arm and probe, the median error under the probe\n"
+                        "over the median error without it (seeds 1-4), from the probe tables under DIR/generator-probes/.",
+                        spec, sizeof spec / sizeof *spec, 0, 0};
+    int r = opts_parse(&c, argc, argv, NULL, NULL);
+    if (r) return opts_exit_code(r);
+    cs_status st = claim_probe_summary_write(dir, out, argc, argv);
+    return st ? cli_fail("generator-probes-summary", st) : 0;
 }

@@ -197,6 +197,24 @@ typedef struct {
     double *gen;
 } probe_row;
 
+/* path `to` as seen from the folder of the file `from` (both relative to the
+ * working folder, as the make units give them): the provenance names the
+ * weights so that the audit finds them beside the frozen table, wherever the
+ * tree is. An absolute path is kept. */
+static const char *rel_path(const char *from, const char *to, char *buf, size_t n)
+{
+    if (to[0] == '/' || from[0] == '/') { snprintf(buf, n, "%s", to); return buf; }
+    size_t common = 0;
+    for (size_t i = 0; from[i] && from[i] == to[i]; i++)
+        if (from[i] == '/') common = i + 1;
+    size_t up = 0;
+    for (const char *q = from + common; *q; q++) up += *q == '/';
+    buf[0] = '\0';
+    for (size_t k = 0; k < up; k++) snprintf(buf + strlen(buf), n - strlen(buf), "../");
+    snprintf(buf + strlen(buf), n - strlen(buf), "%s", to + common);
+    return buf;
+}
+
 static cs_status write_table(const genprobe_args *a, prov *pv, const char *wsha, const probe_row *rows, int nrows)
 {
     tsv_writer *w;
@@ -209,7 +227,8 @@ static cs_status write_table(const genprobe_args *a, prov *pv, const char *wsha,
         : "W1 (m) of focal nearest-neighbour clearances generated from frozen weights under each probe (src/exp/genprobe.h), evaluated at the true positions, against the teacher's, design.md §8.4");
     tsv_writer_meta(w, "volume", "v1: 16 teacher stands and up to 256 generated patches per unseen spacing");
     if (!a->perfect) {
-        tsv_writer_meta(w, "weights", "%s sha256 %s", a->weights, wsha);
+        char rel[1024];
+        tsv_writer_meta(w, "weights", "%s sha256 %s", rel_path(a->out, a->weights, rel, sizeof rel), wsha);
         if (a->trained) tsv_writer_meta(w, "trained", "%s", a->trained);
         tsv_writer_meta(w, "unit", "reading %s seed %u arm %s", a->reading ? a->reading : "-", a->seed, a->arm);
     }
