@@ -389,6 +389,23 @@ static void test_deps_paper_updates_apt_first(void **s)
     assert_true(update);
 }
 
+/* A write past the file-size limit (ulimit -f) is an environment failure:
+ * exit 4 naming the file, and no temporary file left behind (the signal the
+ * kernel sends for it would otherwise kill the command silently). */
+static void test_file_size_limit_is_an_environment_error(void **s)
+{
+    (void)s;
+    const char *dir = tu_tmpdir("edges_fsize");
+    char args[1400];
+    snprintf(args, sizeof args, "generator-probes-run --perfect --samples %s/samples.tsv --out %s/probes.tsv", dir, dir);
+    int rc = tu_run_cli("ulimit -f 16; ", args, out, sizeof out);
+    if (rc != 4) fail_msg("exit %d under ulimit -f, expected 4 (environment): %s", rc, out);
+    assert_non_null(strstr(out, "samples.tsv"));
+    char cmd[800];
+    snprintf(cmd, sizeof cmd, "test -z \"$(ls '%s')\"", dir);
+    if (system(cmd) != 0) fail_msg("%s: files left behind after the failed write", dir);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -408,6 +425,7 @@ int main(void)
         cmocka_unit_test(test_per_tree_tables_name_their_claims),
         cmocka_unit_test(test_verify_documents_exit_codes),
         cmocka_unit_test(test_deps_paper_updates_apt_first),
+        cmocka_unit_test(test_file_size_limit_is_an_environment_error),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

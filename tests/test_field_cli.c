@@ -68,6 +68,23 @@ static void test_missing_inputs_are_input_errors(void **s)
     assert_int_equal(run("anisotropy-heldout --calibration build/test-tmp/no-such.tsv --jitter-calibration x --out build/test-tmp/x.tsv"), 3);
 }
 
+/* trace of a claim whose input is bad exits 3 (bad input), naming the file,
+ * line and field, after printing what it could (design.md §11). */
+static void test_trace_of_a_bad_field_table_exits_3(void **s)
+{
+    (void)s;
+    const char *dir = tu_tmpdir("field_cli_trace");
+    char p[600], env[700];
+    snprintf(p, sizeof p, "%s/bad.tsv", dir);
+    tu_write(p, "tree\tdirection\tclearance_m\n1\tN\tabc\n");
+    snprintf(env, sizeof env, "FIELD_TABLE=%s ", p);
+    int rc = tu_run_cli(env, "trace SpreadRatio", out, sizeof out);
+    if (rc != 3) fail_msg("trace exit %d, expected 3: %s", rc, out);
+    assert_non_null(strstr(out, "bad.tsv:2: field 'clearance_m'"));
+    assert_non_null(strstr(out, "registry"));
+    if ((rc = run("trace SpreadRatio")) != 0) fail_msg("trace without a field table: exit %d, expected 0 (pending): %s", rc, out);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -77,6 +94,7 @@ int main(void)
         cmocka_unit_test(test_field_summary_bad_table_names_line),
         cmocka_unit_test(test_usage_errors),
         cmocka_unit_test(test_missing_inputs_are_input_errors),
+        cmocka_unit_test(test_trace_of_a_bad_field_table_exits_3),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -519,6 +519,33 @@ static void test_frozen_weights_load_as_the_pair_reading(void **s)
     }
 }
 
+/* A checkpoint or weights file is written under a temporary name of its own:
+ * another writer's temporary file at "<path>.tmp" (here a folder in its way)
+ * neither blocks the write nor is touched, and nothing is left behind. */
+static void test_sealed_writes_take_a_temporary_name_of_their_own(void **s)
+{
+    (void)s;
+    patch_set *d = toy_set(20, 1, 6);
+    model_cfg c = small_cfg2(1, 1);
+    train_opts o = small_opts(4);
+    const char *dir = tu_tmpdir("sealed_tmp");
+    char path[600], other[640], cmd[1400];
+    snprintf(path, sizeof path, "%s/w.ckpt", dir);
+    snprintf(other, sizeof other, "%s.tmp", path);
+    assert_int_equal(mkdir(other, 0777), 0);
+    train *t;
+    assert_int_equal(train_alloc(&t, &c, d, &o), CS_OK);
+    assert_int_equal(train_run(t, 2, path, 1, NULL), CS_OK);
+    assert_int_equal(train_save_weights(t, path), CS_OK);
+    struct stat sb;
+    assert_int_equal(stat(other, &sb), 0);
+    assert_true(S_ISDIR(sb.st_mode));
+    snprintf(cmd, sizeof cmd, "test $(ls '%s' | wc -l) -eq 2", dir); /* w.ckpt and the other writer's folder */
+    assert_int_equal(system(cmd), 0);
+    train_free(t);
+    patch_set_free(d);
+}
+
 /* Weights files: the model, its z-scores and scale only, sealed; a tampered
  * or truncated file is refused. */
 static void test_weights_file_round_trips_and_is_sealed(void **s)
@@ -605,6 +632,7 @@ int main(void)
         cmocka_unit_test(test_readings_round_trip_in_weights_and_checkpoints),
         cmocka_unit_test(test_frozen_weights_load_as_the_pair_reading),
         cmocka_unit_test(test_weights_file_round_trips_and_is_sealed),
+        cmocka_unit_test(test_sealed_writes_take_a_temporary_name_of_their_own),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

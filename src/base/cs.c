@@ -4,16 +4,21 @@
 #include "cs.h"
 #include <stdarg.h>
 #include <stdio.h>
+#include <string.h>
 #include <gsl/gsl_errno.h>
 
 static char cs_msg[2048];
 
 cs_status cs_err(cs_status st, const char *fmt, ...)
 {
+    /* formatted apart first: a caller may wrap the previous message
+     * (cs_err(st, "%s ...", cs_errmsg())), whose text lives in cs_msg */
+    char buf[sizeof cs_msg];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(cs_msg, sizeof cs_msg, fmt, ap);
+    vsnprintf(buf, sizeof buf, fmt, ap);
     va_end(ap);
+    memcpy(cs_msg, buf, sizeof cs_msg);
     return st;
 }
 

@@ -286,6 +286,7 @@ void claims_eval(const claim_row *row, claim_result *res)
     cs_status st = fn(row, res);
     if (st) {
         res->status = VERDICT_FAIL;
+        res->err = st;
         snprintf(res->why, sizeof res->why, "%s", cs_errmsg());
         return;
     }

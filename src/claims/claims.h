@@ -29,6 +29,7 @@ typedef struct {
     char where[512];     /* frozen file (and line) the value came from */
     verdict gate;        /* verdict of the row's gate; PENDING when no gate or not judgeable */
     char gate_detail[256];
+    cs_status err;       /* status FAIL from the computing function's error: its kind (CS_OK otherwise) */
 } claim_result;
 
 typedef cs_status (*claim_fn)(const claim_row *row, claim_result *res);

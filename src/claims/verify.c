@@ -484,5 +484,7 @@ cs_status verify_trace(const char *macro)
     printf("registry     %s:%d\n", PATHS_CLAIMS, row->line);
     if (have) numbers_free(&nt);
     claims_free(&c);
+    /* a claim its input keeps from being computed: the command exits by that kind */
+    if (r.status == VERDICT_FAIL && r.err) return cs_err(r.err, "%s: %s", macro, r.why);
     return CS_OK;
 }

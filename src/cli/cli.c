@@ -9,6 +9,7 @@
 #include "cli.h"
 #include "opts.h"
 #include "teacher.h"
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -80,6 +81,10 @@ static void usage(FILE *f)
 int cli_main(int argc, char **argv)
 {
     cs_gsl_install();
+    /* past the file-size limit a write then fails (EFBIG) and is reported as
+     * an environment error, its temporary file removed, instead of the
+     * process being killed mid-write */
+    signal(SIGXFSZ, SIG_IGN);
     if (argc < 2) { usage(stderr); return 2; }
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
         usage(stdout);

@@ -1,6 +1,7 @@
 /* train: trainer and checkpoints (see train.h; paper §4.2, Eq. 2;
  * design.md §8, §10, §11). */
 #include "train.h"
+#include "afile.h"
 #include "paths.h"
 #include <errno.h>
 #include <stddef.h>
@@ -282,7 +283,8 @@ cs_status train_save(const train *t, const char *path)
     return write_sealed(&b, path);
 }
 
-/* Append the FNV-1a checksum to b, write it to "<path>.tmp", fsync and rename;
+/* Append the FNV-1a checksum to b and write it atomically (afile: a unique
+ * temporary name, fsync, rename), so two writers never share a temporary file;
  * frees b's bytes. */
 static cs_status write_sealed(buf *bb, const char *path)
 {
@@ -290,18 +292,12 @@ static cs_status write_sealed(buf *bb, const char *path)
     uint64_t sum = b.oom ? 0 : fnv1a(FNV0, b.p, b.n);
     PUTV(&b, sum);
     if (b.oom) { free(b.p); return cs_err(CS_ENOMEM, "%s: out of memory writing checkpoint", path); }
-    char tmp[4096];
-    if (snprintf(tmp, sizeof tmp, "%s.tmp", path) >= (int)sizeof tmp) { free(b.p); return cs_err(CS_EIO, "%s: path too long", path); }
-    FILE *f = fopen(tmp, "wb");
-    if (!f) { free(b.p); return cs_err(CS_EIO, "%s: cannot create: %s", tmp, strerror(errno)); }
-    int bad = fwrite(b.p, 1, b.n, f) != b.n;
-    bad |= fflush(f) != 0;
-    bad |= fsync(fileno(f)) != 0;
-    bad |= fclose(f) != 0;
+    afile a;
+    cs_status st = afile_open(&a, path);
+    if (st) { free(b.p); return st; }
+    if (fwrite(b.p, 1, b.n, a.f) != b.n) a.err = 1;
     free(b.p);
-    if (bad) { remove(tmp); return cs_err(CS_EIO, "%s: write failed: %s", tmp, strerror(errno)); }
-    if (rename(tmp, path) != 0) { remove(tmp); return cs_err(CS_EIO, "%s: rename failed: %s", path, strerror(errno)); }
-    return CS_OK;
+    return afile_commit(&a);
 }
 
 /* Read and verify a checkpoint: magic, version, sizes, checksum. On success
