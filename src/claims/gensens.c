@@ -9,7 +9,8 @@
  * the model learned of a crown from its own tree). Every choice is evaluated
  * on the paper reading's evaluation stands, so its direction-blind level is
  * that reading's: <root>/paper-reading/main/baselines.tsv beside the choice's
- * <root>/generator-sensitivity/ (frozen/ in the registry). Descriptive: never
+ * <root>/generator-sensitivity/ (frozen/ in the registry); the same functions
+ * give a reading's own arms over its own baselines. Descriptive: never
  * gated. Pending, naming the missing units, until a choice's set is whole. */
 #include "claims.h"
 #include "mainruns.h"
@@ -21,12 +22,14 @@
 
 #define GENSENS_DIR "/generator-sensitivity/"
 
-/* The paper reading's baselines beside the choice folder dir. */
+/* The baselines of the unit set in dir: a training choice's are the paper
+ * reading's (<root>/paper-reading/main/ beside <root>/generator-sensitivity/),
+ * a reading's its own (dir/baselines.tsv). */
 static cs_status baselines_path(const char *dir, char *out, size_t n)
 {
     const char *cut = strstr(dir, GENSENS_DIR);
-    if (!cut) return cs_err(CS_EINPUT, "%s: not under a generator-sensitivity/ folder", dir);
-    snprintf(out, n, "%.*s/paper-reading/main/baselines.tsv", (int)(cut - dir), dir);
+    if (cut) snprintf(out, n, "%.*s/paper-reading/main/baselines.tsv", (int)(cut - dir), dir);
+    else snprintf(out, n, "%s/baselines.tsv", dir);
     return CS_OK;
 }
 
