@@ -72,6 +72,6 @@ do for [fmt in "png pdf"] {
   set bmargin 4
   set lmargin 24
   plot $D using 1:2:(0.5):(0.5):($3 == $3 ? log($3) / log(2) : NaN) with boxxyerror fs solid 1.0 noborder fc palette, \
-       "" using 1:2:4 with labels font ",11" tc rgb "#111111"
+       "" using 1:2:4:(($3 == $3 && $3 > 4) ? 0xffffff : 0x111111) with labels font ",11" tc rgb variable
   unset output
 }
