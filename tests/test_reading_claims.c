@@ -330,6 +330,33 @@ static void training_choice_over_the_blind_level(void **st)
     claim_result r = eval("GenStandsJointBlind", src, "claim_gensens_joint_blind", "-");
     assert_int_equal(r.status, VERDICT_PENDING);
     assert_non_null(strstr(r.why, "s04_indep"));
+    /* a descriptive row reads the joint arm, whole, while the independent arm is still running */
+    claim_row pr;
+    row_of(&pr, "GenStandsJointBlind", src, "claim_gensens_joint_blind", "-", "%.6f");
+    snprintf(pr.kind, sizeof pr.kind, "probe");
+    claims_eval(&pr, &r);
+    assert_int_equal(r.status, VERDICT_PASS);
+    assert_non_null(strstr(r.where, "that arm whole"));
+    row_of(&pr, "GenStandsMainJoint", src, "claim_main_median", "-", "%.6f");
+    snprintf(pr.kind, sizeof pr.kind, "probe");
+    claims_eval(&pr, &r);
+    assert_int_equal(r.status, VERDICT_PASS);
+    ASSERT_EXACT(r.value, (err_of(2, 0, 0) + err_of(3, 0, 0)) / 2);
+    row_of(&pr, "GenStandsMainGeomRatio", src, "claim_main_geom_ratio", "-", "%.6f");
+    snprintf(pr.kind, sizeof pr.kind, "probe");
+    claims_eval(&pr, &r);
+    assert_int_equal(r.status, VERDICT_PASS);
+    row_of(&pr, "GenStandsIndepBlind", src, "claim_gensens_indep_blind", "-", "%.6f");
+    snprintf(pr.kind, sizeof pr.kind, "probe");
+    claims_eval(&pr, &r);
+    assert_int_equal(r.status, VERDICT_PENDING);
+    row_of(&pr, "GenStandsMainIndep", src, "claim_main_median", "-", "%.6f");
+    snprintf(pr.kind, sizeof pr.kind, "probe");
+    claims_eval(&pr, &r);
+    assert_int_equal(r.status, VERDICT_PENDING);
+    /* a measured row waits for the whole set */
+    r = eval("MainJoint", src, "claim_main_median", "-");
+    assert_int_equal(r.status, VERDICT_PENDING);
     write_unit(choice, 4, 1);
     const double blind = (0.6 + 0.8 + 0.95) / 3;
     const double want[2] = {(err_of(2, 0, 0) + err_of(3, 0, 0)) / 2 / blind, (err_of(2, 1, 0) + err_of(3, 1, 0)) / 2 / blind};

@@ -91,24 +91,38 @@ cs_status claim_design_main_epochs(const claim_row *row, claim_result *res)
     return gate_claim(row, res, "main.gate", "epochs", 1.0);
 }
 
-cs_status claim_design_train_spacings(const claim_row *row, claim_result *res)
+/* A list of spacings of gates/main.gate as text ("3.5, 4.5, ..."). */
+static cs_status spacings_text(claim_result *res, const char *key)
 {
     gate *g;
     cs_status st = claim_gate_load("main.gate", &g);
     if (st) return st;
     const double *v;
     size_t n;
-    st = gate_values(g, "train_spacings_m", &v, &n);
+    st = gate_values(g, key, &v, &n);
     if (!st) {
         size_t off = 0;
         res->text[0] = '\0';
         for (size_t i = 0; i < n; i++)
             off += (size_t)snprintf(res->text + off, sizeof res->text - off, "%s%.1f", i ? ", " : "", v[i]);
         res->value = v[0];
-        snprintf(res->where, sizeof res->where, PATHS_GATE("main") ":%d (train_spacings_m)", gate_line(g, "train_spacings_m"));
+        snprintf(res->where, sizeof res->where, PATHS_GATE("main") ":%d (%s)", gate_line(g, key), key);
     }
     gate_free(g);
     return st;
+}
+
+cs_status claim_design_train_spacings(const claim_row *row, claim_result *res)
+{
+    (void)row;
+    return spacings_text(res, "train_spacings_m");
+}
+
+/* The unseen spacings, a constant of the text given as its own macro. */
+cs_status claim_design_unseen_spacings(const claim_row *row, claim_result *res)
+{
+    (void)row;
+    return spacings_text(res, "unseen_spacings_m");
 }
 
 cs_status claim_design_calib_target(const claim_row *row, claim_result *res)

@@ -31,7 +31,7 @@
  * verdict: 3 indep shuffled, 4 joint rotated, 5 indep rotated
  * (present for every seed or for none). */
 #define NK 6
-typedef struct { int n; double v[NK][MAXSEED]; int has[NK]; } main_runs;
+typedef struct { int n; double v[NK][MAXSEED]; int has[NK]; int partial; } main_runs;
 
 static int run_kind(const char *arm, const char *probe)
 {
@@ -72,19 +72,39 @@ static cs_status load_units(const char *dir, mainruns *m, claim_result *res)
     return CS_OK;
 }
 
+/* A set not yet whole leaves res pending; the values of an arm whose every
+ * seed is frozen are kept all the same (r->partial), for the descriptive rows
+ * that read that arm alone (arm_whole). */
 static cs_status read_units(const char *dir, main_runs *r, claim_result *res)
 {
     static mainruns m;
     cs_status st = load_units(dir, &m, res);
-    if (st || res->status == VERDICT_PENDING) return st;
+    if (st) return st;
+    const int pending = res->status == VERDICT_PENDING;
     r->n = m.want;
+    r->partial = pending;
     for (int a = 0; a < 2; a++)
         for (int q = 0; q < 3; q++) {
             static const int k[3][2] = {{0, 1}, {2, 3}, {4, 5}};
-            r->has[k[q][a]] = m.has[a][q] > 0;
+            r->has[k[q][a]] = pending ? m.has[a][q] == m.want : m.has[a][q] > 0;
             memcpy(r->v[k[q][a]], m.err[a][q], sizeof r->v[0]);
         }
     return CS_OK;
+}
+
+/* Whether a claim may be computed from the kinds ka and kb (-1: none) of r:
+ * always for a whole set; for a set still pending only when the row is
+ * descriptive (kind probe: never gated, no interval) and those kinds' arm
+ * has every seed frozen, then computed and said so (design.md §8.2). */
+static int arm_whole(const claim_row *row, const main_runs *r, claim_result *res, int ka, int kb)
+{
+    if (res->status != VERDICT_PENDING) return 1;
+    if (!r->partial || strcmp(row->kind, "probe") || !r->has[ka] || (kb >= 0 && !r->has[kb])) return 0;
+    res->status = VERDICT_PASS;
+    res->why[0] = '\0';
+    size_t l = strlen(res->where);
+    snprintf(res->where + l, sizeof res->where - l, "; that arm whole, the other still running");
+    return 1;
 }
 
 static cs_status read_runs(const char *path, main_runs *r, claim_result *res)
@@ -183,8 +203,9 @@ cs_status claim_main_median(const claim_row *row, claim_result *res)
 {
     main_runs r;
     cs_status st = read_runs(row->source, &r, res);
-    if (st || res->status == VERDICT_PENDING) return st;
-    claim_set_value(row, res, med(strcmp(base_macro(row->macro), "MainJoint") ? r.v[1] : r.v[0], r.n));
+    const int k = strcmp(base_macro(row->macro), "MainJoint") ? 1 : 0;
+    if (st || !arm_whole(row, &r, res, k, -1)) return st;
+    claim_set_value(row, res, med(r.v[k], r.n));
     return CS_OK;
 }
 
@@ -196,7 +217,7 @@ cs_status claim_main_coupled(const claim_row *row, claim_result *res)
 {
     main_runs r;
     cs_status st = read_runs(row->source, &r, res);
-    if (st || res->status == VERDICT_PENDING) return st;
+    if (st || !arm_whole(row, &r, res, 0, 2)) return st;
     double thr;
     if ((st = gate_read_value(PATHS_GATE("main"), "shuffle_ratio_min", 0, &thr))) return st;
     if (!r.has[2]) return cs_err(CS_EINPUT, "%s: no shuffled rows for the joint arm", row->source);
@@ -245,7 +266,7 @@ cs_status claim_main_geom_ratio(const claim_row *row, claim_result *res)
 {
     main_runs r;
     cs_status st = read_runs(row->source, &r, res);
-    if (st || res->status == VERDICT_PENDING) return st;
+    if (st || !arm_whole(row, &r, res, 0, 2)) return st;
     double ratio = med(r.v[2], r.n) / med(r.v[0], r.n);
     claim_set_value(row, res, ratio);
     claim_judge(row, res, GATE_GE, ratio);
@@ -292,13 +313,14 @@ cs_status claim_main_probe(const claim_row *row, claim_result *res)
 {
     main_runs r;
     cs_status st = read_runs(row->source, &r, res);
-    if (st || res->status == VERDICT_PENDING) return st;
+    if (st) return st;
     static const struct { const char *macro; int k, ratio_of; } map[] = {
         {"MainShufJoint", 2, -1}, {"MainShufIndep", 3, -1}, {"MainGeomRatioIndep", 3, 1},
         {"MainRotJoint", 4, -1}, {"MainRotIndep", 5, -1}, {"MainRotRatio", 4, 0}, {"MainRotRatioIndep", 5, 1},
     };
     for (size_t i = 0; i < sizeof map / sizeof *map; i++) {
         if (strcmp(base_macro(row->macro), map[i].macro)) continue;
+        if (!arm_whole(row, &r, res, map[i].k, map[i].ratio_of)) return CS_OK;
         if (!r.has[map[i].k]) return cs_err(CS_EINPUT, "%s: no %s rows (runs made without the probes)", row->source, kind_name(map[i].k));
         double v = med(r.v[map[i].k], r.n);
         if (map[i].ratio_of >= 0) v /= med(r.v[map[i].ratio_of], r.n);

@@ -11,7 +11,8 @@
  * that reading's: <root>/paper-reading/main/baselines.tsv beside the choice's
  * <root>/generator-sensitivity/ (frozen/ in the registry); the same functions
  * give a reading's own arms over its own baselines. Descriptive: never
- * gated. Pending, naming the missing units, until a choice's set is whole. */
+ * gated. Pending, naming the missing units, until the arm a claim reads has
+ * every seed frozen. */
 #include "claims.h"
 #include "mainruns.h"
 #include "stats.h"
@@ -67,7 +68,9 @@ static cs_status over_blind(const claim_row *row, claim_result *res, int a)
     cs_status st = mainruns_wanted(dir, &want);
     if (!st) st = mainruns_load(dir, want, &m);
     if (st) return st;
-    if (m.nmissing) {
+    /* a descriptive row reads its arm once that arm is whole (design.md §8.2) */
+    const int arm_only = m.nmissing && !strcmp(row->kind, "probe") && m.has[a][0] == m.want;
+    if (m.nmissing && !arm_only) {
         mainruns_pending_text(&m, dir, res->why, sizeof res->why);
         res->status = VERDICT_PENDING;
         return CS_OK;
@@ -78,6 +81,10 @@ static cs_status over_blind(const claim_row *row, claim_result *res, int a)
     if ((st = stats_median(m.err[a][0], (size_t)m.want, &med))) return st;
     snprintf(res->where, sizeof res->where, "%.200s/run_s*_*.tsv (%d seeds, %s arm) over %.200s (direction_blind_w1, unseen)", dir, m.want,
              a ? "indep" : "joint", base);
+    if (arm_only) {
+        size_t l = strlen(res->where);
+        snprintf(res->where + l, sizeof res->where - l, "; that arm whole, the other still running");
+    }
     claim_set_value(row, res, med / blind);
     return CS_OK;
 }
