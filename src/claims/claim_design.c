@@ -170,3 +170,20 @@ cs_status claim_design_pc_spacing(const claim_row *row, claim_result *res)
     claim_set_value(row, res, v);
     return CS_OK;
 }
+
+/* The extrapolation spacings (E4), each a constant of the text given as its own macro. */
+cs_status claim_design_extrap_spacing_low(const claim_row *row, claim_result *res)
+{
+    double v;
+    cs_status st = gate_get(res, "extrapolation.gate", "spacings_m", 0, &v, NULL);
+    if (!st) claim_set_value(row, res, v);
+    return st;
+}
+
+cs_status claim_design_extrap_spacing_high(const claim_row *row, claim_result *res)
+{
+    double v;
+    cs_status st = gate_get(res, "extrapolation.gate", "spacings_m", 1, &v, NULL);
+    if (!st) claim_set_value(row, res, v);
+    return st;
+}
