@@ -322,7 +322,7 @@ static void training_choice_over_the_blind_level(void **st)
     const char *dir = fixture("reading_claims_gensens", 1);
     char root[800], choice[900], cmd[1000], src[1000];
     snprintf(root, sizeof root, "%.*s", (int)(strlen(dir) - strlen("/paper-reading/main")), dir);
-    snprintf(choice, sizeof choice, "%s/generator-sensitivity/stands-48/main", root);
+    snprintf(choice, sizeof choice, "%s/generator-sensitivity/stands-x4/main", root);
     snprintf(cmd, sizeof cmd, "mkdir -p '%s'", choice);
     assert_int_equal(system(cmd), 0);
     for (int s = 1; s <= 4; s++) { write_unit(choice, s, 0); if (s < 4) write_unit(choice, s, 1); }

@@ -22,6 +22,16 @@ else
 READING_NSEEDS := 4
 endif
 READING_SEED_LIST := $(shell seq -f '%02g' 1 $(READING_NSEEDS))
+# the generator sensitivity (design.md §8.2): four times the plan's training
+# stands per spacing and four times its epochs, at either scale (full: 12 and
+# 300; smoke: 1 and 4); width, blocks and learning rate are the same at both
+ifeq ($(SCALE),smoke)
+GENSENS_STANDS := 4
+GENSENS_EPOCHS := 16
+else
+GENSENS_STANDS := 48
+GENSENS_EPOCHS := 1200
+endif
 
 # E1, E2, E8, E9 (teacher): 8 stands per cell at full scale, 1 at smoke scale.
 ifeq ($(SCALE),smoke)
