@@ -45,13 +45,13 @@ static cs_status probe_mean(const char *path, probekind k, double *out)
     return st;
 }
 
-/* The ratio claim of probe k over a reading's unit set. */
-static cs_status reading_ratio(const claim_row *row, claim_result *res, probekind k)
+/* The ratio of probe k over a reading's unit set of seeds 1..want. */
+static cs_status ratio_over(const claim_row *row, claim_result *res, probekind k, int want)
 {
     const char *star = strstr(row->source, "_s*_");
     if (!star) return cs_err(CS_EINPUT, "%s: the source must be a unit set <dir>/probes_s*_<arm>.tsv", row->source);
-    const int want = MAINRUNS_READING_SEEDS;
-    double pr[MAINRUNS_READING_SEEDS], un[MAINRUNS_READING_SEEDS];
+    if (want < 1 || want > MAINRUNS_MAXSEED) return cs_err(CS_EUSAGE, "%s: %d seeds (1..%d)", row->source, want, MAINRUNS_MAXSEED);
+    double pr[MAINRUNS_MAXSEED], un[MAINRUNS_MAXSEED];
     char missing[256] = "";
     int nmiss = 0;
     cs_status st = CS_OK;
@@ -76,6 +76,12 @@ static cs_status reading_ratio(const claim_row *row, claim_result *res, probekin
     snprintf(res->where, sizeof res->where, "%.300s (%d seeds; median %s error over median unprobed error)", row->source, want, probekind_name(k));
     claim_set_value(row, res, mp / mu);
     return CS_OK;
+}
+
+/* The ratio claim of probe k: the design's seeds of a descriptive reading. */
+static cs_status reading_ratio(const claim_row *row, claim_result *res, probekind k)
+{
+    return ratio_over(row, res, k, MAINRUNS_READING_SEEDS);
 }
 
 /* The teacher's own crowns under probe k: mean W1 over the unseen spacings. */
@@ -105,7 +111,7 @@ cs_status claim_probe_teacher_nnswap(const claim_row *row, claim_result *res) { 
 
 static const char *const SUM_READINGS[] = {"paper", "paper-fourier", "plain", "pair"};
 
-cs_status claim_probe_summary_write(const char *root, const char *out, int argc, char **argv)
+cs_status claim_probe_summary_write(const char *root, const char *out, int seeds, int argc, char **argv)
 {
     tsv_writer *w;
     cs_status st = tsv_writer_open(&w, out);
@@ -116,7 +122,7 @@ cs_status claim_probe_summary_write(const char *root, const char *out, int argc,
     pv.worst_overlap_m = -1;
     if ((st = prov_write(w, &pv))) { tsv_writer_abort(w); return st; }
     tsv_writer_meta(w, "what", "per reading, arm and probe: the median over seeds 1-%d of the mean W1 over the unseen spacings under the probe, over the same without it "
-                    "(the Probe* claims, design.md §8.4); 1 = the reading does not use what the probe removes", MAINRUNS_READING_SEEDS);
+                    "(the Probe* claims, design.md §8.4); 1 = the reading does not use what the probe removes", seeds);
     tsv_writer_columns(w, "reading\tarm\tprobe\tratio");
     for (size_t r = 0; r < sizeof SUM_READINGS / sizeof *SUM_READINGS && !st; r++)
         for (int a = 0; a < 2 && !st; a++)
@@ -128,7 +134,7 @@ cs_status claim_probe_summary_write(const char *root, const char *out, int argc,
                 claim_result res;
                 memset(&res, 0, sizeof res);
                 res.status = VERDICT_PASS;
-                if ((st = reading_ratio(&row, &res, (probekind)k))) break;
+                if ((st = ratio_over(&row, &res, (probekind)k, seeds))) break;
                 if (res.status != VERDICT_PASS) { st = cs_err(CS_EINPUT, "%s", res.why); break; }
                 tsv_writer_str(w, SUM_READINGS[r]);
                 tsv_writer_str(w, a ? "indep" : "joint");

@@ -5,9 +5,9 @@
 #include "cs.h"
 
 /* <root>/generator-probes/<reading>/probes_s*_<arm>.tsv of every reading,
- * arm and probe gathered into the table `out` (reading, arm, probe, ratio),
- * with provenance, atomically; CS_EINPUT when a reading's seeds are not all
- * there. */
-cs_status claim_probe_summary_write(const char *root, const char *out, int argc, char **argv);
+ * arm, probe and seed 1..seeds gathered into the table `out` (reading, arm,
+ * probe, ratio), with provenance, atomically; CS_EINPUT when a reading's
+ * seeds are not all there. */
+cs_status claim_probe_summary_write(const char *root, const char *out, int seeds, int argc, char **argv);
 
 #endif

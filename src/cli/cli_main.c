@@ -267,16 +267,18 @@ int cli_generator_probes_run(int argc, char **argv)
 int cli_generator_probes_summary(int argc, char **argv)
 {
     const char *dir = NULL, *out = NULL;
+    long seeds = 4;
     const opt_spec spec[] = {
         {"dir", OPT_STR, &dir, 0, 0, "results or frozen root holding generator-probes/", .required = 1},
+        {"seeds", OPT_LONG, &seeds, 1, 64, "seeds 1..N of every reading (default 4, the design's; smoke: 1)"},
         {"out", OPT_STR, &out, 0, 0, "table FILE.tsv, e.g. DIR/generator-probes/summary.tsv", .required = 1},
     };
-    const opts_cmd c = {"generator-probes-summary", "--dir DIR --out FILE.tsv",
+    const opts_cmd c = {"generator-probes-summary", "--dir DIR --out FILE.tsv [--seeds N]",
                         "What each generator reading uses: per reading, arm and probe, the median error under the probe\n"
                         "over the median error without it (seeds 1-4), from the probe tables under DIR/generator-probes/.",
                         spec, sizeof spec / sizeof *spec, 0, 0};
     int r = opts_parse(&c, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
-    cs_status st = claim_probe_summary_write(dir, out, argc, argv);
+    cs_status st = claim_probe_summary_write(dir, out, (int)seeds, argc, argv);
     return st ? cli_fail("generator-probes-summary", st) : 0;
 }
