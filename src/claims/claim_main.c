@@ -172,7 +172,7 @@ static double med(const double *x, int n)
 /* source: the row's source (a reading's main/ or extrapolation/ table, whose
  * baselines.tsv is read), or a baselines table itself (a sensitivity run's,
  * design.md §7 E0). */
-static cs_status read_baseline(const char *source, const char *col, const char *split, double d_only, double *out, char *where, size_t wn)
+cs_status claim_main_baseline_mean(const char *source, const char *col, const char *split, double d_only, double *out, char *where, size_t wn)
 {
     char path[200];
     size_t ls = strlen(source), lb = strlen("baselines.tsv");
@@ -276,7 +276,7 @@ cs_status claim_main_geom_ratio(const claim_row *row, claim_result *res)
 cs_status claim_main_noise(const claim_row *row, claim_result *res)
 {
     double v;
-    cs_status st = read_baseline(row->source, "noise_floor_w1", "unseen", 0, &v, res->where, sizeof res->where);
+    cs_status st = claim_main_baseline_mean(row->source, "noise_floor_w1", "unseen", 0, &v, res->where, sizeof res->where);
     if (st) return st;
     claim_set_value(row, res, v);
     return CS_OK;
@@ -285,7 +285,7 @@ cs_status claim_main_noise(const claim_row *row, claim_result *res)
 cs_status claim_main_iso(const claim_row *row, claim_result *res)
 {
     double v;
-    cs_status st = read_baseline(row->source, "direction_blind_w1", "unseen", 0, &v, res->where, sizeof res->where);
+    cs_status st = claim_main_baseline_mean(row->source, "direction_blind_w1", "unseen", 0, &v, res->where, sizeof res->where);
     if (st) return st;
     claim_set_value(row, res, v);
     /* precondition: m_J <= 0.5 x direction-blind error (needs the runs) */
@@ -336,7 +336,7 @@ cs_status claim_main_teach_probe(const claim_row *row, claim_result *res)
 {
     double v;
     const char *col = strstr(row->macro, "Rot") ? "teacher_rotated_w1" : "teacher_shuffled_w1";
-    cs_status st = read_baseline(row->source, col, "unseen", 0, &v, res->where, sizeof res->where);
+    cs_status st = claim_main_baseline_mean(row->source, col, "unseen", 0, &v, res->where, sizeof res->where);
     if (st) return st;
     claim_set_value(row, res, v);
     return CS_OK;
@@ -427,7 +427,7 @@ cs_status claim_main_sofar(const claim_row *row, claim_result *res)
     else if (!strcmp(what, "RotRatio")) claim_set_value(row, res, med(ro, n) / mj);
     else if (!strcmp(what, "IsoRatio")) {
         double blind;
-        if ((st = read_baseline(row->source, "direction_blind_w1", "unseen", 0, &blind, NULL, 0))) return st;
+        if ((st = claim_main_baseline_mean(row->source, "direction_blind_w1", "unseen", 0, &blind, NULL, 0))) return st;
         claim_set_value(row, res, mj / blind);
     } else return cs_err(CS_EINPUT, "claim_main_sofar: no quantity named %s", row->macro);
     return CS_OK;
@@ -502,7 +502,7 @@ cs_status claim_extrap_rel(const claim_row *row, claim_result *res)
     claim_judge(row, res, GATE_GE, rel);
     /* judged per spacing, together with: the joint arm below the direction-blind error there */
     double blind;
-    if ((st = read_baseline(row->source, "direction_blind_w1", "extrap", want, &blind, NULL, 0))) {
+    if ((st = claim_main_baseline_mean(row->source, "direction_blind_w1", "extrap", want, &blind, NULL, 0))) {
         char bp[200];
         reading_path(row->source, "baselines.tsv", bp, sizeof bp);
         res->gate = VERDICT_PENDING;

@@ -69,6 +69,12 @@ const char *const *claims_fn_names(void);
 /* Evaluate one row (never fails: errors become FAIL with the message in why). */
 void claims_eval(const claim_row *row, claim_result *res);
 
+/* Mean over the rows of split (and, d_only > 0, that spacing) of column col
+ * of a reading's baselines: source is the table itself (…/baselines.tsv) or a
+ * reading's main/ or extrapolation/ table, whose main/baselines.tsv is read
+ * (claim_main.c). `where` (may be NULL) names the table and column. */
+cs_status claim_main_baseline_mean(const char *source, const char *col, const char *split, double d_only, double *out, char *where, size_t wn);
+
 /* Helpers for computing functions. */
 void claim_set_value(const claim_row *row, claim_result *res, double v);
 void claim_pending(claim_result *res, const char *fmt, ...) __attribute__((format(printf, 2, 3)));

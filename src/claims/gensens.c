@@ -16,7 +16,6 @@
 #include "claims.h"
 #include "mainruns.h"
 #include "stats.h"
-#include "tsv.h"
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -32,29 +31,6 @@ static cs_status baselines_path(const char *dir, char *out, size_t n)
     if (cut) snprintf(out, n, "%.*s/paper-reading/main/baselines.tsv", (int)(cut - dir), dir);
     else snprintf(out, n, "%s/baselines.tsv", dir);
     return CS_OK;
-}
-
-/* Mean over the unseen spacings of the direction-blind W1 of table path. */
-static cs_status blind_level(const char *path, double *out)
-{
-    tsv *t;
-    cs_status st = tsv_read(path, &t);
-    if (st) return st;
-    double s = 0;
-    int n = 0;
-    for (size_t i = 0; i < tsv_nrows(t) && !st; i++) {
-        const char *sp = tsv_str(t, i, "split");
-        double v;
-        if (!sp) { st = cs_err(CS_EINPUT, "%s:%d: field 'split' missing", path, tsv_line(t, i)); break; }
-        if (strcmp(sp, "unseen")) continue;
-        if ((st = tsv_double(t, i, "direction_blind_w1", &v))) break;
-        s += v;
-        n++;
-    }
-    tsv_free(t);
-    if (!st && !n) st = cs_err(CS_EINPUT, "%s: no unseen rows", path);
-    if (!st) *out = s / n;
-    return st;
 }
 
 /* Median over seeds of arm a's error (0 joint, 1 indep) over the blind level. */
@@ -77,7 +53,7 @@ static cs_status over_blind(const claim_row *row, claim_result *res, int a)
     }
     char base[400];
     double blind, med;
-    if ((st = baselines_path(dir, base, sizeof base)) || (st = blind_level(base, &blind))) return st;
+    if ((st = baselines_path(dir, base, sizeof base)) || (st = claim_main_baseline_mean(base, "direction_blind_w1", "unseen", 0, &blind, NULL, 0))) return st;
     if ((st = stats_median(m.err[a][0], (size_t)m.want, &med))) return st;
     snprintf(res->where, sizeof res->where, "%.200s/run_s*_*.tsv (%d seeds, %s arm) over %.200s (direction_blind_w1, unseen)", dir, m.want,
              a ? "indep" : "joint", base);
