@@ -104,6 +104,13 @@ check: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS) $(ASAN_TESTS) $(SPLIT)
 	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/manifest.sh tests/citation.sh tests/docs.sh tests/readings_full.sh -- $(ASAN_TESTS)
 
+# One claim's test alone, by its macro: make test-claim MACRO=MainRel
+.PHONY: test-claim
+test-claim: deps
+	@test -n "$(MACRO)" || { echo "make test-claim: give MACRO=<claim macro>, e.g. MACRO=MainRel" >&2; exit 2; }
+	@$(MAKE) --no-print-directory $(B)/tests/test_claims
+	@$(B)/tests/test_claims '$(MACRO)' 2>&1
+
 check-fast: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS)
 	@bash tests/run.sh $(TESTS) tests/layout.sh tests/citation.sh

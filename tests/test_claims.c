@@ -48,12 +48,24 @@ static void frozen_samples_give_every_w1(void **state)
     assert_int_equal(n, 12 * 2 * 5 * 3 + 5 * 4);
 }
 
-int main(void)
+/* `test_claims MACRO` (or `make test-claim MACRO=...`) runs that claim's test
+ * alone, named claim_MACRO as in audit/claims.tsv's test column. */
+int main(int argc, char **argv)
 {
     claims c;
+    char filter[96];
+    if (argc > 1) {
+        snprintf(filter, sizeof filter, "claim_%s", argv[1]);
+        cmocka_set_test_filter(filter);
+    }
     if (claims_load("audit/claims.tsv", &c) != CS_OK) { fprintf(stderr, "%s\n", cs_errmsg()); return 1; }
     if (numbers_read("paper/numbers.tex", &g_nt) != CS_OK) { fprintf(stderr, "%s\n", cs_errmsg()); return 1; }
     if (interval_table_load(PATHS_INTERVALS, &g_it) != CS_OK) { fprintf(stderr, "%s\n", cs_errmsg()); return 1; }
+    if (argc > 1) {
+        size_t k = 0;
+        while (k < c.n && strcmp(c.rows[k].macro, argv[1])) k++;
+        if (k == c.n) { fprintf(stderr, "test_claims: no claim %s in audit/claims.tsv\n", argv[1]); return 1; }
+    }
     struct CMUnitTest *t = calloc(c.n + 1, sizeof *t);
     char (*names)[80] = calloc(c.n, sizeof *names);
     for (size_t i = 0; i < c.n; i++) {

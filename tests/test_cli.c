@@ -90,6 +90,30 @@ static void test_trace_unknown_macro_exit_3(void **s)
     assert_non_null(strstr(out, "gates/main.gate"));
 }
 
+/* trace names the command that runs a claim's test alone, and that command
+ * runs exactly that one test (built by make check before any test runs) */
+static void test_claim_test_runs_alone_by_name(void **s)
+{
+    (void)s;
+    assert_int_equal(run("trace MainRel", out, sizeof out), 0);
+    assert_non_null(strstr(out, "make test-claim MACRO=MainRel"));
+    FILE *p = popen("build/tests/test_claims MainRel 2>&1", "r");
+    assert_non_null(p);
+    size_t got = fread(out, 1, sizeof out - 1, p);
+    out[got] = '\0';
+    int st = pclose(p);
+    if (!WIFEXITED(st) || WEXITSTATUS(st) != 0) fail_msg("test_claims MainRel: status %d: %s", st, out);
+    assert_non_null(strstr(out, "[       OK ] claim_MainRel"));
+    assert_non_null(strstr(out, "1 test(s) run."));
+    p = popen("build/tests/test_claims NoSuchMacro 2>&1", "r");
+    assert_non_null(p);
+    got = fread(out, 1, sizeof out - 1, p);
+    out[got] = '\0';
+    st = pclose(p);
+    assert_true(WIFEXITED(st) && WEXITSTATUS(st) == 1);
+    assert_non_null(strstr(out, "no claim NoSuchMacro"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -101,6 +125,7 @@ int main(void)
         cmocka_unit_test(test_missing_file_exit_3),
         cmocka_unit_test(test_shipped_gates_parse),
         cmocka_unit_test(test_trace_unknown_macro_exit_3),
+        cmocka_unit_test(test_claim_test_runs_alone_by_name),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

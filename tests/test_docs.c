@@ -111,6 +111,30 @@ static void test_stale_marker_and_block_fail_and_refresh(void **state)
     assert_non_null(strstr(out, "claim: MainJoint"));
 }
 
+/* the findings show a gated claim as its gate judged it: a ratio formed from
+ * the shown value is printed beside it; a percent of the judged fraction is not */
+static void test_findings_show_the_judged_quantity(void **state)
+{
+    setup_claims();
+    snprintf(rows[0].format, sizeof rows[0].format, "%%.1f");
+    res[0].has_observed = 1;
+    res[0].gate_observed = 0.913;
+    snprintf(res[0].gate_detail, sizeof res[0].gate_detail, "0.913 >= 0.2");
+    const char *d = tu_tmpdir("docs_judged");
+    char p[600];
+    snprintf(p, sizeof p, "%s/page.md", d);
+    tu_write(p, "<!-- findings -->\n<!-- /findings -->\n");
+    char *fresh;
+    assert_int_equal(docs_render(p, &C, res, &fresh), CS_OK);
+    if (!strstr(fresh, "`MainRel` 91.3 / 53.6 |")) fail_msg("percent of the judged fraction annotated: %s", fresh);
+    free(fresh);
+    res[0].gate_observed = 0.521288;
+    snprintf(res[0].gate_detail, sizeof res[0].gate_detail, "0.521288 <= 0.5; joint 0.41 < direction-blind 0.79");
+    assert_int_equal(docs_render(p, &C, res, &fresh), CS_OK);
+    if (!strstr(fresh, "`MainRel` 91.3 (judged 0.521 <= 0.5) / 53.6 |")) fail_msg("judged ratio not shown: %s", fresh);
+    free(fresh);
+}
+
 static void test_unknown_marker_exemption_and_link_fail(void **state)
 {
     setup_claims();
@@ -136,6 +160,7 @@ int main(void)
         cmocka_unit_test(test_typed_number_fails_naming_line),
         cmocka_unit_test(test_stale_marker_and_block_fail_and_refresh),
         cmocka_unit_test(test_unknown_marker_exemption_and_link_fail),
+        cmocka_unit_test(test_findings_show_the_judged_quantity),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -78,6 +78,23 @@ static int judged(const claim_row *row, const claim_result *r)
     return r->gate == VERDICT_PASS ? 0 : r->gate == VERDICT_FAIL ? 1 : 2;
 }
 
+/* Where the gate judges another quantity than the one shown (a ratio formed
+ * from the shown value): " (gate: <quantity> <op> <threshold>)", from the
+ * gate's own detail; "" where the shown value is what the gate judged. */
+static void gate_judged_text(const claim_row *row, const claim_result *r, char *buf, size_t n)
+{
+    buf[0] = '\0';
+    if (r->status != VERDICT_PASS || !r->has_observed || !isfinite(r->gate_observed) || !strcmp(row->format, "text")) return;
+    char t[64];
+    snprintf(t, sizeof t, row->format, r->gate_observed);
+    if (!strcmp(t, r->text) || fabs(r->gate_observed * 100 - r->value) <= 1e-9 * fabs(r->value)) return;
+    /* the detail reads "<observed> <op> <threshold>[ (...)|; ...]": keep op and threshold */
+    const char *op = strchr(r->gate_detail, ' ');
+    size_t len = op ? strcspn(op, "(;") : 0;
+    while (len && op[len - 1] == ' ') len--;
+    snprintf(buf, n, " (judged %.3g%.*s)", r->gate_observed, (int)len, op ? op : "");
+}
+
 /* One table row per gate file: the gated claims of kind ext (0: the
  * reference paper's, 1: the extension's) with our value beside the paper's. */
 static void findings_rows(sbuf *b, const claims *c, const claim_result *res, int ext)
@@ -95,8 +112,10 @@ static void findings_rows(sbuf *b, const claims *c, const claim_result *res, int
         for (size_t j = i; j < c->n; j++) {
             if (claims_is_extension(&c->rows[j]) != ext || strncmp(c->rows[j].gate, g, gl) || c->rows[j].gate[gl] != ':') continue;
             k[judged(&c->rows[j], &res[j])]++;
-            sb_printf(&cl, "%s`%s` %s%s / %s", cl.n ? "; " : "", c->rows[j].macro, res[j].status == VERDICT_PASS ? res[j].text : "pending",
-                      res[j].status == VERDICT_PASS && superseded(&c->rows[j]) ? " (superseded reading)" : "", c->rows[j].reference);
+            char judged_as[96];
+            gate_judged_text(&c->rows[j], &res[j], judged_as, sizeof judged_as);
+            sb_printf(&cl, "%s`%s` %s%s%s / %s", cl.n ? "; " : "", c->rows[j].macro, res[j].status == VERDICT_PASS ? res[j].text : "pending",
+                      judged_as, res[j].status == VERDICT_PASS && superseded(&c->rows[j]) ? " (superseded reading)" : "", c->rows[j].reference);
         }
         sb_printf(b, "| `" PATHS_GATES_DIR "/%.*s`%s | %zu | %zu | %zu | %s |\n", (int)gl, g, ext ? " (pair)" : "", k[0], k[1], k[2], cl.err ? "(out of memory)" : cl.s ? cl.s : "");
         free(cl.s);
@@ -123,11 +142,11 @@ static void findings(sbuf *b, const claims *c, const claim_result *res)
         agree_count(&at, c, res, ci, &ak);
         attrib_free(&at);
     }
-    sb_printf(b, "The reference paper's gated claims (E3/E4: its generator as written), judged by the preregistered gates: "
+    sb_printf(b, "Gates (does our value meet the paper's preregistered threshold?) on the reference paper's claims: "
                  "**%zu reproduced, %zu not reproduced, %zu pending** (pending: data not on this machine, or units still running%s). "
                  "The pair extension, same thresholds (rows marked pair): %zu meet, %zu do not, %zu pending. "
-                 "Against our 95 %% intervals (`crownshy report`): %zu inside, %zu reached by a reading or choice, "
-                 "%zu unexplained, %zu without one.\n\n", k[0], k[1], k[2],
+                 "Agreement (is the paper's value inside our 95 %% interval? `crownshy report`): %zu inside, %zu reached by a reading or choice, "
+                 "%zu unexplained, %zu without an interval. A claim can meet its gate and still disagree.\n\n", k[0], k[1], k[2],
               sup ? ", or a table made by a superseded reading of the pinned code, until its unit is re-run" : "", ke[0], ke[1], ke[2],
               ak.inside, ak.reached, ak.unexplained, ak.nointerval);
     sb_printf(b, "| gate | reproduced | not reproduced | pending | claims: ours / paper |\n|---|---|---|---|---|\n");

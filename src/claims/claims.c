@@ -238,6 +238,8 @@ void claim_judge(const claim_row *row, claim_result *res, gate_op op, double obs
         return;
     }
     res->gate = gate_judge(op, observed, lo, hi);
+    res->gate_observed = observed;
+    res->has_observed = op != GATE_TRUE;
     if (op == GATE_IN || op == GATE_OUT)
         snprintf(res->gate_detail, sizeof res->gate_detail, "%.6g %s [%g, %g]", observed, gate_op_text(op), lo, hi);
     else if (op == GATE_TRUE)

@@ -29,6 +29,8 @@ typedef struct {
     char where[512];     /* frozen file (and line) the value came from */
     verdict gate;        /* verdict of the row's gate; PENDING when no gate or not judgeable */
     char gate_detail[256];
+    double gate_observed; /* the quantity the gate judged, when has_observed */
+    int has_observed;     /* 1 once a gate with a threshold judged gate_observed */
     cs_status err;       /* status FAIL from the computing function's error: its kind (CS_OK otherwise) */
 } claim_result;
 

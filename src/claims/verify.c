@@ -479,7 +479,7 @@ cs_status verify_trace(const char *macro)
     printf("gate         %s%s%s%s\n", row->gate, strcmp(row->gate, "-") ? " -> " : "", strcmp(row->gate, "-") ? verdict_name(r.gate) : "",
            r.gate_detail[0] ? "" : "");
     if (r.gate_detail[0]) printf("gate detail  %s\n", r.gate_detail);
-    printf("test         %s\n", row->test);
+    printf("test         %s (alone: make test-claim MACRO=%s)\n", row->test, row->macro);
     printf("section      %s of the reference paper (reference value %s)\n", row->section, row->reference);
     printf("registry     %s:%d\n", PATHS_CLAIMS, row->line);
     if (have) numbers_free(&nt);
