@@ -102,7 +102,7 @@ $(SPLIT): tests/bench/step_split.c $(B)/libcrownshy.a
 # Every cmocka binary, then all of them again under ASan+UBSan; one aggregate line.
 check: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS) $(ASAN_TESTS) $(SPLIT)
-	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/manifest.sh tests/citation.sh tests/docs.sh tests/readings_full.sh -- $(ASAN_TESTS)
+	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/manifest.sh tests/citation.sh tests/paper_deps.sh tests/docs.sh tests/readings_full.sh -- $(ASAN_TESTS)
 
 # One claim's test alone, by its macro: make test-claim MACRO=MainRel
 .PHONY: test-claim
@@ -264,17 +264,19 @@ dist:
 	(cd $(B)/dist && sha256sum $(DIST).tar.gz | tee $(DIST).tar.gz.sha256)
 
 # ---- the write-up -------------------------------------------------------------
+# pdflatex and every package paper/main.tex loads: installed as root, else named (src/cli/paper_deps.sh)
 deps-paper:
-	@if command -v pdflatex >/dev/null; then exit 0; fi; \
-	if [ "$$(id -u)" = 0 ]; then export DEBIAN_FRONTEND=noninteractive; apt-get update -q >/dev/null && apt-get install -y -q --no-install-recommends \
-	  texlive-latex-base texlive-latex-recommended texlive-latex-extra texlive-fonts-recommended >/dev/null; \
-	else echo "deps-paper: run: sudo apt-get update && sudo apt-get install -y texlive-latex-base texlive-latex-recommended texlive-latex-extra texlive-fonts-recommended" >&2; exit 1; fi
+	@bash src/cli/paper_deps.sh paper/main.tex
 
-paper: $(CLI)
+paper: $(CLI) deps-paper
 	@$(CLI) figures >/dev/null || { echo "paper: a figure failed to draw (make figures)" >&2; exit 1; }
 	@$(CLI) numbers --check >/dev/null || { echo "paper: paper/numbers.tex is stale; run make numbers" >&2; exit 1; }
-	@if ! command -v pdflatex >/dev/null; then echo "paper: pdflatex not installed; run make deps-paper (Debian texlive packages)" >&2; exit 1; fi
-	@cd paper && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null && echo "paper: wrote paper/main.pdf"
+	@cd paper && for pass in 1 2; do \
+	  pdflatex -interaction=nonstopmode -halt-on-error main.tex >/dev/null || { \
+	    echo "paper: pdflatex failed (paper/main.log):" >&2; grep -A3 '^!' main.log | head -12 >&2; exit 1; }; done; \
+	if grep -q 'Float too large\|^Overfull' main.log; then \
+	  echo "paper: paper/main.pdf overflows its page (paper/main.log):" >&2; grep 'Float too large\|^Overfull' main.log >&2; exit 1; fi; \
+	echo "paper: wrote paper/main.pdf (no float or line overflows its page)"
 
 # ---- fuzzing (design.md §11): libFuzzer on the parsers, FUZZ_SECONDS each ---------
 # Needs clang with libFuzzer (Debian: clang, libclang-rt-14-dev); built with -DNN_NO_CLONES

@@ -268,7 +268,7 @@ cs_status agree_write_comparison(const char *path, const claims *c, const claim_
                "%% beyond 10 %%: which run reading (frozen/readings/) or unstated choice (frozen/sensitivity/) reaches the\n"
                "%% reference value (src/claims/attrib.c), or unexplained; untested: no reading or choice varies it.\n"
                "%% 95 %% interval and agreement: design.md section 6.1 (src/claims/interval.c, agree.c).\n"
-               "\\begin{longtable}{llrrrrllp{4.6cm}l}\n\\toprule\n"
+               "\\begin{longtable}{llrrrrllp{4.0cm}l}\n\\toprule\n"
                "claim & kind & reference & ours & 95\\,\\%% interval & rel.\\ diff & gate & status & beyond 10\\,\\%%: reached by & agreement\\\\\n\\midrule\n\\endhead\n");
     for (size_t i = 0; i < c->n; i++) {
         char ref[160], ours[192], name[96], by[300];
