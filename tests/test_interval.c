@@ -363,6 +363,106 @@ static void test_reached_keeps_the_experiment_in_agreement(void **s)
     assert_int_equal(a.kind, AGREE_REACHED);
 }
 
+/* A number outside agreement today may not be moved further from the
+ * paper's value by the alternative that reaches another (attrib_reached):
+ * Other 2.0 in [1.9, 2.1], paper 2.5 (outside); crown_R 3 moves it to 1.6
+ * (further off: Toy not reached), crown_R 5 to 2.3 (closer: reached). */
+static void test_reached_moves_no_other_number_further_off(void **s)
+{
+    (void)s;
+    claims c = {0};
+    claim_row rows[2];
+    memset(rows, 0, sizeof rows);
+    static const char *mac[2] = {"Toy", "Other"}, *ref[2] = {"1.00", "2.5"};
+    for (int i = 0; i < 2; i++) {
+        snprintf(rows[i].macro, sizeof rows[i].macro, "%s", mac[i]);
+        snprintf(rows[i].kind, sizeof rows[i].kind, "measured");
+        snprintf(rows[i].reference, sizeof rows[i].reference, "%s", ref[i]);
+        snprintf(rows[i].format, sizeof rows[i].format, "%%.2f");
+        snprintf(rows[i].source, sizeof rows[i].source, "nowhere/x.tsv");
+        snprintf(rows[i].section, sizeof rows[i].section, "3.2");
+    }
+    c.rows = rows;
+    c.n = 2;
+    claim_result res[2] = {{0}};
+    res[0].status = res[1].status = VERDICT_PASS;
+    res[0].value = 1.5;
+    res[1].value = 2.0;
+    claim_interval ci[2] = {{0}};
+    ci[0].has = ci[1].has = 1;
+    ci[0].lo = 1.2; ci[0].hi = 1.6;
+    ci[1].lo = 1.9; ci[1].hi = 2.1;
+    attrib_value v[6];
+    memset(v, 0, sizeof v);
+    static const struct { const char *q, *u; double x, val; } in[6] = {
+        {"Toy", "centre", NAN, 1.5}, {"Other", "centre", NAN, 2.0}, {"Toy", "crown_R", 3, 1.1}, {"Other", "crown_R", 3, 1.6},
+        {"Toy", "crown_R", 5, 1.1}, {"Other", "crown_R", 5, 2.3}};
+    for (int i = 0; i < 6; i++) {
+        snprintf(v[i].quantity, sizeof v[i].quantity, "%s", in[i].q);
+        snprintf(v[i].unit, sizeof v[i].unit, "%s", in[i].u);
+        v[i].x = in[i].x;
+        v[i].value = in[i].val;
+        v[i].sens = 1;
+    }
+    agree_result a;
+    attrib_data d = {v, 4, 0, 1};
+    d.have_gensens = 1; /* a fixture: no training choice to add */
+    attrib_bind(&d, &c, res, ci);
+    agree_judge(&d, &rows[0], &res[0], &ci[0], &a);
+    assert_int_equal(a.kind, AGREE_UNEXPLAINED);
+    assert_non_null(strstr(a.by, "crown_R 3 (moves Other further off)"));
+    d.n = 6;
+    agree_judge(&d, &rows[0], &res[0], &ci[0], &a);
+    assert_int_equal(a.kind, AGREE_REACHED);
+    assert_string_equal(a.by, "crown_R 5");
+}
+
+/* A generator training choice joins the alternatives through its claims: the
+ * row computed by the same function on <root>/generator-sensitivity/<choice>/
+ * whose macro ends with the paper reading's row's is that number under the
+ * choice, moved from ours by a fraction; a row of another function is not. */
+static void test_training_choices_join_the_alternatives(void **s)
+{
+    (void)s;
+    claims c = {0};
+    claim_row rows[4];
+    memset(rows, 0, sizeof rows);
+    static const char *mac[4] = {"Ratio", "GenStandsRatio", "GenStandsJoint", "Joint"};
+    static const char *src[4] = {"frozen/paper-reading/main/run_s*_*.tsv", "frozen/generator-sensitivity/stands-x4/main/run_s*_*.tsv",
+                                 "frozen/generator-sensitivity/stands-x4/main/run_s*_*.tsv", "frozen/paper-reading/main/run_s*_*.tsv"};
+    static const char *fn[4] = {"f_ratio", "f_ratio", "f_other", "f_joint"};
+    for (int i = 0; i < 4; i++) {
+        snprintf(rows[i].macro, sizeof rows[i].macro, "%s", mac[i]);
+        snprintf(rows[i].kind, sizeof rows[i].kind, i == 0 || i == 3 ? "measured" : "probe");
+        snprintf(rows[i].reference, sizeof rows[i].reference, i == 0 ? "2.50" : i == 3 ? "0.415" : "-");
+        snprintf(rows[i].format, sizeof rows[i].format, "%%.2f");
+        snprintf(rows[i].source, sizeof rows[i].source, "%s", src[i]);
+        snprintf(rows[i].function, sizeof rows[i].function, "%s", fn[i]);
+        snprintf(rows[i].section, sizeof rows[i].section, "5.1");
+    }
+    c.rows = rows;
+    c.n = 4;
+    claim_result res[4] = {{0}};
+    const double val[4] = {1.03, 6.13, 0.07, 0.411};
+    for (int i = 0; i < 4; i++) { res[i].status = VERDICT_PASS; res[i].value = val[i]; }
+    claim_interval ci[4] = {{0}};
+    ci[0].has = 1; ci[0].lo = 1.02; ci[0].hi = 1.05;
+    attrib_data d = {0};
+    attrib_bind(&d, &c, res, ci);
+    assert_int_equal(d.n, 1);
+    assert_string_equal(d.v[0].quantity, "Ratio");
+    assert_string_equal(d.v[0].unit, "training stands-x4");
+    assert_int_equal(d.v[0].sens, 2);
+    if (d.v[0].value != 6.13) fail_msg("value %.17g, expected %.17g", d.v[0].value, 6.13);
+    attrib_bind(&d, &c, res, ci); /* bound twice: added once */
+    assert_int_equal(d.n, 1);
+    agree_result a;
+    agree_judge(&d, &rows[0], &res[0], &ci[0], &a);
+    assert_int_equal(a.kind, AGREE_REACHED);
+    assert_string_equal(a.by, "training stands-x4");
+    attrib_free(&d);
+}
+
 int main(void)
 {
     if (claims_load(PATHS_CLAIMS, &g_c) != CS_OK || interval_table_load(PATHS_INTERVALS, &g_it) != CS_OK) {
@@ -371,6 +471,8 @@ int main(void)
     }
     const struct CMUnitTest t[] = {
         cmocka_unit_test(test_every_measured_claim_has_a_stated_method),
+        cmocka_unit_test(test_reached_moves_no_other_number_further_off),
+        cmocka_unit_test(test_training_choices_join_the_alternatives),
         cmocka_unit_test(test_frozen_replicates_give_the_generated_intervals),
         cmocka_unit_test(test_one_perturbed_seed_fails_the_claim_test_naming_it),
         cmocka_unit_test(test_one_perturbed_replicate_stand_fails_the_claim_test_naming_it),

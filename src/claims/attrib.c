@@ -79,11 +79,11 @@ void attrib_judge(const attrib_data *d, const claim_row *row, const claim_result
     /* the readings: each is one alternative */
     for (size_t i = 0; i < d->n; i++) {
         const attrib_value *a = &d->v[i];
-        if (a->sens || strcmp(a->quantity, row->macro)) continue;
+        if (a->sens == 1 || strcmp(a->quantity, row->macro)) continue;
         tested = 1;
         if (fabs(a->value - p) <= REACH * fabs(p)) {
             char s[64];
-            snprintf(s, sizeof s, "reading %s", a->unit);
+            snprintf(s, sizeof s, a->sens ? "%s" : "reading %s", a->unit);
             add_by(out, s);
         }
     }
@@ -92,7 +92,7 @@ void attrib_judge(const attrib_data *d, const claim_row *row, const claim_result
     char seen[1024] = "";
     for (size_t i = 0; i < d->n; i++) {
         const attrib_value *a = &d->v[i];
-        if (!a->sens || strcmp(a->quantity, row->macro) || !strcmp(a->unit, "centre")) continue;
+        if (a->sens != 1 || strcmp(a->quantity, row->macro) || !strcmp(a->unit, "centre")) continue;
         tested = 1;
         char key[48];
         snprintf(key, sizeof key, "|%s|", a->unit);
@@ -101,7 +101,7 @@ void attrib_judge(const attrib_data *d, const claim_row *row, const claim_result
         double lo = INFINITY, hi = -INFINITY, best = NAN;
         for (size_t j = 0; j < d->n; j++) {
             const attrib_value *b = &d->v[j];
-            if (!b->sens || strcmp(b->quantity, row->macro)) continue;
+            if (b->sens != 1 || strcmp(b->quantity, row->macro)) continue;
             if (strcmp(b->unit, a->unit) && strcmp(b->unit, "centre")) continue;
             if (b->value < lo) lo = b->value;
             if (b->value > hi) hi = b->value;
@@ -130,11 +130,46 @@ double attrib_half_unit(const char *ref)
     return 0.5 * pow(10.0, -dec);
 }
 
+#define GENSENS_DIR "generator-sensitivity/"
+#define READING_DIR "paper-reading/"
+
+/* The claim computed by the same function as row r on the paper reading's
+ * unit set that r's source varies, r's macro ending with its macro; -1 when
+ * r is no training choice's value. */
+static long gensens_base(const claims *c, size_t r, char *choice, size_t n)
+{
+    const claim_row *g = &c->rows[r];
+    const char *at = strstr(g->source, GENSENS_DIR);
+    if (!at) return -1;
+    const char *ch = at + strlen(GENSENS_DIR), *rest = strchr(ch, '/');
+    if (!rest) return -1;
+    char want[300];
+    snprintf(want, sizeof want, "%.*s" READING_DIR "%s", (int)(at - g->source), g->source, rest + 1);
+    snprintf(choice, n, "%.*s", (int)(rest - ch), ch);
+    const size_t gl = strlen(g->macro);
+    for (size_t i = 0; i < c->n; i++) {
+        const claim_row *q = &c->rows[i];
+        const size_t ql = strlen(q->macro);
+        if (i != r && ql < gl && !strcmp(g->macro + gl - ql, q->macro) && !strcmp(q->function, g->function) && !strcmp(q->source, want))
+            return (long)i;
+    }
+    return -1;
+}
+
 void attrib_bind(attrib_data *d, const claims *c, const claim_result *res, const struct claim_interval *ci)
 {
     d->c = c;
     d->res = res;
     d->ci = ci;
+    if (d->have_gensens) return;
+    d->have_gensens = 1;
+    for (size_t r = 0; r < c->n; r++) {
+        char choice[40], unit[40];
+        const long q = gensens_base(c, r, choice, sizeof choice);
+        if (q < 0 || res[r].status != VERDICT_PASS || !isfinite(res[r].value)) continue;
+        snprintf(unit, sizeof unit, "training %s", choice);
+        if (push(d, c->rows[q].macro, unit, NAN, res[r].value, 2)) return; /* out of memory: fewer alternatives */
+    }
 }
 
 /* The t in [0, 1] (only t = 1 for a categorical alternative) at which the
@@ -151,11 +186,24 @@ static int t_range(double lo, double hi, double p, double s, int cont, double *a
     return *a <= *b;
 }
 
+/* The t in [0, 1] (only t = 1 for a categorical alternative) at which v
+ * moved by t s is no further from p than v is: [*a, *b], 0 when none. */
+static int t_closer(double v, double p, double s, int cont, double *a, double *b)
+{
+    if (!isfinite(s)) return 0;
+    const double far = s != 0 ? 2 * (p - v) / s : 0; /* the other t as far from p as t = 0 */
+    const double ta = s != 0 ? fmin(0, far) : -INFINITY, tb = s != 0 ? fmax(0, far) : INFINITY;
+    if (!cont) { *a = *b = 1; return ta <= 1 && 1 <= tb; }
+    *a = fmax(ta, 0);
+    *b = fmin(tb, 1);
+    return *a <= *b;
+}
+
 /* The centre run's value of a quantity (v when the centre did not measure it). */
 static double centre_of(const attrib_data *d, const char *macro, double v)
 {
     for (size_t i = 0; i < d->n; i++)
-        if (d->v[i].sens && !strcmp(d->v[i].quantity, macro) && !strcmp(d->v[i].unit, "centre")) return d->v[i].value;
+        if (d->v[i].sens == 1 && !strcmp(d->v[i].quantity, macro) && !strcmp(d->v[i].unit, "centre")) return d->v[i].value;
     return v;
 }
 
@@ -167,10 +215,11 @@ static const char *experiment_of(const claim_row *row)
 }
 
 /* Alternative a (a reading, or one value of an unstated choice) moves every
- * other number of the claim's experiment that agrees today (the paper's
- * value inside our interval) by the same fraction t of its own shift; keep
- * in *ta, *tb the t at which they all stay inside, and name the first that
- * cannot in blocker. 0 when none is left. */
+ * other number of the claim's experiment by the same fraction t of its own
+ * shift; keep in *ta, *tb the t at which each that agrees today (the paper's
+ * value inside our interval) stays inside and each that does not comes no
+ * further from the paper's value, and name the first that cannot in
+ * blocker. 0 when none is left. */
 static int consistent(const attrib_data *d, const claim_row *row, const attrib_value *a, int cont, double *ta, double *tb,
                       char *blocker, size_t n)
 {
@@ -182,14 +231,16 @@ static int consistent(const attrib_data *d, const claim_row *row, const attrib_v
         double p, rel;
         if (!strcmp(q->macro, row->macro) || !qi->has || !claims_rel_diff(q, qr, &p, &rel) || strcmp(experiment_of(q), ex)) continue;
         const double h = attrib_half_unit(q->reference), lo = qi->lo - h, hi = qi->hi + h;
-        if (p < lo || p > hi) continue; /* not in agreement today: nothing to keep */
+        const int agrees = lo <= p && p <= hi;
         for (size_t j = 0; j < d->n; j++) {
             const attrib_value *b = &d->v[j];
             if (b->sens != a->sens || strcmp(b->unit, a->unit) || strcmp(b->quantity, q->macro)) continue;
-            if ((a->sens && !(b->x == a->x)) || !isfinite(b->value)) continue; /* not computable there: not measured */
-            double s = b->value - (b->sens ? centre_of(d, q->macro, qr->value) : qr->value), qa, qb;
-            if (!t_range(lo, hi, p, s, cont, &qa, &qb) || fmax(*ta, qa) > fmin(*tb, qb)) {
-                snprintf(blocker, n, "%s", q->macro);
+            if ((a->sens == 1 && !(b->x == a->x)) || !isfinite(b->value)) continue; /* not computable there: not measured */
+            double s = b->value - (b->sens == 1 ? centre_of(d, q->macro, qr->value) : qr->value), qa, qb;
+            /* one in agreement stays in it; one outside may not move further from the paper */
+            const int ok = agrees ? t_range(lo, hi, p, s, cont, &qa, &qb) : t_closer(qr->value, p, s, cont, &qa, &qb);
+            if (!ok || fmax(*ta, qa) > fmin(*tb, qb)) {
+                snprintf(blocker, n, "%s %s", q->macro, agrees ? "out" : "further off");
                 return 0;
             }
             *ta = fmax(*ta, qa);
@@ -210,25 +261,26 @@ int attrib_reached(const attrib_data *d, const claim_row *row, const claim_resul
     char blocked[240] = "";
     for (size_t i = 0; i < d->n; i++) {
         const attrib_value *a = &d->v[i];
-        if (strcmp(a->quantity, row->macro) || (a->sens && !strcmp(a->unit, "centre"))) continue;
+        if (strcmp(a->quantity, row->macro) || (a->sens == 1 && !strcmp(a->unit, "centre"))) continue;
         *tested = 1;
-        const unstated_choice *uc = a->sens ? unstated_find(a->unit) : NULL;
-        const int cont = a->sens && !(uc && uc->categorical);
+        const unstated_choice *uc = a->sens == 1 ? unstated_find(a->unit) : NULL;
+        /* a reading or a categorical choice moves by its whole shift; a numeric choice by a fraction */
+        const int cont = (a->sens == 1 && !(uc && uc->categorical)) || a->sens == 2;
         double ta, tb;
-        if (!t_range(lo, hi, p, a->value - (a->sens ? centre : v), cont, &ta, &tb)) continue;
-        char s[64], blocker[64] = "";
-        if (a->sens) snprintf(s, sizeof s, "%s %g", a->unit, a->x);
-        else snprintf(s, sizeof s, "reading %s", a->unit);
+        if (!t_range(lo, hi, p, a->value - (a->sens == 1 ? centre : v), cont, &ta, &tb)) continue;
+        char s[64], blocker[96] = "";
+        if (a->sens == 1) snprintf(s, sizeof s, "%s %g", a->unit, a->x);
+        else snprintf(s, sizeof s, a->sens ? "%s" : "reading %s", a->unit);
         if (d->c && !consistent(d, row, a, cont, &ta, &tb, blocker, sizeof blocker)) {
             char b[140];
-            snprintf(b, sizeof b, "%s (moves %s out)", s, blocker);
+            snprintf(b, sizeof b, "%s (moves %s)", s, blocker);
             if (!strstr(blocked, b)) by_add(blocked, sizeof blocked, b);
             continue;
         }
         if (!strstr(by, s)) by_add(by, n, s);
     }
     const int reached = by[0] != '\0';
-    if (!reached && blocked[0]) snprintf(by, n, "only with another number out: %s", blocked);
+    if (!reached && blocked[0]) snprintf(by, n, "only by moving another number: %s", blocked);
     return reached;
 }
 

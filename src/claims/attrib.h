@@ -16,13 +16,16 @@
 
 typedef enum { ATTRIB_NA = 0, ATTRIB_WITHIN, ATTRIB_EXPLAINED, ATTRIB_UNEXPLAINED, ATTRIB_UNTESTED } attrib_kind;
 
+/* sens: 0 a run reading (the whole shift), 1 a value x of an unstated
+ * choice of the simulation (a fraction of the shift from the centre run), 2 a
+ * training choice of the generator (a fraction of the shift from ours) */
 typedef struct { char quantity[64], unit[40]; double x, value; int sens; } attrib_value;
 struct claim_interval; /* interval.h */
 
 typedef struct {
     attrib_value *v;
     size_t n;
-    int have_readings, have_sens;
+    int have_readings, have_sens, have_gensens;
     /* every claim, its result and interval (attrib_bind): what "reached" must keep in agreement */
     const claims *c;
     const claim_result *res;
@@ -39,7 +42,12 @@ void attrib_judge(const attrib_data *d, const claim_row *row, const claim_result
  * 5e-6): the paper's value is known to that precision only. */
 double attrib_half_unit(const char *ref);
 /* Bind every claim's result and interval to d (the arrays outlive d's use):
- * attrib_reached then keeps the rest of a claim's experiment in agreement. */
+ * attrib_reached then keeps the rest of a claim's experiment in agreement.
+ * The generator's training choices join the alternatives here: a computed
+ * claim whose source is a choice's unit set (<root>/generator-sensitivity/
+ * <choice>/<rest>) and whose macro ends with the macro of a claim computed
+ * by the same function on <root>/paper-reading/<rest> is that claim's value
+ * under the choice (design.md §8.2). */
 void attrib_bind(attrib_data *d, const claims *c, const claim_result *res, const struct claim_interval *ci);
 /* Against our interval [lo, hi] (design.md §6.1): does one reading or one
  * value of an unstated choice move our interval onto the paper's value p,
@@ -49,9 +57,10 @@ void attrib_bind(attrib_data *d, const claims *c, const claim_result *res, const
  * reading, or a categorical choice (the die-back rules), by the whole s; a
  * numeric choice by a fraction t of s, t in [0, 1], the same t for every
  * number of the experiment (the choice set between ours and the value run,
- * read linearly). Reached when some t puts p inside [lo, hi] + t s and keeps
+ * read linearly). Reached when some t puts p inside [lo, hi] + t s, keeps
  * each other agreeing number's paper value inside its own interval moved by
- * t times its shift (numbers the alternative did not measure, or could not
+ * t times its shift, and moves no other number further from its paper value
+ * than it is today (numbers the alternative did not measure, or could not
  * compute, are not constrained). 1 when reached, `by` naming each alternative that reaches it
  * ("reading R" or "choice x"); 0 otherwise, `by` naming what reaches it only
  * by moving another number out (*tested = 0 when nothing was measured for
