@@ -22,8 +22,8 @@ swmin = real(system("awk -F'\t' '$1==\"coupled\" && (m==\"\" || $9<m){m=$9} END{
 
 if (!exists("outdir")) outdir = 'figures'
 do for [fmt in "png pdf"] {
-  if (fmt eq "png") { set terminal pngcairo size 1200,500 font "Sans,11"; set output outdir.'/anisotropy.png' } \
-  else { set terminal pdfcairo size 7in,2.9in font "Sans,7"; set output outdir.'/anisotropy.pdf' }
+  if (fmt eq "png") { set terminal pngcairo size 1200,500 font "DejaVu Sans,11"; set output outdir.'/anisotropy.png' } \
+  else { set terminal pdfcairo size 7in,2.9in font "DejaVu Sans,7"; set output outdir.'/anisotropy.pdf' }
   K = (fmt eq "png") ? 1 : 0.55   # point sizes of the printed (pdf) figure
   set datafile separator "\t"
   set multiplot layout 1,2
@@ -32,19 +32,19 @@ do for [fmt in "png pdf"] {
   set arrow 1 from graph 0, first bmed to graph 1, first bmed nohead dt 3 lw 2 lc rgb "#1a6b1a"
   set label 1 sprintf("field band %.2f-%.2f, median %.3f", blo, bhi, bmed) at graph 0.02, graph 0.04 tc rgb "#1a6b1a"
   # ---- left: jitter family
-  set title "Jitter family (lattice, d = 4 m, L = 36 m, {/Symbol b}_{field})"
+  set title "Jitter family (lattice, d = 4 m, L = 36 m, β_{field})"
   set xlabel "stem jitter amplitude a (sd / spacing)"
   set ylabel "median anisotropy (widest / narrowest cardinal gap)"
   set xrange [0.02:0.18]
   set yrange [1.0:2.0]
   set key top left
-  if (swmin > bmed) { set label 2 "whole sweep above the field median:\na* not bracketed (nearest end)" at graph 0.45, graph 0.62 font (fmt eq "png" ? "Sans,10" : "Sans,6") tc rgb "#b00000" } else { unset label 2 }
+  if (swmin > bmed) { set label 2 "whole sweep above the field median:\na* not bracketed (nearest end)" at graph 0.45, graph 0.62 font (fmt eq "png" ? "DejaVu Sans,10" : "DejaVu Sans,6") tc rgb "#b00000" } else { unset label 2 }
   plot "frozen/anisotropy/jitter.tsv" using (strcol(1) eq "coupled" ? $2 : NaN):9 with linespoints pt 6 ps 1.6*K lw 1.5 lc rgb "#1f77b4" title "calibration sweep", \
        "+" using (lat_a):(lat_v) every ::0::0 with points pt 5 ps 1.8*K lc rgb "#000000" title sprintf("controlled lattice (a = %.2f)", lat_a), \
        "+" using (ho_a):(ho_v) every ::0::0 with points pt 3 ps 3*K lw 2 lc rgb "#d62728" title sprintf("held out at a* = %.2f: %.3f", ho_a, ho_v)
   unset label 2
   # ---- right: hard-core family
-  set title "Hard-core family (d = 4 m, L = 36 m, {/Symbol b}_{field})"
+  set title "Hard-core family (d = 4 m, L = 36 m, β_{field})"
   set xlabel "minimum stem distance c (fraction of spacing)"
   set xrange [0.25:0.75]
   set yrange [1.0:*]

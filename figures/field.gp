@@ -24,8 +24,8 @@ nst = col("frozen/field/heldout.tsv", "coupled", 4)
 
 if (!exists("outdir")) outdir = 'figures'
 do for [fmt in "png pdf"] {
-  if (fmt eq "png") { set terminal pngcairo size 1500,480 font "Sans,11"; set output outdir.'/field.png' } \
-  else { set terminal pdfcairo size 7in,2.4in font "Sans,7"; set output outdir.'/field.pdf' }
+  if (fmt eq "png") { set terminal pngcairo size 1500,480 font "DejaVu Sans,11"; set output outdir.'/field.png' } \
+  else { set terminal pdfcairo size 7in,2.4in font "DejaVu Sans,7"; set output outdir.'/field.pdf' }
   K = (fmt eq "png") ? 1 : 0.5   # point sizes of the printed (pdf) figure
   set datafile separator "\t"
   set multiplot layout 1,3
@@ -33,13 +33,13 @@ do for [fmt in "png pdf"] {
   unset label; unset arrow; unset object
   set title "Calibration (3 seeds): one scalar"
   set xtics autofreq   # the right panel's tics must not leak into this one on the second pass
-  set xlabel "die-back fraction {/Symbol b}"
+  set xlabel "die-back fraction β"
   set ylabel "median tree-mean clearance (m)"
   set key top left Left reverse samplen 2
   set xrange [0:0.32]
   set yrange [0:1.5]
   set arrow 1 from bfield, graph 0 to bfield, graph 1 nohead dt 3 lc rgb "#555555"
-  set label 1 sprintf("{/Symbol b}_{field} = %.2f", bfield) at bfield, graph 0.08 offset 0.5,0
+  set label 1 sprintf("β_{field} = %.2f", bfield) at bfield, graph 0.08 offset 0.5,0
   plot "frozen/field/calibration.tsv" using (strcol(1) eq "coupled" ? $2 : NaN):7 with linespoints pt 7 ps 0.7*K lc rgb "#1f77b4" title "simulated (lattice, d = 4 m, L = 36 m)", \
        target with lines dt 2 lw 2 lc rgb "#d62728" title sprintf("field target %.3f m", target)
   # ---- centre: spread
@@ -51,14 +51,13 @@ do for [fmt in "png pdf"] {
   set xrange [-0.7:1.7]
   set yrange [0.05:5]
   set xtics ("coupled" 0, "uncoupled twin" 1)
-  set style fill solid 0.7
-  set boxwidth 0.5
-  set label 2 "field spread: needs the raw field table\n(FIELD_TABLE=path, Dryad 10.5061/dryad.34tmpg4hk;\nnot on this machine) -> ratio band 0.5-2.0\nnot drawable: SpreadRatio, ControlSpread PENDING" at graph 0.03, graph 0.95 noenhanced font (fmt eq "png" ? "Sans,9" : "Sans,5.5") tc rgb "#b00000"
-  set label 3 sprintf("%.3f m", sp_c) at 0, sp_c center offset 0,0.8
-  set label 4 sprintf("%.3f m", sp_u) at 1, sp_u center offset 0,0.8
+  # a log axis has no zero for a bar to start from: the values are drawn as points
+  set label 2 "field spread: needs the raw field table\n(FIELD_TABLE=path, Dryad 10.5061/dryad.34tmpg4hk;\nnot on this machine) -> ratio band 0.5-2.0\nnot drawable: SpreadRatio, ControlSpread PENDING" at graph 0.03, graph 0.95 noenhanced font (fmt eq "png" ? "DejaVu Sans,9" : "DejaVu Sans,5.5") tc rgb "#b00000"
+  set label 3 sprintf("%.3f m", sp_c) at 0, sp_c left offset 1.2,0
+  set label 4 sprintf("%.3f m", sp_u) at 1, sp_u left offset 1.2,0
   unset key
-  plot "+" using (0):(sp_c) every ::0::0 with boxes lc rgb "#1f77b4", \
-       "+" using (1):(sp_u) every ::0::0 with boxes lc rgb "#999999"
+  plot "+" using (0):(sp_c) every ::0::0 with points pt 7 ps 2*K lc rgb "#1f77b4", \
+       "+" using (1):(sp_u) every ::0::0 with points pt 7 ps 2*K lc rgb "#999999"
   unset logscale y
   unset label
   # ---- right: elongation

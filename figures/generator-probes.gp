@@ -53,8 +53,8 @@ do for [r = 1:NR] {
 set print
 set datafile nocolumnheaders
 do for [fmt in "png pdf"] {
-  if (fmt eq "png") { set terminal pngcairo size 1100,660 font "Sans,13"; set output outdir.'/generator-probes.png' } \
-  else { set terminal pdfcairo size 7in,4.2in font "Sans,9"; set output outdir.'/generator-probes.pdf' }
+  if (fmt eq "png") { set terminal pngcairo size 1100,660 font "DejaVu Sans,13"; set output outdir.'/generator-probes.png' } \
+  else { set terminal pdfcairo size 7in,4.2in font "DejaVu Sans,9"; set output outdir.'/generator-probes.pdf' }
   set title "What each generator reading uses: error under a probe / error without it (median over 4 seeds)" noenhanced
   set xrange [0.5:NP + 0.5]
   set yrange [2 * NR + 0.5:0.5]
@@ -72,6 +72,6 @@ do for [fmt in "png pdf"] {
   set bmargin 4
   set lmargin 24
   plot $D using 1:2:(0.5):(0.5):($3 == $3 ? log($3) / log(2) : NaN) with boxxyerror fs solid 1.0 noborder fc palette, \
-       "" using 1:2:4:(($3 == $3 && $3 > 4) ? 0xffffff : 0x111111) with labels font ",11" tc rgb variable
+       "" using 1:2:4:(($3 == $3 && $3 > 4) ? 0xffffff : 0x111111) with labels font "DejaVu Sans,11" tc rgb variable
   unset output
 }

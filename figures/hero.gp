@@ -14,8 +14,8 @@ have_field = system(sprintf("test -f '%s' && echo 1 || echo 0", file("beta_field
 nrows = have_field ? 2 : 1
 rows = "beta_train beta_field"
 do for [term = 1:2] {
-  if (term == 1) { set terminal pngcairo size 2000,(nrows*270+40) font ",13"; set output outdir.'/hero.png' }
-  else { set terminal pdfcairo size 7in,(nrows*1.35+0.2)*0.7in font ",7"; set output outdir.'/hero.pdf' }
+  if (term == 1) { set terminal pngcairo size 2000,(nrows*270+40) font "DejaVu Sans,13"; set output outdir.'/hero.png' }
+  else { set terminal pdfcairo size 7in,(nrows*1.35+0.2)*0.7in font "DejaVu Sans,7"; set output outdir.'/hero.pdf' }
   set multiplot layout nrows,8 margins 0.03,0.995,0.02,0.86 spacing 0.006,0.04
   do for [b = 1:nrows] {
     do for [a = 1:8] {
@@ -26,7 +26,7 @@ do for [term = 1:2] {
       set yrange [0:36]
       set object 1 rectangle from 0,0 to 36,36 fillcolor rgb '#0b0f0b' fillstyle solid 1.0 behind
       set title (b == 1 ? sprintf("%s m", word(spacings, a)) : "")
-      set ylabel (a == 1 ? (b == 1 ? "{/Symbol b}_{train}" : "{/Symbol b}_{field}") : "") offset 1,0
+      set ylabel (a == 1 ? (b == 1 ? "β_{train}" : "β_{field}") : "") offset 1,0
       plot for [t = 0:n-1] f every ::(t*ROWS)::(t*ROWS+ROWS-1) using 2:3:4 with filledcurves closed lc palette notitle
     }
   }

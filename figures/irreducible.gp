@@ -14,8 +14,8 @@ set datafile columnheaders
 fp = dir.'/irreducibility/perturb_train.tsv'
 fr = dir.'/irreducibility/refine_train.tsv'
 do for [term = 1:2] {
-  if (term == 1) { set terminal pngcairo size 1200,460 font ",14"; set output outdir.'/irreducible.png' }
-  else { set terminal pdfcairo size 6.5in,2.5in font ",9"; set output outdir.'/irreducible.pdf' }
+  if (term == 1) { set terminal pngcairo size 1200,460 font "DejaVu Sans,14"; set output outdir.'/irreducible.png' }
+  else { set terminal pdfcairo size 6.5in,2.5in font "DejaVu Sans,9"; set output outdir.'/irreducible.pdf' }
   set multiplot layout 1,2
   set key top center horizontal
   set grid ytics

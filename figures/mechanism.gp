@@ -14,8 +14,8 @@ titles = "'coupling off' 'abrasion off' 'both on'"
 file(a) = sprintf("%s/mechanism/figure_poly_%s_3.5.tsv", dir, word(arms, a))
 k1(a) = real(system(sprintf("sed -n 's/^# k1_median_m: //p' '%s'", file(a))))
 do for [term = 1:2] {
-  if (term == 1) { set terminal pngcairo size 1500,560 font ",14"; set output outdir.'/mechanism.png' }
-  else { set terminal pdfcairo size 7.5in,2.8in font ",9"; set output outdir.'/mechanism.pdf' }
+  if (term == 1) { set terminal pngcairo size 1500,560 font "DejaVu Sans,14"; set output outdir.'/mechanism.png' }
+  else { set terminal pdfcairo size 7.5in,2.8in font "DejaVu Sans,9"; set output outdir.'/mechanism.pdf' }
   set multiplot layout 1,3
   do for [a = 1:3] {
     f = file(a)

@@ -58,8 +58,8 @@ set datafile separator whitespace
 BL[3] = BL[1]
 BL[4] = BL[1]
 do for [term = 1:2] {
-  if (term == 1) { set terminal pngcairo size 1400,620 font ",14"; set output outdir.'/model-readings.png' }
-  else { set terminal pdfcairo size 7in,3.1in font ",9"; set output outdir.'/model-readings.pdf' }
+  if (term == 1) { set terminal pngcairo size 1400,620 font "DejaVu Sans,14"; set output outdir.'/model-readings.png' }
+  else { set terminal pdfcairo size 7in,3.1in font "DejaVu Sans,9"; set output outdir.'/model-readings.pdf' }
   PS = (term == 1) ? 1.3 : 0.45
   set bmargin 4.5
   set xrange [0.4:NR + 0.6]

@@ -23,8 +23,8 @@ pd(a) = real(word("5.0 4.0 3.0 3.0", a))
 # stats.tsv rows: 5, 4, 3 m; columns 3 = contact share, 6/7 = k1 coupled/uncoupled
 val(row, col) = real(system(sprintf("awk -F'\t' '!/^#/ && n++ == %d {print $%d}' '%s'", row, col, fs)))
 do for [term = 1:2] {
-  if (term == 1) { set terminal pngcairo size 1800,520 font ",14"; set output outdir.'/pointcloud-stand.png' }
-  else { set terminal pdfcairo size 7in,2.05in font ",8"; set output outdir.'/pointcloud-stand.pdf' }
+  if (term == 1) { set terminal pngcairo size 1800,520 font "DejaVu Sans,14"; set output outdir.'/pointcloud-stand.png' }
+  else { set terminal pdfcairo size 7in,2.05in font "DejaVu Sans,8"; set output outdir.'/pointcloud-stand.pdf' }
   set multiplot layout 1,4
   do for [a = 1:4] {
     f = file(a)

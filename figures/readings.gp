@@ -12,16 +12,16 @@ nr = 6
 nq = real(system("awk -F'\t' '!/^#/ && $1!=\"quantity\"{n++} END{print n/6}' frozen/readings/summary.tsv"))
 if (!exists("outdir")) outdir = 'figures'
 do for [fmt in "png pdf"] {
-  if (fmt eq "png") { set terminal pngcairo size 1000,900 font "Sans,12"; set output outdir.'/readings.png' } \
-  else { set terminal pdfcairo size 8in,7.2in font "Sans,11"; set output outdir.'/readings.pdf' }
+  if (fmt eq "png") { set terminal pngcairo size 1000,900 font "DejaVu Sans,12"; set output outdir.'/readings.png' } \
+  else { set terminal pdfcairo size 8in,7.2in font "DejaVu Sans,11"; set output outdir.'/readings.pdf' }
   set datafile separator "\t"
   set key autotitle columnhead
-  set key inside right bottom vertical box opaque font "Sans,11" width -2
+  set key inside right bottom vertical box opaque font "DejaVu Sans,11" width -2
   set title "E0 readings: each number relative to the reference paper's value"
   set xlabel "our value / paper's value"
   set xrange [0.2:2.2]
   set yrange [-nq+0.4:0.6]
-  set ytics scale 0 font "Sans,11"
+  set ytics scale 0 font "DejaVu Sans,11"
   set grid xtics lc rgb "#cccccc"
   set object 1 rect from 0.75, graph 0 to 1.25, graph 1 fc rgb "#2ca02c" fs solid 0.10 noborder behind
   set object 2 rect from 0.90, graph 0 to 1.10, graph 1 fc rgb "#2ca02c" fs solid 0.20 noborder behind

@@ -26,10 +26,10 @@ nq = real(system("awk -F'\t' '!/^#/ && $1 != \"quantity\" && $5 !~ /nan/ && !($1
 xmax = 2.6
 clip(x) = x > xmax ? xmax : x
 do for [fmt in "png pdf"] {
-  if (fmt eq "png") { set terminal pngcairo size 1100,1500 font "Sans,13"; set output outdir.'/sensitivity.png' } \
-  else { set terminal pdfcairo size 7in,9.2in font "Sans,9"; set output outdir.'/sensitivity.pdf' }
+  if (fmt eq "png") { set terminal pngcairo size 1100,1500 font "DejaVu Sans,13"; set output outdir.'/sensitivity.png' } \
+  else { set terminal pdfcairo size 7in,9.2in font "DejaVu Sans,9"; set output outdir.'/sensitivity.pdf' }
   set datafile separator "\t"
-  set key outside bottom center horizontal noenhanced font ",9" samplen 1.5 maxrows 1
+  set key outside bottom center horizontal noenhanced font "DejaVu Sans,9" samplen 1.5 maxrows 1
   set rmargin 17
   set ytics noenhanced
   set title "E0 sensitivity: the span the unstated choices cover, against the reference paper's value"
@@ -47,8 +47,8 @@ do for [fmt in "png pdf"] {
        "" using (clip($8)):(-$1 + 0.30) with points pt 9 ps 1.2 lc rgb "#d62728" title "die-back: arc s±1", \
        "" using (clip($9)):(-$1 - 0.30) with points pt 11 ps 1.2 lc rgb "#8c564b" title "die-back: β of the target", \
        "" using (clip($10)):(-$1) with points pt 5 ps 1.0 lc rgb "#9467bd" title "die-back: one-sided", \
-       "" using (clip($4)):(-$1):(strcol(6) . " ") with labels right noenhanced font ",9" tc rgb "#333333" notitle, \
-       "" using (clip($5)):(-$1):(" " . strcol(7) . ($5 > xmax ? sprintf(" (%.1f)", $5) : "")) with labels left noenhanced font ",9" tc rgb "#333333" notitle, \
+       "" using (clip($4)):(-$1):(strcol(6) . " ") with labels right noenhanced font "DejaVu Sans,9" tc rgb "#333333" notitle, \
+       "" using (clip($5)):(-$1):(" " . strcol(7) . ($5 > xmax ? sprintf(" (%.1f)", $5) : "")) with labels left noenhanced font "DejaVu Sans,9" tc rgb "#333333" notitle, \
        "" using ($5 > xmax ? xmax - 0.12 : NaN):(-$1):(0.1):(0) with vectors head filled size 0.05,20 lc rgb "#4a7fb0" notitle
   unset output
 }

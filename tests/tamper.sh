@@ -132,7 +132,7 @@ if [ "$(sha256sum < "$scratch/figures/main.png")" = "$before" ]; then ok "verify
 else bad "verify never overwrites a committed figure" "figures/main.png changed"; fi
 # 11. a figure script
 fresh
-sed -i 's/font "Sans,11"/font "Sans,12"/' "$scratch/figures/field.gp"
+sed -i 's/font "DejaVu Sans,11"/font "DejaVu Sans,12"/' "$scratch/figures/field.gp"
 expect "figure script" "figures/field.png" "Elong"
 VERIFY_ARGS=--no-figures
 # 12. a measured number typed in another rounding than numbers.tex's

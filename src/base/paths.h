@@ -55,6 +55,8 @@
 #define PATHS_MODEL_READINGS_SUMMARY "frozen/model-readings/summary.tsv"
 #define PATHS_PAPER_DIR "paper"
 #define PATHS_FIGURES_DIR "figures"
+#define PATHS_FIG_PLOTTED "figures/plotted.sha256"
+#define PATHS_FIG_RENDERER "figures/renderer.tsv"
 #define PATHS_FROZEN_DIR "frozen"
 /* The documentation pages the audit reads for typed numbers (design.md §9):
  * README.md and every *.md under these folders; the changelog is history. */

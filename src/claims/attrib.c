@@ -164,7 +164,7 @@ void attrib_bind(attrib_data *d, const claims *c, const claim_result *res, const
     if (d->have_gensens) return;
     d->have_gensens = 1;
     for (size_t r = 0; r < c->n; r++) {
-        char choice[40], unit[40];
+        char choice[30], unit[40];
         const long q = gensens_base(c, r, choice, sizeof choice);
         if (q < 0 || res[r].status != VERDICT_PASS || !isfinite(res[r].value)) continue;
         snprintf(unit, sizeof unit, "training %s", choice);

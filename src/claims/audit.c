@@ -123,6 +123,15 @@ static cs_status current_pins(pinset *s)
     add_file_pin(s, "design_numbers_sha256", PATHS_DESIGN_NUMBERS);
     for (size_t i = 0; design_files[i]; i++) add_file_pin(s, "design_sha256", design_files[i]);
     for (size_t i = 0; claim_tests[i]; i++) add_file_pin(s, "claim_test_sha256", claim_tests[i]);
+    /* what draws each figure, and the data it must plot (figcheck.h) */
+    static const char *const fig_ext[] = {".gp", ".gpi", NULL};
+    for (size_t e = 0; fig_ext[e]; e++) {
+        paths_list fl = {0};
+        paths_list_files(PATHS_FIGURES_DIR, fig_ext[e], 0, &fl);
+        for (size_t i = 0; i < fl.n; i++) add_file_pin(s, "figure_script_sha256", fl.p[i]);
+        paths_list_free(&fl);
+    }
+    add_file_pin(s, "figure_data_sha256", PATHS_FIG_PLOTTED);
     return s->oom ? cs_err(CS_ENOMEM, "pins: out of memory after %zu pins", s->n) : CS_OK;
 }
 
@@ -304,6 +313,8 @@ static void check_pins(const claims *c, checklist *cl, const pinset *ps)
                 snprintf(affected, sizeof affected, "every claim of a table made by a superseded reading (%s)", path);
             } else if (!strcmp(key, "grids_sha256")) {
                 snprintf(affected, sizeof affected, "every claim of a table with a design grid (%s)", path);
+            } else if (!strcmp(key, "figure_script_sha256") || !strcmp(key, "figure_data_sha256")) {
+                snprintf(affected, sizeof affected, "the figures %s draws or pins (what they show, not a number)", path);
             } else if (!strcmp(key, "gates_prereg_sha256")) {
                 snprintf(affected, sizeof affected, "every gated claim (%s)", path);
             } else snprintf(affected, sizeof affected, "(gates as a whole)");

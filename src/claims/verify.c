@@ -14,6 +14,7 @@
 #include "audit_data.h"
 #include "audit_evidence.h"
 #include "audit_docs.h"
+#include "figcheck.h"
 
 cs_status verify_eval_all(const claims *c, claim_result **out)
 {
@@ -68,177 +69,6 @@ verdict verify_claim(const claim_row *row, const claim_result *res, const number
         return VERDICT_FAIL;
     }
     return v;
-}
-
-static int has_gnuplot(void)
-{
-    return system("command -v gnuplot >/dev/null 2>&1") == 0;
-}
-
-/* Byte-compare two files: 0 equal, 1 differ, -1 a is unreadable, -2 b is. */
-static int same_bytes(const char *a, const char *b)
-{
-    FILE *fa = fopen(a, "rb"), *fb = fopen(b, "rb");
-    int r = !fa ? -1 : !fb ? -2 : 0;
-    char ba[65536], bb[65536];
-    while (!r) {
-        size_t na = fread(ba, 1, sizeof ba, fa), nb = fread(bb, 1, sizeof bb, fb);
-        if (na != nb || memcmp(ba, bb, na)) r = 1;
-        else if (na == 0) break;
-    }
-    if (fa) fclose(fa);
-    if (fb) fclose(fb);
-    return r;
-}
-
-/* Copy src over dst atomically (temp beside dst, then rename). */
-static cs_status install_file(const char *src, const char *dst)
-{
-    afile a;
-    cs_status st = afile_open(&a, dst);
-    if (st) return st;
-    FILE *f = fopen(src, "rb");
-    if (!f) { afile_abort(&a); return cs_err(CS_EIO, "%s: cannot read", src); }
-    char buf[65536];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, f)) > 0) if (fwrite(buf, 1, n, a.f) != n) a.err = 1;
-    fclose(f);
-    return afile_commit(&a);
-}
-
-/* verify draws the figures while it audits: every script's gnuplot is started
- * in the background, two at a time, into build/figures.<pid>/ (status in
- * <script>.rc); verify_figures then waits and compares. */
-static pid_t g_fig_pid = -1;
-
-static void figures_outdir(char *buf, size_t n)
-{
-    snprintf(buf, n, "build/figures.%ld", (long)getpid());
-}
-
-void verify_figures_launch(void)
-{
-    char outdir[128], jobs[200], cmd[400];
-    figures_outdir(outdir, sizeof outdir);
-    if (afile_mkdir_parents(outdir) || (mkdir(outdir, 0777) && errno != EEXIST) || !has_gnuplot()) return;
-    paths_list gps;
-    if (paths_list_files(PATHS_FIGURES_DIR, ".gp", 0, &gps)) return;
-    /* one shell line per script; xargs runs two at a time */
-    snprintf(jobs, sizeof jobs, "%s/jobs", outdir);
-    FILE *f = fopen(jobs, "w");
-    for (size_t i = 0; f && i < gps.n; i++) {
-        const char *base = gps.p[i] + strlen(PATHS_FIGURES_DIR) + 1;
-        fprintf(f, "gnuplot -e \"outdir='%s'\" '%s' > '%s/%s.log' 2>&1; echo $? > '%s/%s.rc'\n", outdir, gps.p[i], outdir, base, outdir, base);
-    }
-    paths_list_free(&gps);
-    if (!f || fclose(f)) return;
-    snprintf(cmd, sizeof cmd, "xargs -P 2 -d '\\n' -I{} sh -c {} < '%s'", jobs);
-    fflush(stdout);
-    pid_t pid = fork();
-    if (pid == 0) {
-        execl("/bin/sh", "sh", "-c", cmd, (char *)NULL);
-        _exit(127);
-    }
-    g_fig_pid = pid;
-}
-
-/* The launched redraw of one script: its exit status, or -1 when not launched. */
-static int launched_status(const char *outdir, const char *base)
-{
-    if (g_fig_pid < 0) return -1;
-    char p[400];
-    snprintf(p, sizeof p, "%s/%s.rc", outdir, base);
-    FILE *f = fopen(p, "r");
-    int rc = 1;
-    if (f) { if (fscanf(f, "%d", &rc) != 1) rc = 1; fclose(f); }
-    return rc;
-}
-
-static void figures_wait(void)
-{
-    if (g_fig_pid <= 0) return;
-    int ws;
-    while (waitpid(g_fig_pid, &ws, 0) < 0 && errno == EINTR) {}
-}
-
-void verify_figures(checklist *cl, int install, const claims *c)
-{
-    figures_wait();
-    paths_list gps;
-    if (paths_list_files(PATHS_FIGURES_DIR, ".gp", 0, &gps)) { checklist_add(cl, VERDICT_FAIL, "figures", "%s", cs_errmsg()); return; }
-    int gp = has_gnuplot();
-    /* every figure is drawn into build/ first: verify compares the redraw
-     * with the committed PNG and never writes into figures/; `crownshy
-     * figures` installs a redraw only when its script succeeded */
-    char outdir[128];
-    figures_outdir(outdir, sizeof outdir);
-    if (afile_mkdir_parents(outdir) || (mkdir(outdir, 0777) && errno != EEXIST)) {
-        checklist_add(cl, VERDICT_FAIL, "figures", "%s: cannot create: %s", outdir, strerror(errno));
-        paths_list_free(&gps);
-        return;
-    }
-    for (size_t i = 0; i < gps.n; i++) {
-        const char *script = gps.p[i], *base = script + strlen(PATHS_FIGURES_DIR) + 1;
-        char item[128], stem[96], png[256], feeds[1200] = "";
-        snprintf(stem, sizeof stem, "%.*s", (int)(strlen(base) - 3), base);
-        snprintf(item, sizeof item, "figure %.90s", stem);
-        /* "# data: path" lines declare the inputs (registered: a missing one is a failure) */
-        FILE *f = fopen(script, "r");
-        char line[1024], missing[1100] = "";
-        size_t fo = 0;
-        while (f && fgets(line, sizeof line, f)) {
-            char *o = strstr(line, "set output outdir.'/");
-            if (o && strstr(o, ".png'")) snprintf(stem, sizeof stem, "%.*s", (int)(strstr(o, ".png'") - o - 20), o + 20);
-            if (strncmp(line, "# data: ", 8)) continue;
-            line[strcspn(line, "\n")] = '\0';
-            struct stat sb;
-            /* a reading's unit set (design.md §8) may hold no unit yet: the
-             * script draws the units frozen so far, and the redraw is compared */
-            const int unit_set = strchr(line + 8, '*') && claims_awaited_source(line + 8);
-            if (!unit_set && stat(line + 8, &sb) != 0 && !missing[0]) snprintf(missing, sizeof missing, "%s", line + 8);
-            char one[600];
-            if (c) audit_feeds(c, line + 8, one, sizeof one);
-            if (c && strcmp(one, "(no claim)") && fo < sizeof feeds - 2 && !strstr(feeds, one))
-                fo += (size_t)snprintf(feeds + fo, sizeof feeds - fo, "%s%s", fo ? "; " : "", one);
-        }
-        if (f) fclose(f);
-        if (!feeds[0]) snprintf(feeds, sizeof feeds, "(no claim)");
-        snprintf(png, sizeof png, "%s/%s.png", PATHS_FIGURES_DIR, stem);
-        if (missing[0]) { checklist_add(cl, VERDICT_FAIL, item, "%s needs %s, which is missing (a registered input); claims: %s", script, missing, feeds); continue; }
-        if (!gp) { checklist_add(cl, VERDICT_FAIL, item, "gnuplot not installed (make deps)"); continue; }
-        char cmd[1400];
-        snprintf(cmd, sizeof cmd, "gnuplot -e \"outdir='%s'\" '%s' > %s/%s.log 2>&1", outdir, script, outdir, base);
-        int rc = launched_status(outdir, base);
-        if (rc < 0) rc = system(cmd);
-        if (rc != 0) { checklist_add(cl, VERDICT_FAIL, item, "gnuplot %s failed (see %s/%s.log); claims: %s", script, outdir, base, feeds); continue; }
-        char drawn[300];
-        snprintf(drawn, sizeof drawn, "%s/%s.png", outdir, stem);
-        if (install) {
-            cs_status st = install_file(drawn, png);
-            char pdf[300], pdfdst[300];
-            snprintf(pdf, sizeof pdf, "%s/%s.pdf", outdir, stem);
-            snprintf(pdfdst, sizeof pdfdst, "%s/%s.pdf", PATHS_FIGURES_DIR, stem);
-            struct stat sb;
-            if (!st && stat(pdf, &sb) == 0) st = install_file(pdf, pdfdst);
-            if (st) checklist_add(cl, VERDICT_FAIL, item, "%s", cs_errmsg());
-            else checklist_add(cl, VERDICT_PASS, item, "redrawn by gnuplot %s into %s", script, png);
-            continue;
-        }
-        int d = same_bytes(drawn, png);
-        if (d == 0) checklist_add(cl, VERDICT_PASS, item, "%s redrawn by %s into %s: byte-identical", png, script, outdir);
-        else if (d == -1) checklist_add(cl, VERDICT_FAIL, item, "%s drew no %s (see %s/%s.log); claims: %s", script, drawn, outdir, base, feeds);
-        else if (d == -2) checklist_add(cl, VERDICT_FAIL, item, "%s is missing (the committed figure; make figures draws it); claims: %s", png, feeds);
-        else checklist_add(cl, VERDICT_FAIL, item, "%s differs from its redraw by %s from frozen/ (%s): the figure or its script was changed; claims: %s", png, script, drawn, feeds);
-    }
-    paths_list_free(&gps);
-    /* keep the redraws only when something failed (to look at) */
-    int failed = 0;
-    for (size_t i = 0; i < cl->n; i++) failed |= cl->items[i].v == VERDICT_FAIL;
-    if (!failed) {
-        char cmd[200];
-        snprintf(cmd, sizeof cmd, "rm -rf '%s'", outdir);
-        if (system(cmd) != 0) { /* a leftover folder under build/ is harmless */ }
-    }
 }
 
 cs_status verify_load_eval(claims *c, claim_result **res)
@@ -379,9 +209,9 @@ cs_status verify_run(const verify_opts *o)
     claim_result *res;
     cs_status st = verify_preflight();
     if (st) return st;
-    if (!o->no_figures) verify_figures_launch();
-    if ((st = verify_load_eval(&c, &res))) { figures_wait(); return st; }
-    if ((st = verify_external_inputs(&c, res, "verify"))) { figures_wait(); free(res); claims_free(&c); return st; }
+    if (!o->no_figures) figcheck_launch();
+    if ((st = verify_load_eval(&c, &res))) { figcheck_wait(); return st; }
+    if ((st = verify_external_inputs(&c, res, "verify"))) { figcheck_wait(); free(res); claims_free(&c); return st; }
     numbers_tex nt;
     int have_nt = numbers_read(PATHS_NUMBERS, &nt) == CS_OK;
     char nterr[512];
@@ -413,7 +243,7 @@ cs_status verify_run(const verify_opts *o)
 
     if (!o->no_figures) {
         checklist fl = {0};
-        verify_figures(&fl, 0, &c);
+        figcheck_verify(&fl, 0, &c);
         printf("\n== figures (redrawn by gnuplot into build/ and byte-compared with the committed PNGs)\n");
         if (!fl.n) printf("  (no figure scripts yet)\n");
         checklist_print(&fl, count);

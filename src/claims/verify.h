@@ -31,14 +31,6 @@ cs_status verify_load_eval(claims *c, claim_result **res);
 verdict verify_consistent(const claim_row *row, const claim_result *res, const numbers_tex *nt, char *msg, size_t n);
 /* verify_consistent, and FAIL when the claim's gate fails. */
 verdict verify_claim(const claim_row *row, const claim_result *res, const numbers_tex *nt, char *msg, size_t n);
-/* Redraw every figures/ *.gp into build/figures.<pid>/; compare each PNG
- * byte for byte with the committed one (install = 0: never writes into
- * figures/), or install the redraws into figures/ (install = 1, only for a
- * script that succeeded). c (may be NULL) names the claims a figure feeds. */
-void verify_figures(checklist *cl, int install, const claims *c);
-/* Start every figure's redraw in the background (two gnuplot at a time);
- * the next verify_figures waits for them and compares. */
-void verify_figures_launch(void);
 /* Print value, frozen file, function, gate and test of one macro. */
 cs_status verify_trace(const char *macro);
 

@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 #include "tsv.h"
 #include "verify.h"
+#include "figcheck.h"
 #include "audit_paper.h"
 #include "audit_docs.h"
 #include "agree.h"
@@ -27,8 +28,9 @@ int cli_cmd_verify(int argc, char **argv)
     const opts_cmd oc = {"verify", "[--no-figures] [--strict]",
                         "Audit pins, frozen hashes, provenance and aggregates, recompute every claim of\n"
                         "audit/claims.tsv from frozen/, compare with the generated paper files, check the\n"
-                        "paper text, judge every gate, redraw every figure into build/ and byte-compare it with\n"
-                        "the committed PNG, and print the package's consistency and the reference paper's gated\n"
+                        "paper text, judge every gate, redraw every figure into build/ (the data it plots\n"
+                        "compared with figures/plotted.sha256, the PNG byte for byte where the renderer is the\n"
+                        "pinned one), and print the package's consistency and the reference paper's gated\n"
                         "claims (reproduced, not reproduced, pending). A failing gate is a finding, not an error.\n"
                         "Exit 0: consistent (gate failures allowed); 1: any inconsistency (with --strict also any\n"
                         "failing gate); 2: usage; 3: bad input (the registry or gate map unreadable, a FIELD_TABLE or\n"
@@ -229,7 +231,7 @@ int cli_cmd_figures(int argc, char **argv)
     claims c;
     int have_c = claims_load(PATHS_CLAIMS, &c) == CS_OK;
     checklist cl = {0};
-    verify_figures(&cl, 1, have_c ? &c : NULL);
+    figcheck_verify(&cl, 1, have_c ? &c : NULL);
     if (have_c) claims_free(&c);
     size_t count[3] = {0};
     checklist_print(&cl, count);
