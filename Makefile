@@ -127,7 +127,7 @@ CS_STATUS = st=$$?; if [ $$st -ne 0 ]; then case $$st in 1) k=inconsistency;; 2)
 # From clean the CLI is built on both cores unless make already runs parallel.
 verify: deps
 	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j2) $(CLI)
-	@$(CLI) verify $(if $(STRICT),--strict); $(CS_STATUS)
+	@$(CLI) verify $(if $(STRICT),--strict) $(if $(PREREG),--prereg $(PREREG)); $(CS_STATUS)
 
 # Tier 2 (design.md §9): rerun every unit of each experiment whose manifest
 # row says "rerun" (src/base/manifest.h; DEEP_UNITS is generated) into

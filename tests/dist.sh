@@ -55,7 +55,7 @@ dt=$((SECONDS - t0))
   || bad "make verify in the unpacked copy" "exit $rc (clone: $rc_clone); log $(grep -m3 -E 'FAIL|rror' "$tmp/dist.out")"
 grep -q "no .git here" "$tmp/dist.out" && ok "the unpacked copy reports the git ledger unavailable" || bad "ledger" "no 'no .git here' line"
 # everything from the audit on, the ledger section and process ids aside
-norm() { sed -n '/^== audit/,$p' "$1" | sed '/^== ledger/,/^$/d' | sed -E 's/(build\/[a-z]+)\.[0-9]+/\1.PID/g'; }
+norm() { sed -n '/^== audit/,$p' "$1" | sed '/^== ledger/,/^$/d' | grep -v '^preregistration: self-attested' | sed -E 's/(build\/[a-z]+)\.[0-9]+/\1.PID/g'; }
 norm "$tmp/clone.out" > "$tmp/clone.n"; norm "$tmp/dist.out" > "$tmp/dist.n"
 # a check that reads the git history says so without .git ("no .git"): it must
 # pass there, and it is compared by name only (its message differs by design)
@@ -76,6 +76,35 @@ if [ "$nc" -gt 0 ] && diff <(claims "$tmp/clone.n") <(claims "$tmp/dist.n") > "$
 else bad "claim table" "$nc claim lines in the clone; differences: $(head -4 "$tmp/claims.diff")"; fi
 if diff "$tmp/clone.n" "$tmp/dist.n" > "$tmp/all.diff"; then ok "every other verify line the same as in the clone ($(wc -l < "$tmp/clone.n") lines; the ledger and the git-history checks aside)"
 else bad "verify output" "differs from the clone: $(head -6 "$tmp/all.diff")"; fi
+
+grep -q '^preregistration: self-attested (no .git' "$tmp/dist.out" && ok "the unpacked copy says its preregistration is self-attested" \
+  || bad "preregistration line" "$(grep '^preregistration' "$tmp/dist.out")"
+
+# the gates rewritten with their pinned hashes, CITATION.cff and the pins (as an
+# author hiding it would): self-attested, it passes; with the hash a reviewer
+# brings from a trusted copy (PREREG=), it fails naming the gates
+true_hash=$(sed -n 's/.*value: "sha256:\([0-9a-f]*\)".*/\1/p' CITATION.cff)
+cp -a "$dir" "$tmp/forged"
+f="$tmp/forged"
+sed -i 's/^shuffle_ratio_min               1.30$/shuffle_ratio_min               1.00/' "$f/gates/main.gate"
+if cmp -s "$f/gates/main.gate" "$dir/gates/main.gate"; then bad "forged gates" "the edit did not apply"
+else
+  newgate=$(sha256sum "$f/gates/main.gate" | cut -c1-64)
+  sed -i "s/^[0-9a-f]\{64\}  gates\/main.gate$/$newgate  gates\/main.gate/" "$f/audit/gates_prereg.sha256"
+  (cd "$f" && build/crownshy pin >/dev/null 2>&1)
+  forged=$(awk -F'\t' '$1=="gates_sha256"{print $2}' "$f/audit/pins.tsv")
+  find "$f/frozen" -name '*.tsv' -exec sed -i "s/^# gates_sha256: .*/# gates_sha256: $forged/" {} +
+  sed -i "s/sha256:$true_hash/sha256:$forged/" "$f/CITATION.cff"
+  (cd "$f" && build/crownshy hash-frozen >/dev/null 2>&1 && build/crownshy numbers >/dev/null 2>&1)
+  (cd "$f" && build/crownshy verify --no-figures > "$tmp/forged.out" 2>&1); rc=$?
+  [ $rc -eq 0 ] && grep -q '^preregistration: self-attested' "$tmp/forged.out" \
+    && ok "rewritten gates, pins and CITATION.cff pass a self-attested verify (as the threat model says)" \
+    || bad "forged gates, self-attested" "exit $rc: $(grep -m2 '^  FAIL' "$tmp/forged.out" | cut -c1-200)"
+  (cd "$f" && GIT_CEILING_DIRECTORIES="$tmp" make -s --no-print-directory verify PREREG="$true_hash") > "$tmp/forged2.out" 2>&1; rc=$?
+  grep -E '^  FAIL ' "$tmp/forged2.out" | grep -q 'preregistration .*gates hashes to .*not to the preregistration hash you brought' \
+    && [ $rc -ne 0 ] && ok "make verify PREREG=<the published hash> catches the rewritten gates" \
+    || bad "PREREG" "exit $rc: $(grep -m2 '^  FAIL\|^preregistration' "$tmp/forged2.out" | cut -c1-200)"
+fi
 
 # the unpacked copy rebuilds the same archive (same files, one mtime)
 epoch=$(git log -1 --format=%ct 2>/dev/null || echo 0)

@@ -55,6 +55,7 @@
 #define PATHS_MODEL_READINGS_SUMMARY "frozen/model-readings/summary.tsv"
 #define PATHS_PAPER_DIR "paper"
 #define PATHS_FIGURES_DIR "figures"
+#define PATHS_CITATION "CITATION.cff"
 #define PATHS_FIG_PLOTTED "figures/plotted.sha256"
 #define PATHS_FIG_RENDERER "figures/renderer.tsv"
 #define PATHS_FROZEN_DIR "frozen"

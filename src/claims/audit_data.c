@@ -14,6 +14,7 @@
  * Sums run in file order, so a mean is compared bit for bit with the
  * aggregate (the pipeline's own order). */
 #include "audit_data.h"
+#include "audit_evidence.h"
 #include "tsv.h"
 #include <fnmatch.h>
 #include <math.h>
@@ -293,9 +294,9 @@ void audit_ledger(FILE *o)
         fprintf(o, "  (no .git here: the ledger of pinned files needs the repository's history)\n");
         return;
     }
-    /* the commit that added the preregistered gates: the oldest adding gates/ *.gate */
-    if (run_line("git log --diff-filter=A --format=%h --abbrev=12 -- '" PATHS_GATES_DIR "/*.gate' 2>/dev/null", base, sizeof base)) {
-        fprintf(o, "  (the commit that added the preregistered gates is not in this history: shallow clone?)\n");
+    /* the preregistration commit pinned in audit/gates_prereg.sha256, an ancestor of HEAD */
+    if (audit_prereg_commit(base, sizeof base)) {
+        fprintf(o, "  (the pinned preregistration commit is not an ancestor of HEAD in this history: shallow clone, or a rewritten history)\n");
         return;
     }
     tsv *t;

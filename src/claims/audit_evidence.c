@@ -303,21 +303,38 @@ static int have_git(void)
     return stat(".git", &sb) == 0 && system("git rev-parse --git-dir >/dev/null 2>&1") == 0;
 }
 
-/* Last non-empty line of a command's output; 0 when there is one and it exited 0. */
-static int git_line(const char *cmd, char *out, size_t n)
+
+
+/* The preregistration commit pinned in audit/gates_prereg.sha256 (full hex). */
+static int pinned_prereg_commit(char *out, size_t n)
 {
-    FILE *p = popen(cmd, "r");
-    if (!p) return 1;
+    FILE *f = fopen(PATHS_GATES_PREREG, "r");
+    char line[256], commit[64] = "";
+    while (f && fgets(line, sizeof line, f) && line[0] == '#')
+        if (sscanf(line, "# preregistration_commit: %63s", commit) == 1) break;
+    if (f) fclose(f);
+    if (!commit[0] || strspn(commit, "0123456789abcdef") != strlen(commit)) return 1;
+    snprintf(out, n, "%s", commit);
+    return 0;
+}
+
+int audit_prereg_state(char *out, size_t n)
+{
+    char commit[64], cmd[200];
     out[0] = '\0';
-    char line[512];
-    while (fgets(line, sizeof line, p)) { line[strcspn(line, "\n")] = '\0'; if (line[0]) snprintf(out, n, "%s", line); }
-    return pclose(p) != 0 || !out[0];
+    if (!have_git()) return PREREG_NO_GIT;
+    if (pinned_prereg_commit(commit, sizeof commit)) return PREREG_UNPINNED;
+    snprintf(out, n, "%.12s", commit);
+    /* git replace is ignored (GIT_NO_REPLACE_OBJECTS, set by verify) */
+    snprintf(cmd, sizeof cmd, "git cat-file -e '%s^{commit}' 2>/dev/null", commit);
+    if (system(cmd) != 0) return PREREG_ABSENT;
+    snprintf(cmd, sizeof cmd, "git merge-base --is-ancestor '%s' HEAD 2>/dev/null", commit);
+    return system(cmd) == 0 ? PREREG_ANCESTOR : PREREG_NOT_ANCESTOR;
 }
 
 int audit_prereg_commit(char *out, size_t n)
 {
-    if (!have_git()) return 1;
-    return git_line("git log --diff-filter=A --format=%h --abbrev=12 -- '" PATHS_GATES_DIR "/*.gate' 2>/dev/null", out, n);
+    return audit_prereg_state(out, n) != PREREG_ANCESTOR;
 }
 
 /* sha256 of `git show REV:PATH`, or of its TEACHER_VERSION string (version = 1). */
@@ -408,7 +425,13 @@ void audit_gates_prereg(const claims *c, checklist *cl)
     size_t np = prereg_copy(ppath, phex, 64, &ok), bad = 0;
     if (!ok || !np) { checklist_add(cl, VERDICT_FAIL, "gates preregistered", "%s: missing or malformed (the pinned copy of the preregistered gates' hashes); every gated claim affected", PATHS_GATES_PREREG); return; }
     char base[64] = "";
-    int git = !audit_prereg_commit(base, sizeof base);
+    const int state = audit_prereg_state(base, sizeof base);
+    int git = state == PREREG_ANCESTOR;
+    if (state == PREREG_NOT_ANCESTOR) {
+        checklist_add(cl, VERDICT_FAIL, "gates preregistered", "the preregistration commit %s pinned in %s is not an ancestor of HEAD (a rewritten or grafted history); every gated claim affected",
+                      base, PATHS_GATES_PREREG);
+        bad++;
+    }
     paths_list g = {0};
     paths_list_every(PATHS_GATES_DIR, 1, &g);
     for (size_t i = 0; i < g.n; i++) {
@@ -450,15 +473,8 @@ void audit_gates_prereg(const claims *c, checklist *cl)
  * versions cannot show what the package's history would. */
 static int history_has_prereg(void)
 {
-    FILE *f = fopen(PATHS_GATES_PREREG, "r");
-    char line[256], commit[64] = "";
-    while (f && fgets(line, sizeof line, f) && line[0] == '#')
-        if (sscanf(line, "# preregistration_commit: %63s", commit) == 1) break;
-    if (f) fclose(f);
-    if (!commit[0] || strspn(commit, "0123456789abcdef") != strlen(commit)) return 0;
-    char cmd[160];
-    snprintf(cmd, sizeof cmd, "git cat-file -e '%s^{commit}' 2>/dev/null", commit);
-    return system(cmd) == 0;
+    char c[64];
+    return audit_prereg_state(c, sizeof c) == PREREG_ANCESTOR;
 }
 
 /* ---- superseded pins: real past values ---- */
@@ -525,4 +541,53 @@ int audit_table_superseded(const char *path)
     if (sup) tsv_free(sup);
     fclose(f);
     return hit;
+}
+
+/* ---- the preregistration anchored outside the repository ---- */
+
+/* The gates' hash CITATION.cff publishes ("value: sha256:HEX" of the
+ * identifier described as the preregistered gates); 0 when found. */
+static int citation_gates_hash(char hex[65])
+{
+    FILE *f = fopen(PATHS_CITATION, "r");
+    char line[512];
+    int found = 0;
+    while (f && !found && fgets(line, sizeof line, f)) {
+        const char *v = strstr(line, "sha256:");
+        if (v && strstr(line, "value:") && sscanf(v + 7, "%64[0-9a-f]", hex) == 1 && strlen(hex) == 64) found = 1;
+    }
+    if (f) fclose(f);
+    return !found;
+}
+
+void audit_prereg_anchor(checklist *cl, const char *brought, char *line, size_t n)
+{
+    char now[65], pub[65], base[64];
+    if (prov_gates_sha256(PATHS_GATES_DIR, now)) {
+        checklist_add(cl, VERDICT_FAIL, "preregistration", "%s: %s", PATHS_GATES_DIR, cs_errmsg());
+        snprintf(line, n, "preregistration: gates unreadable");
+        return;
+    }
+    if (citation_gates_hash(pub))
+        checklist_add(cl, VERDICT_FAIL, "preregistration", "%s publishes no sha256 of the preregistered gates (an identifier 'value: sha256:<hex>'); every gated claim affected", PATHS_CITATION);
+    else if (strcmp(pub, now))
+        checklist_add(cl, VERDICT_FAIL, "preregistration", "%s publishes the gates' sha256 %.16s..., but %s hashes to %.16s...; every gated claim affected", PATHS_CITATION, pub, PATHS_GATES_DIR, now);
+    else checklist_add(cl, VERDICT_PASS, "preregistration", "%s publishes the sha256 of %s (%.16s...)", PATHS_CITATION, PATHS_GATES_DIR, now);
+    if (brought && brought[0]) {
+        if (strcmp(brought, now)) {
+            checklist_add(cl, VERDICT_FAIL, "preregistration", "%s hashes to %s, not to the preregistration hash you brought (PREREG=%s): a preregistered threshold changed; every gated claim affected",
+                          PATHS_GATES_DIR, now, brought);
+            snprintf(line, n, "preregistration: %s DIFFER from the hash you brought (PREREG=%.16s...)", PATHS_GATES_DIR, brought);
+        } else {
+            checklist_add(cl, VERDICT_PASS, "preregistration", "%s equals the preregistration hash you brought (PREREG=%.16s...)", PATHS_GATES_DIR, brought);
+            snprintf(line, n, "preregistration: checked against the hash you brought (PREREG=%.16s...): the gates are the preregistered ones", brought);
+        }
+        return;
+    }
+    const int state = audit_prereg_state(base, sizeof base);
+    snprintf(line, n, "preregistration: self-attested (%s; an author who rewrites the gates, their pinned hashes and the history "
+                      "passes this): bring the gates' sha256 from a copy you trust (CITATION.cff, the write-up's first page) as make verify PREREG=<sha256>",
+             state == PREREG_ANCESTOR ? "the gates equal their content at the pinned preregistration commit, an ancestor of HEAD"
+             : state == PREREG_NO_GIT ? "no .git: the gates equal their pinned hashes"
+                                      : "the gates equal their pinned hashes; this history lacks the pinned preregistration commit");
 }

@@ -209,6 +209,8 @@ cs_status verify_run(const verify_opts *o)
     claim_result *res;
     cs_status st = verify_preflight();
     if (st) return st;
+    /* the history as committed: a git replace ref does not stand in for a commit */
+    setenv("GIT_NO_REPLACE_OBJECTS", "1", 1);
     if (!o->no_figures) figcheck_launch();
     if ((st = verify_load_eval(&c, &res))) { figcheck_wait(); return st; }
     if ((st = verify_external_inputs(&c, res, "verify"))) { figcheck_wait(); free(res); claims_free(&c); return st; }
@@ -219,8 +221,10 @@ cs_status verify_run(const verify_opts *o)
 
     size_t count[3] = {0}; /* consistency checks by verdict: PASS, FAIL, PENDING */
     checklist cl = {0};
+    char prereg_line[700];
     audit_run(&c, res, &cl);
     audit_docs(&c, res, &cl);
+    audit_prereg_anchor(&cl, o->prereg, prereg_line, sizeof prereg_line);
     printf("== audit (pins, frozen hashes and provenance, aggregates, registry and gate map, generated and written paper)\n");
     checklist_print(&cl, count);
     checklist_free(&cl);
@@ -269,6 +273,7 @@ cs_status verify_run(const verify_opts *o)
     if (gt.ext[0] + gt.ext[1] + gt.ext[2])
         printf("extension claims (a generator reading added after the first verdict, design.md §8; same thresholds, %s): %zu meet, %zu do not%s%s%s, %zu pending; tables: %s\n",
                PATHS_GATE_MAP_EXT, gt.ext[0], gt.ext[1], gt.ext[1] ? " (" : "", gt.ext_fail, gt.ext[1] ? ")" : "", gt.ext[2], gt.ext_src);
+    printf("%s\n", prereg_line);
     if (count[VERDICT_FAIL])
         printf("package: INCONSISTENT: %zu check(s) failed: a number, verdict, table, figure or sentence does not follow from frozen/ and the pinned code\n", count[VERDICT_FAIL]);
     else

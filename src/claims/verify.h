@@ -7,7 +7,8 @@
 #include "audit.h"
 
 /* strict: a failing preregistered gate (a finding) also fails verify. */
-typedef struct { int quiet; int no_figures; int strict; } verify_opts;
+/* prereg: the gates' sha256 the reviewer brings (NULL: self-attested). */
+typedef struct { int quiet; int no_figures; int strict; const char *prereg; } verify_opts;
 
 /* design.md §9: CS_OK when every number, verdict, table, figure and
  * sentence follows from frozen/ and the pinned code (a failing gate is a
