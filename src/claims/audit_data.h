@@ -23,4 +23,14 @@ void audit_feeds(const claims *c, const char *path, char *buf, size_t n);
 /* Print which pinned files changed after the commit that added the gates. */
 void audit_ledger(FILE *o);
 
+/* The preregistration commit pinned in audit/gates_prereg.sha256 (its
+ * abbreviation into out, when pinned) and where it stands in this history:
+ * an ancestor of HEAD, present but not an ancestor (a rewritten or grafted
+ * history), absent (a shallow clone), no .git, or not pinned. git replace
+ * refs are not followed while GIT_NO_REPLACE_OBJECTS is set (verify sets it). */
+enum { PREREG_ANCESTOR = 0, PREREG_NOT_ANCESTOR, PREREG_ABSENT, PREREG_NO_GIT, PREREG_UNPINNED };
+int audit_prereg_state(char *out, size_t n);
+/* The preregistration commit (abbreviated), 0 when it is an ancestor of HEAD. */
+int audit_prereg_commit(char *out, size_t n);
+
 #endif

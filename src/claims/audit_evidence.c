@@ -305,37 +305,6 @@ static int have_git(void)
 
 
 
-/* The preregistration commit pinned in audit/gates_prereg.sha256 (full hex). */
-static int pinned_prereg_commit(char *out, size_t n)
-{
-    FILE *f = fopen(PATHS_GATES_PREREG, "r");
-    char line[256], commit[64] = "";
-    while (f && fgets(line, sizeof line, f) && line[0] == '#')
-        if (sscanf(line, "# preregistration_commit: %63s", commit) == 1) break;
-    if (f) fclose(f);
-    if (!commit[0] || strspn(commit, "0123456789abcdef") != strlen(commit)) return 1;
-    snprintf(out, n, "%s", commit);
-    return 0;
-}
-
-int audit_prereg_state(char *out, size_t n)
-{
-    char commit[64], cmd[200];
-    out[0] = '\0';
-    if (!have_git()) return PREREG_NO_GIT;
-    if (pinned_prereg_commit(commit, sizeof commit)) return PREREG_UNPINNED;
-    snprintf(out, n, "%.12s", commit);
-    /* git replace is ignored (GIT_NO_REPLACE_OBJECTS, set by verify) */
-    snprintf(cmd, sizeof cmd, "git cat-file -e '%s^{commit}' 2>/dev/null", commit);
-    if (system(cmd) != 0) return PREREG_ABSENT;
-    snprintf(cmd, sizeof cmd, "git merge-base --is-ancestor '%s' HEAD 2>/dev/null", commit);
-    return system(cmd) == 0 ? PREREG_ANCESTOR : PREREG_NOT_ANCESTOR;
-}
-
-int audit_prereg_commit(char *out, size_t n)
-{
-    return audit_prereg_state(out, n) != PREREG_ANCESTOR;
-}
 
 /* sha256 of `git show REV:PATH`, or of its TEACHER_VERSION string (version = 1). */
 static int git_blob_value(const char *rev, const char *path, int version, char *out, size_t n)

@@ -24,15 +24,6 @@ void audit_superseded_real(checklist *cl);
 /* 1 when the frozen table at path was made by a superseded reading (its
  * provenance names a pin of audit/pins_superseded.tsv instead of the current one). */
 int audit_table_superseded(const char *path);
-/* The preregistration commit pinned in audit/gates_prereg.sha256 (its
- * abbreviation into out, when pinned) and where it stands in this history:
- * an ancestor of HEAD, present but not an ancestor (a rewritten or grafted
- * history), absent (a shallow clone), no .git, or not pinned. git replace
- * refs are not followed while GIT_NO_REPLACE_OBJECTS is set (verify sets it). */
-enum { PREREG_ANCESTOR = 0, PREREG_NOT_ANCESTOR, PREREG_ABSENT, PREREG_NO_GIT, PREREG_UNPINNED };
-int audit_prereg_state(char *out, size_t n);
-/* The preregistration commit (abbreviated), 0 when it is an ancestor of HEAD. */
-int audit_prereg_commit(char *out, size_t n);
 /* The gates against hashes from outside this tree: CITATION.cff must publish
  * their sha256 (an identifier "value: sha256:<hex>"), and brought (the
  * reviewer's PREREG, may be NULL) must equal it. line: the summary's

@@ -203,6 +203,21 @@ static void print_claims(const claims *c, const claim_result *res, const numbers
     }
 }
 
+/* The summary's pending count, distance to the paper and agreement lines. */
+static void print_distance(const attrib_data *at, const claims *c, const claim_result *res, const claim_interval *ci, size_t pending)
+{
+    attrib_counts ak;
+    attrib_count(at, c, res, &ak);
+    agree_counts gk;
+    agree_count(at, c, res, ci, &gk);
+    char aline[600], gline[800];
+    attrib_line(&ak, 0, aline, sizeof aline);
+    agree_line(&gk, 0, gline, sizeof gline);
+    printf("\n%zu pending (input data missing on this machine, or a reading's units not yet frozen: reason above; never counted as passed)\n", pending);
+    printf("%s (distance, not a verdict)\n", aline);
+    printf("%s\n", gline);
+}
+
 cs_status verify_run(const verify_opts *o)
 {
     claims c;
@@ -257,17 +272,8 @@ cs_status verify_run(const verify_opts *o)
     audit_ledger(stdout);
 
     if (!at_ok) printf("(attribution: %s)\n", cs_errmsg());
-    attrib_counts ak;
-    attrib_count(&at, &c, res, &ak);
-    agree_counts gk;
-    agree_count(&at, &c, res, ci, &gk);
+    print_distance(&at, &c, res, ci, count[VERDICT_PENDING]);
     attrib_free(&at);
-    char aline[600], gline[800];
-    attrib_line(&ak, 0, aline, sizeof aline);
-    agree_line(&gk, 0, gline, sizeof gline);
-    printf("\n%zu pending (input data missing on this machine, or a reading's units not yet frozen: reason above; never counted as passed)\n", count[VERDICT_PENDING]);
-    printf("%s (distance, not a verdict)\n", aline);
-    printf("%s\n", gline);
     printf("reference paper's gated claims: %zu reproduced, %zu not reproduced%s%s%s, %zu pending\n", rep, notrep,
            notrep ? " (" : "", notrep_list, notrep ? ")" : "", gpend);
     if (gt.ext[0] + gt.ext[1] + gt.ext[2])
