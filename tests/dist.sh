@@ -94,6 +94,14 @@ else
   (cd "$f" && build/crownshy pin >/dev/null 2>&1)
   forged=$(awk -F'\t' '$1=="gates_sha256"{print $2}' "$f/audit/pins.tsv")
   find "$f/frozen" -name '*.tsv' -exec sed -i "s/^# gates_sha256: .*/# gates_sha256: $forged/" {} +
+  # every provenance line naming a rewritten file beside its table gets the new hash
+  grep -rlE '^# [a-z_]+: [^ ]+ sha256 [0-9a-f]{64}' "$f/frozen" --include='*.tsv' | while read -r t; do
+    grep -oE '^# [a-z_]+: [^ ]+ sha256 [0-9a-f]{64}' "$t" | while read -r _ _ name _ old; do
+      [ -f "$(dirname "$t")/$name" ] || continue
+      new=$(sha256sum "$(dirname "$t")/$name" | cut -c1-64)
+      sed -i "s/ $name sha256 $old/ $name sha256 $new/" "$t"
+    done
+  done
   sed -i "s/sha256:$true_hash/sha256:$forged/" "$f/CITATION.cff"
   (cd "$f" && build/crownshy hash-frozen >/dev/null 2>&1 && build/crownshy numbers >/dev/null 2>&1)
   (cd "$f" && build/crownshy verify --no-figures > "$tmp/forged.out" 2>&1); rc=$?
