@@ -27,9 +27,12 @@ do for [term = 1:2] {
       set object 1 rectangle from 0,0 to 36,36 fillcolor rgb '#0b0f0b' fillstyle solid 1.0 behind
       set title (b == 1 ? sprintf("%s m", word(spacings, a)) : "")
       set ylabel (a == 1 ? (b == 1 ? "β_{train}" : "β_{field}") : "") offset 1,0
+      SBX = 1.5; SBY = 1.5
+      if (a == 1 && b == 1) { @scale_bar } else { @no_scale_bar }
       plot for [t = 0:n-1] f every ::(t*ROWS)::(t*ROWS+ROWS-1) using 2:3:4 with filledcurves closed lc palette notitle
     }
   }
+  @no_scale_bar
   unset multiplot
   unset output
 }

@@ -20,14 +20,16 @@ do for [term = 1:2] {
   set key top center horizontal
   set grid ytics
   set xlabel "stem spacing d (m)"
-  set xtics autofreq   # the right panel's tics must not leak into this one on the second pass
+  # the spacings run are categories, one bar each at its row's position: a
+  # numeric axis would leave empty slots between them that read as zero bars
+  set xtics () # the right panel's tics must not leak into this one on the second pass
   set ylabel "neighbours responding"
-  set xrange [2.7:6.8]
+  set xrange [-0.6:4.6]
   set yrange [0:1.3]
   set ytics (0, 0.25, 0.5, 0.75, 1)
   set style fill solid 0.8
-  set boxwidth 0.3
-  plot fp using "spacing_m":"response_fraction" with boxes lc rgb '#3f7f3f' title "response fraction", \
+  set boxwidth 0.6
+  plot fp using 0:"response_fraction":xtic(sprintf("%g", column("spacing_m"))) with boxes lc rgb '#3f7f3f' title "response fraction", \
        0.5 with lines dt 2 lw 2 lc rgb '#b03030' title "gate 0.50"
   set xlabel "growth resolution N"
   set ylabel "relative to N = 48"

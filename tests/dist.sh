@@ -97,9 +97,10 @@ else
   # every provenance line naming a rewritten file beside its table gets the new hash
   grep -rlE '^# [a-z_]+: [^ ]+ sha256 [0-9a-f]{64}' "$f/frozen" --include='*.tsv' | while read -r t; do
     grep -oE '^# [a-z_]+: [^ ]+ sha256 [0-9a-f]{64}' "$t" | while read -r _ _ name _ old; do
-      [ -f "$(dirname "$t")/$name" ] || continue
-      new=$(sha256sum "$(dirname "$t")/$name" | cut -c1-64)
-      sed -i "s/ $name sha256 $old/ $name sha256 $new/" "$t"
+      case "$name" in */*) file="$f/$name" ;; *) file="$(dirname "$t")/$name" ;; esac
+      [ -f "$file" ] || continue
+      new=$(sha256sum "$file" | cut -c1-64)
+      sed -i "s| $name sha256 $old| $name sha256 $new|" "$t"
     done
   done
   sed -i "s/sha256:$true_hash/sha256:$forged/" "$f/CITATION.cff"

@@ -200,7 +200,7 @@ UNIT(generator-probes, "plain/probes_s%_indep.tsv", "@R@/model-readings/plain/ma
 UNIT(generator-probes, "teacher/probes.tsv", "", "$(CLI) generator-probes-run --perfect --scale $(SCALE) --samples @R@/generator-probes/teacher/samples.tsv --out $@", "top")
 UNIT(generator-probes, "summary.tsv", "$(foreach r,paper pair paper-fourier plain,$(foreach s,$(READING_SEED_LIST),@R@/generator-probes/$(r)/probes_s$(s)_joint.tsv @R@/generator-probes/$(r)/probes_s$(s)_indep.tsv))", "$(CLI) generator-probes-summary --dir @R@ --seeds $(READING_NSEEDS) --out $@", "top")
 
-EXPERIMENT(pointcloud, "E8", "src/exp/exp_stands.c", "-", "src/claims/claim_teacher.c", "figures/pointcloud-stand.gp", "rerun", "hard-core stands at 5, 4 and 3 m: crowns contacting a neighbour, coupled vs uncoupled clearance")
+EXPERIMENT(pointcloud, "E8", "src/exp/exp_stands.c", "-", "src/claims/claim_teacher.c", "figures/hardcore-canopies.gp", "rerun", "hard-core stands at 5, 4 and 3 m: crowns contacting a neighbour, coupled vs uncoupled clearance")
 COMMAND(pointcloud, "pointcloud-figure", cli_pointcloud_figure, "E8: point-cloud stands (5/4/3 m and uncoupled) and pointcloud/stats.tsv")
 UNIT(pointcloud, "figure_crowns.tsv", "$(TEACHER_DEPS)", "$(CLI) pointcloud-figure @TEACHER@ --out @R@", "top readings")
 
