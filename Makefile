@@ -102,7 +102,7 @@ $(SPLIT): tests/bench/step_split.c $(B)/libcrownshy.a
 # Every cmocka binary, then all of them again under ASan+UBSan; one aggregate line.
 check: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS) $(ASAN_TESTS) $(SPLIT)
-	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/manifest.sh tests/citation.sh tests/paper_deps.sh tests/fonts.sh tests/docs.sh tests/readings_full.sh -- $(ASAN_TESTS)
+	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/manifest.sh tests/citation.sh tests/paper_deps.sh tests/fonts.sh tests/spot.sh tests/docs.sh tests/readings_full.sh -- $(ASAN_TESTS)
 
 # One claim's test alone, by its macro: make test-claim MACRO=MainRel
 .PHONY: test-claim
@@ -127,7 +127,7 @@ CS_STATUS = st=$$?; if [ $$st -ne 0 ]; then case $$st in 1) k=inconsistency;; 2)
 # From clean the CLI is built on both cores unless make already runs parallel.
 verify: deps
 	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j2) $(CLI)
-	@$(CLI) verify $(if $(STRICT),--strict) $(if $(PREREG),--prereg $(PREREG)); $(CS_STATUS)
+	@$(CLI) verify $(if $(STRICT),--strict) $(if $(SEED),--seed $(SEED)) $(if $(PREREG),--prereg $(PREREG)); $(CS_STATUS)
 
 # Tier 2 (design.md §9): rerun every unit of each experiment whose manifest
 # row says "rerun" (src/base/manifest.h; DEEP_UNITS is generated) into

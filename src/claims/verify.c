@@ -15,6 +15,7 @@
 #include "audit_evidence.h"
 #include "audit_docs.h"
 #include "figcheck.h"
+#include "spot.h"
 
 cs_status verify_eval_all(const claims *c, claim_result **out)
 {
@@ -226,6 +227,7 @@ cs_status verify_run(const verify_opts *o)
     if (st) return st;
     /* the history as committed: a git replace ref does not stand in for a commit */
     setenv("GIT_NO_REPLACE_OBJECTS", "1", 1);
+    if (!o->no_figures) spot_launch(o->spot_seed);
     if (!o->no_figures) figcheck_launch();
     if ((st = verify_load_eval(&c, &res))) { figcheck_wait(); return st; }
     if ((st = verify_external_inputs(&c, res, "verify"))) { figcheck_wait(); free(res); claims_free(&c); return st; }
@@ -263,7 +265,8 @@ cs_status verify_run(const verify_opts *o)
     if (!o->no_figures) {
         checklist fl = {0};
         figcheck_verify(&fl, 0, &c);
-        printf("\n== figures (redrawn by gnuplot into build/ and byte-compared with the committed PNGs)\n");
+        spot_check(&fl, &c);
+        printf("\n== redraws (a random slice of one generator unit from its weights; every figure by gnuplot into build/)\n");
         if (!fl.n) printf("  (no figure scripts yet)\n");
         checklist_print(&fl, count);
         checklist_free(&fl);

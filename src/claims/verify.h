@@ -8,7 +8,8 @@
 
 /* strict: a failing preregistered gate (a finding) also fails verify. */
 /* prereg: the gates' sha256 the reviewer brings (NULL: self-attested). */
-typedef struct { int quiet; int no_figures; int strict; const char *prereg; } verify_opts;
+/* spot_seed: the spot check's pick (0: from the clock); no_figures also skips the spot check. */
+typedef struct { int quiet; int no_figures; int strict; const char *prereg; unsigned long spot_seed; } verify_opts;
 
 /* design.md §9: CS_OK when every number, verdict, table, figure and
  * sentence follows from frozen/ and the pinned code (a failing gate is a

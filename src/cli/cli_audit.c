@@ -23,10 +23,12 @@
 int cli_cmd_verify(int argc, char **argv)
 {
     verify_opts o = {0};
-    const opt_spec spec[] = {{"no-figures", OPT_FLAG, &o.no_figures, 0, 0, "skip redrawing the figures"},
+    long spot_seed = 0;
+    const opt_spec spec[] = {{"no-figures", OPT_FLAG, &o.no_figures, 0, 0, "skip the redraws (the figures and the spot check)"},
                              {"strict", OPT_FLAG, &o.strict, 0, 0, "also fail when a preregistered gate fails (a finding)"},
+                             {"seed", OPT_LONG, &spot_seed, 1, 4294967295.0, "the spot check's pick (default: from the clock; printed, to repeat it)"},
                              {"prereg", OPT_STR, &o.prereg, 0, 0, "the gates' sha256 from a copy you trust (CITATION.cff, the write-up's first page); without it the preregistration is self-attested"}};
-    const opts_cmd oc = {"verify", "[--no-figures] [--strict] [--prereg SHA256]",
+    const opts_cmd oc = {"verify", "[--no-figures] [--strict] [--seed N] [--prereg SHA256]",
                         "Audit pins, frozen hashes, provenance and aggregates, recompute every claim of\n"
                         "audit/claims.tsv from frozen/, compare with the generated paper files, check the\n"
                         "paper text, judge every gate, redraw every figure into build/ (the data it plots\n"
@@ -36,9 +38,10 @@ int cli_cmd_verify(int argc, char **argv)
                         "Exit 0: consistent (gate failures allowed); 1: any inconsistency (with --strict also any\n"
                         "failing gate); 2: usage; 3: bad input (the registry or gate map unreadable, a FIELD_TABLE or\n"
                         "CHM that cannot be read); 4: environment (a build/ that cannot be written, I/O, memory).",
-                        spec, 3, 0, 0};
+                        spec, 4, 0, 0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
+    o.spot_seed = (unsigned long)spot_seed;
     if (o.prereg && (strlen(o.prereg) != 64 || strspn(o.prereg, "0123456789abcdef") != 64)) {
         fprintf(stderr, "crownshy verify: --prereg: '%s' is not a sha256 (64 lowercase hex digits)\n", o.prereg);
         return 2;

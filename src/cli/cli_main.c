@@ -20,6 +20,7 @@ static const char *const SCALES[] = {"full", "smoke", NULL};
 
 static const char *const READINGS[] = {"plain", "paper", "paper-fourier", "pair", NULL};
 static const char *const VOLUMES[] = {"v1", "v2", NULL};
+static const char *const PROBES[] = {"generated", "shuffled", "rotated", NULL};
 
 #define UNIT_OPTS(a, seed) \
     {"seed", OPT_LONG, &seed, 1, 4294967295.0, "model seed (zero-padded 01 is 1)", .required = 1}, \
@@ -116,10 +117,14 @@ int cli_main_redraw(int argc, char **argv)
         {"out", OPT_STR, &a.out, 0, 0, "output samples FILE.tsv", .required = 1},
         {"scale", OPT_CHOICE, &a.scale, 0, 0, "the plan's scale (default full)", .choices = SCALES},
         {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume (src/exp/mainrun.h; default v1)", .choices = VOLUMES},
+        {"spacing", OPT_DOUBLE, &a.only_spacing, 0.5, 100, "draw this evaluation spacing (m) alone (default every one)"},
+        {"probe", OPT_CHOICE, &a.only_probe, 0, 0, "draw this probe alone (default every one)", .choices = PROBES},
     };
-    const opts_cmd c = {"main-redraw", "--weights FILE --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--volume v1|v2]",
+    const opts_cmd c = {"main-redraw", "--weights FILE --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--volume v1|v2] [--spacing D] [--probe P]",
                         "Draw the clearance samples of one E3/E4 unit again from its weights, without training:\n"
-                        "the data rows of FILE.tsv equal those of the unit's samples_s<seed>_<arm>.tsv bit for bit.",
+                        "the data rows of FILE.tsv equal those of the unit's samples_s<seed>_<arm>.tsv bit for bit.\n"
+                        "With --spacing and --probe only that slice is drawn (the spacing's teacher rows and the\n"
+                        "probe's generated rows), equal to those rows of the whole: the spot check of make verify.",
                         spec, sizeof spec / sizeof *spec, 0, 0};
     int r = opts_parse(&c, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);

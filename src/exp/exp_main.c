@@ -372,7 +372,11 @@ cs_status exp_main_redraw(const exp_main_run_args *ap)
     size_t nrows = 0;
     char sbuf[256];
     const unsigned seed = (unsigned)a.seed;
-    if (!st) st = mainrun_evaluate(m, pl.batch, &ds, &pl, scl, seed, a.arm, rows, &nrows, &worst, &maxdiff);
+    int probe = -1;
+    for (int p = 0; a.only_probe && p < MAINSET_NPROBE; p++) if (!strcmp(a.only_probe, mainset_probe_name((mainset_probe)p))) probe = p;
+    if (!st && a.only_probe && probe < 0) st = cs_err(CS_EUSAGE, "main-redraw: --probe %s: not a probe (generated, shuffled, rotated)", a.only_probe);
+    if (!st) st = mainrun_evaluate_slice(m, pl.batch, &ds, &pl, scl, seed, a.arm, a.only_spacing > 0 ? a.only_spacing : NAN, probe, rows, &nrows, &worst, &maxdiff);
+    if (!st && !nrows) st = cs_err(CS_EUSAGE, "main-redraw: --spacing %g: not an evaluation spacing of the plan", a.only_spacing);
     snprintf(pv.seeds, sizeof pv.seeds, "%s", mainrun_seeds_text(sbuf, sizeof sbuf, seed));
     pv.worst_overlap_m = worst;
     if (!st) st = afile_mkdir_parents(a.out);

@@ -41,6 +41,8 @@ typedef struct {
     long blocks;             /* 0: the reference depth (model.h); else the number of blocks */
     double lr;               /* 0: the plan's peak learning rate; else the peak learning rate */
     int pair;                /* -1 unset; 1 the pair reading, 0 the plain one (the form before reading) */
+    double only_spacing;     /* main-redraw: 0 every spacing; else that spacing alone */
+    const char *only_probe;  /* main-redraw: NULL every probe; else that probe alone (generated, shuffled, rotated) */
     int argc;
     char **argv;
 } exp_main_run_args;

@@ -6,6 +6,7 @@
 #include "tsv.h"
 #include <stdio.h>
 #include <stdlib.h>
+#include <math.h>
 #include <string.h>
 
 cs_status mainrun_plan_get(const char *scale, mainrun_plan *p)
@@ -66,22 +67,33 @@ cs_status mainrun_evaluate(model *m, int Bmax, const mainset_design *ds, const m
                            unsigned seed, const char *arm, mainrun_row *rows, size_t *nrows,
                            double *worst, double *maxdiff)
 {
+    return mainrun_evaluate_slice(m, Bmax, ds, pl, scale, seed, arm, NAN, -1, rows, nrows, worst, maxdiff);
+}
+
+cs_status mainrun_evaluate_slice(model *m, int Bmax, const mainset_design *ds, const mainrun_plan *pl, double scale,
+                                 unsigned seed, const char *arm, double only_d, int only_probe, mainrun_row *rows,
+                                 size_t *nrows, double *worst, double *maxdiff)
+{
     cs_status st = CS_OK;
     *nrows = 0;
     for (size_t si = 0; si < ds->nunseen + ds->nextrap && !st; si++) {
         int unseen;
         double d = mainset_eval_spacing(ds, si, &unseen);
+        if (!isnan(only_d) && fabs(d - only_d) > 1e-9) continue;
         mainset_eval e;
         st = mainset_eval_build(ds, pl->eval_stands, d, scale, &e, worst, maxdiff);
         const int nprobe = mainrun_nprobe(pl, &m->cfg, unseen);
+        /* each (spacing, probe) draws from its own stream: a slice equals those rows of the whole */
         for (int probe = 0; probe < nprobe && !st; probe++) {
+            if (only_probe >= 0 && probe != only_probe) continue;
+            const int first = *nrows == 0 || rows[*nrows - 1].d != d;
             mainrun_row *r = &rows[(*nrows)++];
             memset(r, 0, sizeof *r);
             r->d = d; r->unseen = unseen; r->probe = (mainset_probe)probe; r->nt = e.ps->n;
             r->gen = malloc((size_t)pl->gen_patches * sizeof *r->gen);
-            if (!probe) r->teach = malloc((size_t)e.ps->n * sizeof *r->teach);
-            if (!r->gen || (!probe && !r->teach)) { st = cs_err(CS_ENOMEM, "out of memory"); break; }
-            if (!probe) memcpy(r->teach, e.teach, (size_t)e.ps->n * sizeof *r->teach);
+            if (first) r->teach = malloc((size_t)e.ps->n * sizeof *r->teach);
+            if (!r->gen || (first && !r->teach)) { st = cs_err(CS_ENOMEM, "out of memory"); break; }
+            if (first) memcpy(r->teach, e.teach, (size_t)e.ps->n * sizeof *r->teach);
             st = mainset_generate(m, Bmax, &e, pl->gen_patches, pl->euler, seed, r->probe, r->gen, &r->ng);
             if (!st) st = est_w1(r->gen, (size_t)r->ng, e.teach, (size_t)e.ps->n, &r->w1);
             if (!st) fprintf(stderr, "main s%u %s: d = %.1f %s W1 = %.4f m\n", seed, arm, d, mainset_probe_name(r->probe), r->w1);

@@ -78,6 +78,13 @@ int mainrun_nprobe(const mainrun_plan *pl, const model_cfg *cfg, int unseen);
 cs_status mainrun_evaluate(model *m, int Bmax, const mainset_design *ds, const mainrun_plan *pl, double scale,
                            unsigned seed, const char *arm, mainrun_row *rows, size_t *nrows,
                            double *worst, double *maxdiff);
+/* The same, for spacing only_d (NAN: every spacing) and probe only_probe (-1:
+ * every probe) alone: the rows equal those rows of the whole evaluation bit
+ * for bit (each spacing and probe draws from its own stream); the teacher
+ * values ride on the first row of each spacing. */
+cs_status mainrun_evaluate_slice(model *m, int Bmax, const mainset_design *ds, const mainrun_plan *pl, double scale,
+                                 unsigned seed, const char *arm, double only_d, int only_probe, mainrun_row *rows,
+                                 size_t *nrows, double *worst, double *maxdiff);
 
 /* The samples behind every W1 of a run (README "Frozen samples and weights"). */
 cs_status mainrun_samples_write(const char *path, prov *pv, unsigned seed, const char *arm,
