@@ -218,6 +218,21 @@ if [ $have_git = 1 ] && fresh_git; then
   (cd "$scratch" && git add -A && git -c user.name=t -c user.email=t@t commit -qm "threshold" >/dev/null 2>&1)
   expect "gate changed, laundered and committed (.git)" "gates/main.gate" "preregistration commit" "MainRel"
 else echo "[  SKIPPED ] gate changed (.git): no git history here"; fi
+# 21b. unit identities: a seed's joint and independent units swapped, and a
+# seed copied as another, each resealed
+fresh
+d="$scratch/frozen/paper-reading/main"
+for f in run samples weights; do
+  e=tsv; [ $f = weights ] && e=ckpt
+  mv "$d/${f}_s03_joint.$e" "$d/x"; mv "$d/${f}_s03_indep.$e" "$d/${f}_s03_joint.$e"; mv "$d/x" "$d/${f}_s03_indep.$e"
+done
+reseal
+expect "joint and independent units swapped" "unit identities" "run_s03_indep.tsv" "MainRel"
+fresh
+d="$scratch/frozen/paper-reading/main"
+for f in run samples weights; do e=tsv; [ $f = weights ] && e=ckpt; cp "$d/${f}_s04_joint.$e" "$d/${f}_s05_joint.$e"; done
+reseal
+expect "seed 4 copied as seed 5" "unit identities" "run_s05_joint.tsv" "seed"
 # 22. the evidence of E3/E4, each edit resealed
 fresh
 printf '\x01' | dd of="$scratch/frozen/main/weights_s01_joint.ckpt" bs=1 seek=200 conv=notrunc status=none

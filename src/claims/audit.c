@@ -573,6 +573,7 @@ cs_status audit_run(const claims *c, const claim_result *res, checklist *out)
     audit_aggregates(c, out);
     audit_evidence(c, out);
     audit_grids(c, out);
+    audit_identities(c, out);
     audit_gates_prereg(c, out);
     audit_superseded_real(out);
     check_registry(c, out);
