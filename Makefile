@@ -20,7 +20,7 @@ CC ?= cc
 # costs a third of the compile time of `make verify` from clean. DEBUG=1 adds it.
 CFLAGS ?= -std=c11 -O2 -ffp-contract=off $(if $(DEBUG),-g) -Wall -Wextra -Wno-unused-parameter -Wno-psabi -Wno-missing-field-initializers \
           -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
-STAGES := base forest model exp claims
+STAGES := base forest model exp claims audit
 CPPFLAGS += $(addprefix -Isrc/,$(STAGES) cli)
 LDLIBS := -lgsl -lopenblas -lm
 SANFLAGS := -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined

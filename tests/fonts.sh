@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Figures checked on what they show (src/claims/figcheck.h): `crownshy verify`
+# Figures checked on what they show (src/audit/figcheck.h): `crownshy verify`
 # in this tree under three font set-ups. With the default sans-serif font
 # changed (a fontconfig alias to DejaVu Serif) every script still names its
 # font, so the rasters are compared and equal: exit 0. With no font at all

@@ -7,7 +7,7 @@
 #     is at most 6 levels (a file's level is 1 + the deepest level of the
 #     files it includes: cs.h is 1, a CLI handler at most 6);
 #  3. each stage imports only its own stage and the stages below it:
-#       base   <- forest, model <- exp, claims <- cli
+#       base   <- forest, model <- exp, claims <- audit <- cli
 #     forest and model do not import each other, exp and claims do not import
 #     each other, an experiment file imports no other experiment file (only
 #     exp_common), and nothing the claims reach (transitively) is the teacher
@@ -80,7 +80,7 @@ if [ "${depth%% *}" -le 6 ]; then ok "include depth at most 6 levels (deepest: $
 else bad "include depth at most 6 levels" "deepest: $depth"; fi
 
 # 3. direction of imports
-rank() { case "$1" in base) echo 0;; forest|model) echo 1;; exp|claims) echo 2;; cli) echo 3;; *) echo 9;; esac; }
+rank() { case "$1" in base) echo 0;; forest|model) echo 1;; exp|claims) echo 2;; audit) echo 3;; cli) echo 4;; *) echo 9;; esac; }
 wrong=""
 while read -r a b; do
   [ -n "$a" ] || continue
@@ -98,12 +98,12 @@ reach=$(awk -v stages="$(for m in "${!STAGE[@]}"; do echo -n "$m=${STAGE[$m]} ";
   BEGIN { n = split(stages, s, " "); for (i = 1; i <= n; i++) { split(s[i], kv, "="); st[kv[1]] = kv[2] } }
   { dep[$1] = dep[$1] " " $2 }
   END {
-    for (m in st) if (st[m] == "claims") { q[m]; seen[m] }
+    for (m in st) if (st[m] == "claims" || st[m] == "audit") { q[m]; seen[m] }
     do { grew = 0; for (m in q) { k = split(dep[m], d, " "); for (i = 1; i <= k; i++) if (!(d[i] in seen)) { seen[d[i]]; q[d[i]]; grew = 1 } } } while (grew)
     for (m in seen) if (m == "teacher" || m == "stand_grow" || st[m] == "model" || st[m] == "exp") print m
   }' <<<"$edges" | sort | tr '\n' ' ')
-if [ -z "$reach" ]; then ok "the claims reach neither the teacher nor the model"
-else bad "the claims reach neither the teacher nor the model" "reached: $reach"; fi
+if [ -z "$reach" ]; then ok "the claims and the audit reach neither the teacher nor the model"
+else bad "the claims and the audit reach neither the teacher nor the model" "reached: $reach"; fi
 
 # 4. the experiment manifest (src/base/manifest.h) is the one list of experiments
 rows=$(bash src/base/manifest.sh rows)

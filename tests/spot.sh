@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The spot check of tier 1 (src/claims/spot.h): `crownshy verify --seed N`
+# The spot check of tier 1 (src/audit/spot.h): `crownshy verify --seed N`
 # redraws the slice seed N picks (one frozen generator unit, one spacing, one
 # probe) from the unit's weights and finds it bit-identical; the same seed
 # picks the same slice again (printed, so a reviewer can repeat it); and in a

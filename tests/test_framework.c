@@ -1,4 +1,4 @@
-/* Tests for the claim framework (src/claims/claims.c, src/claims/verify.c, src/claims/audit.c):
+/* Tests for the claim framework (src/claims/claims.c, src/audit/verify.c, src/audit/audit.c):
  * malformed registries, tampered numbers.tex, gate judgement in claims. */
 #include "testutil.h"
 #include "claims.h"

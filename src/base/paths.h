@@ -38,6 +38,7 @@
 #define PATHS_DESIGN_NUMBERS "audit/design_numbers.tsv"
 /* The claim-computing code, pinned file by file. */
 #define PATHS_CLAIMS_SRC_DIR "src/claims"
+#define PATHS_AUDIT_SRC_DIR "src/audit"
 /* How each measured claim's interval is computed (design.md §6.1; pinned). */
 #define PATHS_INTERVALS "audit/intervals.tsv"
 #define PATHS_NUMBERS "paper/numbers.tex"

@@ -1,5 +1,5 @@
 /* libFuzzer harness: the aggregate map (audit/aggregates.tsv) parser,
- * src/claims/audit_data.c aggr_load, and the lineage lookup built on it. */
+ * src/audit/audit_data.c aggr_load, and the lineage lookup built on it. */
 #include "fuzz_common.h"
 #include "audit_data.h"
 

@@ -1,4 +1,4 @@
-/* libFuzzer harness: the paper-text scanner (src/claims/audit_paper.c
+/* libFuzzer harness: the paper-text scanner (src/audit/audit_paper.c
  * paper_scan_file: claim macros, definitions, typed numbers, comments). */
 #include "fuzz_common.h"
 #include "audit_paper.h"

@@ -30,9 +30,4 @@ int audit_table_superseded(const char *path);
  * "preregistration: ..." (checked against the brought hash, or self-attested). */
 void audit_prereg_anchor(checklist *cl, const char *brought, char *line, size_t n);
 
-/* Every unit table (run_, probes_, samples_sNN_ARM.tsv under frozen/): the
- * seed and arm its name carries equal its command line's (--seed, --arm, the
- * path it wrote) and its rows' seed and arm columns; its --volume its
- * evaluation line's. A swapped or copied unit fails, naming it. */
-void audit_identities(const claims *c, checklist *cl);
 #endif

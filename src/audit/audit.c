@@ -16,6 +16,7 @@
 #include "audit_data.h"
 #include "audit_paper.h"
 #include "audit_evidence.h"
+#include "audit_units.h"
 
 static int file_exists(const char *p) { struct stat sb; return stat(p, &sb) == 0; }
 
@@ -109,6 +110,11 @@ static cs_status current_pins(pinset *s)
     paths_list_files(PATHS_CLAIMS_SRC_DIR, ".c", 0, &cc);
     for (size_t i = 0; i < cc.n; i++) add_file_pin(s, "claim_code_sha256", cc.p[i]);
     paths_list_free(&cc);
+    /* the code that judges them: the audit, verify, the generated paper files */
+    paths_list ac = {0};
+    paths_list_files(PATHS_AUDIT_SRC_DIR, ".c", 0, &ac);
+    for (size_t i = 0; i < ac.n; i++) add_file_pin(s, "audit_code_sha256", ac.p[i]);
+    paths_list_free(&ac);
     add_file_pin(s, "registry_sha256", PATHS_CLAIMS);
     registry_row_pins(s);
     /* how every interval is computed (design.md §6.1) */
@@ -284,6 +290,8 @@ static void check_pins(const claims *c, checklist *cl, const pinset *ps)
                 claims_of(c, NULL, base ? base + 1 : path, affected, sizeof affected);
             } else if (!strcmp(key, "claim_code_sha256")) {
                 claims_of_code(c, path, affected, sizeof affected);
+            } else if (!strcmp(key, "audit_code_sha256")) {
+                snprintf(affected, sizeof affected, "every claim (the code that judges them: %s)", path);
             } else if (!strcmp(key, "claim_row_sha256")) {
                 snprintf(affected, sizeof affected, "%s", strchr(path, ':') ? strchr(path, ':') + 1 : path);
             } else if (!strcmp(key, "gate_map_sha256")) {

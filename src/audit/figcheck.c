@@ -194,11 +194,11 @@ cs_status figcheck_write(const char *renderer_path, const char *renderer, const 
     afile a;
     cs_status st = afile_open(&a, renderer_path);
     if (st) return st;
-    if (fprintf(a.f, "# what: the renderer the committed PNGs were drawn with (src/claims/figcheck.h); verify compares the raster only where it is the same\n"
+    if (fprintf(a.f, "# what: the renderer the committed PNGs were drawn with (src/audit/figcheck.h); verify compares the raster only where it is the same\n"
                      "# written by: crownshy figures\n%s", renderer) < 0) a.err = 1;
     if ((st = afile_commit(&a))) return st;
     if ((st = afile_open(&a, plotted_path))) return st;
-    if (fprintf(a.f, "# what: SHA-256 of each figure's plotted data (gnuplot `set table`, comment and blank lines left out; src/claims/figcheck.h)\n"
+    if (fprintf(a.f, "# what: SHA-256 of each figure's plotted data (gnuplot `set table`, comment and blank lines left out; src/audit/figcheck.h)\n"
                      "# written by: crownshy figures; verify compares it on any renderer\n") < 0) a.err = 1;
     for (size_t i = 0; i < nfig; i++) if (fprintf(a.f, "%s  %s\n", hexes[i], stems[i]) < 0) a.err = 1;
     return afile_commit(&a);
