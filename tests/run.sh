@@ -11,8 +11,10 @@ mkdir -p "$log_dir"
 export OPENBLAS_NUM_THREADS=1
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+t_start=$SECONDS; slowest=-; slowest_s=0
 for t in "$@"; do
   if [ "$t" = "--" ]; then label=" [asan+ubsan]"; continue; fi
+  t0=$SECONDS
   name=$(basename "$t")$label
   suffix=""; [ -n "$label" ] && suffix="-asan"
   log="$log_dir/$(basename "$t")$suffix.log"
@@ -26,12 +28,14 @@ for t in "$@"; do
     echo "FAIL $name ($p passed, $f failed) — log: $log"
     grep -E '^\[  (FAILED|ERROR) |error|Error|ERROR|observed|expected|runtime error|Sanitizer' "$log" | head -20 | sed 's/^/    /'
   else
-    echo "ok   $name ($p passed)"
+    echo "ok   $name ($p passed, $((SECONDS - t0)) s)"
   fi
   passed=$((passed + p)); failed=$((failed + f))
+  if [ $((SECONDS - t0)) -gt "$slowest_s" ]; then slowest_s=$((SECONDS - t0)); slowest=$name; fi
 done
 # the scratch copies of the tests (build/test-tmp, over 100 MB) go when the
 # run ends; KEEP_TEST_TMP=1 keeps them to look at a failure
 if [ "${KEEP_TEST_TMP:-0}" != 1 ]; then rm -rf build/test-tmp; fi
+echo "took $((SECONDS - t_start)) s on $(nproc 2>/dev/null || echo ?) core(s); slowest: $slowest ($slowest_s s)"
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
