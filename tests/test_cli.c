@@ -114,6 +114,17 @@ static void test_claim_test_runs_alone_by_name(void **s)
     assert_non_null(strstr(out, "no claim NoSuchMacro"));
 }
 
+/* a build/ that cannot take a file (a file-size limit of zero) is an
+ * environment error, exit 4, named before any check runs: never reported as
+ * an inconsistency of the results */
+static void test_verify_unwritable_build_exit_4(void **s)
+{
+    (void)s;
+    assert_int_equal(tu_run_cli("ulimit -f 0; OPENBLAS_NUM_THREADS=1 ", "verify --no-figures", out, sizeof out), 4);
+    assert_non_null(strstr(out, "an environment error"));
+    assert_null(strstr(out, "INCONSISTENT"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -126,6 +137,7 @@ int main(void)
         cmocka_unit_test(test_shipped_gates_parse),
         cmocka_unit_test(test_trace_unknown_macro_exit_3),
         cmocka_unit_test(test_claim_test_runs_alone_by_name),
+        cmocka_unit_test(test_verify_unwritable_build_exit_4),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -86,7 +86,19 @@ cs_status verify_preflight(void)
     snprintf(d, sizeof d, "build/preflight.%ld", (long)getpid());
     if ((mkdir("build", 0777) && errno != EEXIST) || mkdir(d, 0777))
         return cs_err(CS_EIO, "build/: cannot create %s (%s): the fresh generation and the figure redraws need a writable build/ (an environment error)", d, strerror(errno));
+    /* a file written and synced: a file-size limit or a full disk shows here,
+     * not later as a generated file that "differs" */
+    char f[96], block[65536];
+    snprintf(f, sizeof f, "%s/probe", d);
+    memset(block, 0, sizeof block);
+    FILE *fp = fopen(f, "wb");
+    int ok = fp && fwrite(block, 1, sizeof block, fp) == sizeof block;
+    int err = errno;
+    if (fp) { ok = fflush(fp) == 0 && ok; err = ok ? 0 : errno; ok = fsync(fileno(fp)) == 0 && ok; if (fclose(fp)) ok = 0; }
+    unlink(f);
     rmdir(d);
+    if (!ok) return cs_err(CS_EIO, "build/: cannot write a file of %zu bytes into %s (%s): the fresh generation and the redraws need a writable build/ (an environment error)",
+                           sizeof block, d, strerror(err ? err : EIO));
     return CS_OK;
 }
 
@@ -219,6 +231,24 @@ static void print_distance(const attrib_data *at, const claims *c, const claim_r
     printf("%s\n", gline);
 }
 
+/* The last lines: the package's verdict and the count; CS_EFAIL on an
+ * inconsistency or (strict_notrep > 0) a failing gate under --strict. A run
+ * that ran out of memory proved nothing either way: an environment error. */
+static cs_status print_verdict(const size_t count[3], size_t strict_notrep)
+{
+    if (cs_nomem_count()) {
+        printf("environment: out of memory %zu time(s) during the checks: the package was not checked (an environment error, not an inconsistency)\n", cs_nomem_count());
+        return cs_err(CS_ENOMEM, "out of memory during the checks (%zu time(s)): an environment error", cs_nomem_count());
+    }
+    if (count[VERDICT_FAIL])
+        printf("package: INCONSISTENT: %zu check(s) failed: a number, verdict, table, figure or sentence does not follow from frozen/ and the pinned code\n", count[VERDICT_FAIL]);
+    else
+        printf("package: consistent: every number, verdict, table, figure and sentence follows from frozen/ and the pinned code\n");
+    if (strict_notrep) printf("--strict: %zu preregistered gate(s) not reproduced\n", strict_notrep);
+    printf("%zu passed, %zu failed\n", count[VERDICT_PASS], count[VERDICT_FAIL] + strict_notrep);
+    return count[VERDICT_FAIL] || strict_notrep ? CS_EFAIL : CS_OK;
+}
+
 cs_status verify_run(const verify_opts *o)
 {
     claims c;
@@ -231,6 +261,12 @@ cs_status verify_run(const verify_opts *o)
     if (!o->no_figures) figcheck_launch();
     if ((st = verify_load_eval(&c, &res))) { figcheck_wait(); return st; }
     if ((st = verify_external_inputs(&c, res, "verify"))) { figcheck_wait(); free(res); claims_free(&c); return st; }
+    /* a claim that could not be computed for want of memory or a working disk
+     * is no inconsistency of the results: the run stops as an environment error */
+    for (size_t i = 0; i < c.n && !st; i++)
+        if (res[i].status == VERDICT_FAIL && (res[i].err == CS_ENOMEM || res[i].err == CS_EIO))
+            st = cs_err(res[i].err, "%s could not be computed (%s): an environment error, not an inconsistency", c.rows[i].macro, res[i].why);
+    if (st) { figcheck_wait(); free(res); claims_free(&c); return st; }
     numbers_tex nt;
     int have_nt = numbers_read(PATHS_NUMBERS, &nt) == CS_OK;
     char nterr[512];
@@ -283,17 +319,11 @@ cs_status verify_run(const verify_opts *o)
         printf("extension claims (a generator reading added after the first verdict, design.md §8; same thresholds, %s): %zu meet, %zu do not%s%s%s, %zu pending; tables: %s\n",
                PATHS_GATE_MAP_EXT, gt.ext[0], gt.ext[1], gt.ext[1] ? " (" : "", gt.ext_fail, gt.ext[1] ? ")" : "", gt.ext[2], gt.ext_src);
     printf("%s\n", prereg_line);
-    if (count[VERDICT_FAIL])
-        printf("package: INCONSISTENT: %zu check(s) failed: a number, verdict, table, figure or sentence does not follow from frozen/ and the pinned code\n", count[VERDICT_FAIL]);
-    else
-        printf("package: consistent: every number, verdict, table, figure and sentence follows from frozen/ and the pinned code\n");
-    int strict_fail = o->strict && notrep;
-    if (strict_fail) printf("--strict: %zu preregistered gate(s) not reproduced\n", notrep);
-    printf("%zu passed, %zu failed\n", count[VERDICT_PASS], count[VERDICT_FAIL] + (strict_fail ? notrep : 0));
+    st = print_verdict(count, o->strict ? notrep : 0);
     if (have_nt) numbers_free(&nt);
     free(res);
     claims_free(&c);
-    return count[VERDICT_FAIL] || strict_fail ? CS_EFAIL : CS_OK;
+    return st;
 }
 
 cs_status verify_trace(const char *macro)

@@ -9,6 +9,9 @@
 
 static char cs_msg[2048];
 
+/* how many out-of-memory errors were raised: a run that met one cannot vouch for its checks */
+static size_t cs_nomem;
+
 cs_status cs_err(cs_status st, const char *fmt, ...)
 {
     /* formatted apart first: a caller may wrap the previous message
@@ -19,8 +22,11 @@ cs_status cs_err(cs_status st, const char *fmt, ...)
     vsnprintf(buf, sizeof buf, fmt, ap);
     va_end(ap);
     memcpy(cs_msg, buf, sizeof cs_msg);
+    if (st == CS_ENOMEM) cs_nomem++;
     return st;
 }
+
+size_t cs_nomem_count(void) { return cs_nomem; }
 
 const char *cs_errmsg(void) { return cs_msg; }
 void cs_errclear(void) { cs_msg[0] = '\0'; }

@@ -22,6 +22,8 @@ cs_status cs_err(cs_status st, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 /* The message recorded by the last cs_err (empty string if none). */
 const char *cs_errmsg(void);
+/* How many CS_ENOMEM errors cs_err has raised in this process. */
+size_t cs_nomem_count(void);
 void cs_errclear(void);
 /* Process exit code for a status (design.md §11). */
 int cs_exit_code(cs_status st);
