@@ -148,6 +148,29 @@ static void test_eval_from_weights_gives_the_unit_rows(void **s)
     assert_non_null(tsv_meta(t, "trained_teacher_sha256"));
     assert_non_null(strstr(tsv_meta(t, "model"), "reading paper"));
     tsv_free(t);
+    /* a re-evaluation of a re-evaluation carries the training record of the
+     * run that trained, never its own wall time, commit or date */
+    snprintf(args, sizeof args, "main-eval --weights %s/w_a.ckpt --trained %s/run_b.tsv --seed 2 --arm joint --scale smoke "
+             "--out %s/run_bb.tsv", dir, dir, dir);
+    if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("main-eval of an evaluation: %s", out);
+    {
+        tsv *ta, *tb, *tbb;
+        snprintf(p1, sizeof p1, "%s/run_a.tsv", dir);
+        assert_int_equal(tsv_read(p1, &ta), CS_OK);
+        snprintf(p1, sizeof p1, "%s/run_b.tsv", dir);
+        assert_int_equal(tsv_read(p1, &tb), CS_OK);
+        snprintf(p1, sizeof p1, "%s/run_bb.tsv", dir);
+        assert_int_equal(tsv_read(p1, &tbb), CS_OK);
+        static const char *const kv[][2] = {{"wall_s", "trained_wall_s"}, {"git_commit", "trained_git_commit"}, {"date", "trained_date"}};
+        for (int k = 0; k < 3; k++) {
+            const char *trained = tsv_meta(ta, kv[k][0]);
+            assert_non_null(trained);
+            if (strcmp(tsv_meta(tb, kv[k][1]), trained)) fail_msg("run_b %s '%s', the training run's %s '%s'", kv[k][1], tsv_meta(tb, kv[k][1]), kv[k][0], trained);
+            if (strcmp(tsv_meta(tbb, kv[k][1]), trained)) fail_msg("run_bb %s '%s' (run_b's own %s '%s'), the training run's '%s'", kv[k][1],
+                                                                   tsv_meta(tbb, kv[k][1]), kv[k][0], tsv_meta(tb, kv[k][0]), trained);
+        }
+        tsv_free(ta); tsv_free(tb); tsv_free(tbb);
+    }
     /* a rerun from scratch: the same rows and weights */
     snprintf(args, sizeof args, "main-run --reading paper --seed 2 --arm joint --scale smoke --epochs 2 "
              "--weights %s/w_c.ckpt --out %s/run_c.tsv", dir, dir);

@@ -294,7 +294,10 @@ static cs_status trained_meta(const char *path, const char *(*meta)[2], int *nme
     static const char *keys[][2] = {{"model", "model"}, {"training", "training"}, {"teacher_sha256", "trained_teacher_sha256"},
                                     {"git_commit", "trained_git_commit"}, {"date", "trained_date"}, {"wall_s", "trained_wall_s"}};
     for (size_t k = 0; k < sizeof keys / sizeof *keys && !st; k++) {
-        const char *v = tsv_meta(t, keys[k][0]);
+        /* a re-evaluation's table carries the training run's record as trained_*:
+         * that one, never the re-evaluation's own time, commit or date */
+        const char *v = strncmp(keys[k][1], "trained_", 8) ? NULL : tsv_meta(t, keys[k][1]);
+        if (!v) v = tsv_meta(t, keys[k][0]);
         if (!v) { st = cs_err(CS_EINPUT, "%s: provenance line '# %s:' missing (need a training or run table)", path, keys[k][0]); break; }
         snprintf(buf[*nmeta], 512, "%s", v);
         meta[*nmeta][0] = keys[k][1];
