@@ -19,8 +19,10 @@
  *
  * Times are wall time from the time-stamp counter (steady on the CPUs this
  * runs on; the kernel's thread clock costs a system call per reading in a VM,
- * which the ~2,300 readings of a step would add to it). Not run by `make
- * check` or CI: a measurement, like the rest of `make bench`.
+ * which the ~2,300 readings of a step would add to it). A step whose wall
+ * time exceeds the thread's CPU time (read twice per step) by 5 % was
+ * preempted and is discarded with its products; the count is printed. Not
+ * run by `make check` or CI: a measurement, like the rest of `make bench`.
  *
  * usage: step_split [--rounds N] [--steps N] [--path all|avx512|avx2|scalar] */
 #include "gemm.h"
@@ -60,6 +62,14 @@ static double now_s(void)
     clock_gettime(CLOCK_MONOTONIC, &t);
     return t.tv_sec + 1e-9 * t.tv_nsec;
 #endif
+}
+
+/* This thread's CPU time (two readings per step: the preemption test). */
+static double thread_cpu_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 
 /* Seconds per counter tick, against the monotonic clock over 0.2 s. */
@@ -156,7 +166,7 @@ static const char *const s_name[S_NS] = {"step_ms", "products_in_step_ms", "prod
 /* One round: a fresh model, `steps` timed steps, then the last step's
  * products replayed. v[S_STEP..S_REST] (ms) for the round; returns 0 or 1
  * on failure. */
-static int round_run(const model_cfg *cfg, patch_set *ps, int steps, double v[S_NS], double *gflop_products)
+static int round_run(const model_cfg *cfg, patch_set *ps, int steps, double v[S_NS], double *gflop_products, int *preempted)
 {
     train_opts o = train_opts_default();
     o.batch = BATCH;
@@ -166,16 +176,25 @@ static int round_run(const model_cfg *cfg, patch_set *ps, int steps, double v[S_
     for (int s = 0; s < 3; s++) /* warm the caches and the allocations */
         if (train_step(t, NULL)) { train_free(t); return 1; }
     double step = 0, in = 0;
-    for (int s = 0; s < steps; s++) {
+    int kept = 0, tried = 0;
+    /* a step the kernel preempted (its wall time beyond its thread CPU time)
+     * is discarded, products and all: up to four tries per kept step */
+    while (kept < steps && tried < 4 * steps) {
+        tried++;
         ncalls = 0;
         recording = 1;
-        double t0 = now_s();
+        double c0 = thread_cpu_s(), t0 = now_s();
         cs_status st = train_step(t, NULL);
-        step += now_s() - t0;
+        double wall = now_s() - t0, cpu = thread_cpu_s() - c0;
         recording = 0;
         if (st || overflow) { train_free(t); return 1; }
+        if (wall > 1.05 * cpu + 2e-4) { (*preempted)++; continue; }
+        step += wall;
+        kept++;
         for (int i = 0; i < ncalls; i++) in += calls[i].s;
     }
+    if (!kept) { train_free(t); return 1; }
+    steps = kept;
     double fl = 0, seq = 1e30, hot = 0;
     for (int i = 0; i < ncalls; i++) fl += 2.0 * calls[i].M * calls[i].N * calls[i].K;
     for (int q = 0; q < 3; q++) {
@@ -219,10 +238,11 @@ static int split_path(gemm_isa isa, patch_set *ps, int rounds, int steps)
         model_cfg cfg = model_cfg_reference(PATCH_NCOND);
         cfg.pair = mk == 0;
         double v[S_NS][MAX_ROUNDS], pk[MAX_ROUNDS], gp = 0;
+        int preempted = 0;
         const double model_fl = model_train_flops(&cfg, BATCH) / 1e9;
         for (int q = 0; q < rounds; q++) {
             double p0 = gemm_peak_gflops(isa, 1L << 21), r[S_NS];
-            if (round_run(&cfg, ps, steps, r, &gp)) {
+            if (round_run(&cfg, ps, steps, r, &gp, &preempted)) {
                 fprintf(stderr, "step_split: a training step failed%s\n", overflow ? " (more gemm calls than recorded)" : "");
                 return 1;
             }
@@ -235,6 +255,7 @@ static int split_path(gemm_isa isa, patch_set *ps, int rounds, int steps)
         }
         double lo, hi, pmed = median_of(pk, rounds, &lo, &hi);
         printf("%s_gflop_per_step\t%.3f\t(products %.3f)\n", model_name[mk], model_fl, gp);
+        printf("%s_steps_discarded\t%d\t(preempted: wall time beyond the thread's CPU time by 5 %%)\n", model_name[mk], preempted);
         printf("%s_fma_peak_gflops\t%.1f\t[%.1f, %.1f]\n", model_name[mk], pmed, lo, hi);
         double med[S_NS];
         for (int s = 0; s < S_NS; s++) {
