@@ -158,6 +158,7 @@ bench: deps
 	@$(CLI) bench-teacher
 	@$(CLI) bench-model
 	@$(SPLIT)
+	@bash src/exp/study_cost.sh
 
 numbers: deps
 	@$(MAKE) --no-print-directory $(CLI)
