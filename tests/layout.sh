@@ -17,6 +17,7 @@
 #     row, every command is named <experiment>-... and has a handler, no
 #     command or unit is listed by hand in src/cli/cli.c, the Makefile or
 #     experiments.mk, and the experiment table of src/README.md is the generated one;
+#  4b. every "design.md §N" a file names is a heading of paper/design.md;
 #  5. every path a comment names (src/, tests/, figures/, audit/, gates/,
 #     paper/, frozen/) exists;
 #  6. a header-only module declares no function (it would be another
@@ -134,6 +135,18 @@ if [ -z "$hand" ]; then ok "no unit list by hand in the Makefile or experiments.
 readme=$(awk '/^<!-- experiments: generated/ {on = 1; next} /^<!-- end of experiments -->/ {on = 0} on' src/README.md)
 if [ "$readme" = "$(bash src/base/manifest.sh readme)" ]; then ok "src/README.md's experiment table is the manifest's"
 else bad "src/README.md's experiment table is the manifest's" "regenerate it with: bash src/base/manifest.sh readme"; fi
+
+# 4b. every design.md section a file names exists as a heading of paper/design.md
+# ("design.md §8.2" needs "### §8.2 ..."), with no revision tag after it
+heads=$(sed -n 's/^#\{2,3\} §\([0-9.]*\) .*/\1/p' paper/design.md)
+stale=""
+while IFS= read -r ref; do
+  f=${ref%%:*}; n=${ref##*§}
+  grep -qx "$n" <<<"$heads" || stale="$stale $f:§$n"
+done < <(grep -rHoE 'design\.md ?§[0-9]+(\.[0-9]+)*' src tests audit paper/*.tex paper/*.md frozen/README.md README.md Makefile figures 2>/dev/null | sed -E 's/:design\.md ?/:/' | sort -u)
+revtag=$(grep -rnE 'design\.md ?§[0-9.]+ *(\n)? *rev\.|§[0-9]+ rev\. [0-9]' src tests audit paper/*.tex README.md Makefile 2>/dev/null | grep -v '^tests/layout.sh' | head -3)
+if [ -z "$stale$revtag" ]; then ok "every design.md section named exists as a heading"
+else bad "every design.md section named exists as a heading" "missing:$stale ${revtag:+revision tags: $revtag}"; fi
 
 # 5. every path a comment names exists (C: lines with /*, * or //; shell,
 # make, gnuplot: after #). A pattern is written with <...>, * or %.

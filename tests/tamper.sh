@@ -183,7 +183,7 @@ fresh
 sed -i '$ d' "$scratch/frozen/field/heldout_trees.tsv"
 expect "per-tree table" "frozen/field/heldout_trees.tsv" "Elong"
 
-# ---- what a number rests on (design.md §9 rev. 3) ----
+# ---- what a number rests on (design.md §9) ----
 # fresh_git: the scratch copy as a git clone of this repository's history
 # (sharing its objects) with the working tree's files laid over it
 fresh_git() {

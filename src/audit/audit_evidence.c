@@ -1,5 +1,5 @@
 /* audit_evidence: the evidence behind the numbers, checked cheaply in tier 1
- * (design.md §9 rev. 3). See audit_evidence.h.
+ * (design.md §9). See audit_evidence.h.
  *
  * audit/grids.tsv (pinned) has one row per block of a table's design grid:
  *   table    a frozen table, or a glob of them (frozen/main/run_s*_*.tsv)

@@ -1,5 +1,5 @@
-/* audit_evidence: what a number rests on, checked in tier 1 (design.md §9
- * rev. 3): the files a table's provenance names (with their hashes), the
+/* audit_evidence: what a number rests on, checked in tier 1 (design.md §9):
+ * the files a table's provenance names (with their hashes), the
  * weights seals, every W1 from its samples, every table's row set against its
  * design grid, the gates against their preregistered content and the
  * superseded pins against the real history of their files. */

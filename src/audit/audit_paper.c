@@ -1,4 +1,4 @@
-/* audit_paper: the generated write-up against frozen/ (design.md §9 rev. 2):
+/* audit_paper: the generated write-up against frozen/ (design.md §9):
  * numbers.tex, comparison.tex and readings.tex must equal a fresh generation.
  * The hand-written text is read by audit_tex.c. */
 #include "audit_paper.h"

@@ -1,5 +1,5 @@
-/* audit_tex: the hand-written paper text read as TeX reads it (design.md §9
- * rev. 3): every .tex under paper/ and every file it pulls in; claim macros
+/* audit_tex: the hand-written paper text read as TeX reads it (design.md §9):
+ * every .tex under paper/ and every file it pulls in; claim macros
  * only, never defined in the text in any form; verdict commands with
  * generated gate macros only; every number a generated macro or a design
  * constant (audit/design_numbers.tsv); no comment asking for an exemption

@@ -1,4 +1,4 @@
-/* paths: the one place that knows where the package's files live (design.md §0,
+/* paths: the one place that knows where the package's files live (design.md §1,
  * §9): the preregistered gates, the audit's pins and registry, the generated
  * paper files, and the pinned instrument sources. Every path is relative to
  * the repository root, the directory every command runs from. Also the one
