@@ -561,11 +561,6 @@ static void check_registry(const claims *c, checklist *cl)
     if (!bad) checklist_add(cl, VERDICT_PASS, "registry", "%zu claims, each with a computing function name and a test; no orphan function", c->n);
 }
 
-void audit_numbers(const claims *c, const claim_result *res, checklist *cl)
-{
-    audit_generated(c, res, cl, 1);
-}
-
 cs_status audit_run(const claims *c, const claim_result *res, checklist *out)
 {
     paths_list frozen_files = {0};

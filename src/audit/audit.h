@@ -15,10 +15,6 @@
 
 /* Run every audit check; `res` are the evaluated claims (same order as c). */
 cs_status audit_run(const claims *c, const claim_result *res, checklist *out);
-/* The one check of `crownshy numbers --check`: paper/numbers.tex equals a
- * fresh generation from `res` (item "numbers.tex", naming the first
- * differing line). */
-void audit_numbers(const claims *c, const claim_result *res, checklist *out);
 /* Rewrite audit/pins.tsv from the current sources (a deliberate act: after it,
  * frozen/ must be regenerated, or the provenance check fails). */
 cs_status audit_pin(void);

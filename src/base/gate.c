@@ -81,8 +81,6 @@ cs_status gate_load(const char *path, gate **out)
     return CS_OK;
 }
 
-const char *gate_path(const gate *g) { return g->path; }
-
 size_t gate_count(const gate *g, const char *key)
 {
     const gate_entry *e = find(g, key);

@@ -12,7 +12,6 @@ typedef struct gate gate;
 /* Parse; errors name file, line and field ("mechanism.gate:9: field 'cover_min': value 1 not a number: 'x'"). */
 cs_status gate_load(const char *path, gate **out);
 void gate_free(gate *g);
-const char *gate_path(const gate *g);
 /* Number of values for key (0 if absent). */
 size_t gate_count(const gate *g, const char *key);
 /* Value idx of key; error naming file and key when absent or out of range. */

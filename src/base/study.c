@@ -8,19 +8,6 @@ static const study_experiment STUDY[] = {
 };
 #define NSTUDY (sizeof STUDY / sizeof STUDY[0])
 
-const study_experiment *study_list(size_t *n)
-{
-    *n = NSTUDY;
-    return STUDY;
-}
-
-const study_experiment *study_find(const char *name)
-{
-    for (size_t i = 0; i < NSTUDY; i++)
-        if (!strcmp(STUDY[i].name, name)) return &STUDY[i];
-    return NULL;
-}
-
 const study_experiment *study_of_path(const char *path)
 {
     const char *p = strstr(path, "frozen/");

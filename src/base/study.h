@@ -10,10 +10,6 @@ typedef struct {
     const char *name, *code, *source, *gate, *claims, *figure, *deep, *what;
 } study_experiment;
 
-/* Every experiment row, in manifest order. */
-const study_experiment *study_list(size_t *n);
-/* The experiment called name, or NULL. */
-const study_experiment *study_find(const char *name);
 /* The experiment whose frozen folder holds path ("frozen/<name>/..." or
  * "<root>/<name>/..."), or NULL. */
 const study_experiment *study_of_path(const char *path);

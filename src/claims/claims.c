@@ -406,18 +406,6 @@ int claims_rel_diff(const claim_row *row, const claim_result *res, double *ref, 
     return 1;
 }
 
-void claims_within(const claims *c, const claim_result *res, size_t *m, size_t *in10, size_t *in25)
-{
-    *m = *in10 = *in25 = 0;
-    for (size_t i = 0; i < c->n; i++) {
-        double ref, rel;
-        if (!claims_rel_diff(&c->rows[i], &res[i], &ref, &rel)) continue;
-        (*m)++;
-        *in10 += fabs(rel) <= 0.10;
-        *in25 += fabs(rel) <= 0.25;
-    }
-}
-
 cs_status claims_function_file(const char *function, char *path, size_t pathsz, int *line)
 {
     paths_list files;

@@ -104,8 +104,6 @@ void claims_tex_escape(const char *in, char *out, size_t n);
 /* Distance to the reference paper: 1 and *ref, *rel = (value - ref) / |ref|
  * for a computed measured claim whose reference is a non-zero number; else 0. */
 int claims_rel_diff(const claim_row *row, const claim_result *res, double *ref, double *rel);
-/* Over those claims: how many (m), within 10 % and within 25 %. */
-void claims_within(const claims *c, const claim_result *res, size_t *m, size_t *in10, size_t *in25);
 /* Parse a numbers.tex: value text of \newcommand{\NAME}{...}; NULL if absent. */
 typedef struct { size_t n; char (*name)[80]; char (*value)[192]; int *line; } numbers_tex;
 cs_status numbers_read(const char *path, numbers_tex *out);

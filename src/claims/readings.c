@@ -19,9 +19,6 @@ static const readings_def READINGS[] = {
 };
 #define NREAD (sizeof READINGS / sizeof READINGS[0])
 
-static const char *const RUNS[] = {"t1-r1", "t2-r1", "t1-r2", "t2-r2", "t2a-r2"};
-#define NRUNS (sizeof RUNS / sizeof RUNS[0])
-
 /* Quantities: registry macros (values by their computing functions). */
 static const char *const QUANT[] = {
     "MechCoupOff", "MechCoupOffKTwo", "MechCoupOffKThree", "MechAbrOff", "MechOn", "MechOnKTwo", "MechOnKThree",
@@ -31,8 +28,6 @@ static const char *const QUANT[] = {
 #define NQ (sizeof QUANT / sizeof QUANT[0])
 
 const readings_def *readings_list(size_t *n) { *n = NREAD; return READINGS; }
-const char *const *readings_quantities(size_t *n) { *n = NQ; return QUANT; }
-const char *const *readings_runs(size_t *n) { *n = NRUNS; return RUNS; }
 size_t readings_count(void) { return NREAD * NQ; }
 
 /* The cardinal elongation median of the coupled row of a

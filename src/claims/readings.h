@@ -37,9 +37,6 @@ typedef struct {
 
 /* The readings and the quantities, in table order. */
 const readings_def *readings_list(size_t *n);
-const char *const *readings_quantities(size_t *n);
-/* The runs the readings need (distinct run directories). */
-const char *const *readings_runs(size_t *n);
 
 /* Compute every row from <dir>/<run>/... with the claims of registry c.
  * rows must hold readings_count() entries. */

@@ -24,8 +24,6 @@ static const char *const QUANT[] = {
 };
 #define NQ (sizeof QUANT / sizeof QUANT[0])
 
-const char *const *sens_quantities(size_t *n) { *n = NQ; return QUANT; }
-
 size_t sens_units_per_quantity(void)
 {
     size_t nc, n = 1;

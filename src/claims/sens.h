@@ -20,8 +20,6 @@ typedef struct {
     double value, paper, rel_diff; /* rel_diff = (value - paper) / |paper| */
 } sens_row;
 
-/* Quantities (registry macros), in table order. */
-const char *const *sens_quantities(size_t *n);
 /* Rows: per quantity, the centre row then every (choice, value) in the
  * order of unstated_list. */
 size_t sens_count(void);

@@ -12,8 +12,6 @@ void stand_free(stand *sd)
     free(sd);
 }
 
-cs_status stand_from_stems(stand **out, stems *s, uint64_t crown_seed) { return stand_from_stems_dist(out, s, crown_seed, NULL); }
-
 cs_status stand_from_stems_dist(stand **out, stems *s, uint64_t crown_seed, const crown_dist *cd)
 {
     *out = NULL;

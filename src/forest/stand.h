@@ -31,8 +31,6 @@ cs_status stand_alloc(stand **out, const stems_type *kind, double d, double L, d
  * to stand_alloc); the sensitivity runs (design.md §7 E0) change cd. */
 cs_status stand_alloc_dist(stand **out, const stems_type *kind, double d, double L, double shape,
                            const char *experiment, unsigned index, const crown_dist *cd);
-/* Crowns drawn with seed `crown_seed` on given stems (takes ownership of s). */
-cs_status stand_from_stems(stand **out, stems *s, uint64_t crown_seed);
 cs_status stand_from_stems_dist(stand **out, stems *s, uint64_t crown_seed, const crown_dist *cd);
 void stand_free(stand *sd);
 void stand_view(const stand *sd, stand_arrays *v);
