@@ -370,19 +370,19 @@ static void test_verify_documents_exit_codes(void **s)
     assert_int_equal(tu_run_cli("", "verify --bogus", out, sizeof out), 2);
 }
 
+/* make deps-paper runs src/cli/paper_deps.sh, which updates apt's lists
+ * before it installs (a fresh machine has none) */
 static void test_deps_paper_updates_apt_first(void **s)
 {
     (void)s;
-    FILE *f = fopen("Makefile", "r");
+    FILE *f = fopen("src/cli/paper_deps.sh", "r");
     assert_non_null(f);
     char line[1024];
-    int in = 0, update = 0, install = 0;
+    int update = 0, install = 0;
     while (fgets(line, sizeof line, f)) {
-        if (!strncmp(line, "deps-paper:", 11)) in = 1;
-        else if (in && line[0] != '\t' && line[0] != ' ') in = 0;
-        if (!in) continue;
+        if (line[0] == '#' || strstr(line, "echo")) continue;
         if (strstr(line, "apt-get update") && !install) update = 1;
-        if (strstr(line, "apt-get install") && !strstr(line, "echo")) install = 1;
+        if (strstr(line, "apt-get install")) install = 1;
     }
     fclose(f);
     assert_true(install);
