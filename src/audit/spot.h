@@ -2,8 +2,9 @@
  * guarantees"). Each verify picks one slice at random: one frozen generator
  * unit (a weights file with its samples and run table beside it), one
  * spacing and one probe of its run table, and draws that slice again from the
- * weights with `crownshy main-redraw --spacing --probe` (the teacher's
- * evaluation stands of that spacing regrown, the probe's patches generated),
+ * weights with `crownshy main-redraw --spacing --probe --patches` (the
+ * teacher's evaluation stands of that spacing regrown, the probe's first 64
+ * patches generated: a prefix of the whole, bit for bit),
  * in the background while the rest of verify runs; the rows must equal those
  * of the frozen samples bit for bit. The pick comes from a seed the reviewer
  * gives (SEED=) or from the clock, and is printed so it can be repeated.

@@ -119,12 +119,14 @@ int cli_main_redraw(int argc, char **argv)
         {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume (src/exp/mainrun.h; default v1)", .choices = VOLUMES},
         {"spacing", OPT_DOUBLE, &a.only_spacing, 0.5, 100, "draw this evaluation spacing (m) alone (default every one)"},
         {"probe", OPT_CHOICE, &a.only_probe, 0, 0, "draw this probe alone (default every one)", .choices = PROBES},
+        {"patches", OPT_LONG, &a.only_patches, 1, 1e6, "draw only the first N generated patches of each spacing and probe (default the plan's)"},
     };
-    const opts_cmd c = {"main-redraw", "--weights FILE --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--volume v1|v2] [--spacing D] [--probe P]",
+    const opts_cmd c = {"main-redraw", "--weights FILE --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--volume v1|v2] [--spacing D] [--probe P] [--patches N]",
                         "Draw the clearance samples of one E3/E4 unit again from its weights, without training:\n"
                         "the data rows of FILE.tsv equal those of the unit's samples_s<seed>_<arm>.tsv bit for bit.\n"
                         "With --spacing and --probe only that slice is drawn (the spacing's teacher rows and the\n"
-                        "probe's generated rows), equal to those rows of the whole: the spot check of make verify.",
+                        "probe's generated rows), with --patches only its first N patches: equal to those rows of\n"
+                        "the whole (the spot check of make verify).",
                         spec, sizeof spec / sizeof *spec, 0, 0};
     int r = opts_parse(&c, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);

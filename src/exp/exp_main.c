@@ -370,6 +370,8 @@ cs_status exp_main_redraw(const exp_main_run_args *ap)
     model *m = NULL;
     double scl = 0, worst = 0, maxdiff = 0;
     cs_status st = unit_plan(&a, &ds, &pl);
+    /* the patches are drawn batch after batch from one stream: the first k are those of the whole */
+    if (!st && a.only_patches > 0 && a.only_patches < pl.gen_patches) pl.gen_patches = (int)a.only_patches;
     if (!st) st = unit_load(&a, &pl, &m, &scl);
     mainrun_row rows[MAINRUN_MAXROWS];
     size_t nrows = 0;
