@@ -275,7 +275,7 @@ void audit_feeds(const claims *c, const char *path, char *buf, size_t n)
 }
 
 /* ---- the git ledger ---- */
-static int run_line(const char *cmd, char *out, size_t n)
+int audit_run_line(const char *cmd, char *out, size_t n)
 {
     FILE *p = popen(cmd, "r");
     if (!p) return 1;
@@ -322,7 +322,7 @@ void audit_ledger(FILE *o)
 {
     struct stat sb;
     char base[64], head[64];
-    if (stat(".git", &sb) != 0 || run_line("git rev-parse --short=12 HEAD 2>/dev/null", head, sizeof head)) {
+    if (stat(".git", &sb) != 0 || audit_run_line("git rev-parse --short=12 HEAD 2>/dev/null", head, sizeof head)) {
         fprintf(o, "  (no .git here: the ledger of pinned files needs the repository's history)\n");
         return;
     }
@@ -347,13 +347,13 @@ void audit_ledger(FILE *o)
         pinned++;
         char cmd[900], n_commits[32], dirty[8];
         snprintf(cmd, sizeof cmd, "git rev-list --count %s..HEAD -- '%s' 2>/dev/null", base, path);
-        if (run_line(cmd, n_commits, sizeof n_commits)) snprintf(n_commits, sizeof n_commits, "?");
+        if (audit_run_line(cmd, n_commits, sizeof n_commits)) snprintf(n_commits, sizeof n_commits, "?");
         snprintf(cmd, sizeof cmd, "git status --porcelain -- '%s' 2>/dev/null | head -c 2", path);
-        int uncommitted = !run_line(cmd, dirty, sizeof dirty);
+        int uncommitted = !audit_run_line(cmd, dirty, sizeof dirty);
         if (!strcmp(n_commits, "0") && !uncommitted) continue;
         char last[700] = "";
         snprintf(cmd, sizeof cmd, "git log -1 --format='%%h %%ad %%s' --date=short %s..HEAD -- '%s' 2>/dev/null | cut -c1-110", base, path);
-        run_line(cmd, last, sizeof last);
+        audit_run_line(cmd, last, sizeof last);
         fprintf(o, "  %-34s %s commit(s) since %s%s%s%s\n", path, n_commits, base, uncommitted ? ", uncommitted changes" : "",
                 last[0] ? "; last: " : "", last);
         shown++;

@@ -33,4 +33,6 @@ int audit_prereg_state(char *out, size_t n);
 /* The preregistration commit (abbreviated), 0 when it is an ancestor of HEAD. */
 int audit_prereg_commit(char *out, size_t n);
 
+/* The last non-empty line cmd prints, into out; 0 when there is one and cmd exited 0. */
+int audit_run_line(const char *cmd, char *out, size_t n);
 #endif

@@ -3,6 +3,7 @@
 #include "afile.h"
 #include "audit_data.h"
 #include "paths.h"
+#include "prov.h"
 #include "sha256.h"
 #include <errno.h>
 #include <stdio.h>
@@ -15,18 +16,6 @@
 /* The Debian packages whose versions decide a PNG's bytes beside the data. */
 static const char *const RENDER_DEBS[] = {"gnuplot-nox", "libcairo2", "libpango-1.0-0", "libpangocairo-1.0-0", "libfreetype6",
                                           "libfontconfig1", "libpixman-1-0", "libpng16-16", "zlib1g", "fonts-dejavu-core", NULL};
-
-/* Run cmd, keep its first line of output in out ("" when none). */
-static void first_line(const char *cmd, char *out, size_t n)
-{
-    out[0] = '\0';
-    FILE *p = popen(cmd, "r");
-    if (!p) return;
-    if (fgets(out, (int)n, p)) out[strcspn(out, "\n")] = '\0';
-    char sink[256];
-    while (fgets(sink, sizeof sink, p)) {}
-    pclose(p);
-}
 
 /* The SHA-256 of everything cmd prints. */
 static void output_sha(const char *cmd, char hex[65])
@@ -45,37 +34,21 @@ static void output_sha(const char *cmd, char hex[65])
     sha256_tohex(d, hex);
 }
 
-static int file_sha(const char *path, char hex[65])
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) return -1;
-    sha256_ctx c;
-    uint8_t d[32];
-    sha256_init(&c);
-    char buf[65536];
-    size_t k;
-    while ((k = fread(buf, 1, sizeof buf, f)) > 0) sha256_update(&c, buf, k);
-    fclose(f);
-    sha256_final(&c, d);
-    sha256_tohex(d, hex);
-    return 0;
-}
-
 cs_status figcheck_renderer(char *buf, size_t n)
 {
     size_t o = 0;
     char line[512], cmd[256];
 #define ADD(...) do { int w_ = snprintf(buf + o, n - o, __VA_ARGS__); if (w_ < 0 || (size_t)w_ >= n - o) return cs_err(CS_EINPUT, "figcheck: renderer text too long"); o += (size_t)w_; } while (0)
-    first_line("gnuplot --version 2>/dev/null", line, sizeof line);
+    audit_run_line("gnuplot --version 2>/dev/null", line, sizeof line);
     ADD("gnuplot\t%s\n", line[0] ? line : "absent");
     for (size_t i = 0; RENDER_DEBS[i]; i++) {
         snprintf(cmd, sizeof cmd, "dpkg-query -W -f '${Version}' %s 2>/dev/null", RENDER_DEBS[i]);
-        first_line(cmd, line, sizeof line);
+        audit_run_line(cmd, line, sizeof line);
         ADD("deb:%s\t%s\n", RENDER_DEBS[i], line[0] ? line : "absent");
     }
-    first_line("fc-match -f '%{file}' '" FIGCHECK_FONT "' 2>/dev/null", line, sizeof line);
+    audit_run_line("fc-match -f '%{file}' '" FIGCHECK_FONT "' 2>/dev/null", line, sizeof line);
     char hex[65] = "absent";
-    if (!line[0] || file_sha(line, hex)) snprintf(hex, sizeof hex, "absent");
+    if (!line[0] || prov_sha256_file(line, hex)) snprintf(hex, sizeof hex, "absent");
     ADD("font\t%s\n", line[0] ? line : "absent");
     ADD("font_sha256\t%s\n", hex);
     /* fontconfig's whole match (file, hinting, antialiasing, ...) for the font */
