@@ -308,13 +308,18 @@ static void test_agreement_classes(void **s)
  * paper 1.00) and Other (2.0 in [1.9, 2.1], paper 2.05, inside) share a
  * section; crown_R 3 moves Toy to 1.1 (reached from t = 0.5) but Other to
  * 2.4 (out beyond t = 0.375); crown_R 5 moves Toy to 1.1 and Other to 2.1. */
-static void test_reached_keeps_the_experiment_in_agreement(void **s)
+/* Two claims of one section: Toy 1.5 in [1.2, 1.6] (paper 1.00) and Other
+ * 2.0 in [1.9, 2.1] (paper other_ref); the sensitivity values: the centre,
+ * crown_R 3 moving Toy to 1.1 and Other to other_r3, crown_R 5 moving Toy to
+ * 1.1 and Other to other_r5. */
+typedef struct { claims c; claim_row rows[2]; claim_result res[2]; claim_interval ci[2]; attrib_value v[6]; } toy_fixture;
+
+static void toy_fixture_make(toy_fixture *x, const char *other_ref, double other_r3, double other_r5)
 {
-    (void)s;
-    claims c = {0};
-    claim_row rows[2];
-    memset(rows, 0, sizeof rows);
-    static const char *mac[2] = {"Toy", "Other"}, *ref[2] = {"1.00", "2.05"};
+    memset(x, 0, sizeof *x);
+    claim_row *rows = x->rows;
+    static const char *mac[2] = {"Toy", "Other"};
+    const char *ref[2] = {"1.00", other_ref};
     for (int i = 0; i < 2; i++) {
         snprintf(rows[i].macro, sizeof rows[i].macro, "%s", mac[i]);
         snprintf(rows[i].kind, sizeof rows[i].kind, "measured");
@@ -323,21 +328,20 @@ static void test_reached_keeps_the_experiment_in_agreement(void **s)
         snprintf(rows[i].source, sizeof rows[i].source, "nowhere/x.tsv");
         snprintf(rows[i].section, sizeof rows[i].section, "3.2");
     }
-    c.rows = rows;
-    c.n = 2;
-    claim_result res[2] = {{0}};
+    x->c.rows = rows;
+    x->c.n = 2;
+    claim_result *res = x->res;
     res[0].status = res[1].status = VERDICT_PASS;
     res[0].value = 1.5;
     res[1].value = 2.0;
-    claim_interval ci[2] = {{0}};
+    claim_interval *ci = x->ci;
     ci[0].has = ci[1].has = 1;
     ci[0].lo = 1.2; ci[0].hi = 1.6;
     ci[1].lo = 1.9; ci[1].hi = 2.1;
-    attrib_value v[6];
-    memset(v, 0, sizeof v);
-    static const struct { const char *q, *u; double x, val; } in[6] = {
-        {"Toy", "centre", NAN, 1.5}, {"Other", "centre", NAN, 2.0}, {"Toy", "crown_R", 3, 1.1}, {"Other", "crown_R", 3, 2.4},
-        {"Toy", "crown_R", 5, 1.1}, {"Other", "crown_R", 5, 2.1}};
+    attrib_value *v = x->v;
+    const struct { const char *q, *u; double x, val; } in[6] = {
+        {"Toy", "centre", NAN, 1.5}, {"Other", "centre", NAN, 2.0}, {"Toy", "crown_R", 3, 1.1}, {"Other", "crown_R", 3, other_r3},
+        {"Toy", "crown_R", 5, 1.1}, {"Other", "crown_R", 5, other_r5}};
     for (int i = 0; i < 6; i++) {
         snprintf(v[i].quantity, sizeof v[i].quantity, "%s", in[i].q);
         snprintf(v[i].unit, sizeof v[i].unit, "%s", in[i].u);
@@ -345,6 +349,18 @@ static void test_reached_keeps_the_experiment_in_agreement(void **s)
         v[i].value = in[i].val;
         v[i].sens = 1;
     }
+}
+
+static void test_reached_keeps_the_experiment_in_agreement(void **s)
+{
+    (void)s;
+    toy_fixture x;
+    toy_fixture_make(&x, "2.05", 2.4, 2.1);
+    claims c = x.c;
+    claim_row *rows = x.rows;
+    claim_result *res = x.res;
+    claim_interval *ci = x.ci;
+    attrib_value *v = x.v;
     agree_result a;
     attrib_data d = {v, 4, 0, 1};
     agree_judge(&d, &rows[0], &res[0], &ci[0], &a); /* unbound: nothing else constrained */
@@ -370,40 +386,13 @@ static void test_reached_keeps_the_experiment_in_agreement(void **s)
 static void test_reached_moves_no_other_number_further_off(void **s)
 {
     (void)s;
-    claims c = {0};
-    claim_row rows[2];
-    memset(rows, 0, sizeof rows);
-    static const char *mac[2] = {"Toy", "Other"}, *ref[2] = {"1.00", "2.5"};
-    for (int i = 0; i < 2; i++) {
-        snprintf(rows[i].macro, sizeof rows[i].macro, "%s", mac[i]);
-        snprintf(rows[i].kind, sizeof rows[i].kind, "measured");
-        snprintf(rows[i].reference, sizeof rows[i].reference, "%s", ref[i]);
-        snprintf(rows[i].format, sizeof rows[i].format, "%%.2f");
-        snprintf(rows[i].source, sizeof rows[i].source, "nowhere/x.tsv");
-        snprintf(rows[i].section, sizeof rows[i].section, "3.2");
-    }
-    c.rows = rows;
-    c.n = 2;
-    claim_result res[2] = {{0}};
-    res[0].status = res[1].status = VERDICT_PASS;
-    res[0].value = 1.5;
-    res[1].value = 2.0;
-    claim_interval ci[2] = {{0}};
-    ci[0].has = ci[1].has = 1;
-    ci[0].lo = 1.2; ci[0].hi = 1.6;
-    ci[1].lo = 1.9; ci[1].hi = 2.1;
-    attrib_value v[6];
-    memset(v, 0, sizeof v);
-    static const struct { const char *q, *u; double x, val; } in[6] = {
-        {"Toy", "centre", NAN, 1.5}, {"Other", "centre", NAN, 2.0}, {"Toy", "crown_R", 3, 1.1}, {"Other", "crown_R", 3, 1.6},
-        {"Toy", "crown_R", 5, 1.1}, {"Other", "crown_R", 5, 2.3}};
-    for (int i = 0; i < 6; i++) {
-        snprintf(v[i].quantity, sizeof v[i].quantity, "%s", in[i].q);
-        snprintf(v[i].unit, sizeof v[i].unit, "%s", in[i].u);
-        v[i].x = in[i].x;
-        v[i].value = in[i].val;
-        v[i].sens = 1;
-    }
+    toy_fixture x;
+    toy_fixture_make(&x, "2.5", 1.6, 2.3);
+    claims c = x.c;
+    claim_row *rows = x.rows;
+    claim_result *res = x.res;
+    claim_interval *ci = x.ci;
+    attrib_value *v = x.v;
     agree_result a;
     attrib_data d = {v, 4, 0, 1};
     d.have_gensens = 1; /* a fixture: no training choice to add */
