@@ -323,6 +323,27 @@ expect "a typed decimal that rounds no measured value" "paper/main.tex" "'0.37'"
 fresh
 printf '\nThe learning gate: \\verdict{PASS}.\n' >> "$scratch/paper/main.tex"
 expect "a literal \\verdict{PASS}" "paper/main.tex" "verdict{PASS}"
+# 26b. the paper as TeX renders it, every generated value hidden: what TeX
+# prints from means the static reading does not follow
+fresh
+sed -i 's/^\\end{document}$/The shuffle gate: \\uppercase{pass}.\n\\end{document}/' "$scratch/paper/main.tex"
+expect "a verdict typed as \\uppercase{pass}" "paper render" "'PASS'"
+fresh
+sed -i 's/^\\end{document}$/The shuffle gate: P{}ASS.\n\\end{document}/' "$scratch/paper/main.tex"
+expect "a verdict typed as P{}ASS" "paper render" "'PASS'"
+fresh
+sed -i 's/^\\end{document}$/Of the sweep, \\relax13 rows meet the gate.\n\\end{document}/' "$scratch/paper/main.tex"
+expect "digits after a control word" "paper render" "'13'"
+fresh
+printf 'Of the sweep, 14 of 16 rows meet the gate.\n' > "$scratch/paper/extra.txt"
+sed -i 's/^\\end{document}$/\\input extra.txt\n\\end{document}/' "$scratch/paper/main.tex"
+expect "a braceless \\input of a file not *.tex" "paper render" "'14'"
+fresh
+sed -i 's/^\\end{document}$/The run ended in \\the\\year.\n\\end{document}/' "$scratch/paper/main.tex"
+expect "a number TeX computes" "paper render" "paper/main.tex"
+fresh
+sed -i 's/^\\end{document}$/\\let\\mydef=\\def \\mydef\\MainRel{45.0}The improvement: \\MainRel\\%.\n\\end{document}/' "$scratch/paper/main.tex"
+expect "a claim redefined through an alias of \\def" "paper render" "45.0"
 # 27. the claim tests are pinned: one that returns early
 fresh
 sed -i 's/^    const claim_row \*row = \*state;$/    const claim_row *row = *state;\n    if (row) return;/' "$scratch/tests/test_claims.c"

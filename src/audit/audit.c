@@ -15,6 +15,7 @@
 #include "paths.h"
 #include "audit_data.h"
 #include "audit_paper.h"
+#include "audit_render.h"
 #include "audit_evidence.h"
 #include "audit_units.h"
 
@@ -582,5 +583,6 @@ cs_status audit_run(const claims *c, const claim_result *res, checklist *out)
     check_registry(c, out);
     audit_generated(c, res, out, 0);
     audit_paper_text(c, res, out);
+    audit_render(c, res, out);
     return CS_OK;
 }

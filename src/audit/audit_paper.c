@@ -16,7 +16,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-static const char *const generated[] = {PATHS_NUMBERS, PATHS_COMPARISON, PATHS_READINGS_TEX, PATHS_SENS_TEX, PATHS_INTERVALS_OUT, PATHS_SUMMARY_TEX, NULL};
+static const char *const generated[] = {PATHS_NUMBERS, PATHS_CONSTANTS_TEX, PATHS_COMPARISON, PATHS_READINGS_TEX, PATHS_SENS_TEX, PATHS_INTERVALS_OUT, PATHS_SUMMARY_TEX, NULL};
+
+const char *paper_generated(size_t i)
+{
+    return i < sizeof generated / sizeof *generated ? generated[i] : NULL;
+}
 
 int paper_is_generated(const char *path)
 {
@@ -46,7 +51,9 @@ cs_status paper_generate(const claims *c, const claim_result *res, const char *d
 {
     char p[512];
     snprintf(p, sizeof p, "%s/numbers.tex", dir);
-    cs_status st = claims_write_numbers(p, c, res);
+    cs_status st = claims_write_numbers(p, c, res, 0);
+    snprintf(p, sizeof p, "%s/constants.tex", dir);
+    if (!st) st = audit_write_constants(p, 0);
     struct stat sb;
     *readings = 0;
     if (!st && stat(PATHS_READINGS_SUMMARY, &sb) == 0) {

@@ -7,8 +7,14 @@
 #include "claims.h"
 #include "paths.h"
 
-/* Is path one of the generated paper files (numbers, comparison, readings)? */
+/* Is path one of the generated paper files (numbers, constants, comparison, readings)? */
 int paper_is_generated(const char *path);
+/* The i-th generated paper file (NULL past the last). */
+const char *paper_generated(size_t i);
+/* paper/constants.tex from audit/design_numbers.tsv: one macro per design
+ * constant the text prints (hide: the audit's render, each printing the
+ * hidden word). Errors name the file, line and field. */
+cs_status audit_write_constants(const char *path, int hide);
 /* Write numbers.tex, comparison.tex, readings.tex (when
  * frozen/readings/summary.tsv exists; *readings bit 1) and sensitivity.tex
  * (when frozen/sensitivity/summary.tsv exists; bit 2) into dir, each summary
@@ -20,9 +26,6 @@ void audit_generated(const claims *c, const claim_result *res, checklist *cl, in
 /* Every non-generated .tex under paper/: claim macros registered, none
  * (re)defined, no measured number typed in any rounding, no exemption comment. */
 void audit_paper_text(const claims *c, const claim_result *res, checklist *cl);
-/* The design constants of audit/design_numbers.tsv, each checked at its
- * source (a failing row is added to cl); *out is malloc'd, the count returned. */
-size_t audit_design_numbers(checklist *cl, double **out);
 /* One hand-written file: FAIL items for unregistered, defined or hand-typed
  * claims (vals/who: the nv measured values and their macros) and exemption
  * comments; returns how many, adds claim-macro uses to *used. */

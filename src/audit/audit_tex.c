@@ -5,6 +5,7 @@
  * constant (audit/design_numbers.tsv); no comment asking for an exemption
  * (none is honoured; one present is itself a failure). */
 #include "audit_paper.h"
+#include "afile.h"
 #include "gate.h"
 #include "tsv.h"
 #include <ctype.h>
@@ -86,12 +87,15 @@ static int rounds_to(double x, int dec, int sig, int neg, double v)
  * teacher-2) and arguments that are names (\label, \ref, \cite, files) are
  * not numbers of the text. */
 
+/* a design constant the text prints through its macro (audit/design_numbers.tsv) */
+typedef struct { char macro[64], value[32]; int line; } design_const;
+
 typedef struct {
     const claims *c;
     const double *vals;
     const char *const *who;
     size_t nv;
-    const double *design; /* numbers the text may type */
+    const design_const *design; /* the design constants' macros */
     size_t nd;
     checklist *cl;
     size_t *used, bad;
@@ -181,8 +185,9 @@ static const claim_row *claim_or_gate(const claims *c, const char *name)
 static void tex_use(tex_scan *t, size_t pos, const char *name)
 {
     if (!isupper((unsigned char)name[0]) || audit_latex_upper(name)) return;
-    if (claim_or_gate(t->c, name)) (*t->used)++;
-    else tex_fail(t, pos, "paper macros", "\\%s has no row in " PATHS_CLAIMS "%s", name, "");
+    if (claim_or_gate(t->c, name)) { (*t->used)++; return; }
+    for (size_t q = 0; q < t->nd; q++) if (!strcmp(t->design[q].macro, name)) return;
+    tex_fail(t, pos, "paper macros", "\\%s has no row in " PATHS_CLAIMS " or " PATHS_DESIGN_NUMBERS "%s", name, "");
 }
 
 static int is_namedef(const char *cmd)
@@ -333,8 +338,7 @@ static void tex_number(tex_scan *t, size_t i, size_t e)
                 tex_fail(t, i, "hand-typed numbers", "%s%s", m, "");
                 return;
             }
-    for (size_t q = 0; q < t->nd; q++) if (fabs(x - t->design[q]) <= 1e-9 * fmax(1.0, fabs(x))) return;
-    tex_fail(t, i, "hand-typed numbers", "'%s' is typed in the text but is neither a generated macro nor a design constant of " PATHS_DESIGN_NUMBERS "%s", tok, "");
+    tex_fail(t, i, "hand-typed numbers", "'%s' is typed in the text: a measured value prints through its macro of numbers.tex, a design constant through its macro of constants.tex (" PATHS_DESIGN_NUMBERS ")%s", tok, "");
 }
 
 /* Comments blanked (an exemption request is itself a failure); returns the copy. */
@@ -360,6 +364,16 @@ static char *tex_strip(tex_scan *t, const char *raw, size_t n)
     return s;
 }
 
+/* A branch of the text's own: the render could show one side only. The text
+ * branches through the generated \ifpass and \ifsame, whose both sides the
+ * render prints. */
+static void tex_control(tex_scan *t, size_t pos, const char *cs)
+{
+    if (!strcmp(cs, "ifpass") || !strcmp(cs, "ifsame")) return;
+    if (!strncmp(cs, "if", 2) || !strncmp(cs, "If", 2) || !strcmp(cs, "unless") || !strcmp(cs, "else") || !strcmp(cs, "fi") || !strcmp(cs, "or"))
+        tex_fail(t, pos, "paper text", "\\%s: the text branches only through \\ifpass or \\ifsame (generated), whose both sides the audit's render shows%s", cs, "");
+}
+
 static void tex_scan_text(tex_scan *t)
 {
     const char *s = t->text;
@@ -368,8 +382,19 @@ static void tex_scan_text(tex_scan *t)
             char cs[80];
             size_t j = tex_cs(s, i, cs, sizeof cs), at = i;
             if (!strcmp(cs, "catcode")) tex_fail(t, at, "paper text", "\\%s changes how TeX reads the characters that follow: not allowed in the text%s", cs, "");
-            if (!strcmp(cs, "csname")) { char nm[80]; j = tex_csname(s, j, nm, sizeof nm); if (nm[0]) tex_use(t, at, nm); i = j; continue; }
-            if (is_defining(cs) || is_namedef(cs)) { i = tex_definition(t, cs, j); continue; }
+            if (!strcmp(cs, "csname")) {
+                char nm[80];
+                j = tex_csname(s, j, nm, sizeof nm);
+                if (nm[0]) { tex_use(t, at, nm); tex_control(t, at, nm); }
+                i = j;
+                continue;
+            }
+            if (is_defining(cs) || is_namedef(cs)) {
+                tex_fail(t, at, "paper text", "\\%s: the text defines no command of its own (its helpers, \\verdict \\ifpass \\ifsame \\bandpos \\fig, are generated in numbers.tex)%s", cs, "");
+                i = tex_definition(t, cs, j);
+                continue;
+            }
+            tex_control(t, at, cs);
             if (is_verdict_cmd(t, cs) && !t->collect) tex_verdict_arg(t, at, cs, j);
             if (names_arg(cs)) {
                 size_t k = skip_space(s, j);
@@ -434,7 +459,9 @@ size_t paper_scan_file(const char *path, const claims *c, const double *vals, co
 {
     static char verdicts[64][64];
     paths_list pulled = {0};
-    tex_scan t = {c, vals, who, nv, NULL, 0, cl, used, 0, 1, verdicts, 0, &pulled, path, "", 0};
+    snprintf(verdicts[0], 64, "verdict");
+    snprintf(verdicts[1], 64, "ifpass");
+    tex_scan t = {c, vals, who, nv, NULL, 0, cl, used, 0, 1, verdicts, 2, &pulled, path, "", 0};
     tex_scan_path(&t, path);
     t.collect = 0;
     size_t bad = tex_scan_path(&t, path);
@@ -442,24 +469,36 @@ size_t paper_scan_file(const char *path, const claims *c, const double *vals, co
     return bad;
 }
 
-/* audit/design_numbers.tsv: value, source, what. A source is "gate FILE:KEY"
- * (a value of the key, or a hundred times it: a percentage), "count FILE:KEY"
- * (how many values the key has), "define FILE:NAME" (a #define of a pinned
- * header), or "text" (a number that is no quantity of the study: a date, a
- * revision, an ordinal; its 'what' says which). Each is checked at its source. */
-size_t audit_design_numbers(checklist *cl, double **out)
+/* audit/design_numbers.tsv: macro, value, source, what. A source is
+ * "gate FILE:KEY" (a value of the key, or a hundred times it: a percentage),
+ * "count FILE:KEY" (how many values the key has), "excess FILE:KEY" (a hundred
+ * times the key's value less one: 30 for 1.30), "log10 FILE:KEY" (minus the
+ * decimal exponent of the key's value: 6 for 1e-6), "define FILE:NAME" (a
+ * #define of a pinned header), "member FILE:NAME" (an initialiser NAME = value
+ * of a source file), or "text" (a number that is no quantity of the
+ * study: a count in the reference paper's words, an ordinal; its 'what' says
+ * which). Each is checked at its source; each macro prints one phrase of the
+ * text (design.md §9). */
+static size_t design_consts(checklist *cl, design_const **out)
 {
     tsv *t;
     *out = NULL;
     if (tsv_read(PATHS_DESIGN_NUMBERS, &t)) { checklist_add(cl, VERDICT_FAIL, "design numbers", "%s", cs_errmsg()); return 0; }
-    double *v = calloc(tsv_nrows(t) + 1, sizeof *v);
+    design_const *v = calloc(tsv_nrows(t) + 1, sizeof *v);
     size_t n = 0;
     for (size_t r = 0; v && r < tsv_nrows(t); r++) {
-        const char *src = tsv_str(t, r, "source"), *what = tsv_str(t, r, "what");
+        const char *src = tsv_str(t, r, "source"), *what = tsv_str(t, r, "what"), *mac = tsv_str(t, r, "macro"), *val = tsv_str(t, r, "value");
         double x;
         char kind[16] = "", file[200] = "", key[80] = "";
         int line = tsv_line(t, r), ok = 0;
-        if (tsv_double(t, r, "value", &x) || !src || !what || !what[0]) { checklist_add(cl, VERDICT_FAIL, "design numbers", "%s:%d: fields 'value' (a number), 'source' and 'what' required", PATHS_DESIGN_NUMBERS, line); continue; }
+        if (!mac || !isupper((unsigned char)mac[0]) || strspn(mac, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz") != strlen(mac) || strlen(mac) >= 64 ||
+            tsv_double(t, r, "value", &x) || !val || strlen(val) >= 32 || !src || !what || !what[0]) {
+            checklist_add(cl, VERDICT_FAIL, "design numbers", "%s:%d: fields 'macro' (letters, capitalised), 'value' (a number), 'source' and 'what' required", PATHS_DESIGN_NUMBERS, line);
+            continue;
+        }
+        int dup = 0;
+        for (size_t q = 0; q < n; q++) dup |= !strcmp(v[q].macro, mac);
+        if (dup) { checklist_add(cl, VERDICT_FAIL, "design numbers", "%s:%d: field 'macro': %s appears twice", PATHS_DESIGN_NUMBERS, line, mac); continue; }
         if (!strcmp(src, "text")) ok = 1;
         else if (sscanf(src, "%15s %199[^:]:%79s", kind, file, key) == 3) {
             double g[64];
@@ -469,6 +508,16 @@ size_t audit_design_numbers(checklist *cl, double **out)
             if (!strcmp(kind, "gate") && !gate_read_values(path, key, g, 64, &ng))
                 for (size_t k = 0; k < ng && !ok; k++) ok = fabs(g[k] - x) <= 1e-9 * fmax(1, fabs(x)) || fabs(100 * g[k] - x) <= 1e-9 * fmax(1, fabs(x));
             else if (!strcmp(kind, "count") && !gate_read_values(path, key, g, 64, &ng)) ok = (double)ng == x;
+            else if (!strcmp(kind, "log10") && !gate_read_values(path, key, g, 64, &ng)) ok = ng == 1 && g[0] > 0 && fabs(-log10(g[0]) - x) <= 1e-9;
+            else if (!strcmp(kind, "excess") && !gate_read_values(path, key, g, 64, &ng)) ok = ng == 1 && fabs(100 * (g[0] - 1) - x) <= 1e-9 * fmax(1, fabs(x));
+            else if (!strcmp(kind, "member")) {
+                /* an initialiser "NAME = value" in a source file, as written */
+                FILE *f = fopen(file, "r");
+                char l[512], pat[100];
+                snprintf(pat, sizeof pat, "%s = ", key);
+                while (f && !ok && fgets(l, sizeof l, f)) { const char *m = strstr(l, pat); ok = m && strtod(m + strlen(pat), NULL) == x; }
+                if (f) fclose(f);
+            }
             else if (!strcmp(kind, "define")) {
                 FILE *f = fopen(file, "r");
                 char l[512], pat[100];
@@ -477,12 +526,33 @@ size_t audit_design_numbers(checklist *cl, double **out)
                 if (f) fclose(f);
             }
         }
-        if (!ok) { checklist_add(cl, VERDICT_FAIL, "design numbers", "%s:%d: %g is not what its source '%s' holds", PATHS_DESIGN_NUMBERS, line, x, src); continue; }
-        v[n++] = x;
+        if (!ok) { checklist_add(cl, VERDICT_FAIL, "design numbers", "%s:%d: %s = %g is not what its source '%s' holds", PATHS_DESIGN_NUMBERS, line, mac, x, src); continue; }
+        snprintf(v[n].macro, sizeof v[n].macro, "%s", mac);
+        snprintf(v[n].value, sizeof v[n].value, "%s", val);
+        v[n++].line = line;
     }
     tsv_free(t);
     *out = v;
     return n;
+}
+
+cs_status audit_write_constants(const char *path, int hide)
+{
+    checklist cl = {0};
+    design_const *d;
+    size_t n = design_consts(&cl, &d);
+    cs_status st = CS_OK;
+    for (size_t i = 0; i < cl.n && !st; i++) if (cl.items[i].v == VERDICT_FAIL) st = cs_err(CS_EINPUT, "%s", cl.items[i].msg);
+    checklist_free(&cl);
+    afile a;
+    if (!st && !d) st = cs_err(CS_ENOMEM, "out of memory");
+    if (!st) st = afile_open(&a, path);
+    if (st) { free(d); return st; }
+    fprintf(a.f, "%% paper/constants.tex: GENERATED by `crownshy numbers` from " PATHS_DESIGN_NUMBERS ", each value checked at its source.\n"
+                 "%% The design constants the text prints, one macro per phrase. Never edit by hand.\n");
+    for (size_t i = 0; i < n; i++) fprintf(a.f, "\\newcommand{\\%s}{%s}\n", d[i].macro, hide ? "\\hiddenvalue{}" : d[i].value);
+    free(d);
+    return afile_commit(&a);
 }
 
 void audit_paper_text(const claims *c, const claim_result *res, checklist *cl)
@@ -491,7 +561,8 @@ void audit_paper_text(const claims *c, const claim_result *res, checklist *cl)
     paths_list_files(PATHS_PAPER_DIR, ".tex", 1, &files);
     size_t used = 0;
     /* the measured values a number in the text must not round */
-    double *vals = calloc(2 * (c->n ? c->n : 1), sizeof *vals), *design = NULL;
+    double *vals = calloc(2 * (c->n ? c->n : 1), sizeof *vals);
+    design_const *design = NULL;
     const char **who = calloc(2 * (c->n ? c->n : 1), sizeof *who);
     size_t nv = 0, before = cl->n;
     for (size_t r = 0; vals && who && r < c->n; r++) {
@@ -501,9 +572,11 @@ void audit_paper_text(const claims *c, const claim_result *res, checklist *cl)
         if (res[r].status == VERDICT_PASS && isfinite(res[r].value)) { vals[nv] = res[r].value; who[nv++] = c->rows[r].macro; }
         if (end != c->rows[r].reference && !*end && isfinite(ref)) { vals[nv] = ref; who[nv++] = c->rows[r].macro; }
     }
-    size_t nd = audit_design_numbers(cl, &design);
+    size_t nd = design_consts(cl, &design);
     static char verdicts[64][64];
-    tex_scan t = {c, vals, (const char *const *)who, nv, design, nd, cl, &used, 0, 1, verdicts, 0, &files, "", "", 0};
+    snprintf(verdicts[0], 64, "verdict");
+    snprintf(verdicts[1], 64, "ifpass");
+    tex_scan t = {c, vals, (const char *const *)who, nv, design, nd, cl, &used, 0, 1, verdicts, 2, &files, "", "", 0};
     /* pass 1 follows every \input, \include and local package and collects the
      * verdict commands; pass 2 checks every file so found */
     for (size_t i = 0; i < files.n; i++) if (!paper_is_generated(files.p[i])) tex_scan_path(&t, files.p[i]);
@@ -520,7 +593,7 @@ void audit_paper_text(const claims *c, const claim_result *res, checklist *cl)
     int bad = 0;
     for (size_t i = before; i < cl->n; i++) bad |= cl->items[i].v == VERDICT_FAIL;
     if (!bad)
-        checklist_add(cl, VERDICT_PASS, "paper text", "%zu hand-written paper files read as TeX reads them (every file pulled in): %zu claim-macro uses, all registered; no claim macro defined in any form; %zu verdict commands, each with a generated gate macro; every number a macro or one of %zu design constants; no exemption comment",
+        checklist_add(cl, VERDICT_PASS, "paper text", "%zu hand-written paper files read as TeX reads them (every file pulled in): %zu claim-macro uses, all registered; no command defined, no branch but the generated ones; %zu verdict commands, each with a generated gate macro; no number typed (each a macro of numbers.tex or one of %zu design constants of constants.tex); no exemption comment",
                       scanned, used, t.nverd, nd);
     paths_list_free(&files);
 }

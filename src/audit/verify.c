@@ -1,5 +1,6 @@
 /* verify: the `make verify` driver and `crownshy trace` (design.md §9). */
 #include "verify.h"
+#include "audit_render.h"
 #include "agree.h"
 #include "attrib.h"
 #include "study.h"
@@ -82,6 +83,10 @@ cs_status verify_load_eval(claims *c, claim_result **res)
 
 cs_status verify_preflight(void)
 {
+    /* the write-up is read as TeX renders it: its renderer is a dependency */
+    if (!render_tools_present())
+        return cs_err(CS_EIO, "pdflatex or pdftotext not found: the audit renders the write-up (an environment error); "
+                              "install them: sudo apt-get install -y " RENDER_DEBS " (make verify does so as root)");
     char d[64];
     snprintf(d, sizeof d, "build/preflight.%ld", (long)getpid());
     if ((mkdir("build", 0777) && errno != EEXIST) || mkdir(d, 0777))

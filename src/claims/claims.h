@@ -97,8 +97,11 @@ cs_status claim_main_samples_check(const char *root, int maxseed, char *msg, siz
 
 /* numbers.tex */
 #define CLAIMS_PENDING_FMT "\\pending{%s}"
-/* Write the generated file (atomic) from evaluated results. */
-cs_status claims_write_numbers(const char *path, const claims *c, const claim_result *res);
+/* The word every generated value prints as in the audit's render. */
+#define CLAIMS_HIDDEN_WORD "HIDDEN"
+/* Write the generated file (atomic) from evaluated results; hide: the audit's
+ * render, with the same macros, each printing CLAIMS_HIDDEN_WORD. */
+cs_status claims_write_numbers(const char *path, const claims *c, const claim_result *res, int hide);
 /* LaTeX-escape a short table cell (% & _ # $). */
 void claims_tex_escape(const char *in, char *out, size_t n);
 /* Distance to the reference paper: 1 and *ref, *rel = (value - ref) / |ref|

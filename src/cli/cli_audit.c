@@ -95,20 +95,22 @@ int cli_cmd_numbers(int argc, char **argv)
     snprintf(dir, sizeof dir, "build/numbers.%ld", (long)getpid());
     int readings = 0;
     st = paper_generate(&c, res, dir, &readings);
-    /* readings: bit 1 readings.tex, bit 2 sensitivity.tex were generated */
-    const char *names[] = {"numbers.tex", "comparison.tex", "intervals.tsv", "summary.tex", "readings.tex", "sensitivity.tex"},
-               *dst[] = {PATHS_NUMBERS, PATHS_COMPARISON, PATHS_INTERVALS_OUT, PATHS_SUMMARY_TEX, PATHS_READINGS_TEX, PATHS_SENS_TEX};
-    for (int i = 0; i < 6; i++) {
+    /* every generated file the generation wrote (readings.tex and
+     * sensitivity.tex only when their frozen summaries exist) moves into paper/ */
+    char wrote[1024] = "";
+    for (size_t i = 0; paper_generated(i); i++) {
         char p[256];
-        snprintf(p, sizeof p, "%s/%s", dir, names[i]);
-        if (!st && (i < 4 || (readings & (i == 4 ? 1 : 2))) && rename(p, dst[i]) != 0) st = cs_err(CS_EIO, "%s: cannot move to %s", p, dst[i]);
+        struct stat sb;
+        snprintf(p, sizeof p, "%s/%s", dir, strrchr(paper_generated(i), '/') + 1);
+        if (stat(p, &sb) != 0) continue;
+        if (!st && rename(p, paper_generated(i)) != 0) st = cs_err(CS_EIO, "%s: cannot move to %s", p, paper_generated(i));
+        else if (!st) snprintf(wrote + strlen(wrote), sizeof wrote - strlen(wrote), "%s%s", wrote[0] ? ", " : "", paper_generated(i));
         unlink(p);
     }
     rmdir(dir);
     size_t pend = 0;
     for (size_t i = 0; i < c.n; i++) pend += res[i].status != VERDICT_PASS;
-    if (!st) printf("wrote %s, %s, %s, %s%s%s: %zu claims (%zu pending)\n", PATHS_NUMBERS, PATHS_COMPARISON, PATHS_INTERVALS_OUT, PATHS_SUMMARY_TEX, readings & 1 ? ", " PATHS_READINGS_TEX : "",
-                    readings & 2 ? ", " PATHS_SENS_TEX : "", c.n, pend);
+    if (!st) printf("wrote %s: %zu claims (%zu pending)\n", wrote, c.n, pend);
     size_t pages = 0; /* the generated regions of the documentation pages */
     if (!st && !(st = docs_refresh(&c, res, &pages)) && pages) printf("refreshed the generated regions of %zu documentation page(s)\n", pages);
     free(res);
