@@ -6,7 +6,7 @@
 # the reading's evaluation volume. Drawn from the per-run tables alone, so a
 # reading shows the seeds frozen so far; a reading with none says "not run".
 # paper: the reading the preregistered gates judge; pair: the extension (its
-# models re-evaluated); paper-fourier, plain: descriptive (4 seeds); all at v2.
+# models re-evaluated); paper-fourier, plain: descriptive (4 seeds); all at 96-stands.
 # Usage: gnuplot figures/model-readings.gp   (dir='build/results' for unfrozen data)
 # data: frozen/paper-reading/main/run_s*_*.tsv
 # data: frozen/paper-reading/main/baselines.tsv

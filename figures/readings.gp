@@ -1,11 +1,13 @@
 # data: frozen/readings/summary.tsv
 # Figure readings (design.md §7 E0): every quantity of the readings table
 # under each reading, as our value over the reference paper's value (1 = the
-# paper's number; shaded: within 10 % and 25 %). Readings: rev1 = teacher-1 on layout r1
-# (teacher-1, 5 m on 60 m, cardinal elongation, Mech* on the lattice); t2-r1 =
-# teacher-2 only; t2-r1-axes = + all-axis elongation and Mech* on the figure
-# stand; t1-r2 = teacher-1 on layout r2; rev2 = the adopted reading (teacher-2, r2);
-# arc = rev2 with the contact arc s-1..s+1 dying back too (measured, not adopted).
+# paper's number; shaded: within 10 % and 25 %). Readings (readings.c):
+# cardinal-one-sided-60m = teacher-1 on layout 5m-on-60m, cardinal elongation,
+# Mech* on the lattice; cardinal-mutual-60m = the same with teacher-2;
+# mutual-60m = + all-axis elongation and Mech* on the figure stand;
+# one-sided-36m = teacher-1 on layout 4m-on-36m; mutual-36m = the adopted
+# reading (teacher-2, 4m-on-36m); arc = mutual-36m with the contact arc
+# s-1..s+1 dying back too (measured, not adopted).
 # Rows of summary.tsv are quantity-major, six readings each (readings.c).
 # Reads only frozen files. Run from the repository root: gnuplot figures/readings.gp
 nr = 6
@@ -28,11 +30,11 @@ do for [fmt in "png pdf"] {
   set arrow 1 from 1, graph 0 to 1, graph 1 nohead lw 1.5 lc rgb "#1a6b1a"
   yq(r) = -floor(r / nr)
   off(k) = 0.34 * (k - 2.5) / 2.5
-  plot "frozen/readings/summary.tsv" using (strcol(2) eq "rev1" ? 1 + $5 : NaN):(yq($0) + off(0)) with points pt 4 ps 1.5 lw 2 lc rgb "#7f7f7f" title "rev1 (revision 1)", \
-       "" using (strcol(2) eq "t2-r1" ? 1 + $5 : NaN):(yq($0) + off(1)) with points pt 6 ps 1.5 lw 2 lc rgb "#ff7f0e" title "teacher-2 only", \
-       "" using (strcol(2) eq "t2-r1-axes" ? 1 + $5 : NaN):(yq($0) + off(2)) with points pt 8 ps 1.5 lw 2 lc rgb "#9467bd" title "+ all-axis, figure stand", \
-       "" using (strcol(2) eq "t1-r2" ? 1 + $5 : NaN):(yq($0) + off(3)) with points pt 12 ps 1.5 lw 2 lc rgb "#1f77b4" title "rev2 with teacher-1", \
-       "" using (strcol(2) eq "arc" ? 1 + $5 : NaN):(yq($0) + off(5)) with points pt 2 ps 1.4 lw 2 lc rgb "#17becf" title "rev2, arc die-back", \
-       "" using (strcol(2) eq "rev2" ? 1 + $5 : NaN):(strcol(2) eq "rev2" ? yq($0) + off(4) : 1000):ytic(strcol(2) eq "rev2" ? strcol(1) : "") with points pt 7 ps 1.6 lc rgb "#d62728" title "rev2 (adopted)"
+  plot "frozen/readings/summary.tsv" using (strcol(2) eq "cardinal-one-sided-60m" ? 1 + $5 : NaN):(yq($0) + off(0)) with points pt 4 ps 1.5 lw 2 lc rgb "#7f7f7f" title "cardinal-one-sided-60m", \
+       "" using (strcol(2) eq "cardinal-mutual-60m" ? 1 + $5 : NaN):(yq($0) + off(1)) with points pt 6 ps 1.5 lw 2 lc rgb "#ff7f0e" title "cardinal-mutual-60m", \
+       "" using (strcol(2) eq "mutual-60m" ? 1 + $5 : NaN):(yq($0) + off(2)) with points pt 8 ps 1.5 lw 2 lc rgb "#9467bd" title "mutual-60m", \
+       "" using (strcol(2) eq "one-sided-36m" ? 1 + $5 : NaN):(yq($0) + off(3)) with points pt 12 ps 1.5 lw 2 lc rgb "#1f77b4" title "one-sided-36m", \
+       "" using (strcol(2) eq "arc" ? 1 + $5 : NaN):(yq($0) + off(5)) with points pt 2 ps 1.4 lw 2 lc rgb "#17becf" title "arc (mutual-36m, arc die-back)", \
+       "" using (strcol(2) eq "mutual-36m" ? 1 + $5 : NaN):(strcol(2) eq "mutual-36m" ? yq($0) + off(4) : 1000):ytic(strcol(2) eq "mutual-36m" ? strcol(1) : "") with points pt 7 ps 1.6 lc rgb "#d62728" title "mutual-36m (adopted)"
   unset output
 }

@@ -148,6 +148,15 @@ revtag=$(grep -rnE 'design\.md ?§[0-9.]+ *(\n)? *rev\.|§[0-9]+ rev\. [0-9]' sr
 if [ -z "$stale$revtag" ]; then ok "every design.md section named exists as a heading"
 else bad "every design.md section named exists as a heading" "missing:$stale ${revtag:+revision tags: $revtag}"; fi
 
+# 4c. names say what they are, never the history of the work: no revision
+# number, round or numbered run, layout or volume name in the package's own
+# text (frozen/ provenance lines are records and paper/CHANGELOG.md keeps the
+# history; neither is read here)
+hist=$(grep -rEn 'rev[0-9]|revision-?[0-9]|t[12][at]?-r[0-9]|first round|\bv[12]\b|\br[12]\b' src tests audit paper/*.tex README.md 2>/dev/null |
+  grep -v '^tests/layout.sh:' | head -20)
+if [ -z "$hist" ]; then ok "no history in names (revision numbers, rounds, numbered runs, layouts or volumes)"
+else bad "no history in names (revision numbers, rounds, numbered runs, layouts or volumes)" "$(echo "$hist" | cut -c1-200)"; fi
+
 # 5. every path a comment names exists (C: lines with /*, * or //; shell,
 # make, gnuplot: after #). A pattern is written with <...>, * or %.
 # The pinned teacher and estimator change only with a re-pin and a re-freeze:

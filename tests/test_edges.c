@@ -352,7 +352,7 @@ static void test_per_tree_tables_name_their_claims(void **s)
     assert_non_null(strstr(buf, "via frozen/field/heldout.tsv"));
     audit_feeds(&c, "frozen/main/run_s03_indep.tsv", buf, sizeof buf);
     assert_non_null(strstr(buf, "MainRel"));
-    audit_feeds(&c, "frozen/readings/t1-r1/field/heldout_trees.tsv", buf, sizeof buf);
+    audit_feeds(&c, "frozen/readings/one-sided-60m/field/heldout_trees.tsv", buf, sizeof buf);
     assert_non_null(strstr(buf, "readings"));
     claims_free(&c);
 }

@@ -111,11 +111,11 @@ static void test_one_perturbed_seed_fails_the_claim_test_naming_it(void **s)
     char msg[1600];
     assert_int_equal(agree_check_interval(ref_tsv, &row, &ref, msg, sizeof msg), VERDICT_PASS);
     snprintf(row.source, sizeof row.source, "%s", tmp);
-    claim_result r2;
-    claims_eval(&row, &r2);
-    assert_int_equal(r2.status, VERDICT_PASS);
-    ASSERT_EXACT(r2.value, r.value);
-    assert_int_equal(interval_eval(&g_it, &row, &r2, &ci), CS_OK);
+    claim_result again;
+    claims_eval(&row, &again);
+    assert_int_equal(again.status, VERDICT_PASS);
+    ASSERT_EXACT(again.value, r.value);
+    assert_int_equal(interval_eval(&g_it, &row, &again, &ci), CS_OK);
     assert_true(ci.lo != ref.lo || ci.hi != ref.hi);
     assert_int_equal(agree_check_interval(ref_tsv, &row, &ci, msg, sizeof msg), VERDICT_FAIL);
     assert_non_null(strstr(msg, "MainJoint"));

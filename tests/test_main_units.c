@@ -117,9 +117,9 @@ static void test_unit_samples_redraw_bit_for_bit_and_recompute_w1(void **s)
     assert_non_null(strstr(msg, "run_s03_joint.tsv"));
 }
 
-/* main-eval evaluates a unit's weights without training: at volume v1 the
- * data rows of the unit's main-run table and samples, bit for bit, recording
- * the training record; at volume v2 every probe at the unseen spacings and none
+/* main-eval evaluates a unit's weights without training: at volume 16-stands
+ * the data rows of the unit's main-run table and samples, bit for bit,
+ * recording the training record; at volume 96-stands every probe at the unseen spacings and none
  * at the extrapolation spacings, for every reading. A paper-reading unit
  * reruns to the same rows and weights. */
 static void test_eval_from_weights_gives_the_unit_rows(void **s)
@@ -182,11 +182,11 @@ static void test_eval_from_weights_gives_the_unit_rows(void **s)
     free(x); free(y);
     snprintf(args, sizeof args, "cmp %s/w_a.ckpt %s/w_c.ckpt", dir, dir);
     assert_int_equal(system(args), 0);
-    /* v2: probes at the unseen spacings only */
-    snprintf(args, sizeof args, "main-eval --volume v2 --weights %s/w_a.ckpt --trained %s/run_a.tsv --seed 2 --arm joint --scale smoke "
-             "--out %s/run_v2.tsv", dir, dir, dir);
-    if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("main-eval v2: %s", out);
-    snprintf(p2, sizeof p2, "%s/run_v2.tsv", dir);
+    /* 96-stands: probes at the unseen spacings only */
+    snprintf(args, sizeof args, "main-eval --volume 96-stands --weights %s/w_a.ckpt --trained %s/run_a.tsv --seed 2 --arm joint --scale smoke "
+             "--out %s/run_96_stands.tsv", dir, dir, dir);
+    if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("main-eval 96-stands: %s", out);
+    snprintf(p2, sizeof p2, "%s/run_96_stands.tsv", dir);
     assert_int_equal(tsv_read(p2, &t), CS_OK);
     int unseen = 0, extrap = 0;
     for (size_t i = 0; i < tsv_nrows(t); i++) {
@@ -196,6 +196,12 @@ static void test_eval_from_weights_gives_the_unit_rows(void **s)
     assert_int_equal(unseen, 3 * 3);
     assert_int_equal(extrap, 2);
     tsv_free(t);
+    /* a volume by any other name is a usage error naming the two */
+    snprintf(args, sizeof args, "main-eval --volume 48-stands --weights %s/w_a.ckpt --trained %s/run_a.tsv --seed 2 --arm joint --scale smoke "
+             "--out %s/bad.tsv", dir, dir, dir);
+    assert_int_equal(tu_run_cli("", args, out, sizeof out), 2);
+    assert_non_null(strstr(out, "16-stands"));
+    assert_non_null(strstr(out, "96-stands"));
     /* the reading is checked against the weights */
     snprintf(args, sizeof args, "main-eval --reading pair --weights %s/w_a.ckpt --trained %s/run_a.tsv --seed 2 --arm joint --scale smoke "
              "--out %s/bad.tsv", dir, dir, dir);

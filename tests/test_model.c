@@ -8,7 +8,7 @@
 #include "pairattn.h"
 #include <gsl/gsl_randist.h>
 
-/* pair: the revision-2 model (standardised features, pair-aware attention) */
+/* pair: the pair reading (standardised features, pair-aware attention) */
 static model_cfg tiny2(int joint, int pair)
 {
     model_cfg c = {.T = 5, .P = 6, .nfeat = 3, .ncond = 2, .ntime = 4,
@@ -174,15 +174,15 @@ static void check_isolation2(int joint, int pair)
     fx f;
     fx_make2(&f, joint, pair, 1, 41);
     const int T = 5, P = 6, nf = 3;
-    float v1[T * P], v2[T * P];
-    assert_int_equal(model_forward(f.m, 1, f.xt, f.feat, f.cond, f.t, v1), CS_OK);
+    float out_a[T * P], out_b[T * P];
+    assert_int_equal(model_forward(f.m, 1, f.xt, f.feat, f.cond, f.t, out_a), CS_OK);
     for (int i = 1; i < T; i++) {
         for (int k = 0; k < P; k++) f.xt[i * P + k] += 0.7f;
         for (int k = 0; k < nf; k++) f.feat[i * nf + k] -= 0.4f;
     }
-    assert_int_equal(model_forward(f.m, 1, f.xt, f.feat, f.cond, f.t, v2), CS_OK);
+    assert_int_equal(model_forward(f.m, 1, f.xt, f.feat, f.cond, f.t, out_b), CS_OK);
     int same = 1;
-    for (int k = 0; k < P; k++) same &= (v1[k] == v2[k]);
+    for (int k = 0; k < P; k++) same &= (out_a[k] == out_b[k]);
     assert_int_equal(same, !joint);
     fx_free(&f);
 }
@@ -191,10 +191,11 @@ static void test_independent_token_ignores_other_tokens(void **s) { (void)s; che
 static void test_pair_independent_token_ignores_other_tokens(void **s) { (void)s; check_isolation2(0, 1); }
 static void test_pair_joint_token_sees_other_tokens(void **s) { (void)s; check_isolation2(1, 1); }
 
-/* The pair parameters come after every revision-1 parameter (whose layout and
+/* The pair parameters come after every parameter of the model without pair
+ * terms (whose layout and
  * initial draws stay as they were), L x (H + C) x Q of them, decayed; both
  * arms have them. */
-static void test_pair_layout_extends_the_revision_1_layout(void **s)
+static void test_pair_layout_extends_the_plain_layout(void **s)
 {
     (void)s;
     model_cfg c0 = model_cfg_reference(5), c1 = c0, i1 = c0;
@@ -209,11 +210,11 @@ static void test_pair_layout_extends_the_revision_1_layout(void **s)
     assert_int_equal(m1->blk[0].pb_w, m0->ndecay);
     assert_int_equal(m1->nnorm, 2 * (size_t)c0.nfeat + 16);
     assert_int_equal(m0->nnorm, 0);
-    gsl_rng *r0 = gsl_rng_alloc(gsl_rng_mt19937), *r1 = gsl_rng_alloc(gsl_rng_mt19937);
-    gsl_rng_set(r0, 4); gsl_rng_set(r1, 4);
-    model_init(m0, r0); model_init(m1, r1);
+    gsl_rng *rng0 = gsl_rng_alloc(gsl_rng_mt19937), *rng1 = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(rng0, 4); gsl_rng_set(rng1, 4);
+    model_init(m0, rng0); model_init(m1, rng1);
     assert_memory_equal(m0->params, m1->params, sizeof(float) * m0->ndecay);
-    gsl_rng_free(r0); gsl_rng_free(r1);
+    gsl_rng_free(rng0); gsl_rng_free(rng1);
     model_free(m0); model_free(m1);
 }
 
@@ -261,19 +262,19 @@ static void test_fm_draw_is_linear_path(void **s)
     float x1[B * n], xt[B * n], u[B * n], t[B];
     unsigned st = 5;
     tu_fill(x1, B * n, 2, &st);
-    gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937), *r2 = gsl_rng_alloc(gsl_rng_mt19937);
-    gsl_rng_set(r, 3); gsl_rng_set(r2, 3);
+    gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937), *rng_ref = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(r, 3); gsl_rng_set(rng_ref, 3);
     model_fm_draw(r, B, n, x1, xt, u, t);
     for (int b = 0; b < B; b++) {
-        ASSERT_EXACT(t[b], (float)gsl_rng_uniform(r2));
+        ASSERT_EXACT(t[b], (float)gsl_rng_uniform(rng_ref));
         assert_true(t[b] >= 0.f && t[b] < 1.f);
         for (int k = 0; k < n; k++) {
-            float x0 = (float)gsl_ran_gaussian_ziggurat(r2, 1.0);
+            float x0 = (float)gsl_ran_gaussian_ziggurat(rng_ref, 1.0);
             ASSERT_EXACT(u[b * n + k], x1[b * n + k] - x0);
             ASSERT_EXACT(xt[b * n + k], (1.f - t[b]) * x0 + t[b] * x1[b * n + k]);
         }
     }
-    gsl_rng_free(r); gsl_rng_free(r2);
+    gsl_rng_free(r); gsl_rng_free(rng_ref);
 }
 
 static void test_fm_loss_is_mse_with_its_gradient(void **s)
@@ -400,11 +401,11 @@ static void test_reading_names_and_legacy_configurations(void **s)
     model_reading q;
     assert_int_equal(model_reading_parse("pairs", &q), CS_EUSAGE);
     assert_non_null(strstr(cs_errmsg(), "paper-fourier"));
-    model_cfg p0 = tiny2(1, 0), p1 = tiny2(1, 1), r0 = p0, r1 = p1;
-    model_cfg_set_reading(&r0, MODEL_PLAIN);
-    model_cfg_set_reading(&r1, MODEL_PAIR);
-    assert_memory_equal(&p0, &r0, sizeof p0);
-    assert_memory_equal(&p1, &r1, sizeof p1);
+    model_cfg p0 = tiny2(1, 0), p1 = tiny2(1, 1), q0 = p0, q1 = p1;
+    model_cfg_set_reading(&q0, MODEL_PLAIN);
+    model_cfg_set_reading(&q1, MODEL_PAIR);
+    assert_memory_equal(&p0, &q0, sizeof p0);
+    assert_memory_equal(&p1, &q1, sizeof p1);
     assert_int_equal(model_cfg_reading(&p0), MODEL_PLAIN);
     assert_int_equal(model_cfg_reading(&p1), MODEL_PAIR);
     model_cfg bad = tiny2(1, 0);
@@ -472,14 +473,14 @@ static void test_reading_ingredients_off_are_off(void **s)
 {
     (void)s;
     enum { B = 2, T = 5, P = 6, NF = 5 };
-    float v1[B * T * P], v2[B * T * P];
+    float out_a[B * T * P], out_b[B * T * P];
     for (int r = MODEL_PAPER; r <= MODEL_PAPER_FOURIER; r++) {
         fx f;
         fx_make_cfg(&f, tiny_reading(1, (model_reading)r), B, 81);
-        assert_int_equal(model_forward(f.m, B, f.xt, f.feat, f.cond, f.t, v1), CS_OK);
+        assert_int_equal(model_forward(f.m, B, f.xt, f.feat, f.cond, f.t, out_a), CS_OK);
         for (int i = 0; i < B * T; i++) f.feat[i * NF + 3] += 0.9f, f.feat[i * NF + 4] -= 0.6f;
-        assert_int_equal(model_forward(f.m, B, f.xt, f.feat, f.cond, f.t, v2), CS_OK);
-        int same = !memcmp(v1, v2, sizeof v1);
+        assert_int_equal(model_forward(f.m, B, f.xt, f.feat, f.cond, f.t, out_b), CS_OK);
+        int same = !memcmp(out_a, out_b, sizeof out_a);
         assert_int_equal(same, r == MODEL_PAPER);
         fx_free(&f);
     }
@@ -495,12 +496,12 @@ static void test_reading_ingredients_off_are_off(void **s)
     float zf[B * T * NF];
     for (int i = 0; i < B * T; i++)
         for (int k = 0; k < NF; k++) zf[i * NF + k] = (f.feat[i * NF + k] - f.m->norm[k]) * f.m->norm[NF + k];
-    assert_int_equal(model_forward(f.m, B, f.xt, f.feat, f.cond, f.t, v1), CS_OK);
-    assert_int_equal(model_forward(pm, B, f.xt, zf, f.cond, f.t, v2), CS_OK);
-    assert_memory_equal(v1, v2, sizeof v1);
+    assert_int_equal(model_forward(f.m, B, f.xt, f.feat, f.cond, f.t, out_a), CS_OK);
+    assert_int_equal(model_forward(pm, B, f.xt, zf, f.cond, f.t, out_b), CS_OK);
+    assert_memory_equal(out_a, out_b, sizeof out_a);
     /* and the plain model with the raw features differs (it does not standardise) */
-    assert_int_equal(model_forward(pm, B, f.xt, f.feat, f.cond, f.t, v2), CS_OK);
-    assert_true(memcmp(v1, v2, sizeof v1) != 0);
+    assert_int_equal(model_forward(pm, B, f.xt, f.feat, f.cond, f.t, out_b), CS_OK);
+    assert_true(memcmp(out_a, out_b, sizeof out_a) != 0);
     model_free(pm);
     fx_free(&f);
 }
@@ -525,7 +526,7 @@ int main(void)
         cmocka_unit_test(test_pair_gradients_independent),
         cmocka_unit_test(test_pair_independent_token_ignores_other_tokens),
         cmocka_unit_test(test_pair_joint_token_sees_other_tokens),
-        cmocka_unit_test(test_pair_layout_extends_the_revision_1_layout),
+        cmocka_unit_test(test_pair_layout_extends_the_plain_layout),
         cmocka_unit_test(test_pair_norm_fit_standardises),
         cmocka_unit_test(test_fm_grad_same_bits_for_any_pass_size),
         cmocka_unit_test(test_sample_same_bits_for_any_pass_size),

@@ -325,13 +325,13 @@ static void test_fused_linear_residual_layernorm_matches_unfused(void **s)
     (void)s;
     static fused_in f;
     fused_fill(&f, 37);
-    float y1[FM * FN], l1[FM * FN], m1[FM], r1[FM], y2[FM * FN], l2[FM * FN], m2[FM], r2[FM];
-    nn_linear_bias_residual_forward(y1, f.in, f.w, f.b, f.x, l1, m1, r1, f.g, f.beta, FM, FK, FN, f.wt);
+    float y1[FM * FN], l1[FM * FN], m1[FM], rstd1[FM], y2[FM * FN], l2[FM * FN], m2[FM], rstd2[FM];
+    nn_linear_bias_residual_forward(y1, f.in, f.w, f.b, f.x, l1, m1, rstd1, f.g, f.beta, FM, FK, FN, f.wt);
     nn_linear_forward(y2, f.in, f.w, NULL, FM, FK, FN, f.wt);
     nn_bias_residual_forward(y2, y2, f.b, f.x, FM, FN);
-    nn_layernorm_forward(l2, m2, r2, y2, f.g, f.beta, FM, FN);
+    nn_layernorm_forward(l2, m2, rstd2, y2, f.g, f.beta, FM, FN);
     same_bits(y1, y2, FM * FN, "residual"); same_bits(l1, l2, FM * FN, "ln");
-    same_bits(m1, m2, FM, "mean"); same_bits(r1, r2, FM, "rstd");
+    same_bits(m1, m2, FM, "mean"); same_bits(rstd1, rstd2, FM, "rstd");
     /* without a layer norm only the residual is written */
     float y3[FM * FN];
     nn_linear_bias_residual_forward(y3, f.in, f.w, f.b, f.x, NULL, NULL, NULL, NULL, NULL, FM, FK, FN, f.wt);

@@ -95,13 +95,13 @@ static void test_help_either_spelling(void **s)
     char *pos[4];
     FILE *keep = stdout;
     stdout = fopen("/dev/null", "w");
-    int r1 = parse(2, a2, pos, NULL);
+    int rc_help = parse(2, a2, pos, NULL);
     /* --help before a bad value is not reached: the value error comes first */
-    int r2 = parse(4, a1, pos, NULL);
+    int rc_usage = parse(4, a1, pos, NULL);
     fclose(stdout);
     stdout = keep;
-    assert_int_equal(r1, OPTS_HELP);
-    assert_int_equal(r2, OPTS_USAGE);
+    assert_int_equal(rc_help, OPTS_HELP);
+    assert_int_equal(rc_usage, OPTS_USAGE);
     assert_int_equal(opts_exit_code(OPTS_HELP), 0);
     assert_int_equal(opts_exit_code(OPTS_USAGE), 2);
 }

@@ -1,4 +1,4 @@
-/* Tests for src/model/pairattn.c (pair-aware attention, design.md §8 revision 2): the
+/* Tests for src/model/pairattn.c (pair-aware attention, design.md §8.1): the
  * pair features against trigonometry and by hand, the standardisation, the
  * forward against a naive double reference (tests/pairref.h), every gradient
  * (qkv, score weights wb, value weights wv) against central finite

@@ -67,13 +67,13 @@ static void test_readings_summary_recomputes_from_the_run_tables(void **s)
     cs_status st = readings_check("frozen/readings/summary.tsv", rows, n);
     if (st) printf("%s\n", cs_errmsg());
     assert_int_equal(st, CS_OK);
-    /* t2-r2 is the adopted reading: its Elong equals the claim's */
+    /* mutual-36m is the adopted reading: its Elong equals the claim's */
     const claim_row *row = claims_find(&c, "Elong");
     claim_result r;
     claims_eval(row, &r);
     for (size_t i = 0; i < n; i++)
-        if (!strcmp(rows[i].quantity, "Elong") && !strcmp(rows[i].reading, "rev2")) {
-            printf("Elong rev2: observed %.17g, claim %.17g\n", rows[i].value, r.value);
+        if (!strcmp(rows[i].quantity, "Elong") && !strcmp(rows[i].reading, "mutual-36m")) {
+            printf("Elong mutual-36m: observed %.17g, claim %.17g\n", rows[i].value, r.value);
             ASSERT_EXACT(rows[i].value, r.value);
         }
     /* a changed value is named */
@@ -92,15 +92,17 @@ static void test_reading_switches_parse_strictly(void **s)
     exp_reading r;
     assert_int_equal(exp_reading_parse(NULL, NULL, &r), CS_OK);
     assert_int_equal(r.one_sided, 0);
-    assert_int_equal(r.layout, EXP_LAYOUT_R2);
-    assert_int_equal(exp_reading_parse("teacher-1", "r1", &r), CS_OK);
+    assert_int_equal(r.layout, EXP_LAYOUT_4M_ON_36M);
+    assert_int_equal(exp_reading_parse("teacher-1", "5m-on-60m", &r), CS_OK);
     assert_int_equal(r.one_sided, 1);
-    assert_int_equal(r.layout, EXP_LAYOUT_R1);
-    exp_reading r2 = {.layout = EXP_LAYOUT_R2}, r1 = {.layout = EXP_LAYOUT_R1};
-    ASSERT_EXACT(exp_field_d(&r2), 4.0);
-    ASSERT_EXACT(exp_field_L(&r2), 36.0);
-    ASSERT_EXACT(exp_field_d(&r1), 5.0);
-    ASSERT_EXACT(exp_field_L(&r1), 60.0);
+    assert_int_equal(r.layout, EXP_LAYOUT_5M_ON_60M);
+    assert_int_equal(exp_reading_parse(NULL, "4m-on-36m", &r), CS_OK);
+    assert_int_equal(r.layout, EXP_LAYOUT_4M_ON_36M);
+    exp_reading narrow = {.layout = EXP_LAYOUT_4M_ON_36M}, wide = {.layout = EXP_LAYOUT_5M_ON_60M};
+    ASSERT_EXACT(exp_field_d(&narrow), 4.0);
+    ASSERT_EXACT(exp_field_L(&narrow), 36.0);
+    ASSERT_EXACT(exp_field_d(&wide), 5.0);
+    ASSERT_EXACT(exp_field_L(&wide), 60.0);
     ASSERT_EXACT(exp_field_d(NULL), 4.0);
     /* a sensitivity variant: one choice moved, every other the design's */
     assert_int_equal(exp_reading_parse(NULL, NULL, &r), CS_OK);
@@ -129,9 +131,9 @@ static void test_reading_switches_parse_strictly(void **s)
     assert_int_equal(exp_reading_vary("crown_X=3", &r), CS_EINPUT);
     assert_int_equal(exp_reading_vary("crown_R", &r), CS_EINPUT);
     assert_int_equal(exp_reading_vary("crown_R=-1", &r), CS_EINPUT);
-    exp_reading rr1;
-    assert_int_equal(exp_reading_parse(NULL, "r1", &rr1), CS_OK);
-    assert_int_equal(exp_reading_vary("field_L=44", &rr1), CS_EINPUT);
+    exp_reading rw;
+    assert_int_equal(exp_reading_parse(NULL, "5m-on-60m", &rw), CS_OK);
+    assert_int_equal(exp_reading_vary("field_L=44", &rw), CS_EINPUT);
     /* every choice of the sensitivity list is a valid switch at each of its values */
     size_t nc;
     const unstated_choice *uc = unstated_list(&nc);
@@ -170,11 +172,11 @@ static void test_reading_switches_parse_strictly(void **s)
     assert_int_equal(exp_reading_parse("teacher-2-arcs", NULL, &r), CS_EINPUT);
     assert_int_equal(exp_reading_parse("teacher-2x", NULL, &r), CS_EINPUT);
     assert_int_equal(exp_reading_parse("teacher-3", NULL, &r), CS_EINPUT);
-    assert_int_equal(exp_reading_parse(NULL, "r3", &r), CS_EINPUT);
+    assert_int_equal(exp_reading_parse(NULL, "3m-on-36m", &r), CS_EINPUT);
     /* the provenance names the reading that ran */
     prov p;
     char *argv[] = {"x"};
-    exp_reading one = {.one_sided = 1, .layout = EXP_LAYOUT_R1};
+    exp_reading one = {.one_sided = 1, .layout = EXP_LAYOUT_5M_ON_60M};
     exp_prov_begin(&p, "test", &one, 1, argv);
     assert_string_equal(p.teacher_version, "teacher-1");
     assert_string_equal(p.experiment, "test");

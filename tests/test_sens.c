@@ -42,9 +42,9 @@ static void test_summary_recomputes_from_the_unit_tables(void **s)
 
 /* Quantities whose units run at the full run's counts and seeds: the centre
  * row equals the frozen claim exactly. The E3 reference levels are measured at
- * evaluation volume v1, that of the pair extension's first verdicts: they are
- * compared with those claims (PairVoneMainIso, PairVoneMainNoise), not with
- * the readings' at v2 (design.md §8). */
+ * evaluation volume 16-stands, that of the pair extension's first verdicts:
+ * they are compared with those claims (PairVoneMainIso, PairVoneMainNoise),
+ * not with the readings' at 96-stands (design.md §8). */
 static void test_centre_equals_the_full_run_where_counts_agree(void **s)
 {
     (void)s;
@@ -166,8 +166,8 @@ static void test_attribution_rules(void **s)
 {
     (void)s;
     attrib_data d = {0};
-    push(&d, "A", "rev1", NAN, 0.50, 0);     /* a reading within 10 % of 0.52 */
-    push(&d, "B", "rev1", NAN, 2.0, 0);
+    push(&d, "A", "cardinal-one-sided-60m", NAN, 0.50, 0);     /* a reading within 10 % of 0.52 */
+    push(&d, "B", "cardinal-one-sided-60m", NAN, 2.0, 0);
     push(&d, "B", "centre", NAN, 1.0, 1);
     push(&d, "B", "crown_R", 3, 0.8, 1);
     push(&d, "B", "crown_R", 5, 1.2, 1);    /* span 0.8..1.2 brackets 1.1 */
@@ -179,7 +179,7 @@ static void test_attribution_rules(void **s)
     attrib_result r;
     judge(&d, "A", "0.52", 0.9, &r);
     assert_int_equal(r.kind, ATTRIB_EXPLAINED);
-    assert_string_equal(r.by, "reading rev1");
+    assert_string_equal(r.by, "reading cardinal-one-sided-60m");
     judge(&d, "A", "0.52", 0.53, &r);
     assert_int_equal(r.kind, ATTRIB_WITHIN);
     judge(&d, "B", "1.1", 0.5, &r);

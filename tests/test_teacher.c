@@ -476,25 +476,25 @@ static void test_start_fraction_sets_the_starting_crowns(void **st)
     assert_int_equal(stand_alloc(&sd, stems_lattice, 3.5, 42.0, 0.04, "test/startfrac", 3), CS_OK);
     teacher_stand v;
     stand_view(sd, &v);
-    double *r1 = malloc(v.n * CROWN_NSEC * sizeof *r1), *r2 = malloc(v.n * CROWN_NSEC * sizeof *r2);
+    double *ra = malloc(v.n * CROWN_NSEC * sizeof *ra), *rb = malloc(v.n * CROWN_NSEC * sizeof *rb);
     teacher_params_default(&p);
-    assert_int_equal(teacher_grow(&v, &p, r1, NULL), CS_OK);
+    assert_int_equal(teacher_grow(&v, &p, ra, NULL), CS_OK);
     p.start_frac = 0.05;
-    assert_int_equal(teacher_grow(&v, &p, r2, NULL), CS_OK);
-    assert_memory_equal(r1, r2, v.n * CROWN_NSEC * sizeof *r1);
+    assert_int_equal(teacher_grow(&v, &p, rb, NULL), CS_OK);
+    assert_memory_equal(ra, rb, v.n * CROWN_NSEC * sizeof *ra);
     p.start_frac = 0.2;
-    assert_int_equal(teacher_grow(&v, &p, r2, NULL), CS_OK);
-    assert_true(memcmp(r1, r2, v.n * CROWN_NSEC * sizeof *r1) != 0);
+    assert_int_equal(teacher_grow(&v, &p, rb, NULL), CS_OK);
+    assert_true(memcmp(ra, rb, v.n * CROWN_NSEC * sizeof *ra) != 0);
     const double bad[3] = {0.0, -0.1, 1.5};
     for (int q = 0; q < 3; q++) {
         p.start_frac = bad[q];
-        assert_int_equal(teacher_grow(&v, &p, r2, NULL), CS_EINPUT);
+        assert_int_equal(teacher_grow(&v, &p, rb, NULL), CS_EINPUT);
     }
     teacher_params_default(&p);
     p.dieback = (teacher_dieback)7;
-    assert_int_equal(teacher_grow(&v, &p, r2, NULL), CS_EINPUT);
-    free(r1);
-    free(r2);
+    assert_int_equal(teacher_grow(&v, &p, rb, NULL), CS_EINPUT);
+    free(ra);
+    free(rb);
     stand_free(sd);
 }
 

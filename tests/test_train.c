@@ -81,7 +81,7 @@ static void test_adamw_first_step_by_hand(void **s)
 static void adamw_check(void)
 {
     enum { n = 1003, nd = 517 };
-    static float p[n], g[n], m[n], v[n], p2[n], m2[n], v2[n];
+    static float p[n], g[n], m[n], v[n], pc[n], mc[n], vc[n];
     unsigned st = 71;
     /* LCG values in (-1, 1); parameters small next to the step (about 5e-3), so
      * that a rounding difference in the step is not absorbed by p */
@@ -90,7 +90,7 @@ static void adamw_check(void)
         for (int k = 0; k < 4; k++) { st = st * 1664525u + 1013904223u; u[k] = (float)(st >> 8) / 8388608.f - 1.f; }
         p[i] = 1e-4f * u[0]; g[i] = 0.1f * u[1]; m[i] = 0.05f * u[2]; v[i] = 0.01f * fabsf(u[3]);
     }
-    memcpy(p2, p, sizeof p); memcpy(m2, m, sizeof m); memcpy(v2, v, sizeof v);
+    memcpy(pc, p, sizeof p); memcpy(mc, m, sizeof m); memcpy(vc, v, sizeof v);
     adamw_hp hp = adamw_defaults();
     const long t = 7;
     const double lr = 3e-3;
@@ -100,9 +100,9 @@ static void adamw_check(void)
     const float eps = (float)hp.eps;
     for (int i = 0; i < n; i++) {
         float keep = i < nd ? (float)(1.0 - lr * hp.wd) : 1.f;
-        float mi = b1 * m2[i] + c1 * g[i];
-        float vi = b2 * v2[i] + c2 * (g[i] * g[i]);
-        float pi = p2[i] * keep - a * mi / (sqrtf(vi * cv) + eps);
+        float mi = b1 * mc[i] + c1 * g[i];
+        float vi = b2 * vc[i] + c2 * (g[i] * g[i]);
+        float pi = pc[i] * keep - a * mi / (sqrtf(vi * cv) + eps);
         ASSERT_EXACT(m[i], mi);
         ASSERT_EXACT(v[i], vi);
         ASSERT_EXACT(p[i], pi);
@@ -398,9 +398,9 @@ static void test_version_1_checkpoint_is_refused_clearly(void **s)
     write_ckpt("ckpt_v1", path, sizeof path, &t, &d);
     FILE *f = fopen(path, "r+b");
     assert_non_null(f);
-    const uint32_t v1 = 1;
+    const uint32_t format1 = 1;
     assert_int_equal(fseek(f, 8, SEEK_SET), 0);
-    assert_int_equal(fwrite(&v1, 4, 1, f), 1);
+    assert_int_equal(fwrite(&format1, 4, 1, f), 1);
     fclose(f);
     assert_int_equal(train_load(t, path), CS_EINPUT);
     print_message("%s\n", cs_errmsg());

@@ -5,6 +5,7 @@
  * line passes here; the spot check and tier 2 redraw it from its weights. */
 #include "audit_units.h"
 #include "audit_data.h"
+#include "evalvol.h"
 #include "paths.h"
 #include "tsv.h"
 #include <stdio.h>
@@ -47,10 +48,18 @@ static int identity_of(const char *path, char *why, size_t n)
         snprintf(why, n, "its command wrote %.200s, not a file of this name", v);
         bad = 1;
     } else if (ev && cmd_opt(cmd, "volume", v, sizeof v)) {
-        /* an evaluation line names its volume, or it is the first volume (v1), whose lines did not */
-        snprintf(want, sizeof want, "volume %.40s", v);
-        const int named = strstr(ev, "volume v") != NULL;
-        if (named ? !strstr(ev, want) : strcmp(v, "v1")) { snprintf(why, n, "its command says --volume %.40s, its # eval: line another volume", v); bad = 1; }
+        /* an evaluation line that starts "volume NAME:" names the command's
+         * volume as the command spelt it; one that names none is the small
+         * volume's (mainrun.h: its teacher stands per spacing), which the
+         * large volume's command may not claim */
+        snprintf(want, sizeof want, "volume %.40s:", v);
+        const char *vol = NULL;
+        const int named = !strncmp(ev, "volume ", 7);
+        if (!named && evalvol_of_eval(ev, &vol)) vol = NULL;
+        if (named ? strncmp(ev, want, strlen(want)) != 0 : !vol || strcmp(vol, EVALVOL_SMALL) || !strcmp(v, EVALVOL_LARGE)) {
+            snprintf(why, n, "its command says --volume %.40s, its # eval: line another volume", v);
+            bad = 1;
+        }
     }
     for (size_t r = 0; r < tsv_nrows(t) && !bad; r++) {
         const char *rs = tsv_str(t, r, "seed"), *ra = tsv_str(t, r, "arm");

@@ -1,6 +1,7 @@
 /* spot: one random slice of a frozen generator unit redrawn; see spot.h. */
 #include "spot.h"
 #include "audit_data.h"
+#include "evalvol.h"
 #include "paths.h"
 #include "tsv.h"
 #include <errno.h>
@@ -21,7 +22,7 @@
 enum { SPOT_PATCHES = 64 };
 
 typedef struct {
-    char dir[300], arm[8], probe[16], volume[8], outdir[64], out[128];
+    char dir[300], arm[8], probe[16], volume[16], outdir[64], out[128];
     unsigned seed;
     double d;
     unsigned long pick;
@@ -59,9 +60,14 @@ static int pick_row(gsl_rng *r)
     snprintf(p, sizeof p, "%s/run_s%02u_%s.tsv", g.dir, g.seed, g.arm);
     tsv *t;
     if (tsv_read(p, &t)) { snprintf(g.why, sizeof g.why, "%s", cs_errmsg()); return 0; }
-    const char *ev = tsv_meta(t, "eval");
-    const char *v = ev ? strstr(ev, "volume v") : NULL;
-    snprintf(g.volume, sizeof g.volume, "%s", v && (v[8] == '1' || v[8] == '2') ? (v[8] == '1' ? "v1" : "v2") : "v1");
+    /* the volume by the teacher stands per spacing its evaluation line states */
+    const char *vol;
+    if (evalvol_of_eval(tsv_meta(t, "eval"), &vol)) {
+        snprintf(g.why, sizeof g.why, "%.300s: %s", p, cs_errmsg());
+        tsv_free(t);
+        return 0;
+    }
+    snprintf(g.volume, sizeof g.volume, "%s", vol);
     g.rows = tsv_nrows(t);
     int ok = g.rows > 0;
     if (ok) {

@@ -35,24 +35,24 @@ cs_status stats_wilcoxon_exact(const double *x, const double *y, size_t n,
     if (m > 60) { free(d); return cs_err(CS_EINPUT, "wilcoxon: %zu non-zero pairs, exact enumeration limited to 60", m); }
     qsort(d, m, sizeof *d, cmp_absd);
     /* doubled average ranks: tie group occupying ranks i+1..j gets (i+1+j) */
-    int *r2 = malloc(m * sizeof *r2);
-    if (!r2) { free(d); return cs_err(CS_ENOMEM, "wilcoxon: out of memory"); }
+    int *rank2 = malloc(m * sizeof *rank2);
+    if (!rank2) { free(d); return cs_err(CS_ENOMEM, "wilcoxon: out of memory"); }
     for (size_t i = 0; i < m;) {
         size_t j = i;
         while (j + 1 < m && d[j + 1].a == d[i].a) j++;
-        for (size_t k = i; k <= j; k++) r2[k] = (int)(i + 1 + j + 1);
+        for (size_t k = i; k <= j; k++) rank2[k] = (int)(i + 1 + j + 1);
         i = j + 1;
     }
     long t2 = 0, total = 0;
-    for (size_t i = 0; i < m; i++) { total += r2[i]; if (d[i].pos) t2 += r2[i]; }
+    for (size_t i = 0; i < m; i++) { total += rank2[i]; if (d[i].pos) t2 += rank2[i]; }
     double *cnt = calloc((size_t)total + 1, sizeof *cnt);
-    if (!cnt) { free(d); free(r2); return cs_err(CS_ENOMEM, "wilcoxon: out of memory"); }
+    if (!cnt) { free(d); free(rank2); return cs_err(CS_ENOMEM, "wilcoxon: out of memory"); }
     cnt[0] = 1.0;
     long hi = 0;
     for (size_t i = 0; i < m; i++) {
         for (long s = hi; s >= 0; s--)
-            if (cnt[s] != 0.0) cnt[s + r2[i]] += cnt[s];
-        hi += r2[i];
+            if (cnt[s] != 0.0) cnt[s + rank2[i]] += cnt[s];
+        hi += rank2[i];
     }
     double le = 0.0, ge = 0.0;
     for (long s = 0; s <= total; s++) {
@@ -64,7 +64,7 @@ cs_status stats_wilcoxon_exact(const double *x, const double *y, size_t n,
     double pv = 2.0 * (pl < pg ? pl : pg);
     *p = pv > 1.0 ? 1.0 : pv;
     if (tplus) *tplus = 0.5 * (double)t2;
-    free(cnt); free(r2); free(d);
+    free(cnt); free(rank2); free(d);
     return CS_OK;
 }
 

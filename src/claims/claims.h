@@ -54,7 +54,7 @@ cs_status claims_apply_gate_maps(claims *c, const char *main_map, const char *ex
 int claims_is_extension(const claim_row *row);
 /* A frozen source that is a reading's unit still being run: under one of the
  * readings' folders of design.md §8 (the generator probes', the paper reading's, the pair
- * reading's v2 main and extrapolation folders, the descriptive readings'; the
+ * reading's 96-stands main and extrapolation folders, the descriptive readings'; the
  * list is in claims.c) or a unit set "<dir>/run_s*_*.tsv"; such a source
  * missing is pending, never a failure. */
 int claims_awaited_source(const char *source);

@@ -10,12 +10,12 @@
 #include <string.h>
 
 static const readings_def READINGS[] = {
-    {"rev1", "t1-r1", 0, 0, "revision 1: teacher-1, layout r1 (5 m on 60 m), cardinal elongation, Mech* on the lattice"},
-    {"t2-r1", "t2-r1", 0, 0, "revision 1 with teacher-2 (mutual abrasion) only"},
-    {"t2-r1-axes", "t2-r1", 1, 1, "teacher-2, layout r1, all-axis elongation, Mech* on the figure stand"},
-    {"t1-r2", "t1-r2", 1, 1, "revision 2 with teacher-1 (one-sided die-back)"},
-    {"rev2", "t2-r2", 1, 1, "revision 2 (adopted): teacher-2, layout r2 (4 m on 36 m), all-axis elongation, Mech* on the figure stand"},
-    {"arc", "t2a-r2", 1, 1, "revision 2 with the contact arc s-1..s+1 dying back too (teacher-2-arc; measured, not adopted)"},
+    {"cardinal-one-sided-60m", "one-sided-60m", 0, 0, "teacher-1 (one-sided die-back), layout 5m-on-60m, cardinal elongation, Mech* on the lattice"},
+    {"cardinal-mutual-60m", "mutual-60m", 0, 0, "teacher-2 (mutual abrasion), layout 5m-on-60m, cardinal elongation, Mech* on the lattice"},
+    {"mutual-60m", "mutual-60m", 1, 1, "teacher-2, layout 5m-on-60m, all-axis elongation, Mech* on the figure stand"},
+    {"one-sided-36m", "one-sided-36m", 1, 1, "teacher-1 (one-sided die-back), layout 4m-on-36m, all-axis elongation, Mech* on the figure stand"},
+    {"mutual-36m", "mutual-36m", 1, 1, "the adopted reading: teacher-2, layout 4m-on-36m, all-axis elongation, Mech* on the figure stand"},
+    {"arc", "arc-36m", 1, 1, "mutual-36m with the contact arc s-1..s+1 dying back too (teacher-2-arc; measured, not adopted)"},
 };
 #define NREAD (sizeof READINGS / sizeof READINGS[0])
 

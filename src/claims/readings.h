@@ -1,21 +1,26 @@
 /* readings: the E0 readings table (design.md §7 E0). Where the
- * reference paper's text allows more than one reading and the first round chose
- * differently, the cheap experiments are run under each reading (the same
- * experiment units, switched by --teacher and --layout, never copied files)
- * into <dir>/<run>/..., and this module computes one row per (quantity,
- * reading) with the registry's own computing function (claims.h) on that
- * run's tables, beside the paper's value (audit/claims.tsv reference column).
+ * reference paper's text allows more than one reading, the cheap experiments
+ * are run under each reading (the same experiment units, switched by
+ * --teacher and --layout, never copied files) into <dir>/<run>/..., and this
+ * module computes one row per (quantity, reading) with the registry's own
+ * computing function (claims.h) on that run's tables, beside the paper's
+ * value (audit/claims.tsv reference column).
  *
- * Runs (directories under <dir>): t1-r1, t2-r1, t1-r2, t2-r2, t2a-r2
- * (t2a: teacher-2 with the contact arc dying back too, -arc; teacher-1|2,
- * layout r1|r2; the die-back by beta of the target length cannot be
- * calibrated on the field grid, so it runs as a sensitivity unit, sens.h).
+ * Runs (directories under <dir>), named by die-back rule and footprint side:
+ * one-sided-60m, mutual-60m, one-sided-36m, mutual-36m, arc-36m (one-sided:
+ * teacher-1; mutual: teacher-2; arc: teacher-2 with the contact arc dying
+ * back too, -arc; 60m: layout 5m-on-60m, 36m: layout 4m-on-36m; the die-back
+ * by beta of the target length cannot be calibrated on the field grid, so it
+ * runs as a sensitivity unit, sens.h).
  * Readings (rows): a run plus two choices that need no rerun,
  * read from the same tables: the elongation (cardinal, or all
  * axes, paper §5.3 "the ratio of the longest to shortest crown axis") and
  * the stand the Mech* numbers are measured on (the lattice ablation,
  * the lattice, or the figure stand, paper: "measured on the stand shown").
- * The claim test recomputes the frozen summary from the frozen run tables. */
+ * A reading is named by its run, led by "cardinal-" for the cardinal
+ * elongation and the lattice (no name is the start of another, so "reading
+ * NAME" in an attribution names one reading). The claim test recomputes the
+ * frozen summary from the frozen run tables. */
 #ifndef READINGS_H
 #define READINGS_H
 #include "claims.h"
@@ -23,7 +28,7 @@
 #include <stddef.h>
 
 typedef struct {
-    const char *name;      /* e.g. "rev1" */
+    const char *name;      /* e.g. "mutual-36m" */
     const char *run;       /* directory under <dir> */
     int elong_all_axes;    /* 1: all-axis elongation; 0: cardinal */
     int figure_stand;      /* 1: Mech* on mechanism/figure_stats.tsv; 0: mechanism/ablation.tsv */

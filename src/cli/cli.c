@@ -24,7 +24,7 @@ typedef struct { const char *name; cmd_fn fn; cmd_group group; const char *help;
 const char *const CLI_ARMS[] = {"joint", "indep", "independent=indep", NULL};
 const char *const CLI_TEACHERS[] = {TEACHER_VERSION, TEACHER_VERSION_ONE_SIDED, TEACHER_VERSION "-arc", TEACHER_VERSION "-target",
                                      TEACHER_VERSION_ONE_SIDED "-arc", TEACHER_VERSION_ONE_SIDED "-target", NULL};
-const char *const CLI_LAYOUTS[] = {"r2", "r1", NULL};
+const char *const CLI_LAYOUTS[] = {"4m-on-36m", "5m-on-60m", NULL};
 
 int cli_fail(const char *cmd, cs_status st)
 {

@@ -27,14 +27,14 @@ int cli_cmd_bench_teacher(int argc, char **argv);
  * (independent is accepted for indep). An OPT_CHOICE list (opts.h). */
 extern const char *const CLI_ARMS[];
 /* The readings of the teacher (teacher-2, the adopted mutual abrasion;
- * teacher-1, one-sided die-back; design.md §4) and of the field layout (r2,
- * 4 m on 36 m; r1, 5 m on 60 m; design.md §7 E5), one vocabulary for every
+ * teacher-1, one-sided die-back; design.md §4) and of the field layout
+ * (4m-on-36m, 5m-on-60m; design.md §7 E5), one vocabulary for every
  * command that takes them. */
 extern const char *const CLI_TEACHERS[];
 extern const char *const CLI_LAYOUTS[];
 #define CLI_OPT_TEACHER(var) {"teacher", OPT_CHOICE, &(var), 0, 0, "teacher reading (default teacher-2, design.md §4; -arc, -target: the other die-back readings)", .choices = CLI_TEACHERS}
 #define CLI_OPT_VARY(var) {"vary", OPT_STR, &(var), 0, 0, "sensitivity: NAME=VALUE changes one unstated choice (crownshy sensitivity-run --help lists them)"}
-#define CLI_OPT_LAYOUT(var) {"layout", OPT_CHOICE, &(var), 0, 0, "field layout (default r2, design.md §7 E5)", .choices = CLI_LAYOUTS}
+#define CLI_OPT_LAYOUT(var) {"layout", OPT_CHOICE, &(var), 0, 0, "field layout: lattice spacing on footprint side (default 4m-on-36m, design.md §7 E5)", .choices = CLI_LAYOUTS}
 
 /* The whole command line: dispatch argv[1] to its handler (cli.c). */
 int cli_main(int argc, char **argv);

@@ -11,6 +11,7 @@
 #include "genprobe.h"
 #include "claim_probe.h"
 #include "mainsum.h"
+#include "evalvol.h"
 #include "model_readings.h"
 #include "afile.h"
 #include <stdio.h>
@@ -19,7 +20,7 @@
 static const char *const SCALES[] = {"full", "smoke", NULL};
 
 static const char *const READINGS[] = {"plain", "paper", "paper-fourier", "pair", NULL};
-static const char *const VOLUMES[] = {"v1", "v2", NULL};
+static const char *const VOLUMES[] = {EVALVOL_SMALL, EVALVOL_LARGE, NULL};
 static const char *const PROBES[] = {"generated", "shuffled", "rotated", NULL};
 
 #define UNIT_OPTS(a, seed) \
@@ -45,7 +46,7 @@ int cli_main_run(int argc, char **argv)
         {"out", OPT_STR, &a.out, 0, 0, "output table FILE.tsv", .required = 1},
         {"samples", OPT_STR, &a.samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
         {"weights", OPT_STR, &a.weights, 0, 0, "also write the final weights to FILE (weights format, README; default none)"},
-        {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume (src/exp/mainrun.h; default v1)", .choices = VOLUMES},
+        {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume, named by its teacher stands per spacing (src/exp/mainrun.h; default " EVALVOL_SMALL ")", .choices = VOLUMES},
     };
     const opts_cmd c = {"main-run", "--seed S --arm joint|indep --out FILE.tsv [options]",
                         "One (seed, arm) unit of E3/E4: build teacher data, train the flow model (resuming from\n"
@@ -92,12 +93,12 @@ int cli_main_eval(int argc, char **argv)
         {"trained", OPT_STR, &a.trained, 0, 0, "the unit's training or run table, whose model, training, teacher and commit lines are recorded", .required = 1},
         {"out", OPT_STR, &a.out, 0, 0, "output run table FILE.tsv", .required = 1},
         {"samples", OPT_STR, &a.samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
-        {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume (src/exp/mainrun.h; default v1)", .choices = VOLUMES},
+        {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume, named by its teacher stands per spacing (src/exp/mainrun.h; default " EVALVOL_SMALL ")", .choices = VOLUMES},
         {"reading", OPT_CHOICE, &a.reading, 0, 0, "the reading the weights must be (default: any)", .choices = READINGS},
     };
     const opts_cmd c = {"main-eval", "--weights FILE --trained TABLE --seed S --arm joint|indep --out FILE.tsv [options]",
                         "Evaluate one E3/E4 unit from its weights, without training: the run table and samples of\n"
-                        "main-run at the chosen volume (v1: the data rows of the unit's main-run table, bit for bit).",
+                        "main-run at the chosen volume (at the volume main-run used: the data rows of its table, bit for bit).",
                         spec, sizeof spec / sizeof *spec, 0, 0};
     int r = opts_parse(&c, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
@@ -116,12 +117,12 @@ int cli_main_redraw(int argc, char **argv)
         {"arm", OPT_CHOICE, &a.arm, 0, 0, "the arm (must match the weights)", .required = 1, .choices = CLI_ARMS},
         {"out", OPT_STR, &a.out, 0, 0, "output samples FILE.tsv", .required = 1},
         {"scale", OPT_CHOICE, &a.scale, 0, 0, "the plan's scale (default full)", .choices = SCALES},
-        {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume (src/exp/mainrun.h; default v1)", .choices = VOLUMES},
+        {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume, named by its teacher stands per spacing (src/exp/mainrun.h; default " EVALVOL_SMALL ")", .choices = VOLUMES},
         {"spacing", OPT_DOUBLE, &a.only_spacing, 0.5, 100, "draw this evaluation spacing (m) alone (default every one)"},
         {"probe", OPT_CHOICE, &a.only_probe, 0, 0, "draw this probe alone (default every one)", .choices = PROBES},
         {"patches", OPT_LONG, &a.only_patches, 1, 1e6, "draw only the first N generated patches of each spacing and probe (default the plan's)"},
     };
-    const opts_cmd c = {"main-redraw", "--weights FILE --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--volume v1|v2] [--spacing D] [--probe P] [--patches N]",
+    const opts_cmd c = {"main-redraw", "--weights FILE --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--volume 16-stands|96-stands] [--spacing D] [--probe P] [--patches N]",
                         "Draw the clearance samples of one E3/E4 unit again from its weights, without training:\n"
                         "the data rows of FILE.tsv equal those of the unit's samples_s<seed>_<arm>.tsv bit for bit.\n"
                         "With --spacing and --probe only that slice is drawn (the spacing's teacher rows and the\n"
@@ -143,10 +144,10 @@ int cli_main_baselines(int argc, char **argv)
         {"scale", OPT_CHOICE, &a.scale, 0, 0, "the plan's scale (default full)", .choices = SCALES},
         {"samples", OPT_STR, &a.samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
         CLI_OPT_VARY(a.vary),
-        {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume (src/exp/mainrun.h; default v1)", .choices = VOLUMES},
+        {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume, named by its teacher stands per spacing (src/exp/mainrun.h; default " EVALVOL_SMALL ")", .choices = VOLUMES},
         {"stand-rows", OPT_FLAG, &a.stand_rows, 0, 0, "also write baselines_stands.tsv beside FILE: the patches of each evaluation stand"},
     };
-    const opts_cmd c = {"main-baselines", "--out FILE.tsv [--scale full|smoke] [--volume v1|v2] [--samples FILE.tsv]",
+    const opts_cmd c = {"main-baselines", "--out FILE.tsv [--scale full|smoke] [--volume 16-stands|96-stands] [--samples FILE.tsv]",
                         "Direction-blind baseline (every crown replaced by its circular mean), split-half noise floor\n"
                         "of the teacher, and the teacher's own crowns under the shuffled-geometry and rotation probes\n"
                         "(added after the first verdict), as W1 of focal nearest-neighbour clearances per eval spacing.",

@@ -148,7 +148,7 @@ int cli_readings_summary(int argc, char **argv)
 {
     const char *dir = NULL, *out = NULL;
     const opt_spec spec[] = {
-        {"dir", OPT_STR, &dir, 0, 0, "readings root holding t1-r1/, t2-r1/, t1-r2/, t2-r2/, t2a-r2/, t2t-r2/ (required)"},
+        {"dir", OPT_STR, &dir, 0, 0, "readings root holding one-sided-60m/, mutual-60m/, one-sided-36m/, mutual-36m/, arc-36m/ (required)"},
         {"out", OPT_STR, &out, 0, 0, "summary table (required), e.g. DIR/summary.tsv"},
     };
     const opts_cmd c = {"readings-summary", "--dir DIR --out DIR/summary.tsv",

@@ -3,7 +3,7 @@
  * anisotropy-jitter-calibrate and anisotropy-heldout. Every E6 unit runs the teacher at
  * beta_field, read from the E5 calibration table (--calibration).
  *
- * Stands as in E5 (exp_field.c; --layout r2: d = 4 m on 36 m, r1: 5 m on
+ * Stands as in E5 (exp_field.c; --layout 4m-on-36m: d = 4 m on 36 m, 5m-on-60m: 5 m on
  * 60 m; E6 varies only the stem process at that density and footprint),
  * teacher (--teacher) at N = 48, gamma = 1. Seeds: seed_derive(<seed experiment>, d, stand,
  * "stems"/"crowns"), one seed-experiment string per role, disjoint from E5's:

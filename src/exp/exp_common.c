@@ -58,7 +58,7 @@ cs_status exp_reading_parse(const char *teacher, const char *layout, exp_reading
 {
     memset(r, 0, sizeof *r);
     r->one_sided = 0;
-    r->layout = EXP_LAYOUT_R2;
+    r->layout = EXP_LAYOUT_4M_ON_36M;
     if (teacher) {
         /* teacher-1|teacher-2, optionally -arc|-target: the name teacher_version() gives */
         size_t l = strlen(TEACHER_VERSION);
@@ -71,8 +71,10 @@ cs_status exp_reading_parse(const char *teacher, const char *layout, exp_reading
             return cs_err(CS_EINPUT, "--teacher: must be %s or %s, optionally with -arc or -target, not '%s'", TEACHER_VERSION,
                           TEACHER_VERSION_ONE_SIDED, teacher);
     }
-    if (layout && !strcmp(layout, "r1")) r->layout = EXP_LAYOUT_R1;
-    else if (layout && strcmp(layout, "r2")) return cs_err(CS_EINPUT, "--layout: must be r1 or r2, not '%s'", layout);
+    if (layout && !strcmp(layout, exp_layout_name(EXP_LAYOUT_5M_ON_60M))) r->layout = EXP_LAYOUT_5M_ON_60M;
+    else if (layout && strcmp(layout, exp_layout_name(EXP_LAYOUT_4M_ON_36M)))
+        return cs_err(CS_EINPUT, "--layout: must be %s or %s, not '%s'", exp_layout_name(EXP_LAYOUT_4M_ON_36M),
+                      exp_layout_name(EXP_LAYOUT_5M_ON_60M), layout);
     return CS_OK;
 }
 
@@ -110,7 +112,8 @@ cs_status exp_reading_vary(const char *vary, exp_reading *r)
     if (end == eq + 1 || *end || !isfinite(x) || x <= 0.0) return cs_err(CS_EINPUT, "--vary %s: value must be a positive number, not '%s'", name, eq + 1);
     const unstated_choice *c = unstated_find(name);
     if (!c) return cs_err(CS_EINPUT, "--vary: no unstated choice '%s' (unstated.h)", name);
-    if (r->layout == EXP_LAYOUT_R1 && c->scope == UNSTATED_FIELD) return cs_err(CS_EINPUT, "--vary %s: varies the r2 field layout, not with --layout r1", name);
+    if (r->layout == EXP_LAYOUT_5M_ON_60M && c->scope == UNSTATED_FIELD)
+        return cs_err(CS_EINPUT, "--vary %s: varies the 4m-on-36m field layout, not with --layout 5m-on-60m", name);
     exp_variant *v = &r->var;
     memset(v, 0, sizeof *v);
     snprintf(v->name, sizeof v->name, "%s", name);
@@ -157,14 +160,14 @@ void exp_prov_begin(prov *p, const char *experiment, const exp_reading *r, int a
 double exp_field_d(const exp_reading *r)
 {
     if (r && r->varied) return r->var.field_d;
-    return r && r->layout == EXP_LAYOUT_R1 ? DESIGN_FIELD_SPACING_R1_M : DESIGN_FIELD_SPACING_M;
+    return r && r->layout == EXP_LAYOUT_5M_ON_60M ? DESIGN_FIELD_SPACING_WIDE_M : DESIGN_FIELD_SPACING_M;
 }
 double exp_field_L(const exp_reading *r)
 {
     if (r && r->varied) return r->var.field_L;
-    return r && r->layout == EXP_LAYOUT_R1 ? DESIGN_FIELD_L_R1_M : DESIGN_FIELD_L_M;
+    return r && r->layout == EXP_LAYOUT_5M_ON_60M ? DESIGN_FIELD_L_WIDE_M : DESIGN_FIELD_L_M;
 }
-const char *exp_layout_name(exp_layout l) { return l == EXP_LAYOUT_R1 ? "r1" : "r2"; }
+const char *exp_layout_name(exp_layout l) { return l == EXP_LAYOUT_5M_ON_60M ? "5m-on-60m" : "4m-on-36m"; }
 
 cs_status exp_field_grow_append(const stand *sd, const exp_reading *rd, double beta, int coupled, double level,
                                 unsigned index, fs_trees *acc, double *worst)

@@ -22,10 +22,10 @@
 
 /* ---- readings (design.md §7 E0): the teacher rule and the E5/E6 field layout ----
  * A reading is a runnable switch, never a copied file: --teacher teacher-1|
- * teacher-2 (default teacher-2, design.md §4) on every teacher unit, --layout r1|r2
- * (default r2, design.md §7 E5) on the field/anisotropy units. The provenance's
+ * teacher-2 (default teacher-2, design.md §4) on every teacher unit, --layout 4m-on-36m|
+ * 5m-on-60m (default 4m-on-36m, design.md §7 E5) on the field/anisotropy units. The provenance's
  * teacher_version names the reading that made the file. */
-typedef enum { EXP_LAYOUT_R2 = 0, EXP_LAYOUT_R1 = 1 } exp_layout;
+typedef enum { EXP_LAYOUT_4M_ON_36M = 0, EXP_LAYOUT_5M_ON_60M = 1 } exp_layout;
 
 /* ---- sensitivity (design.md §7 E0): one unstated choice changed ----
  * --vary NAME=VALUE on every teacher unit (NAME from unstated.h) sets one of
@@ -38,7 +38,7 @@ typedef struct {
     int nres;            /* growth resolution N of every growth but E2's refinement levels */
     double start_frac;   /* start radius / target */
     double fig_c;        /* hard-core level of the figure stands */
-    double field_d, field_L; /* field stands (the r2 layout's values otherwise) */
+    double field_d, field_L; /* field stands (the 4m-on-36m layout's values otherwise) */
     int dieback;         /* the die-back reading (0: the reading's own) */
 } exp_variant;
 

@@ -168,7 +168,7 @@ cs_status exp_comp_run(const exp_comp_args *a)
         if ((st = tsv_writer_open(&w, path))) break;
         if ((st = prov_write(w, &pv))) { tsv_writer_abort(w); break; }
         tsv_writer_meta(w, "models", "joint %s, independent %s (E3 seed 1; %s)", cj, ci,
-                        mj->cfg.pair ? "pair-aware model, design.md §8 revision 2" : "revision-1 model");
+                        mj->cfg.pair ? "pair-aware model, design.md §8.1" : "model without pair terms, design.md §8");
         if (file == 0) {
             tsv_writer_meta(w, "statistic", "median over the %d patch trees of the clearance toward the nearest patch tree; overlap = trees with a negative clearance toward any patch tree", PATCH_T);
             tsv_writer_columns(w, "source\tspacing_m\ttrees\tmedian_nn_clearance_m\toverlapping");

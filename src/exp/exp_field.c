@@ -2,10 +2,10 @@
  * commands field-summary, field-calibrate, field-beta, field-heldout and
  * field-diagnose (E6, the anisotropy commands, is exp_anisotropy.c).
  *
- * Field stands (--layout, exp_common.h): r2 (default, design.md §7 E5)
+ * Field stands (--layout, exp_common.h): 4m-on-36m (default, design.md §7 E5)
  * the controlled lattice at d = 4 m on L = 36 m (9 x 9 stems, interior trees
  * >= 2 d from the edge, ~25 per stand: the paper's 731 trees in 28 stands);
- * r1 (a reading, design.md §7 E0) d = 5 m on L = 60 m; canonical jitter (anisotropy.gate
+ * 5m-on-60m (a reading, design.md §7 E0) d = 5 m on L = 60 m; canonical jitter (anisotropy.gate
  * canonical_jitter); teacher (--teacher, default teacher-2) at N = 48,
  * gamma = 1. Seeds: seed_derive(<seed experiment>, d, stand,
  * "stems"/"crowns") with one seed-experiment string per role, so that

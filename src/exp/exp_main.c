@@ -61,7 +61,8 @@ static cs_status unit_check(const char *cmd, const unit_args *a, int need_weight
     if (!a->arm || (strcmp(a->arm, "joint") && strcmp(a->arm, "indep"))) return cs_err(CS_EUSAGE, "%s: --arm must be joint or indep", cmd);
     if (!a->out) return cs_err(CS_EUSAGE, "%s: --out is required", cmd);
     if (!a->scale || (strcmp(a->scale, "full") && strcmp(a->scale, "smoke"))) return cs_err(CS_EUSAGE, "%s: --scale must be full or smoke", cmd);
-    if (a->volume && strcmp(a->volume, "v1") && strcmp(a->volume, "v2")) return cs_err(CS_EUSAGE, "%s: --volume must be v1 or v2, not '%s'", cmd, a->volume);
+    if (a->volume && strcmp(a->volume, EVALVOL_SMALL) && strcmp(a->volume, EVALVOL_LARGE))
+        return cs_err(CS_EUSAGE, "%s: --volume must be " EVALVOL_SMALL " or " EVALVOL_LARGE ", not '%s'", cmd, a->volume);
     model_reading r = MODEL_PAIR;
     if (a->reading && model_reading_parse(a->reading, &r)) return cs_err(CS_EUSAGE, "%s: --reading: %s", cmd, cs_errmsg());
     if (a->reading && a->pair >= 0 && (r == MODEL_PAIR) != (a->pair == 1)) return cs_err(CS_EUSAGE, "%s: --pair %d contradicts --reading %s", cmd, a->pair, a->reading);
@@ -156,15 +157,14 @@ static void unit_meta_training(char *buf, size_t n, const unit_trained *u, const
 
 static void unit_meta_eval(char *buf, size_t n, const mainrun_plan *pl, const model_cfg *c)
 {
-    const int v1 = !strcmp(pl->volume, "v1");
-    if (v1)
+    if (mainrun_volume_small(pl))
         snprintf(buf, n, "%d teacher stands per spacing, up to %d generated patches, %d Euler steps; probes: shuffled (preregistered gate)%s",
                  pl->eval_stands, pl->gen_patches, pl->euler,
                  c->pair ? ", rotated by (1 + g mod 7) x 45 deg about the focal stem (added after the first verdict)" : "");
     else
-        snprintf(buf, n, "volume v2: %d teacher stands per spacing, up to %d generated patches, %d Euler steps; probes at the unseen spacings only: "
+        snprintf(buf, n, "volume %s: %d teacher stands per spacing, up to %d generated patches, %d Euler steps; probes at the unseen spacings only: "
                  "shuffled (preregistered gate), rotated by (1 + g mod 7) x 45 deg about the focal stem (added after the first verdict)",
-                 pl->eval_stands, pl->gen_patches, pl->euler);
+                 pl->volume, pl->eval_stands, pl->gen_patches, pl->euler);
 }
 
 /* Evaluate m, write the samples (if asked) and the run table with meta[0..nmeta)

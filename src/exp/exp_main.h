@@ -33,7 +33,7 @@ typedef struct {
     const char *samples;     /* also the clearance samples behind every W1 (NULL: none) */
     const char *weights;     /* also the final weights (NULL: none; main-train: required) */
     const char *reading;     /* generator reading (model.h; NULL: from pair, else pair) */
-    const char *volume;      /* evaluation volume "v1" or "v2" (NULL: v1) */
+    const char *volume;      /* evaluation volume "16-stands" or "96-stands" (mainrun.h; NULL: 16-stands) */
     const char *trained;     /* main-eval: the unit's training or run table */
     long epochs;             /* 0: the plan's; else an exploration override */
     long train_stands;       /* 0: the plan's; else an exploration override */

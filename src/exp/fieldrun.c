@@ -48,7 +48,7 @@ cs_status fieldrun_write(const char *out, prov *p, const fs_trees *acc, const fi
     tsv_writer_meta(w, "trees_table", "%s", tp);
     if (nj) tsv_writer_meta(w, "layout", "%s: field stands d = %g m on L = %g m (design.md §7 E5%s)", exp_layout_name(jobs[0].rd.layout),
                             exp_field_d(&jobs[0].rd), exp_field_L(&jobs[0].rd),
-                            jobs[0].rd.layout == EXP_LAYOUT_R1 ? ", the first round's layout" : "");
+                            jobs[0].rd.layout == EXP_LAYOUT_5M_ON_60M ? "; a reading, design.md §7 E0" : "");
     if (nj) exp_variant_meta(w, &jobs[0].rd);
     if (meta) meta(w, ctx);
     tsv_writer_columns(w, FS_SUMMARY_COLUMNS);

@@ -2,8 +2,8 @@
  * E6 (exp_anisotropy.c, §5.4), design.md §7: groups of stands grown at one level,
  * their per-tree and summary tables, the arguments of those commands.
  * Field stands: the controlled lattice (or a hard-core family) at
- * d = exp_field_d(layout), L = exp_field_L(layout) (r2: 4 m on 36 m; r1: 5 m
- * on 60 m), teacher at N = 48, gamma = 1; each command's seeds and outputs
+ * d = exp_field_d(layout), L = exp_field_L(layout) (4m-on-36m or
+ * 5m-on-60m), teacher at N = 48, gamma = 1; each command's seeds and outputs
  * are described in its file. */
 #ifndef FIELDRUN_H
 #define FIELDRUN_H
@@ -33,7 +33,7 @@ typedef struct {
     unsigned nstands;
     int twins;          /* also grow the uncoupled twin of each stand */
     size_t failed;      /* out: stands that could not be built (hard-core "unbuildable") */
-    exp_reading rd;     /* teacher rule and layout (zero: teacher-2, r2) */
+    exp_reading rd;     /* teacher rule and layout (zero: teacher-2, 4m-on-36m) */
 } fieldrun_job;
 
 /* Grow the stands of j (and their uncoupled twins) and append their interior

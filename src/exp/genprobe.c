@@ -225,7 +225,8 @@ static cs_status write_table(const genprobe_args *a, prov *pv, const char *wsha,
     tsv_writer_meta(w, "what", "%s", a->perfect
         ? "the teacher's own crowns under each probe that has a teacher's side (a perfect generator): W1 (m) of focal nearest-neighbour clearances against the teacher's, design.md §8.4"
         : "W1 (m) of focal nearest-neighbour clearances generated from frozen weights under each probe (src/exp/genprobe.h), evaluated at the true positions, against the teacher's, design.md §8.4");
-    tsv_writer_meta(w, "volume", "v1: 16 teacher stands and up to 256 generated patches per unseen spacing");
+    tsv_writer_meta(w, "volume", EVALVOL_SMALL ": %d teacher stands and up to %d generated patches per unseen spacing", EVALVOL_SMALL_EVAL_STANDS,
+                    EVALVOL_SMALL_GEN_PATCHES);
     if (!a->perfect) {
         char rel[1024];
         tsv_writer_meta(w, "weights", "%s sha256 %s", rel_path(a->out, a->weights, rel, sizeof rel), wsha);
@@ -318,7 +319,7 @@ cs_status genprobe_run(const genprobe_args *a)
     model *m = NULL;
     double scale = 1.0, worst = 0, maxdiff = 0;
     char wsha[65] = "";
-    if (!(st = mainset_design_get(&ds)) && !(st = mainrun_plan_get(a->scale ? a->scale : "full", &pl))) st = mainrun_plan_volume(&pl, "v1");
+    if (!(st = mainset_design_get(&ds)) && !(st = mainrun_plan_get(a->scale ? a->scale : "full", &pl))) st = mainrun_plan_volume(&pl, EVALVOL_SMALL);
     if (!st && !a->perfect) st = load_model(a, pl.batch, &m, &scale, wsha);
     /* the perfect generator's patches: the deviation scale only converts, any positive one gives the same crowns */
     mainset_eval ev[MAINSET_MAXSP];

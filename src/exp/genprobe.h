@@ -20,8 +20,8 @@
  * The teacher's side of a probe (a perfect generator: the teacher's own
  * crowns under it) where one exists: rot15/45/90 (the crowns turned by whole
  * sectors, exact) and nnswap (the two trees' profiles exchanged, as the
- * shuffled probe's teacher side). Volume: the v1 evaluation volume (16
- * teacher stands and 256 generated patches per unseen spacing), the same for
+ * shuffled probe's teacher side). Volume: the 16-stands evaluation volume (16
+ * teacher stands and 256 generated patches per unseen spacing, mainrun.h), the same for
  * every reading; each probe samples from its own seed
  * seed_derive("generator-probes-<probe>", d, seed, "sample"), the swap
  * partners and the size permutation from seed_derive("generator-probes", d,

@@ -19,12 +19,12 @@ cs_status mainrun_plan_get(const char *scale, mainrun_plan *p)
     p->euler = (int)euler;
     p->batch = 64;
     p->lr = 2e-3;
-    p->volume = "v1";
+    p->volume = EVALVOL_SMALL;
     if (!strcmp(scale, "full")) {
         p->scale = "full";
         p->train_stands = MAINRUN_TRAIN_STANDS; /* x 4 spacings x ~64 interior stems */
-        p->eval_stands = MAINRUN_V1_EVAL_STANDS; /* ~1024 teacher clearances per eval spacing */
-        p->gen_patches = MAINRUN_V1_GEN_PATCHES;
+        p->eval_stands = EVALVOL_SMALL_EVAL_STANDS; /* ~1024 teacher clearances per eval spacing */
+        p->gen_patches = EVALVOL_SMALL_GEN_PATCHES;
         p->epochs = (int)epochs;
     } else if (!strcmp(scale, "smoke")) {
         p->scale = "smoke";
@@ -40,17 +40,19 @@ cs_status mainrun_plan_get(const char *scale, mainrun_plan *p)
 cs_status mainrun_plan_volume(mainrun_plan *p, const char *volume)
 {
     const int full = !strcmp(p->scale, "full");
-    if (!strcmp(volume, "v1")) {
-        p->volume = "v1";
-        p->eval_stands = full ? MAINRUN_V1_EVAL_STANDS : 2;
-        p->gen_patches = full ? MAINRUN_V1_GEN_PATCHES : 32;
-    } else if (!strcmp(volume, "v2")) {
-        p->volume = "v2";
-        p->eval_stands = full ? MAINRUN_V2_EVAL_STANDS : 4;
-        p->gen_patches = full ? MAINRUN_V2_GEN_PATCHES : 64;
-    } else return cs_err(CS_EUSAGE, "unknown evaluation volume '%s' (v1 or v2)", volume);
+    if (!strcmp(volume, EVALVOL_SMALL)) {
+        p->volume = EVALVOL_SMALL;
+        p->eval_stands = full ? EVALVOL_SMALL_EVAL_STANDS : 2;
+        p->gen_patches = full ? EVALVOL_SMALL_GEN_PATCHES : 32;
+    } else if (!strcmp(volume, EVALVOL_LARGE)) {
+        p->volume = EVALVOL_LARGE;
+        p->eval_stands = full ? EVALVOL_LARGE_EVAL_STANDS : 4;
+        p->gen_patches = full ? EVALVOL_LARGE_GEN_PATCHES : 64;
+    } else return cs_err(CS_EUSAGE, "unknown evaluation volume '%s' (" EVALVOL_SMALL " or " EVALVOL_LARGE ")", volume);
     return CS_OK;
 }
+
+int mainrun_volume_small(const mainrun_plan *p) { return !strcmp(p->volume, EVALVOL_SMALL); }
 
 void mainrun_rows_free(mainrun_row *rows, size_t n)
 {
@@ -59,7 +61,7 @@ void mainrun_rows_free(mainrun_row *rows, size_t n)
 
 int mainrun_nprobe(const mainrun_plan *pl, const model_cfg *cfg, int unseen)
 {
-    if (!strcmp(pl->volume, "v1")) return cfg->pair ? MAINSET_NPROBE : cfg->joint ? 2 : 1;
+    if (mainrun_volume_small(pl)) return cfg->pair ? MAINSET_NPROBE : cfg->joint ? 2 : 1;
     return unseen ? MAINSET_NPROBE : 1;
 }
 

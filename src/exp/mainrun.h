@@ -5,18 +5,21 @@
  * main-eval (evaluate frozen weights) and main-redraw (the samples only) all
  * come through here, so a re-evaluation gives a run's rows bit for bit.
  *
- * Evaluation volumes (mainrun_plan.volume): v1, the volume of the runs frozen
- * before the readings (16 teacher stands and 256 generated patches per
- * spacing; probes at every spacing, as many as that model had); v2, the volume
- * of the readings (design.md §8 "Readings of the generator"): more stands and
- * patches per spacing for a lower noise floor, the probes at the unseen
- * spacings only (no claim reads them at the extrapolation spacings), the same
- * for every reading. Evaluation stands and sampling seeds do not depend on the
- * volume: v2's first 16 stands are v1's, each spacing x probe draws from its own
+ * Evaluation volumes (mainrun_plan.volume; evalvol.h), named by their teacher
+ * stands per evaluation spacing at full scale (smoke scale shrinks both):
+ * 16-stands, the volume of the pair runs in frozen/main/ (16 teacher stands
+ * and 256 generated patches per spacing; probes at every spacing, as many as
+ * that model had); 96-stands, the volume of the generator readings (design.md
+ * §8 "Readings of the generator"): more stands and patches per spacing for a
+ * lower noise floor, the probes at the unseen spacings only (no claim reads
+ * them at the extrapolation spacings), the same for every reading. Evaluation
+ * stands and sampling seeds do not depend on the volume: the first 16 stands
+ * of 96-stands are those of 16-stands, each spacing x probe draws from its own
  * seed. Every function returns cs_status and never exits. */
 #ifndef MAINRUN_H
 #define MAINRUN_H
 #include "cs.h"
+#include "evalvol.h"
 #include "mainset.h"
 #include "model.h"
 #include "prov.h"
@@ -26,17 +29,10 @@
  * fit the 60 min budget on 2 cores; measured, README "Budgets"). */
 #define MAINRUN_TRAIN_STANDS 12
 
-/* Evaluation volume v2 at full scale (mainrun.h; design.md §8 "Readings of
- * the generator"): chosen from the split-half noise floor and its cost,
- * measured (README "Budgets"). */
-#define MAINRUN_V1_EVAL_STANDS 16
-#define MAINRUN_V1_GEN_PATCHES 256
-#define MAINRUN_V2_EVAL_STANDS 96
-#define MAINRUN_V2_GEN_PATCHES 1536
 
 typedef struct {
     const char *scale;     /* "full" or "smoke" */
-    const char *volume;    /* evaluation volume: "v1" or "v2" (mainrun.h) */
+    const char *volume;    /* evaluation volume: EVALVOL_SMALL or EVALVOL_LARGE (evalvol.h) */
     int train_stands;      /* stands per training spacing */
     int eval_stands;       /* teacher stands per eval spacing */
     int gen_patches;       /* generated patches per eval spacing */
@@ -50,8 +46,12 @@ typedef struct {
 cs_status mainrun_plan_get(const char *scale, mainrun_plan *p);
 
 /* Set the evaluation stands and generated patches of p (scale set) for a
- * volume ("v1" or "v2"; CS_EUSAGE otherwise). */
+ * volume ("16-stands" or "96-stands"; CS_EUSAGE naming both otherwise). */
 cs_status mainrun_plan_volume(mainrun_plan *p, const char *volume);
+
+/* 1 when the plan evaluates at the small volume (16-stands). */
+int mainrun_volume_small(const mainrun_plan *p);
+
 
 /* One W1 of a run: spacing, probe, the generated clearances behind it, and
  * (on the generated row of a spacing) the teacher's. */
@@ -67,9 +67,10 @@ typedef struct {
 void mainrun_rows_free(mainrun_row *rows, size_t n);
 
 /* Probes of a unit at an unseen (unseen = 1) or an extrapolation spacing:
- * v1 as the frozen runs did (pair model every probe on both arms; the plain
- * model shuffled on the joint arm, none on the independent one), v2 every
- * probe at the unseen spacings and none at the extrapolation ones. */
+ * at 16-stands as the pair runs in frozen/main/ (pair model every probe on
+ * both arms; the plain model shuffled on the joint arm, none on the
+ * independent one), at 96-stands every probe at the unseen spacings and none
+ * at the extrapolation ones. */
 int mainrun_nprobe(const mainrun_plan *pl, const model_cfg *cfg, int unseen);
 
 /* Every evaluation spacing x probe of model m under plan pl (deviation scale

@@ -77,7 +77,7 @@ static cs_status stand_rows_write(const char *out, prov *pv, size_t nall, const 
 
 cs_status mainsum_baselines(const mainsum_baselines_args *a)
 {
-    const char *out = a->out, *scale = a->scale ? a->scale : "full", *samples = a->samples, *volume = a->volume ? a->volume : "v1";
+    const char *out = a->out, *scale = a->scale ? a->scale : "full", *samples = a->samples, *volume = a->volume ? a->volume : EVALVOL_SMALL;
     const int argc = a->argc;
     char **argv = a->argv;
     prov pv;
@@ -135,7 +135,7 @@ cs_status mainsum_baselines(const mainsum_baselines_args *a)
     if (!st) {
         tsv_writer_meta(w, "scale", "%s", pl.scale);
         exp_variant_meta(w, &rd);
-        if (strcmp(pl.volume, "v1")) tsv_writer_meta(w, "volume", "%s: %d teacher stands per spacing", pl.volume, pl.eval_stands);
+        if (!mainrun_volume_small(&pl)) tsv_writer_meta(w, "volume", "%s: %d teacher stands per spacing", pl.volume, pl.eval_stands);
         tsv_writer_meta(w, "noise_floor", "W1 between the teacher clearances of the first n_half (first half of the eval stands) and the rest");
         tsv_writer_meta(w, "direction_blind", "W1 between clearances with every crown replaced by its circular mean and the teacher's (a rotation leaves it unchanged)");
         tsv_writer_meta(w, "teacher_probes", "added after the first verdict: W1 between the teacher's own crowns under the shuffled-geometry probe "

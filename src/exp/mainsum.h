@@ -10,7 +10,7 @@
 
 typedef struct {
     const char *out, *scale, *samples; /* samples: NULL for none */
-    const char *volume;                /* "v1" or "v2" (NULL: v1; src/exp/mainrun.h) */
+    const char *volume;                /* "16-stands" or "96-stands" (NULL: 16-stands; src/exp/mainrun.h) */
     const char *vary;                  /* sensitivity: NAME=VALUE (exp_common.h), NULL for the design */
     int stand_rows;                    /* 1: also <dir of out>/baselines_stands.tsv, the patches of each stand */
     int argc;

@@ -69,12 +69,13 @@ echo "verify-deep: teacher part: $same tables bit-identical to frozen/, $differ 
 # ---- the model part: redraw samples from the frozen weights ----
 # Every frozen model of every experiment whose manifest row says "redraw"
 # (src/base/manifest.h): each UNIT row of such an experiment that writes
-# run_s%_joint.tsv names a set of units (main/: the pair runs at volume v1;
-# paper-reading/main/, extension-pair/main/, model-readings/*/main/: the
-# readings at v2). For every seed x arm of the design the unit's frozen run
+# run_s%_joint.tsv names a set of units (main/: the pair runs at volume
+# 16-stands; paper-reading/main/, extension-pair/main/, model-readings/*/main/:
+# the readings at 96-stands). For every seed x arm of the design the unit's frozen run
 # table must be there; its "# weights:" line names the weights beside it, or
 # else its command's --weights (a re-evaluation, whose weights are another
-# experiment's frozen file); its "# eval:" line gives the volume.
+# experiment's frozen file); its "# eval:" line gives the volume by the
+# teacher stands per spacing it states (src/exp/mainrun.h: 16 or 96).
 # `crownshy main-redraw` draws the unit's clearance samples again (no training)
 # into $DEEP/model/<set>/ and each must equal the frozen samples_s<seed>_<arm>.tsv
 # (data rows). The list comes from the design (gates/main.gate seeds, or
@@ -102,7 +103,8 @@ while IFS=$'\t' read -r exp sub kind; do
             w=$(sed -n 's/^# weights: \([^ ]*\) .*/\1/p' "$t" | head -n 1)
             if [ -n "$w" ]; then w="$dir/$w"
             else w=$(sed -n 's/^# command: .* --weights \([^ ]*\).*/\1/p' "$t" | head -n 1 | sed 's|^build/results/|frozen/|'); fi
-            v=v1; grep -q '^# eval: volume v2' "$t" && v=v2
+            v=$(sed -n 's/^# eval: \(volume [^:]*: \)\{0,1\}\([0-9][0-9]*\) teacher stands per spacing.*/\2-stands/p' "$t" | head -n 1)
+            [ -n "$v" ] || v=unstated  # main-redraw then fails naming the valid volumes
             jobs_list+=("$w $s $a $v $dir $exp${sub:+/$sub}")
         done
     done

@@ -82,7 +82,7 @@ static size_t layout(const model_cfg *c, model *m, size_t *ndecay)
         PUTB(l, fc2_w, C * F);
     }
     PUT(head_w, (size_t)c->P * C);
-    if (c->pair) /* after every revision-1 matrix, so pair = 0 keeps its layout */
+    if (c->pair) /* after every matrix of the model without pair terms, so pair = 0 keeps its layout */
         for (int l = 0; l < c->L; l++) {
             PUTB(l, pb_w, (size_t)c->H * PAIRATTN_Q);
             PUTB(l, pv_w, C * PAIRATTN_Q);
@@ -267,7 +267,7 @@ void model_init(model *m, gsl_rng *r)
     }
     init_matrix(p + m->head_w, c->P, C, 0.1, r);
     for (size_t i = 0; i < C; i++) p[m->lnf_g + i] = 1.f;
-    /* pair weights last, so the revision-1 draws are unchanged */
+    /* pair weights last, so the draws of the model without pair terms are unchanged */
     for (int l = 0; c->pair && l < c->L; l++) {
         init_matrix(p + m->blk[l].pb_w, c->H, PAIRATTN_Q, 1.0, r);
         init_matrix(p + m->blk[l].pv_w, C, PAIRATTN_Q, 1.0, r);

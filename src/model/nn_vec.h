@@ -40,7 +40,7 @@ INL void st(float *p, vf v) { memcpy(p, &v, sizeof v); }
  * identically in both clones), and hot loops write `scalar * vector`. */
 INL vf splat(float a) { vf z = {0}; return z + a; }
 /* Horizontal sum by butterfly, result in every lane:
- * ((v0+v4)+(v2+v6)) + ((v1+v5)+(v3+v7)). One fixed order everywhere. */
+ * ((x0+x4)+(x2+x6)) + ((x1+x5)+(x3+x7)) over lanes x0..x7. One fixed order everywhere. */
 #if defined(__clang__)
 #define SWAP4(v) __builtin_shufflevector((v), (v), 4, 5, 6, 7, 0, 1, 2, 3)
 #define SWAP2(v) __builtin_shufflevector((v), (v), 2, 3, 0, 1, 6, 7, 4, 5)

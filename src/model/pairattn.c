@@ -1,4 +1,4 @@
-/* pairattn: pair-aware attention (see pairattn.h; design.md §8 revision 2).
+/* pairattn: pair-aware attention (see pairattn.h; design.md §8.1).
  * Per patch and layer the pair terms are a handful of small gemm_fma
  * products around nn.c's attention kernels, which take the score bias and
  * the extra dP term through nn_attention_*_biased (their AVX-512 kernel at

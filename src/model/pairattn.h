@@ -1,5 +1,5 @@
-/* pairattn: pair-aware multi-head attention (design.md §8 "Pair awareness
- * (revision 2)"; paper §4.2). Every pair (i, j) of a patch has a geometry
+/* pairattn: pair-aware multi-head attention (design.md §8 "Pair awareness",
+ * §8.1; paper §4.2). Every pair (i, j) of a patch has a geometry
  *
  *   g_ij = ((p_j - p_i)/d, |p_j - p_i|/d, (|p_j - p_i| - rbar_i - rbar_j)/d)
  *

@@ -14,7 +14,7 @@
 #include <unistd.h>
 
 #define CKPT_MAGIC "CSHYCKPT"
-/* Version 2 (revision 2): the configuration gains `pair`, the header nnorm,
+/* Version 2: the configuration gains `pair`, the header nnorm,
  * and the model's z-scores (nnorm floats) follow the permutation. Version 1
  * files are refused with a message saying so. */
 #define CKPT_VERSION 2u

@@ -15,7 +15,7 @@
  * int32; batch, epoch, cursor, data size; step counts; parameter, z-score
  * and RNG state sizes; a fingerprint of the training data; scale, optimiser
  * options and seeds), the three RNG states, the permutation (int32), the
- * model's feature z-scores (nnorm floats, 0 for the revision-1 model), the
+ * model's feature z-scores (nnorm floats, 0 for the plain reading), the
  * parameters and both AdamW moments (float), and a 64-bit FNV-1a checksum of
  * everything before it; native little-endian x86-64 layout. Version 1 files
  * (before the pair model) are refused with a message naming the version. Written to "<path>.tmp", fsync'd and
