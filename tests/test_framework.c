@@ -118,6 +118,34 @@ static void test_registry_rejects_bad_params(void **s)
     claims_free(&c);
 }
 
+/* What a row computes is its params, not its macro: one toy row, the same
+ * macro, evaluated with bound=lo and with bound=hi over one table gives its
+ * lowest and its highest value (0.25 and 1.75, which cannot coincide);
+ * without the bound it fails naming its line, never a default. */
+static void test_params_not_the_macro_choose_the_bound(void **s)
+{
+    (void)s;
+    const char *dir = tu_tmpdir("reg_bound");
+    char src[600], rows[1200];
+    snprintf(src, sizeof src, "%s/sweep.tsv", dir);
+    tu_write(src, "beta\tk1_m\n0\t1.75\n0.5\t9\n0\t0.25\n0\t1\n");
+    static const struct { const char *params; verdict status; double want; } k[] = {
+        {"bound=lo", VERDICT_PASS, 0.25}, {"bound=hi", VERDICT_PASS, 1.75}, {"-", VERDICT_FAIL, NAN}};
+    for (size_t i = 0; i < sizeof k / sizeof *k; i++) {
+        snprintf(rows, sizeof rows, "SensAbrOffLo\tprobe\t%s\tclaim_sens_abroff\t-\tt\tE0\t%%.2f\t-\t%s\n", src, k[i].params);
+        claims c;
+        assert_int_equal(claims_load(registry("reg_bound_reg", rows), &c), CS_OK);
+        claim_result r;
+        claims_eval(&c.rows[0], &r);
+        if (r.status != k[i].status) fail_msg("params %s: status %s (%s), expected %s", k[i].params, verdict_name(r.status), r.why, verdict_name(k[i].status));
+        if (k[i].status == VERDICT_PASS && r.value != k[i].want)
+            fail_msg("params %s: observed %.17g, expected %.17g", k[i].params, r.value, k[i].want);
+        if (k[i].status == VERDICT_FAIL && (!strstr(r.why, ":3: field 'params'") || !strstr(r.why, "needs bound")))
+            fail_msg("params %s: '%s' does not name the row's line and the missing key", k[i].params, r.why);
+        claims_free(&c);
+    }
+}
+
 static void test_design_claim_reads_gate_value(void **s)
 {
     (void)s;
@@ -242,6 +270,7 @@ int main(void)
         cmocka_unit_test(test_registry_rejects_gated_probe_row),
         cmocka_unit_test(test_registry_rejects_truncated_row),
         cmocka_unit_test(test_registry_rejects_bad_params),
+        cmocka_unit_test(test_params_not_the_macro_choose_the_bound),
         cmocka_unit_test(test_design_claim_reads_gate_value),
         cmocka_unit_test(test_unimplemented_function_is_pending_with_reason),
         cmocka_unit_test(test_tampered_numbers_value_is_named),
