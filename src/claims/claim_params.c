@@ -130,3 +130,12 @@ cs_status claim_param_bad(const claim_row *row, const char *key, const char *all
 {
     return cs_err(CS_EINPUT, "%s:%d: field 'params': %s (%s) computes %s=%s only", PATHS_CLAIMS, row->line, row->macro, row->function, key, allowed);
 }
+
+cs_status claim_param_seed_column(const claim_row *row, int *k)
+{
+    cs_status st = claim_param_need(row, PARAM_ARM);
+    if (st) return st;
+    if (row->param.arm != ARM_JOINT && row->param.arm != ARM_INDEP) return claim_param_bad(row, "arm", "joint or indep");
+    *k = 2 * (int)row->param.probe + (row->param.arm == ARM_INDEP);
+    return CS_OK;
+}

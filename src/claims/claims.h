@@ -96,6 +96,11 @@ cs_status claim_param_bad(const claim_row *row, const char *key, const char *all
  * same words name the arms and probes in the frozen tables. */
 const char *param_arm_name(param_arm a);
 const char *param_probe_name(param_probe p);
+/* The per-seed error column of an E3 row: 2 probe + arm (arm 0 joint, 1
+ * indep; probe 0 generated when the row names none, 1 shuffled, 2 rotated),
+ * as claim_main.c and the seed bootstrap index the run tables; CS_EINPUT
+ * naming the row's line without an arm of the two. */
+cs_status claim_param_seed_column(const claim_row *row, int *k);
 /* Set every row's gate from a claim-to-gate map (TSV: macro, gate): a row the
  * map does not name has no gate. CS_EINPUT naming file, line and field for a
  * malformed map, an unknown or duplicate macro, or a gate not "file.gate:key". */

@@ -22,14 +22,6 @@
 
 #define MAXSEED 64
 
-/* The macro without a reading prefix (PairMainRel -> MainRel). */
-static const char *base_macro(const char *m)
-{
-    const char *a = strstr(m, "Main"), *b = strstr(m, "Extrap");
-    if (a && (!b || a < b)) return a;
-    return b ? b : m;
-}
-
 static cs_status alloc_x(iv_data *d, size_t n, size_t m)
 {
     d->x = calloc(n * m > 0 ? n * m : 1, sizeof *d->x);
@@ -77,6 +69,32 @@ static cs_status unit_set_seeds(const char *dir, double v[MAXSEED][6], int *maxs
     return CS_OK;
 }
 
+/* The statistic of an E3 claim over the per-seed columns (run_col), by its
+ * function and the row's arm, probe, bound and stat, as claim_main.c
+ * computes it. */
+static cs_status main_stat(const claim_row *row, iv_data *d)
+{
+    const char *f = row->function;
+    const claim_params *p = &row->param;
+    if (!strcmp(f, "claim_main_rel")) { d->stat = (iv_stat){IV_REL, 0, 1, NULL, NULL}; return CS_OK; }
+    if (!strcmp(f, "claim_main_p")) { d->stat = (iv_stat){IV_WILCOXON, 0, 1, NULL, NULL}; return CS_OK; }
+    if (!strcmp(f, "claim_main_geom_ratio")) { d->stat = (iv_stat){IV_RATIO, 2, 0, NULL, NULL}; return CS_OK; }
+    int k;
+    cs_status st = claim_param_seed_column(row, &k);
+    if (st) return st;
+    if (!strcmp(f, "claim_main_median")) d->stat = (iv_stat){IV_MEDIAN, (size_t)k, 0, NULL, NULL};
+    else if (!strcmp(f, "claim_main_range")) {
+        if ((st = claim_param_need(row, PARAM_BOUND))) return st;
+        d->stat = (iv_stat){p->bound == BOUND_HI ? IV_MAX : IV_MIN, (size_t)k, 0, NULL, NULL};
+    } else if (!strcmp(f, "claim_main_probe")) {
+        if ((st = claim_param_need(row, PARAM_PROBE | PARAM_STAT))) return st;
+        /* the ratio of the probe's median to the arm's own (its column k % 2) */
+        d->stat = p->stat == STAT_RATIO ? (iv_stat){IV_RATIO, (size_t)k, (size_t)(k % 2), NULL, NULL} : (iv_stat){IV_MEDIAN, (size_t)k, 0, NULL, NULL};
+    } else
+        return cs_err(CS_EINVARIANT, "interval: no seed statistic for %s (%s)", row->macro, f);
+    return CS_OK;
+}
+
 static cs_status main_seeds(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
 {
     (void)res; (void)sp;
@@ -104,21 +122,7 @@ static cs_status main_seeds(const claim_row *row, const claim_result *res, const
     d->unit = "seed";
     d->method = "bootstrap";
     snprintf(d->from, sizeof d->from, "%s (%d seeds)", row->source, maxs);
-    const char *m = base_macro(row->macro);
-    static const struct { const char *macro; iv_kind k; size_t a, b; } map[] = {
-        {"MainJoint", IV_MEDIAN, 0, 0}, {"MainIndep", IV_MEDIAN, 1, 0},
-        {"MainJointLo", IV_MIN, 0, 0}, {"MainJointHi", IV_MAX, 0, 0}, {"MainIndepLo", IV_MIN, 1, 0}, {"MainIndepHi", IV_MAX, 1, 0},
-        {"MainRel", IV_REL, 0, 1}, {"MainP", IV_WILCOXON, 0, 1}, {"MainGeomRatio", IV_RATIO, 2, 0},
-        {"MainShufJoint", IV_MEDIAN, 2, 0}, {"MainShufIndep", IV_MEDIAN, 3, 0}, {"MainGeomRatioIndep", IV_RATIO, 3, 1},
-        {"MainRotJoint", IV_MEDIAN, 4, 0}, {"MainRotIndep", IV_MEDIAN, 5, 0}, {"MainRotRatio", IV_RATIO, 4, 0},
-        {"MainRotRatioIndep", IV_RATIO, 5, 1},
-    };
-    for (size_t i = 0; i < sizeof map / sizeof *map; i++)
-        if (!strcmp(m, map[i].macro)) {
-            d->stat = (iv_stat){map[i].k, map[i].a, map[i].b, NULL, NULL};
-            return CS_OK;
-        }
-    return cs_err(CS_EINVARIANT, "interval: no seed statistic for %s", row->macro);
+    return main_stat(row, d);
 }
 
 /* ---- E3 baselines: the unseen spacings, mean over them ---- */
@@ -136,11 +140,15 @@ static cs_status main_spacings(const claim_row *row, const claim_result *res, co
         for (const char *q = src; (q = strstr(q, "/extrapolation/")); q++) if (!cut || q > cut) cut = q;
         snprintf(path, sizeof path, "%.*s/main/%s", cut ? (int)(cut - src) : 6, cut ? src : "frozen", leaf);
     }
-    const char *col = !strcmp(row->function, "claim_main_noise") ? "noise_floor_w1"
-                    : strstr(row->macro, "Rot") ? "teacher_rotated_w1" : "teacher_shuffled_w1";
+    /* the noise floor, or the teacher's own crowns under the row's probe */
+    char col[40] = "noise_floor_w1";
+    cs_status st = CS_OK;
+    if (strcmp(row->function, "claim_main_noise")) {
+        if ((st = claim_param_need(row, PARAM_PROBE))) return st;
+        snprintf(col, sizeof col, "teacher_%s_w1", param_probe_name(row->param.probe));
+    }
     tsv *t;
-    cs_status st = tsv_read(path, &t);
-    if (st) return st;
+    if ((st = tsv_read(path, &t))) return st;
     if (!(st = alloc_x(d, tsv_nrows(t), 1))) {
         size_t n = 0;
         for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
@@ -216,10 +224,11 @@ static cs_status extrap_seeds(const claim_row *row, const claim_result *res, con
         d->stat = (iv_stat){IV_WILCOXON, 0, 1, NULL, NULL};
         return CS_OK;
     }
-    /* ExtrapLowRel: the lowest spacing, ExtrapHighRel: the highest */
+    /* bound=lo: the lowest spacing, bound=hi: the highest */
+    if ((st = claim_param_need(row, PARAM_BOUND))) return st;
     int lowk = 0, highk = 0;
     for (int k = 1; k < nd; k++) { if (dd[k] < dd[lowk]) lowk = k; if (dd[k] > dd[highk]) highk = k; }
-    int k = strstr(base_macro(row->macro), "Low") ? lowk : highk;
+    int k = row->param.bound == BOUND_LO ? lowk : highk;
     if ((st = alloc_x(d, (size_t)maxs, 2))) return st;
     for (int i = 0; i < maxs; i++) { d->x[2 * i] = w[i][k][0]; d->x[2 * i + 1] = w[i][k][1]; }
     d->stat = (iv_stat){IV_REL, 0, 1, NULL, NULL};
