@@ -411,8 +411,8 @@ static int models_of(const tsv *t, char *buf, size_t n)
 }
 
 /* E7 (design.md §7 E7): the claims are statistics over the patches of
- * dist_patches.tsv beside their dist_summary.tsv (the median; a *Range
- * macro's value is the 5 % quantile; the share of patches without an
+ * dist_patches.tsv beside their dist_summary.tsv (the median; with
+ * stat=range the value is the 5 % quantile; the share of patches without an
  * overlapping crown), bootstrapped over the patches. */
 static cs_status comp_patches(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
 {
@@ -438,14 +438,15 @@ static cs_status comp_patches(const claim_row *row, const claim_result *res, con
         tsv_free(t);
         return cs_err(CS_EINVARIANT, "%s: drawn from models %s, its summary %s from %s", path, got, row->source, want);
     }
-    const char *m = !strncmp(row->macro, "Pair", 4) ? row->macro + 4 : row->macro, *f = row->function;
+    const char *f = row->function;
+    const int no_overlap = !strcmp(f, "claim_comp_no_overlap");
+    /* the share without an overlap is the joint arm's; the others name their arm and statistic */
+    if (!no_overlap && (st = claim_param_need(row, PARAM_ARM | PARAM_STAT))) { tsv_free(t); return st; }
     const char *probe = !strcmp(f, "claim_comp_dart") ? "dart" : "comparison";
-    const char *s = !strcmp(f, "claim_comp_no_overlap") || !strncmp(m, "CompGen", 7) ? "joint" : strstr(m, "Teach") ? "teacher"
-                  : strstr(m, "Indep") ? "indep" : "joint";
-    const char *col = !strcmp(f, "claim_comp_overlap") || !strcmp(f, "claim_comp_no_overlap") ? "overlapping" : "median_nn_clearance_m";
-    size_t len = strlen(m);
-    int range = len >= 5 && !strcmp(m + len - 5, "Range");
-    d->stat = (iv_stat){!strcmp(f, "claim_comp_no_overlap") ? IV_ZERO_PCT : IV_QUANTILE, 0, 0, NULL, NULL, range ? 0.05 : 0.5};
+    const char *s = no_overlap ? "joint" : param_arm_name(row->param.arm);
+    const char *col = !strcmp(f, "claim_comp_overlap") || no_overlap ? "overlapping" : "median_nn_clearance_m";
+    int range = !no_overlap && row->param.stat == STAT_RANGE;
+    d->stat = (iv_stat){no_overlap ? IV_ZERO_PCT : IV_QUANTILE, 0, 0, NULL, NULL, range ? 0.05 : 0.5};
     if (!(st = alloc_x(d, tsv_nrows(t), 1))) {
         size_t n = 0;
         for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
