@@ -348,19 +348,25 @@ static cs_status fs_stands(const claim_row *row, const claim_result *res, const 
     if (!c) return cs_err(CS_ENOMEM, "interval: out of memory");
     d->stat = (iv_stat){IV_CALLBACK, 0, 0, fs_stat, c};
     d->cleanup = fs_ctx_free;
-    const char *m = row->macro, *f = row->function;
+    const char *f = row->function;
+    cs_status st = CS_OK;
     c->kind = !strcmp(f, "claim_aniso_rho") ? FS_RHO : !strcmp(f, "claim_aniso_hardcore_overshoot") ? FS_OVERSHOOT
             : !strcmp(f, "claim_field_calib_dieback") ? FS_CAL_BETA : !strcmp(f, "claim_jitter_star") ? FS_CAL_JITTER
-            : strstr(m, "Elong") ? FS_ELONG : strstr(m, "Stands") ? FS_STANDS : !strcmp(m, "AnisoTrees") ? FS_ANISO_TREES : FS_ANISO;
+            : !strcmp(f, "claim_field_elong") ? FS_ELONG : FS_ANISO;
+    /* the count and held-out functions read the column their row names */
+    if (!strcmp(f, "claim_aniso_lattice_counts") || !strcmp(f, "claim_jitter_heldout")) {
+        if ((st = claim_param_need(row, PARAM_COLUMN))) return st;
+        const char *col = row->param.column;
+        c->kind = !strcmp(col, "elong_median") ? FS_ELONG : !strcmp(col, "stands") ? FS_STANDS : !strcmp(col, "aniso_trees") ? FS_ANISO_TREES : FS_ANISO;
+    }
     char tp[512];
-    cs_status st = CS_OK;
     c->scale = 1.0;
     if (c->kind == FS_CAL_JITTER) {
         /* a* is calibrated on the sweep beside it (anisotropy/jitter.tsv and its trees) */
         const char *slash = strrchr(row->source, '/');
         snprintf(tp, sizeof tp, "%.*sjitter_trees.tsv", slash ? (int)(slash - row->source + 1) : 0, row->source);
         c->step = FS_JITTER_STEP;
-        c->scale = !strcmp(m, "JitterStarPct") ? 100.0 : 1.0;
+        if (row->param.set & PARAM_SCALE) c->scale = row->param.scale;
         st = gate_read_value(PATHS_GATE("anisotropy"), "field_median", 0, &c->target);
     } else {
         fs_trees_path(row->source, tp, sizeof tp);
