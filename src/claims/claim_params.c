@@ -3,6 +3,7 @@
  * serving several claims is told what to compute by the row, never by the
  * spelling of its macro. */
 #include "claims.h"
+#include "design.h"
 #include "paths.h"
 #include <math.h>
 #include <stddef.h>
@@ -137,5 +138,14 @@ cs_status claim_param_seed_column(const claim_row *row, int *k)
     if (st) return st;
     if (row->param.arm != ARM_JOINT && row->param.arm != ARM_INDEP) return claim_param_bad(row, "arm", "joint or indep");
     *k = 2 * (int)row->param.probe + (row->param.arm == ARM_INDEP);
+    return CS_OK;
+}
+
+cs_status claim_param_stand_spacing(const claim_row *row, double *d)
+{
+    cs_status st = claim_param_need(row, PARAM_STAND);
+    if (st) return st;
+    const param_stand s = row->param.stand;
+    *d = s == STAND_OTHER_A ? DESIGN_PC_OTHER_A_SPACING_M : s == STAND_OTHER_B ? DESIGN_PC_OTHER_B_SPACING_M : DESIGN_PC_SPACING_M;
     return CS_OK;
 }

@@ -101,6 +101,9 @@ const char *param_probe_name(param_probe p);
  * as claim_main.c and the seed bootstrap index the run tables; CS_EINPUT
  * naming the row's line without an arm of the two. */
 cs_status claim_param_seed_column(const claim_row *row, int *k);
+/* The spacing of the row's point-cloud stand (stand=shown|other_a|other_b),
+ * metres: the design's (src/base/design.h), never restated. */
+cs_status claim_param_stand_spacing(const claim_row *row, double *d);
 /* Set every row's gate from a claim-to-gate map (TSV: macro, gate): a row the
  * map does not name has no gate. CS_EINPUT naming file, line and field for a
  * malformed map, an unknown or duplicate macro, or a gate not "file.gate:key". */

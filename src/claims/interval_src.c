@@ -9,6 +9,7 @@
 #include "interval.h"
 #include "interval_stands.h"
 #include "mainruns.h"
+#include "design.h"
 #include "estimator.h"
 #include "fieldsim.h"
 #include "gate.h"
@@ -470,30 +471,42 @@ static cs_status comp_patches(const claim_row *row, const claim_result *res, con
 
 /* ---- one-stand claims: the replicate stands of the same family ---- */
 
-/* The replicate table's family and column for a figure-stand claim. */
-static int figure_column(const claim_row *row, char *family, size_t fn, char *arm, size_t an, double *d, const char **col)
+/* The replicate table's family, arm, spacing and column for a figure-stand
+ * claim, from its function and params; 0 when it has none, CS_EINPUT (as
+ * *st) when the row lacks a parameter. */
+static int figure_column(const claim_row *row, char *family, size_t fn, char *arm, size_t an, double *d, const char **col, cs_status *st)
 {
-    const char *m = row->macro, *f = row->function;
+    const char *f = row->function;
+    const claim_params *p = &row->param;
+    *st = CS_OK;
     if (!strcmp(f, "claim_mech_ablation_k") || !strcmp(f, "claim_mech_cover") || !strcmp(f, "claim_mech_overlap")) {
+        const int ablation = !strcmp(f, "claim_mech_ablation_k");
+        if (ablation && (*st = claim_param_need(row, PARAM_ARM | PARAM_COLUMN))) return 1;
         snprintf(family, fn, "mechanism");
-        snprintf(arm, an, "%s", !strncmp(m, "MechCoupOff", 11) ? "coupling_off" : !strcmp(m, "MechAbrOff") ? "abrasion_off" : "both_on");
+        snprintf(arm, an, "%s", ablation ? param_arm_name(p->arm) : "both_on");
         *d = 3.5;
-        *col = !strcmp(f, "claim_mech_cover") ? "cover" : !strcmp(f, "claim_mech_overlap") ? "overlap_m"
-             : strstr(m, "KTwo") ? "k2_m" : strstr(m, "KThree") ? "k3_m" : "k1_m";
+        *col = !strcmp(f, "claim_mech_cover") ? "cover" : !strcmp(f, "claim_mech_overlap") ? "overlap_m" : p->column;
         return 1;
     }
     if (!strcmp(f, "claim_hero_stems")) {
+        if ((*st = claim_param_need(row, PARAM_SPACING))) return 1;
         snprintf(family, fn, "hero");
         snprintf(arm, an, "beta_train");
-        *d = !strcmp(m, "HeroStemsDense") ? 3.0 : 6.5;
+        *d = p->spacing;
         *col = "stems";
         return 1;
     }
     if (!strcmp(f, "claim_pc_stand") || !strcmp(f, "claim_pc_clearance")) {
+        const int clearance = !strcmp(f, "claim_pc_clearance");
+        if (clearance) {
+            /* the clearance is the shown stand's, of the row's arm */
+            if ((*st = claim_param_need(row, PARAM_ARM))) return 1;
+            *d = DESIGN_PC_SPACING_M;
+        } else if ((*st = claim_param_need(row, PARAM_QUANTITY)) || (*st = claim_param_stand_spacing(row, d)))
+            return 1;
         snprintf(family, fn, "pointcloud");
-        *d = strstr(m, "OtherA") ? 5.0 : strstr(m, "OtherB") ? 4.0 : 3.0;
-        snprintf(arm, an, "%s", !strcmp(m, "PcUncoupled") ? "uncoupled" : "coupled");
-        *col = !strcmp(f, "claim_pc_clearance") ? "k1_m" : strstr(m, "Trees") ? "stems" : "contact_pct";
+        snprintf(arm, an, "%s", clearance ? param_arm_name(p->arm) : "coupled");
+        *col = clearance ? "k1_m" : !strcmp(p->quantity, "stems") ? "stems" : "contact_pct";
         return 1;
     }
     return 0;
@@ -507,11 +520,12 @@ static cs_status figure_stands(const claim_row *row, const claim_result *res, co
     char family[32], arm[32];
     double dd;
     const char *col;
-    if (!figure_column(row, family, sizeof family, arm, sizeof arm, &dd, &col))
+    cs_status st;
+    if (!figure_column(row, family, sizeof family, arm, sizeof arm, &dd, &col, &st))
         return cs_err(CS_EINVARIANT, "interval: no replicate stands for %s", row->macro);
-    tsv *t;
-    cs_status st = tsv_read(sp->replicates, &t);
     if (st) return st;
+    tsv *t;
+    if ((st = tsv_read(sp->replicates, &t))) return st;
     if (!(st = alloc_x(d, tsv_nrows(t), 1))) {
         size_t n = 0;
         for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
