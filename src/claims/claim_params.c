@@ -45,6 +45,30 @@ static const struct { const char *key; key_type type; const char *const *names; 
 #define NKEYS (sizeof KEYS / sizeof *KEYS)
 _Static_assert(NKEYS == 12 && PARAM_SPACING == 1u << 11, "one PARAM_* bit per key, in KEYS order");
 
+void claim_params_format(const claim_params *p, char *buf, size_t n)
+{
+    snprintf(buf, n, "-");
+    size_t o = 0;
+    for (size_t k = 0; k < NKEYS && n; k++) {
+        if (!(p->set & (1u << k))) continue;
+        const char *field = (const char *)p + KEYS[k].off;
+        char v[80];
+        if (KEYS[k].type == K_ENUM) {
+            int e;
+            memcpy(&e, field, sizeof e);
+            snprintf(v, sizeof v, "%s", e > 0 && (size_t)e < KEYS[k].nnames ? KEYS[k].names[e] : "?");
+        } else if (KEYS[k].type == K_NUMBER) {
+            double d;
+            memcpy(&d, field, sizeof d);
+            snprintf(v, sizeof v, "%g", d);
+        } else
+            snprintf(v, sizeof v, "%s", field);
+        int w = snprintf(buf + o, n - o, "%s%s=%s", o ? ";" : "", KEYS[k].key, v);
+        if (w < 0 || (size_t)w >= n - o) break;
+        o += (size_t)w;
+    }
+}
+
 static const char *key_names(unsigned keys, char *buf, size_t n)
 {
     buf[0] = '\0';

@@ -86,6 +86,8 @@ cs_status claims_load(const char *path, claims *out);
  * value out of its key's set (numbers: one finite number; names: letters,
  * digits and '_'; of: a macro name). */
 cs_status claim_params_parse(const char *text, const char *path, int line, claim_params *p);
+/* The params as the registry spells them ("-" when none), for trace. */
+void claim_params_format(const claim_params *p, char *buf, size_t n);
 /* CS_EINPUT naming the row's registry line unless the row gives every key of
  * `keys` (PARAM_* bits): a function never falls back to a default. */
 cs_status claim_param_need(const claim_row *row, unsigned keys);
