@@ -22,7 +22,12 @@
 #     paper/, frozen/) exists;
 #  6. a header-only module declares no function (it would be another
 #     module's: an import circle the include graph does not show);
-#  7. no function over 80 lines, except the exemptions named there.
+#  7. no function over 80 lines, except the exemptions named there;
+#  8. no claim behaviour chosen by how a macro is spelt: in src/claims and
+#     src/exp no strstr/strncmp/strcmp/has_suffix of a `macro` field against a
+#     string literal, no arithmetic into a macro (a prefix or suffix cut), no
+#     char pointer taken from one (the way such tests hid); what a function
+#     computes comes from the registry row's params.
 # Prints cmocka-style lines so tests/run.sh counts it like a test binary.
 set -u
 cd "$(dirname "$0")/.."
@@ -192,6 +197,18 @@ long=$(awk '
   infn && /^\}/ { fn = name; sub(/\(.*/, "", fn); k = split(fn, w, /[ *]+/); if (FNR - start + 1 > 80) print w[k] "(" FILENAME ":" start ", " FNR - start + 1 " lines)"; infn = 0 }
 ' src/*/*.c | while read -r f; do n=${f%%(*}; [[ " $FN_EXEMPT " == *" $n "* ]] || echo "$f"; done)
 if [ -z "$long" ]; then ok "no function over 80 lines (exempt: $FN_EXEMPT)"; else bad "no function over 80 lines" "$(echo $long)"; fi
+
+# 8. macro-spelling branches: each offending line, file:line.
+spell_fn='(strstr|strncmp|strcmp|has_suffix|memcmp)[[:space:]]*\('
+spell_arg='[A-Za-z_]*[[:space:]]*\(?[^,()"]*(->|\.)macro[^,()"]*\)?'
+spelt=$(grep -nE -e "$spell_fn[[:space:]]*$spell_arg[[:space:]]*,[[:space:]]*\"" \
+                 -e "$spell_fn[[:space:]]*\"[^\"]*\"[[:space:]]*,[[:space:]]*$spell_arg" \
+                 -e '(->|\.)macro[[:space:]]*[-+]' \
+                 -e 'char[[:space:]]*\*[[:space:]]*[A-Za-z_]+[[:space:]]*=[[:space:]]*([A-Za-z_]+\()?[^,;()"]*(->|\.)macro[[:space:]]*[;),]' \
+                 src/claims/*.c src/claims/*.h src/exp/*.c src/exp/*.h /dev/null | sed 's/:[[:space:]]*/: /2')
+if [ -z "$spelt" ]; then ok "no claim behaviour chosen by a macro's spelling (src/claims, src/exp)"
+else bad "no claim behaviour chosen by a macro's spelling" "$(echo "$spelt" | wc -l) line(s), each to read the row's params instead:
+$spelt"; fi
 
 echo "[==========] layout tests run."
 echo "[  PASSED  ] $pass test(s)."

@@ -5,7 +5,7 @@
 #include "verify.h"
 #include "audit.h"
 
-static const char *HDR = "macro\tkind\tsource\tfunction\tgate\ttest\tsection\tformat\treference\n";
+static const char *HDR = "macro\tkind\tsource\tfunction\tgate\ttest\tsection\tformat\treference\tparams\n";
 
 static const char *registry(const char *name, const char *rows)
 {
@@ -20,7 +20,7 @@ static const char *registry(const char *name, const char *rows)
 static void test_registry_rejects_unknown_kind(void **s)
 {
     (void)s;
-    const char *p = registry("reg_kind", "MainSeeds\tguess\tgates/main.gate\tclaim_design_main_seeds\t-\tt\t4.4\t%.0f\t12\n");
+    const char *p = registry("reg_kind", "MainSeeds\tguess\tgates/main.gate\tclaim_design_main_seeds\t-\tt\t4.4\t%.0f\t12\t-\n");
     claims c;
     assert_int_equal(claims_load(p, &c), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), "claims.tsv:3:"));
@@ -31,8 +31,8 @@ static void test_registry_rejects_duplicate_macro(void **s)
 {
     (void)s;
     const char *p = registry("reg_dup",
-        "MainSeeds\tdesign\tgates/main.gate\tclaim_design_main_seeds\t-\tt\t4.4\t%.0f\t12\n"
-        "MainSeeds\tdesign\tgates/main.gate\tclaim_design_main_seeds\t-\tt\t4.4\t%.0f\t12\n");
+        "MainSeeds\tdesign\tgates/main.gate\tclaim_design_main_seeds\t-\tt\t4.4\t%.0f\t12\t-\n"
+        "MainSeeds\tdesign\tgates/main.gate\tclaim_design_main_seeds\t-\tt\t4.4\t%.0f\t12\t-\n");
     claims c;
     assert_int_equal(claims_load(p, &c), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), "claims.tsv:4:"));
@@ -42,7 +42,7 @@ static void test_registry_rejects_duplicate_macro(void **s)
 static void test_registry_rejects_bad_gate_reference(void **s)
 {
     (void)s;
-    const char *p = registry("reg_gate", "MainSeeds\tdesign\tgates/main.gate\tclaim_design_main_seeds\tmain:seeds\tt\t4.4\t%.0f\t12\n");
+    const char *p = registry("reg_gate", "MainSeeds\tdesign\tgates/main.gate\tclaim_design_main_seeds\tmain:seeds\tt\t4.4\t%.0f\t12\t-\n");
     claims c;
     assert_int_equal(claims_load(p, &c), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), "'gate'"));
@@ -52,12 +52,12 @@ static void test_registry_rejects_bad_gate_reference(void **s)
 static void test_registry_rejects_gated_probe_row(void **s)
 {
     (void)s;
-    const char *p = registry("reg_probe", "MainRotJoint\tprobe\tfrozen/main/runs.tsv\tclaim_main_probe\tmain.gate:shuffle_ratio_min\tt\t5.1\t%.3f\t-\n");
+    const char *p = registry("reg_probe", "MainRotJoint\tprobe\tfrozen/main/runs.tsv\tclaim_main_probe\tmain.gate:shuffle_ratio_min\tt\t5.1\t%.3f\t-\t-\n");
     claims c;
     assert_int_equal(claims_load(p, &c), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), "'gate'"));
     assert_non_null(strstr(cs_errmsg(), "probe"));
-    p = registry("reg_probe_ok", "MainRotJoint\tprobe\tfrozen/main/runs.tsv\tclaim_main_probe\t-\tt\t5.1\t%.3f\t-\n");
+    p = registry("reg_probe_ok", "MainRotJoint\tprobe\tfrozen/main/runs.tsv\tclaim_main_probe\t-\tt\t5.1\t%.3f\t-\t-\n");
     assert_int_equal(claims_load(p, &c), CS_OK);
     claims_free(&c);
 }
@@ -70,6 +70,80 @@ static void test_registry_rejects_truncated_row(void **s)
     assert_int_equal(claims_load(p, &c), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), "claims.tsv:3:"));
     assert_non_null(strstr(cs_errmsg(), "'function'"));
+}
+
+/* The params column: a fixed set of keys, each value of its key's type;
+ * anything else names the file, the line and the field. */
+static void test_registry_rejects_bad_params(void **s)
+{
+    (void)s;
+    static const char *bad[][2] = {
+        {"colour=red", "unknown key 'colour'"},
+        {"bound=middle", "bound='middle' is not one of lo, hi"},
+        {"bound=lo;bound=hi", "key 'bound' given twice"},
+        {"scale=1e", "scale='1e' is not one finite number"},
+        {"spacing=inf", "spacing='inf' is not one finite number"},
+        {"arm", "'arm' is not key=value"},
+        {"arm=joint;", "empty pair"},
+        {"column=k2 m", "column='k2 m' is not a name"},
+        {"of=Main2", "of='Main2' is not a macro name"},
+        {"of=NoSuchClaim", "of=NoSuchClaim names no row of the registry"},
+        {"of=MainSeeds", "of=MainSeeds names the row itself"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        char rows[400];
+        snprintf(rows, sizeof rows, "MainSeeds\tdesign\tgates/main.gate\tclaim_design_main_seeds\t-\tt\t4.4\t%%.0f\t12\t%s\n", bad[i][0]);
+        const char *p = registry("reg_params", rows);
+        claims c;
+        if (claims_load(p, &c) != CS_EINPUT) fail_msg("params '%s' accepted", bad[i][0]);
+        const char *m = cs_errmsg();
+        if (!strstr(m, "claims.tsv:3: field 'params'") || !strstr(m, bad[i][1])) fail_msg("params '%s': message '%s', expected '%s'", bad[i][0], m, bad[i][1]);
+    }
+    /* the typed fields of a good cell */
+    const char *p = registry("reg_params_ok",
+                             "MainSeeds\tdesign\tgates/main.gate\tclaim_design_main_seeds\t-\tt\t4.4\t%.0f\t12\t-\n"
+                             "Toy\tprobe\tx.tsv\tclaim_sens_abroff\t-\tt\t4.4\t%.2f\t-\tarm=indep;probe=rotated;bound=hi;stat=range;column=k2_m;of=MainSeeds;x=6;scale=100;spacing=6.5\n");
+    claims c;
+    assert_int_equal(claims_load(p, &c), CS_OK);
+    const claim_params *q = &c.rows[1].param;
+    assert_int_equal(c.rows[0].param.set, 0);
+    assert_int_equal(q->set, PARAM_ARM | PARAM_PROBE | PARAM_BOUND | PARAM_STAT | PARAM_COLUMN | PARAM_OF | PARAM_X | PARAM_SCALE | PARAM_SPACING);
+    assert_int_equal(q->arm, ARM_INDEP);
+    assert_int_equal(q->probe, PROBE_ROTATED);
+    assert_int_equal(q->bound, BOUND_HI);
+    assert_int_equal(q->stat, STAT_RANGE);
+    assert_string_equal(q->column, "k2_m");
+    assert_string_equal(q->of, "MainSeeds");
+    if (q->x != 6.0 || q->scale != 100.0 || q->spacing != 6.5) fail_msg("x %.17g scale %.17g spacing %.17g, expected 6, 100, 6.5", q->x, q->scale, q->spacing);
+    claims_free(&c);
+}
+
+/* What a row computes is its params, not its macro: one toy row, the same
+ * macro, evaluated with bound=lo and with bound=hi over one table gives its
+ * lowest and its highest value (0.25 and 1.75, which cannot coincide);
+ * without the bound it fails naming its line, never a default. */
+static void test_params_not_the_macro_choose_the_bound(void **s)
+{
+    (void)s;
+    const char *dir = tu_tmpdir("reg_bound");
+    char src[600], rows[1200];
+    snprintf(src, sizeof src, "%s/sweep.tsv", dir);
+    tu_write(src, "beta\tk1_m\n0\t1.75\n0.5\t9\n0\t0.25\n0\t1\n");
+    static const struct { const char *params; verdict status; double want; } k[] = {
+        {"bound=lo", VERDICT_PASS, 0.25}, {"bound=hi", VERDICT_PASS, 1.75}, {"-", VERDICT_FAIL, NAN}};
+    for (size_t i = 0; i < sizeof k / sizeof *k; i++) {
+        snprintf(rows, sizeof rows, "SensAbrOffLo\tprobe\t%s\tclaim_sens_abroff\t-\tt\tE0\t%%.2f\t-\t%s\n", src, k[i].params);
+        claims c;
+        assert_int_equal(claims_load(registry("reg_bound_reg", rows), &c), CS_OK);
+        claim_result r;
+        claims_eval(&c.rows[0], &r);
+        if (r.status != k[i].status) fail_msg("params %s: status %s (%s), expected %s", k[i].params, verdict_name(r.status), r.why, verdict_name(k[i].status));
+        if (k[i].status == VERDICT_PASS && r.value != k[i].want)
+            fail_msg("params %s: observed %.17g, expected %.17g", k[i].params, r.value, k[i].want);
+        if (k[i].status == VERDICT_FAIL && (!strstr(r.why, ":3: field 'params'") || !strstr(r.why, "needs bound")))
+            fail_msg("params %s: '%s' does not name the row's line and the missing key", k[i].params, r.why);
+        claims_free(&c);
+    }
 }
 
 static void test_design_claim_reads_gate_value(void **s)
@@ -195,6 +269,8 @@ int main(void)
         cmocka_unit_test(test_registry_rejects_bad_gate_reference),
         cmocka_unit_test(test_registry_rejects_gated_probe_row),
         cmocka_unit_test(test_registry_rejects_truncated_row),
+        cmocka_unit_test(test_registry_rejects_bad_params),
+        cmocka_unit_test(test_params_not_the_macro_choose_the_bound),
         cmocka_unit_test(test_design_claim_reads_gate_value),
         cmocka_unit_test(test_unimplemented_function_is_pending_with_reason),
         cmocka_unit_test(test_tampered_numbers_value_is_named),

@@ -408,19 +408,23 @@ static void test_reached_moves_no_other_number_further_off(void **s)
 
 /* A generator training choice joins the alternatives through its claims: the
  * row computed by the same function on <root>/generator-sensitivity/<choice>/
- * whose macro ends with the paper reading's row's is that number under the
- * choice, moved from ours by a fraction; a row of another function is not. */
+ * whose params name the paper reading's row (of) is that number under the
+ * choice, moved from ours by a fraction; a row of another function is not,
+ * nor one naming no row, whatever its macro. */
 static void test_training_choices_join_the_alternatives(void **s)
 {
     (void)s;
     claims c = {0};
-    claim_row rows[4];
+    claim_row rows[5];
     memset(rows, 0, sizeof rows);
-    static const char *mac[4] = {"Ratio", "GenStandsRatio", "GenStandsJoint", "Joint"};
-    static const char *src[4] = {"frozen/paper-reading/main/run_s*_*.tsv", "frozen/generator-sensitivity/stands-x4/main/run_s*_*.tsv",
-                                 "frozen/generator-sensitivity/stands-x4/main/run_s*_*.tsv", "frozen/paper-reading/main/run_s*_*.tsv"};
-    static const char *fn[4] = {"f_ratio", "f_ratio", "f_other", "f_joint"};
-    for (int i = 0; i < 4; i++) {
+    static const char *mac[5] = {"Ratio", "GenStandsRatio", "GenStandsJoint", "Joint", "GenWidthRatio"};
+    static const char *src[5] = {"frozen/paper-reading/main/run_s*_*.tsv", "frozen/generator-sensitivity/stands-x4/main/run_s*_*.tsv",
+                                 "frozen/generator-sensitivity/stands-x4/main/run_s*_*.tsv", "frozen/paper-reading/main/run_s*_*.tsv",
+                                 "frozen/generator-sensitivity/width-x2/main/run_s*_*.tsv"};
+    static const char *fn[5] = {"f_ratio", "f_ratio", "f_other", "f_joint", "f_ratio"};
+    static const char *of[5] = {NULL, "Ratio", "Joint", NULL, NULL};
+    for (int i = 0; i < 5; i++) {
+        if (of[i]) { rows[i].param.set = PARAM_OF; snprintf(rows[i].param.of, sizeof rows[i].param.of, "%s", of[i]); }
         snprintf(rows[i].macro, sizeof rows[i].macro, "%s", mac[i]);
         snprintf(rows[i].kind, sizeof rows[i].kind, i == 0 || i == 3 ? "measured" : "probe");
         snprintf(rows[i].reference, sizeof rows[i].reference, i == 0 ? "2.50" : i == 3 ? "0.415" : "-");
@@ -430,11 +434,11 @@ static void test_training_choices_join_the_alternatives(void **s)
         snprintf(rows[i].section, sizeof rows[i].section, "5.1");
     }
     c.rows = rows;
-    c.n = 4;
-    claim_result res[4] = {{0}};
-    const double val[4] = {1.03, 6.13, 0.07, 0.411};
-    for (int i = 0; i < 4; i++) { res[i].status = VERDICT_PASS; res[i].value = val[i]; }
-    claim_interval ci[4] = {{0}};
+    c.n = 5;
+    claim_result res[5] = {{0}};
+    const double val[5] = {1.03, 6.13, 0.07, 0.411, 2.2};
+    for (int i = 0; i < 5; i++) { res[i].status = VERDICT_PASS; res[i].value = val[i]; }
+    claim_interval ci[5] = {{0}};
     ci[0].has = 1; ci[0].lo = 1.02; ci[0].hi = 1.05;
     attrib_data d = {0};
     attrib_bind(&d, &c, res, ci);

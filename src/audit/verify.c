@@ -353,6 +353,9 @@ cs_status verify_trace(const char *macro)
     int fline = 0;
     if (claims_function_file(row->function, fpath, sizeof fpath, &fline)) printf("function     %s (%s)\n", row->function, cs_errmsg());
     else printf("function     %s (%s:%d)\n", row->function, fpath, fline);
+    char params[256];
+    claim_params_format(&row->param, params, sizeof params);
+    printf("params       %s\n", params);
     const study_experiment *ex = study_of_path(row->source);
     if (ex) printf("experiment   %s (%s): %s; run by %s\n", ex->name, ex->code, ex->what, ex->source);
     printf("gate         %s%s%s%s\n", row->gate, strcmp(row->gate, "-") ? " -> " : "", strcmp(row->gate, "-") ? verdict_name(r.gate) : "",

@@ -133,25 +133,23 @@ double attrib_half_unit(const char *ref)
 #define GENSENS_DIR "generator-sensitivity/"
 #define READING_DIR "paper-reading/"
 
-/* The claim computed by the same function as row r on the paper reading's
- * unit set that r's source varies, r's macro ending with its macro; -1 when
- * r is no training choice's value. */
+/* The claim row r stands for under a training choice: the row its params
+ * name (of), when r's source is a choice's unit set and that row is computed
+ * by the same function on the paper reading's unit set the choice varies;
+ * -1 when r is no training choice's value. */
 static long gensens_base(const claims *c, size_t r, char *choice, size_t n)
 {
     const claim_row *g = &c->rows[r];
     const char *at = strstr(g->source, GENSENS_DIR);
-    if (!at) return -1;
+    if (!at || !(g->param.set & PARAM_OF)) return -1;
     const char *ch = at + strlen(GENSENS_DIR), *rest = strchr(ch, '/');
     if (!rest) return -1;
     char want[300];
     snprintf(want, sizeof want, "%.*s" READING_DIR "%s", (int)(at - g->source), g->source, rest + 1);
     snprintf(choice, n, "%.*s", (int)(rest - ch), ch);
-    const size_t gl = strlen(g->macro);
     for (size_t i = 0; i < c->n; i++) {
         const claim_row *q = &c->rows[i];
-        const size_t ql = strlen(q->macro);
-        if (i != r && ql < gl && !strcmp(g->macro + gl - ql, q->macro) && !strcmp(q->function, g->function) && !strcmp(q->source, want))
-            return (long)i;
+        if (i != r && !strcmp(q->macro, g->param.of) && !strcmp(q->function, g->function) && !strcmp(q->source, want)) return (long)i;
     }
     return -1;
 }

@@ -3,7 +3,6 @@
  * table beside it (fs_load_checked), and recomputes with the library code the
  * experiment used (fs_group medians, stats_spearman, fs_jitter_star). */
 #include "claims.h"
-#include "claim_field.h"
 #include "fieldsim.h"
 #include "stats.h"
 #include "tsv.h"
@@ -40,14 +39,17 @@ cs_status claim_aniso_lattice(const claim_row *row, claim_result *res)
     return st;
 }
 
-/* AnisoTrees: trees entering the median (anisotropy defined); AnisoStands: stands. */
+/* A count of the coupled row (column): aniso_trees, the trees entering the
+ * median (anisotropy defined), or stands. */
 cs_status claim_aniso_lattice_counts(const claim_row *row, claim_result *res)
 {
     tsv *t;
     size_t r;
-    cs_status st = coupled_row(row->source, &t, &r);
+    cs_status st = claim_param_need(row, PARAM_COLUMN);
     if (st) return st;
-    const char *col = !strcmp(row->macro, "AnisoStands") ? "stands" : "aniso_trees";
+    const char *col = row->param.column;
+    if (strcmp(col, "aniso_trees") && strcmp(col, "stands")) return claim_param_bad(row, "column", "aniso_trees or stands");
+    if ((st = coupled_row(row->source, &t, &r))) return st;
     long v;
     st = tsv_long(t, r, col, &v);
     if (!st) {
@@ -58,7 +60,7 @@ cs_status claim_aniso_lattice_counts(const claim_row *row, claim_result *res)
     return st;
 }
 
-/* JitterStar (a*) and JitterStarPct (100 a*). */
+/* The calibrated jitter a*, times the row's scale when it gives one (100: a percent). */
 cs_status claim_jitter_star(const claim_row *row, claim_result *res)
 {
     fs_calibration c;
@@ -66,20 +68,25 @@ cs_status claim_jitter_star(const claim_row *row, claim_result *res)
     if (st) return st;
     snprintf(res->where, sizeof res->where, "%s:%d (interpolated %.4f%s)", row->source, c.line_lo, c.interp,
              c.bracketed ? "" : "; FIELD MEDIAN NOT BRACKETED by the sweep: nearest end");
-    claim_set_value(row, res, !strcmp(row->macro, "JitterStarPct") ? 100.0 * c.value : c.value);
+    claim_set_value(row, res, row->param.set & PARAM_SCALE ? row->param.scale * c.value : c.value);
     return CS_OK;
 }
 
-/* JitterAniso, JitterElong, JitterStands, JitterSpread: held-out at a*. */
+/* Held-out at a*, the coupled row's column: aniso_median or elong_median
+ * (judged IN the row's gate band), or stands (those built; the failed ones
+ * named). */
 cs_status claim_jitter_heldout(const claim_row *row, claim_result *res)
 {
-    if (!strcmp(row->macro, "JitterSpread")) return claim_field_spread_ratio(row, res);
     tsv *t;
     size_t r;
-    cs_status st = coupled_row(row->source, &t, &r);
+    cs_status st = claim_param_need(row, PARAM_COLUMN);
     if (st) return st;
+    const char *col = row->param.column;
+    const int stands = !strcmp(col, "stands");
+    if (!stands && strcmp(col, "aniso_median") && strcmp(col, "elong_median")) return claim_param_bad(row, "column", "aniso_median, elong_median or stands");
+    if ((st = coupled_row(row->source, &t, &r))) return st;
     int line = tsv_line(t, r);
-    if (!strcmp(row->macro, "JitterStands")) {
+    if (stands) {
         long built, failed;
         st = tsv_long(t, r, "stands", &built);
         if (!st) st = tsv_long(t, r, "stands_failed", &failed);
@@ -89,7 +96,6 @@ cs_status claim_jitter_heldout(const claim_row *row, claim_result *res)
             claim_set_value(row, res, (double)built);
         }
     } else {
-        const char *col = !strcmp(row->macro, "JitterElong") ? "elong_median" : "aniso_median";
         double v;
         st = tsv_double(t, r, col, &v);
         if (!st) {

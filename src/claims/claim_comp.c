@@ -2,8 +2,8 @@
  * Limitations) from a reading's comparison/dist_summary.tsv written by
  * `crownshy comparison-dist` (src/exp/exp_compdist.c: 256 fresh patches per
  * arm; the paper reading under frozen/paper-reading/, the pair extension
- * under frozen/extension-pair/, its macros prefixed Pair), and the lidar span
- * of teaser panel a (needs CHM=path). */
+ * under frozen/extension-pair/; the row's params name the arm and the
+ * statistic), and the lidar span of teaser panel a (needs CHM=path). */
 #include "claims.h"
 #include "paths.h"
 #include "tsv.h"
@@ -13,26 +13,20 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The macro without a reading prefix (PairCompGenOverlap -> CompGenOverlap). */
-static const char *comp_base(const char *m)
+/* One cell of dist_summary.tsv: the row of (probe, the row's arm as the
+ * table's source), column <stat>_q50 as the value (stat=median); stat=range
+ * gives its 5-95 % range "<q05> to <q95>" (text, in fmt) instead. `arms`
+ * lists the arms the function computes. */
+static cs_status dist_value(const claim_row *row, claim_result *res, const char *probe, const char *arms, const char *stat, const char *fmt)
 {
-    return !strncmp(m, "Pair", 4) ? m + 4 : m;
-}
-
-static int has_suffix(const char *s, const char *suf)
-{
-    size_t l = strlen(s), k = strlen(suf);
-    return l >= k && !strcmp(s + l - k, suf);
-}
-
-/* One cell of dist_summary.tsv: the row of (probe, source), column
- * <stat>_q50 as the value; a macro ending in Range gives its 5-95 % range
- * "<q05> to <q95>" (text, in fmt) instead. */
-static cs_status dist_value(const claim_row *row, claim_result *res, const char *probe, const char *source, const char *stat, const char *fmt)
-{
-    tsv *t;
-    cs_status st = tsv_read(row->source, &t);
+    const claim_params *p = &row->param;
+    cs_status st = claim_param_need(row, PARAM_ARM | PARAM_STAT);
     if (st) return st;
+    const char *source = param_arm_name(p->arm);
+    if (!strstr(arms, source)) return claim_param_bad(row, "arm", arms);
+    if (p->stat != STAT_MEDIAN && p->stat != STAT_RANGE) return claim_param_bad(row, "stat", "median or range");
+    tsv *t;
+    if ((st = tsv_read(row->source, &t))) return st;
     long r = -1;
     for (size_t i = 0; i < tsv_nrows(t) && r < 0; i++) {
         const char *p = tsv_str(t, i, "probe"), *s = tsv_str(t, i, "source");
@@ -46,7 +40,7 @@ static cs_status dist_value(const claim_row *row, claim_result *res, const char 
     if (r < 0) st = cs_err(CS_EINPUT, "%s: no row with probe = %s and source = %s", row->source, probe, source);
     else if (!(st = tsv_double(t, (size_t)r, c05, &q05)) && !(st = tsv_double(t, (size_t)r, c50, &q50)) && !(st = tsv_double(t, (size_t)r, c95, &q95)) &&
              !(st = tsv_double(t, (size_t)r, "patches", &n))) {
-        int range = has_suffix(row->macro, "Range");
+        int range = p->stat == STAT_RANGE;
         snprintf(res->where, sizeof res->where, "%s:%d (%s, %s: %s over %.0f patches)", row->source, tsv_line(t, (size_t)r), probe, source,
                  range ? "5 % and 95 % quantiles" : "median", n);
         if (range) {
@@ -66,21 +60,17 @@ static cs_status dist_value(const claim_row *row, claim_result *res, const char 
  * patches of dist_summary.tsv with their 5-95 % ranges. */
 cs_status claim_comp_overlap(const claim_row *row, claim_result *res)
 {
-    const char *m = comp_base(row->macro);
-    const char *s = !strncmp(m, "CompGen", 7) ? "joint" : !strncmp(m, "CompTeach", 9) ? "teacher" : "indep";
-    return dist_value(row, res, "comparison", s, "overlapping", "%.0f");
+    return dist_value(row, res, "comparison", "joint, indep or teacher", "overlapping", "%.0f");
 }
 
 cs_status claim_comp_k(const claim_row *row, claim_result *res)
 {
-    const char *m = comp_base(row->macro);
-    const char *s = strstr(m, "Teach") ? "teacher" : strstr(m, "Indep") ? "indep" : "joint";
-    return dist_value(row, res, "comparison", s, "median_nn", "%+.3f");
+    return dist_value(row, res, "comparison", "joint, indep or teacher", "median_nn", "%+.3f");
 }
 
 cs_status claim_comp_dart(const claim_row *row, claim_result *res)
 {
-    return dist_value(row, res, "dart", strstr(comp_base(row->macro), "Teach") ? "teacher" : "joint", "median_nn", "%+.3f");
+    return dist_value(row, res, "dart", "joint or teacher", "median_nn", "%+.3f");
 }
 
 /* The share of patches (percent) in which no crown of the joint arm overlaps. */

@@ -160,13 +160,12 @@ cs_status claim_design_gencomp_spacing(const claim_row *row, claim_result *res)
     return CS_OK;
 }
 
+/* The spacing of the row's point-cloud stand. */
 cs_status claim_design_pc_spacing(const claim_row *row, claim_result *res)
 {
     double v;
-    if (!strcmp(row->macro, "PcSpacing")) v = DESIGN_PC_SPACING_M;
-    else if (!strcmp(row->macro, "PcOtherASpacing")) v = DESIGN_PC_OTHER_A_SPACING_M;
-    else if (!strcmp(row->macro, "PcOtherBSpacing")) v = DESIGN_PC_OTHER_B_SPACING_M;
-    else return cs_err(CS_EINPUT, "claim_design_pc_spacing: no spacing for macro %s", row->macro);
+    cs_status st = claim_param_stand_spacing(row, &v);
+    if (st) return st;
     snprintf(res->where, sizeof res->where, "src/base/design.h");
     claim_set_value(row, res, v);
     return CS_OK;

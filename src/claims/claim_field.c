@@ -10,7 +10,6 @@
 #include "field.h"
 #include "fieldsim.h"
 #include "tsv.h"
-#include "claim_field.h"
 #include <math.h>
 #include <stdio.h>
 #include <string.h>

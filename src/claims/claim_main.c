@@ -7,8 +7,8 @@
  * main/runs.tsv not made yet, is gathered by src/claims/mainruns.h with
  * main-summary's reduction, and is pending, naming the frozen seeds and the
  * missing units, until every unit of the design is frozen. The runs and
- * baselines of a claim are those of the root of its source, and a macro's
- * reading prefix, as in PairMainRel, is ignored when the claim is computed,
+ * baselines of a claim are those of the root of its source, and what a
+ * function computes (arm, probe, bound, quantity) comes from the row's params,
  * so one function serves every reading (design.md §8 "Readings of the
  * generator"). m_J and m_I are
  * medians over seeds of the per-run error; p is the exact two-sided Wilcoxon
@@ -153,14 +153,6 @@ static void reading_path(const char *source, const char *leaf, char *out, size_t
     snprintf(out, n, "%.*s/main/%s", len, cut ? source : "frozen", leaf);
 }
 
-/* The macro without its reading prefix (PairMainRel -> MainRel). */
-static const char *base_macro(const char *m)
-{
-    const char *a = strstr(m, "Main"), *b = strstr(m, "Extrap");
-    if (a && (!b || a < b)) return a;
-    return b ? b : m;
-}
-
 static double med(const double *x, int n)
 {
     double m = NAN;
@@ -202,8 +194,9 @@ cs_status claim_main_baseline_mean(const char *source, const char *col, const ch
 cs_status claim_main_median(const claim_row *row, claim_result *res)
 {
     main_runs r;
-    cs_status st = read_runs(row->source, &r, res);
-    const int k = strcmp(base_macro(row->macro), "MainJoint") ? 1 : 0;
+    int k;
+    cs_status st = claim_param_seed_column(row, &k);
+    if (!st) st = read_runs(row->source, &r, res);
     if (st || !arm_whole(row, &r, res, k, -1)) return st;
     claim_set_value(row, res, med(r.v[k], r.n));
     return CS_OK;
@@ -230,11 +223,13 @@ cs_status claim_main_coupled(const claim_row *row, claim_result *res)
 cs_status claim_main_range(const claim_row *row, claim_result *res)
 {
     main_runs r;
-    cs_status st = read_runs(row->source, &r, res);
+    int k;
+    cs_status st = claim_param_need(row, PARAM_BOUND);
+    if (!st) st = claim_param_seed_column(row, &k);
+    if (!st) st = read_runs(row->source, &r, res);
     if (st || res->status == VERDICT_PENDING) return st;
-    const double *x = !strncmp(base_macro(row->macro), "MainJoint", 9) ? r.v[0] : r.v[1];
-    int hi = strstr(row->macro, "Hi") != NULL;
-    claim_set_value(row, res, hi ? stats_max(x, (size_t)r.n) : stats_min(x, (size_t)r.n));
+    const double *x = r.v[k];
+    claim_set_value(row, res, row->param.bound == BOUND_HI ? stats_max(x, (size_t)r.n) : stats_min(x, (size_t)r.n));
     return CS_OK;
 }
 
@@ -306,28 +301,26 @@ cs_status claim_main_iso(const claim_row *row, claim_result *res)
 }
 
 /* The probes added after the first verdict (kind "probe", never
- * gated): medians over seeds of each arm's error under the shuffled and the
- * rotation probe, and their ratios to the arm's own error (median of the
- * probe error / median of the error, as MainGeomRatio). */
+ * gated): medians over seeds of an arm's error under the shuffled or the
+ * rotation probe (stat=median), or their ratio to the arm's own error
+ * (stat=ratio: median of the probe error / median of the error, as
+ * MainGeomRatio). */
 cs_status claim_main_probe(const claim_row *row, claim_result *res)
 {
-    main_runs r;
-    cs_status st = read_runs(row->source, &r, res);
+    int k;
+    cs_status st = claim_param_need(row, PARAM_PROBE | PARAM_STAT);
+    if (!st) st = claim_param_seed_column(row, &k);
     if (st) return st;
-    static const struct { const char *macro; int k, ratio_of; } map[] = {
-        {"MainShufJoint", 2, -1}, {"MainShufIndep", 3, -1}, {"MainGeomRatioIndep", 3, 1},
-        {"MainRotJoint", 4, -1}, {"MainRotIndep", 5, -1}, {"MainRotRatio", 4, 0}, {"MainRotRatioIndep", 5, 1},
-    };
-    for (size_t i = 0; i < sizeof map / sizeof *map; i++) {
-        if (strcmp(base_macro(row->macro), map[i].macro)) continue;
-        if (!arm_whole(row, &r, res, map[i].k, map[i].ratio_of)) return CS_OK;
-        if (!r.has[map[i].k]) return cs_err(CS_EINPUT, "%s: no %s rows (runs made without the probes)", row->source, kind_name(map[i].k));
-        double v = med(r.v[map[i].k], r.n);
-        if (map[i].ratio_of >= 0) v /= med(r.v[map[i].ratio_of], r.n);
-        claim_set_value(row, res, v);
-        return CS_OK;
-    }
-    return cs_err(CS_EINPUT, "claim_main_probe: no probe named %s", row->macro);
+    if (row->param.stat != STAT_MEDIAN && row->param.stat != STAT_RATIO) return claim_param_bad(row, "stat", "median or ratio");
+    const int ratio_of = row->param.stat == STAT_RATIO ? k % 2 : -1;
+    main_runs r;
+    if ((st = read_runs(row->source, &r, res))) return st;
+    if (!arm_whole(row, &r, res, k, ratio_of)) return CS_OK;
+    if (!r.has[k]) return cs_err(CS_EINPUT, "%s: no %s rows (runs made without the probes)", row->source, kind_name(k));
+    double v = med(r.v[k], r.n);
+    if (ratio_of >= 0) v /= med(r.v[ratio_of], r.n);
+    claim_set_value(row, res, v);
+    return CS_OK;
 }
 
 /* The teacher's own crowns under a probe: mean over the unseen spacings of
@@ -335,9 +328,11 @@ cs_status claim_main_probe(const claim_row *row, claim_result *res)
 cs_status claim_main_teach_probe(const claim_row *row, claim_result *res)
 {
     double v;
-    const char *col = strstr(row->macro, "Rot") ? "teacher_rotated_w1" : "teacher_shuffled_w1";
-    cs_status st = claim_main_baseline_mean(row->source, col, "unseen", 0, &v, res->where, sizeof res->where);
+    char col[40];
+    cs_status st = claim_param_need(row, PARAM_PROBE);
     if (st) return st;
+    snprintf(col, sizeof col, "teacher_%s_w1", param_probe_name(row->param.probe));
+    if ((st = claim_main_baseline_mean(row->source, col, "unseen", 0, &v, res->where, sizeof res->where))) return st;
     claim_set_value(row, res, v);
     return CS_OK;
 }
@@ -352,19 +347,21 @@ static void runs_dir(const char *source, char *dir, size_t n)
     if (l && dir[l - 1] == '/') dir[l - 1] = '\0';
 }
 
-/* The readings table's descriptive columns (design.md §8): *Params, the
- * parameter count on the `# model:` line of the seed-1 joint run; and
- * *StepsPerSec, the median over the reading's frozen units of the training
+/* The readings table's descriptive columns (design.md §8): quantity=params,
+ * the parameter count on the `# model:` line of the seed-1 joint run; and
+ * quantity=steps_per_s, the median over the reading's frozen units of the training
  * speed on their `# train_time:` line (a wall-clock figure of the machine
  * that trained them; pending when no unit recorded one). */
 cs_status claim_main_meta(const claim_row *row, claim_result *res)
 {
     char dir[300], p[400];
+    cs_status st = claim_param_need(row, PARAM_QUANTITY);
+    if (st) return st;
+    const int params = !strcmp(row->param.quantity, "params");
+    if (!params && strcmp(row->param.quantity, "steps_per_s")) return claim_param_bad(row, "quantity", "params or steps_per_s");
     runs_dir(row->source, dir, sizeof dir);
     int want;
-    cs_status st = mainruns_wanted(dir, &want);
-    if (st) return st;
-    const int params = strstr(row->macro, "Params") != NULL;
+    if ((st = mainruns_wanted(dir, &want))) return st;
     double v[2 * MAXSEED];
     size_t nv = 0, units = 0;
     for (int s = 1; s <= want && !(params && units); s++)
@@ -393,20 +390,25 @@ cs_status claim_main_meta(const claim_row *row, claim_result *res)
 }
 
 /* The paper reading over the seeds frozen so far (descriptive, never gated,
- * never a verdict): MainFrozenSeeds, the seeds with both arms frozen (text);
- * over
- * them the medians MainFrozenJoint and MainFrozenIndep, MainFrozenRel (%),
- * MainFrozenGeomRatio (median shuffled / median joint), MainFrozenRotRatio
- * (median turned-geometry / median joint) and MainFrozenIsoRatio
- * (median joint / the direction-blind level of the reading's baselines). When
- * every seed is frozen they equal the gated claims' values. */
+ * never a verdict), by quantity: seeds, the seeds with both arms frozen
+ * (text); over them the medians joint and indep, rel (%), geom_ratio (median
+ * shuffled / median joint), rot_ratio (median turned-geometry / median joint)
+ * and iso_ratio (median joint / the direction-blind level of the reading's
+ * baselines). When every seed is frozen they equal the gated claims' values. */
 cs_status claim_main_sofar(const claim_row *row, claim_result *res)
 {
     char dir[300];
+    cs_status st = claim_param_need(row, PARAM_QUANTITY);
+    if (st) return st;
+    static const char *const known[] = {"seeds", "joint", "indep", "rel", "geom_ratio", "rot_ratio", "iso_ratio"};
+    const char *what = row->param.quantity;
+    size_t q = 0;
+    while (q < sizeof known / sizeof *known && strcmp(known[q], what)) q++;
+    if (q == sizeof known / sizeof *known) return claim_param_bad(row, "quantity", "seeds, joint, indep, rel, geom_ratio, rot_ratio or iso_ratio");
     if (!mainruns_unit_set(row->source, dir, sizeof dir)) return cs_err(CS_EINPUT, "%s: claim_main_sofar reads a unit set <dir>/run_s*_*.tsv", row->source);
     static mainruns m;
     int want;
-    cs_status st = mainruns_wanted(dir, &want);
+    st = mainruns_wanted(dir, &want);
     if (!st) st = mainruns_load(dir, want, &m);
     if (st) return st;
     double j[MAXSEED], i[MAXSEED], sh[MAXSEED], ro[MAXSEED];
@@ -414,22 +416,21 @@ cs_status claim_main_sofar(const claim_row *row, claim_result *res)
     for (int s = 0; s < want; s++)
         if (m.seed_ok[s]) { j[n] = m.err[0][0][s]; i[n] = m.err[1][0][s]; sh[n] = m.err[0][1][s]; ro[n] = m.err[0][2][s]; n++; }
     snprintf(res->where, sizeof res->where, "%s/run_s*_*.tsv (%d of %d seeds frozen, both arms)", dir, n, want);
-    const char *what = strstr(row->macro, "Frozen") ? strstr(row->macro, "Frozen") + 6 : "";
     /* a count of frozen units, not a measured quantity: text, so the typed
      * spacings of the write-up (4.0, 5.0, 6.0 m) are never read as rounding it */
-    if (!strcmp(what, "Seeds")) { snprintf(res->text, sizeof res->text, "%d", n); return CS_OK; }
+    if (!strcmp(what, "seeds")) { snprintf(res->text, sizeof res->text, "%d", n); return CS_OK; }
     if (!n) { claim_pending(res, "%s: no seed of the reading has both arms frozen yet", dir); return CS_OK; }
     double mj = med(j, n), mi = med(i, n);
-    if (!strcmp(what, "Joint")) claim_set_value(row, res, mj);
-    else if (!strcmp(what, "Indep")) claim_set_value(row, res, mi);
-    else if (!strcmp(what, "Rel")) claim_set_value(row, res, 100.0 * (mi - mj) / mi);
-    else if (!strcmp(what, "GeomRatio")) claim_set_value(row, res, med(sh, n) / mj);
-    else if (!strcmp(what, "RotRatio")) claim_set_value(row, res, med(ro, n) / mj);
-    else if (!strcmp(what, "IsoRatio")) {
+    if (!strcmp(what, "joint")) claim_set_value(row, res, mj);
+    else if (!strcmp(what, "indep")) claim_set_value(row, res, mi);
+    else if (!strcmp(what, "rel")) claim_set_value(row, res, 100.0 * (mi - mj) / mi);
+    else if (!strcmp(what, "geom_ratio")) claim_set_value(row, res, med(sh, n) / mj);
+    else if (!strcmp(what, "rot_ratio")) claim_set_value(row, res, med(ro, n) / mj);
+    else {
         double blind;
         if ((st = claim_main_baseline_mean(row->source, "direction_blind_w1", "unseen", 0, &blind, NULL, 0))) return st;
         claim_set_value(row, res, mj / blind);
-    } else return cs_err(CS_EINPUT, "claim_main_sofar: no quantity named %s", row->macro);
+    }
     return CS_OK;
 }
 
@@ -483,7 +484,8 @@ static cs_status read_extrap(const char *path, extrap_runs *e, claim_result *res
 cs_status claim_extrap_rel(const claim_row *row, claim_result *res)
 {
     extrap_runs e;
-    cs_status st = read_extrap(row->source, &e, res);
+    cs_status st = claim_param_need(row, PARAM_BOUND);
+    if (!st) st = read_extrap(row->source, &e, res);
     if (st || res->status == VERDICT_PENDING) return st;
     gate *g;
     if ((st = claim_gate_load("extrapolation.gate", &g))) return st;
@@ -492,7 +494,8 @@ cs_status claim_extrap_rel(const claim_row *row, claim_result *res)
     if (!st) st = gate_value(g, "spacings_m", 1, &dhi);
     gate_free(g);
     if (st) return st;
-    double want = !strcmp(base_macro(row->macro), "ExtrapLowRel") ? dlo : dhi;
+    /* bound: the lower (first) or the higher of the gate's two spacings */
+    double want = row->param.bound == BOUND_LO ? dlo : dhi;
     int k = 0;
     while (k < e.n && fabs(e.d[k] - want) > 1e-9) k++;
     if (k == e.n) return cs_err(CS_EINPUT, "%s: no runs at %.1f m", row->source, want);

@@ -27,17 +27,22 @@ static cs_status paper_value(const claims *c, const char *macro, double *v)
     return CS_OK;
 }
 
-/* Clearance over beta d, ours: the lattice sweep at beta_train (Lo/Hi over
- * spacings), the figure stand (both on), the field held-out stands
- * (tree-mean median over beta_field times the field spacing). */
+/* Clearance over beta d, ours (quantity): the lattice sweep at beta_train
+ * (its lowest or highest over spacings, bound), the figure stand (both on),
+ * the field held-out stands (tree-mean median over beta_field times the
+ * field spacing). */
 cs_status claim_sens_gap(const claim_row *row, claim_result *res)
 {
-    tsv *t;
-    cs_status st = tsv_read(row->source, &t);
+    cs_status st = claim_param_need(row, PARAM_QUANTITY);
     if (st) return st;
+    const char *q = row->param.quantity;
+    const int lattice = !strcmp(q, "lattice"), field = !strcmp(q, "field");
+    if (!lattice && !field && strcmp(q, "figure")) return claim_param_bad(row, "quantity", "lattice, figure or field");
+    if (lattice && (st = claim_param_need(row, PARAM_BOUND))) return st;
+    tsv *t;
+    if ((st = tsv_read(row->source, &t))) return st;
     double v = NAN;
-    const char *m = row->macro;
-    if (!strncmp(m, "SensGapLattice", 14)) {
+    if (lattice) {
         double bt, lo = INFINITY, hi = -INFINITY;
         st = gate_read_value(PATHS_GATE("mechanism"), "dieback_train", 0, &bt);
         for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
@@ -48,10 +53,9 @@ cs_status claim_sens_gap(const claim_row *row, claim_result *res)
             if (g < lo) lo = g;
             if (g > hi) hi = g;
         }
-        v = strstr(m, "Lo") ? lo : hi;
+        v = row->param.bound == BOUND_LO ? lo : hi;
         snprintf(res->where, sizeof res->where, "%s (k1_m / (beta d) over the beta_train rows)", row->source);
     } else {
-        int field = !strcmp(m, "SensGapField");
         long r = tsv_find(t, "arm", field ? "coupled" : "both_on");
         double g, b, d = DESIGN_FIELD_SPACING_M;
         if (r < 0) st = cs_err(CS_EINPUT, "%s: field 'arm': no %s row", row->source, field ? "coupled" : "both_on");
@@ -75,9 +79,10 @@ cs_status claim_sens_gap(const claim_row *row, claim_result *res)
  * (IrredMiss / IrredSteps). */
 cs_status claim_sens_paper(const claim_row *row, claim_result *res)
 {
-    claims c;
-    cs_status st = claims_load(PATHS_CLAIMS, &c);
+    cs_status st = claim_param_need(row, PARAM_QUANTITY);
     if (st) return st;
+    claims c;
+    if ((st = claims_load(PATHS_CLAIMS, &c))) return st;
     double on, bt, tgt, bf, miss, steps, dab;
     st = paper_value(&c, "MechOn", &on);
     if (!st) st = paper_value(&c, "CalibDiebackTrain", &bt);
@@ -88,13 +93,13 @@ cs_status claim_sens_paper(const claim_row *row, claim_result *res)
     claims_free(&c);
     if (!st) st = gate_read_value(PATHS_GATE("mechanism"), "ablation_spacing_m", 0, &dab);
     if (st) return st;
-    const char *m = row->macro;
+    const char *q = row->param.quantity;
     double mech = on / (bt * dab), v;
-    if (!strcmp(m, "SensGapPaperMech")) v = mech;
-    else if (!strcmp(m, "SensGapPaperField")) v = tgt / (bf * DESIGN_FIELD_SPACING_M);
-    else if (!strcmp(m, "SensPaperFieldSpacing")) v = tgt / (bf * mech);
-    else if (!strcmp(m, "SensStepPaper")) v = miss / steps;
-    else return cs_err(CS_EINPUT, "claim_sens_paper: no quantity %s", m);
+    if (!strcmp(q, "gap_mech")) v = mech;
+    else if (!strcmp(q, "gap_field")) v = tgt / (bf * DESIGN_FIELD_SPACING_M);
+    else if (!strcmp(q, "field_spacing")) v = tgt / (bf * mech);
+    else if (!strcmp(q, "step")) v = miss / steps;
+    else return claim_param_bad(row, "quantity", "gap_mech, gap_field, field_spacing or step");
     snprintf(res->where, sizeof res->where, "%s reference column (MechOn %g, CalibDiebackTrain %g, CalibTarget %g, CalibDieback %g, IrredMiss %g, IrredSteps %g), ablation spacing %g m, field spacing %g m",
              PATHS_CLAIMS, on, bt, tgt, bf, miss, steps, dab, DESIGN_FIELD_SPACING_M);
     claim_set_value(row, res, v);
@@ -144,41 +149,34 @@ static cs_status table_pick(const char *path, const char *q, const char *unitcol
     return st;
 }
 
+/* The lowest or highest (bound) value of the claim `of` over the rows of a
+ * summary table: under one choice (or reading) at its value x when the row
+ * names them, else over every unit but the die-back readings'. */
 cs_status claim_sens_table(const claim_row *row, claim_result *res)
 {
-    static const struct { const char *macro, *q, *unit; double x; int hi; } map[] = {
-        {"SensMechOnLo", "MechOn", NULL, NAN, 0}, {"SensMechOnHi", "MechOn", NULL, NAN, 1},
-        {"SensStepsHeight", "IrredSteps", "height_sd", 6.0, 1}, {"SensStepsMax", "IrredSteps", NULL, NAN, 1},
-        {"SensRespShrinkLo", "IrredRespShrink", NULL, NAN, 0}, {"SensRespShrinkHi", "IrredRespShrink", NULL, NAN, 1},
-        {"SensIsoLo", "MainIso", NULL, NAN, 0}, {"SensIsoHi", "MainIso", NULL, NAN, 1},
-        {"SensCoupOffSmall", "MechCoupOff", "crown_R", 3.0, 1}, {"SensCoupOffSmallKTwo", "MechCoupOffKTwo", "crown_R", 3.0, 1},
-        {"SensCoupOffSmallKThree", "MechCoupOffKThree", "crown_R", 3.0, 1},
-        {"SensArcMechOn", "MechOn", "arc", NAN, 1}, {"SensArcCalibDieback", "CalibDieback", "arc", NAN, 1},
-        {"SensTargetMechOn", "MechOn", "dieback", 2.0, 1},
-    };
-    for (size_t i = 0; i < sizeof map / sizeof *map; i++) {
-        if (strcmp(map[i].macro, row->macro)) continue;
-        int readings = strstr(row->source, "readings/") != NULL;
-        double lo, hi;
-        int n;
-        /* spans "under every unstated choice" leave out the die-back readings' units */
-        cs_status st = table_pick(row->source, map[i].q, readings ? "reading" : "choice", map[i].unit, map[i].x,
-                                  map[i].unit ? NULL : "dieback", &lo, &hi, &n);
-        if (st) return st;
-        snprintf(res->where, sizeof res->where, "%s (%s of %s%s%s over %d row(s))", row->source, map[i].hi ? "highest" : "lowest",
-                 map[i].q, map[i].unit ? " under " : "", map[i].unit ? map[i].unit : ", every unit but the die-back readings'", n);
-        claim_set_value(row, res, map[i].hi ? hi : lo);
-        return CS_OK;
-    }
-    return cs_err(CS_EINPUT, "claim_sens_table: no quantity %s", row->macro);
+    cs_status st = claim_param_need(row, PARAM_OF | PARAM_BOUND);
+    if (st) return st;
+    const claim_params *p = &row->param;
+    const char *unit = p->set & PARAM_CHOICE ? p->choice : NULL;
+    int readings = strstr(row->source, "readings/") != NULL;
+    double lo, hi;
+    int n;
+    /* spans "under every unstated choice" leave out the die-back readings' units */
+    if ((st = table_pick(row->source, p->of, readings ? "reading" : "choice", unit, p->set & PARAM_X ? p->x : NAN, unit ? NULL : "dieback", &lo, &hi, &n)))
+        return st;
+    const int high = p->bound == BOUND_HI;
+    snprintf(res->where, sizeof res->where, "%s (%s of %s%s%s over %d row(s))", row->source, high ? "highest" : "lowest", p->of, unit ? " under " : "",
+             unit ? unit : ", every unit but the die-back readings'", n);
+    claim_set_value(row, res, high ? hi : lo);
+    return CS_OK;
 }
 
-/* The abrasion-off rows of the E1 sweep (beta = 0): lowest and highest k1. */
+/* The abrasion-off rows of the E1 sweep (beta = 0): their lowest or highest k1 (bound). */
 cs_status claim_sens_abroff(const claim_row *row, claim_result *res)
 {
     tsv *t;
-    cs_status st = tsv_read(row->source, &t);
-    if (st) return st;
+    cs_status st = claim_param_need(row, PARAM_BOUND);
+    if (st || (st = tsv_read(row->source, &t))) return st;
     double lo = INFINITY, hi = -INFINITY;
     int n = 0;
     for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
@@ -193,6 +191,6 @@ cs_status claim_sens_abroff(const claim_row *row, claim_result *res)
     if (!st && !n) st = cs_err(CS_EINPUT, "%s: no beta = 0 rows", row->source);
     if (st) return st;
     snprintf(res->where, sizeof res->where, "%s (k1_m of the %d beta = 0 rows)", row->source, n);
-    claim_set_value(row, res, strstr(row->macro, "Lo") ? lo : hi);
+    claim_set_value(row, res, row->param.bound == BOUND_LO ? lo : hi);
     return CS_OK;
 }

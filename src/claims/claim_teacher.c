@@ -81,16 +81,17 @@ static cs_status mech_figure_and_lattice(const claim_row *row, claim_result *res
     return CS_OK;
 }
 
+/* The clearance k1, k2 or k3 (column) of an ablation arm: with the coupling
+ * or the abrasion off the gate bounds it from above, with both on from below. */
 cs_status claim_mech_ablation_k(const claim_row *row, claim_result *res)
 {
-    const char *arm, *col;
-    gate_op op = GATE_GE;
-    const char *m = row->macro;
-    if (!strncmp(m, "MechCoupOff", 11)) { arm = "coupling_off"; op = GATE_LT; }
-    else if (!strcmp(m, "MechAbrOff")) { arm = "abrasion_off"; op = GATE_LT; }
-    else arm = "both_on";
-    col = strstr(m, "KTwo") ? "k2_m" : strstr(m, "KThree") ? "k3_m" : "k1_m";
-    return mech_figure_and_lattice(row, res, arm, col, op);
+    cs_status st = claim_param_need(row, PARAM_ARM | PARAM_COLUMN);
+    if (st) return st;
+    const param_arm a = row->param.arm;
+    const char *col = row->param.column;
+    if (a != ARM_BOTH_ON && a != ARM_COUPLING_OFF && a != ARM_ABRASION_OFF) return claim_param_bad(row, "arm", "both_on, coupling_off or abrasion_off");
+    if (strcmp(col, "k1_m") && strcmp(col, "k2_m") && strcmp(col, "k3_m")) return claim_param_bad(row, "column", "k1_m, k2_m or k3_m");
+    return mech_figure_and_lattice(row, res, param_arm_name(a), col, a == ARM_BOTH_ON ? GATE_GE : GATE_LT);
 }
 
 cs_status claim_mech_cover(const claim_row *row, claim_result *res)
@@ -335,29 +336,35 @@ static cs_status panel_stems(const char *path, const char *panel, double d, doub
     return st;
 }
 
+/* Stems of the hero figure's beta_train panel at the row's spacing. */
 cs_status claim_hero_stems(const claim_row *row, claim_result *res)
 {
-    double d = !strcmp(row->macro, "HeroStemsDense") ? 3.0 : 6.5, n;
-    cs_status st = panel_stems(row->source, "beta_train", d, &n, res);
+    double n;
+    cs_status st = claim_param_need(row, PARAM_SPACING);
+    if (!st) st = panel_stems(row->source, "beta_train", row->param.spacing, &n, res);
     if (st) return st;
     claim_set_value(row, res, n);
     return CS_OK;
 }
 
+/* A point-cloud stand (stand), quantity: its stems drawn in the coupled
+ * panel, or its contact fraction (percent). */
 cs_status claim_pc_stand(const claim_row *row, claim_result *res)
 {
-    const char *m = row->macro;
-    double d = strstr(m, "OtherA") ? 5.0 : strstr(m, "OtherB") ? 4.0 : 3.0;
-    if (strstr(m, "Trees")) {
+    double d;
+    cs_status st = claim_param_need(row, PARAM_QUANTITY);
+    if (!st) st = claim_param_stand_spacing(row, &d);
+    if (st) return st;
+    const int stems = !strcmp(row->param.quantity, "stems");
+    if (!stems && strcmp(row->param.quantity, "contact")) return claim_param_bad(row, "quantity", "stems or contact");
+    if (stems) {
         double n;
-        cs_status st = panel_stems(row->source, "coupled", d, &n, res);
-        if (st) return st;
+        if ((st = panel_stems(row->source, "coupled", d, &n, res))) return st;
         claim_set_value(row, res, n);
         return CS_OK;
     }
     tsv *t;
-    cs_status st = tsv_read(row->source, &t);
-    if (st) return st;
+    if ((st = tsv_read(row->source, &t))) return st;
     char ds[16];
     snprintf(ds, sizeof ds, "%g", d);
     size_t r = 0;
@@ -370,12 +377,16 @@ cs_status claim_pc_stand(const claim_row *row, claim_result *res)
     return st;
 }
 
+/* k1 of the shown stand's coupled or uncoupled growth (arm). */
 cs_status claim_pc_clearance(const claim_row *row, claim_result *res)
 {
     tsv *t;
-    cs_status st = tsv_read(row->source, &t);
+    cs_status st = claim_param_need(row, PARAM_ARM);
     if (st) return st;
-    const char *col = !strcmp(row->macro, "PcCoupled") ? "k1_coupled_m" : "k1_uncoupled_m";
+    if (row->param.arm != ARM_COUPLED && row->param.arm != ARM_UNCOUPLED) return claim_param_bad(row, "arm", "coupled or uncoupled");
+    char col[32];
+    snprintf(col, sizeof col, "k1_%s_m", param_arm_name(row->param.arm));
+    if ((st = tsv_read(row->source, &t))) return st;
     size_t r = 0;
     double v;
     if (!(st = find_row(t, "spacing_m", "3", &r)) && !(st = tsv_double(t, r, col, &v))) {

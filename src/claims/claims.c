@@ -83,8 +83,10 @@ cs_status claims_load(const char *path, claims *out)
         if ((st = copy_field(t, r, "section", w->section, sizeof w->section))) break;
         if ((st = copy_field(t, r, "format", w->format, sizeof w->format))) break;
         if ((st = copy_field(t, r, "reference", w->reference, sizeof w->reference))) break;
-        for (const char *c = w->macro; *c; c++)
-            if (!((*c >= 'A' && *c <= 'Z') || (*c >= 'a' && *c <= 'z'))) {
+        char params[512];
+        if ((st = copy_field(t, r, "params", params, sizeof params)) || (st = claim_params_parse(params, path, w->line, &w->param))) break;
+        for (size_t k = 0; w->macro[k]; k++)
+            if (!((w->macro[k] >= 'A' && w->macro[k] <= 'Z') || (w->macro[k] >= 'a' && w->macro[k] <= 'z'))) {
                 st = cs_err(CS_EINPUT, "%s:%d: field 'macro': '%s' is not a LaTeX macro name (letters only)", path, w->line, w->macro);
                 break;
             }
@@ -115,6 +117,15 @@ cs_status claims_load(const char *path, claims *out)
             }
     }
     tsv_free(t);
+    /* a variant names the claim it stands for: a row of this registry */
+    for (size_t r = 0; r < n && !st; r++) {
+        const claim_row *w = &rows[r];
+        if (!(w->param.set & PARAM_OF)) continue;
+        size_t q = 0;
+        while (q < n && strcmp(rows[q].macro, w->param.of)) q++;
+        if (q == n || q == r)
+            st = cs_err(CS_EINPUT, "%s:%d: field 'params': of=%s names %s", path, w->line, w->param.of, q == r ? "the row itself" : "no row of the registry");
+    }
     if (st) { free(rows); return st; }
     out->rows = rows;
     out->n = n;

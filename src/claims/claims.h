@@ -10,8 +10,46 @@
 #include "gate.h"
 #include <stddef.h>
 
+/* The typed parameters of a row (the registry's last column, params:
+ * "key=value;..." or "-"): which arm, probe, bound, statistic, column or
+ * quantity a computing function that serves several claims computes, and for
+ * a row standing for another claim under a variant (`of`), which. The macro
+ * is a name only: nothing is chosen by its spelling. `set` holds a PARAM_*
+ * bit per key the row gives; a function missing a key it needs fails naming
+ * the row's line (claim_param_need). */
+typedef enum { ARM_NONE, ARM_JOINT, ARM_INDEP, ARM_TEACHER, ARM_COUPLED, ARM_UNCOUPLED, ARM_BOTH_ON, ARM_COUPLING_OFF, ARM_ABRASION_OFF } param_arm;
+typedef enum { PROBE_NONE, PROBE_SHUFFLED, PROBE_ROTATED } param_probe;
+typedef enum { BOUND_NONE, BOUND_LO, BOUND_HI } param_bound;
+typedef enum { STAT_NONE, STAT_MEDIAN, STAT_RANGE, STAT_RATIO } param_stat;
+typedef enum { STAND_NONE, STAND_SHOWN, STAND_OTHER_A, STAND_OTHER_B } param_stand;
+enum {
+    PARAM_ARM = 1u << 0,      /* arm=joint|indep|teacher|coupled|uncoupled|both_on|coupling_off|abrasion_off: the arm (or source) whose rows are read */
+    PARAM_PROBE = 1u << 1,    /* probe=shuffled|rotated: the probe applied to the arm */
+    PARAM_BOUND = 1u << 2,    /* bound=lo|hi: the lower or upper end (of a span, or of two spacings) */
+    PARAM_STAT = 1u << 3,     /* stat=median|range|ratio: the median, its 5-95 % range, or the probe's median over the arm's own */
+    PARAM_COLUMN = 1u << 4,   /* column=NAME: the table column read */
+    PARAM_QUANTITY = 1u << 5, /* quantity=NAME: which of a function's named quantities */
+    PARAM_STAND = 1u << 6,    /* stand=shown|other_a|other_b: the point-cloud stand (its spacing is the design's) */
+    PARAM_OF = 1u << 7,       /* of=MACRO: the claim this row is a variant of (another row of the registry) */
+    PARAM_CHOICE = 1u << 8,   /* choice=NAME: the unstated choice or reading whose units are read */
+    PARAM_X = 1u << 9,        /* x=NUMBER: that choice's value */
+    PARAM_SCALE = 1u << 10,   /* scale=NUMBER: the value is shown times this (100 for a percent) */
+    PARAM_SPACING = 1u << 11, /* spacing=NUMBER: the stand spacing read, metres */
+};
+typedef struct {
+    unsigned set;
+    param_arm arm;
+    param_probe probe;
+    param_bound bound;
+    param_stat stat;
+    param_stand stand;
+    char column[32], quantity[32], of[64], choice[32];
+    double x, scale, spacing;
+} claim_params;
+
 typedef struct {
     char macro[64], kind[16], source[256], function[64], gate[128], test[160], section[16], format[16], reference[64];
+    claim_params param;
     int line; /* line in audit/claims.tsv */
     /* The registry's own gate column. `gate` is what audit/gate_map.tsv (pinned
      * with the gates) says when the registry is PATHS_CLAIMS; the audit fails
@@ -38,10 +76,36 @@ typedef cs_status (*claim_fn)(const claim_row *row, claim_result *res);
 
 typedef struct { claim_row *rows; size_t n; } claims;
 
-/* Load and validate the registry (unique macros, known kinds, gate refs "file.gate:key").
+/* Load and validate the registry (unique macros, known kinds, gate refs
+ * "file.gate:key", params as claim_params_parse, an `of` naming another row).
  * For PATHS_CLAIMS the gate of every row comes from PATHS_GATE_MAP and, for
  * the rows of kind extension, from PATHS_GATE_MAP_EXT (see claims_apply_gate_map). */
 cs_status claims_load(const char *path, claims *out);
+/* Parse a params cell into *p (zeroed first): CS_EINPUT naming path, line and
+ * field 'params' for an unknown or repeated key, a pair without '=', or a
+ * value out of its key's set (numbers: one finite number; names: letters,
+ * digits and '_'; of: a macro name). */
+cs_status claim_params_parse(const char *text, const char *path, int line, claim_params *p);
+/* The params as the registry spells them ("-" when none), for trace. */
+void claim_params_format(const claim_params *p, char *buf, size_t n);
+/* CS_EINPUT naming the row's registry line unless the row gives every key of
+ * `keys` (PARAM_* bits): a function never falls back to a default. */
+cs_status claim_param_need(const claim_row *row, unsigned keys);
+/* CS_EINPUT naming the row's line: its key `key` holds a value the row's
+ * function does not compute (`allowed` lists what it does). */
+cs_status claim_param_bad(const claim_row *row, const char *key, const char *allowed);
+/* The registry spelling of an arm and a probe ("joint", "rotated", ...): the
+ * same words name the arms and probes in the frozen tables. */
+const char *param_arm_name(param_arm a);
+const char *param_probe_name(param_probe p);
+/* The per-seed error column of an E3 row: 2 probe + arm (arm 0 joint, 1
+ * indep; probe 0 generated when the row names none, 1 shuffled, 2 rotated),
+ * as claim_main.c and the seed bootstrap index the run tables; CS_EINPUT
+ * naming the row's line without an arm of the two. */
+cs_status claim_param_seed_column(const claim_row *row, int *k);
+/* The spacing of the row's point-cloud stand (stand=shown|other_a|other_b),
+ * metres: the design's (src/base/design.h), never restated. */
+cs_status claim_param_stand_spacing(const claim_row *row, double *d);
 /* Set every row's gate from a claim-to-gate map (TSV: macro, gate): a row the
  * map does not name has no gate. CS_EINPUT naming file, line and field for a
  * malformed map, an unknown or duplicate macro, or a gate not "file.gate:key". */

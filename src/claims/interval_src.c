@@ -9,6 +9,7 @@
 #include "interval.h"
 #include "interval_stands.h"
 #include "mainruns.h"
+#include "design.h"
 #include "estimator.h"
 #include "fieldsim.h"
 #include "gate.h"
@@ -21,14 +22,6 @@
 #include <string.h>
 
 #define MAXSEED 64
-
-/* The macro without a reading prefix (PairMainRel -> MainRel). */
-static const char *base_macro(const char *m)
-{
-    const char *a = strstr(m, "Main"), *b = strstr(m, "Extrap");
-    if (a && (!b || a < b)) return a;
-    return b ? b : m;
-}
 
 static cs_status alloc_x(iv_data *d, size_t n, size_t m)
 {
@@ -77,6 +70,32 @@ static cs_status unit_set_seeds(const char *dir, double v[MAXSEED][6], int *maxs
     return CS_OK;
 }
 
+/* The statistic of an E3 claim over the per-seed columns (run_col), by its
+ * function and the row's arm, probe, bound and stat, as claim_main.c
+ * computes it. */
+static cs_status main_stat(const claim_row *row, iv_data *d)
+{
+    const char *f = row->function;
+    const claim_params *p = &row->param;
+    if (!strcmp(f, "claim_main_rel")) { d->stat = (iv_stat){IV_REL, 0, 1, NULL, NULL}; return CS_OK; }
+    if (!strcmp(f, "claim_main_p")) { d->stat = (iv_stat){IV_WILCOXON, 0, 1, NULL, NULL}; return CS_OK; }
+    if (!strcmp(f, "claim_main_geom_ratio")) { d->stat = (iv_stat){IV_RATIO, 2, 0, NULL, NULL}; return CS_OK; }
+    int k;
+    cs_status st = claim_param_seed_column(row, &k);
+    if (st) return st;
+    if (!strcmp(f, "claim_main_median")) d->stat = (iv_stat){IV_MEDIAN, (size_t)k, 0, NULL, NULL};
+    else if (!strcmp(f, "claim_main_range")) {
+        if ((st = claim_param_need(row, PARAM_BOUND))) return st;
+        d->stat = (iv_stat){p->bound == BOUND_HI ? IV_MAX : IV_MIN, (size_t)k, 0, NULL, NULL};
+    } else if (!strcmp(f, "claim_main_probe")) {
+        if ((st = claim_param_need(row, PARAM_PROBE | PARAM_STAT))) return st;
+        /* the ratio of the probe's median to the arm's own (its column k % 2) */
+        d->stat = p->stat == STAT_RATIO ? (iv_stat){IV_RATIO, (size_t)k, (size_t)(k % 2), NULL, NULL} : (iv_stat){IV_MEDIAN, (size_t)k, 0, NULL, NULL};
+    } else
+        return cs_err(CS_EINVARIANT, "interval: no seed statistic for %s (%s)", row->macro, f);
+    return CS_OK;
+}
+
 static cs_status main_seeds(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
 {
     (void)res; (void)sp;
@@ -104,21 +123,7 @@ static cs_status main_seeds(const claim_row *row, const claim_result *res, const
     d->unit = "seed";
     d->method = "bootstrap";
     snprintf(d->from, sizeof d->from, "%s (%d seeds)", row->source, maxs);
-    const char *m = base_macro(row->macro);
-    static const struct { const char *macro; iv_kind k; size_t a, b; } map[] = {
-        {"MainJoint", IV_MEDIAN, 0, 0}, {"MainIndep", IV_MEDIAN, 1, 0},
-        {"MainJointLo", IV_MIN, 0, 0}, {"MainJointHi", IV_MAX, 0, 0}, {"MainIndepLo", IV_MIN, 1, 0}, {"MainIndepHi", IV_MAX, 1, 0},
-        {"MainRel", IV_REL, 0, 1}, {"MainP", IV_WILCOXON, 0, 1}, {"MainGeomRatio", IV_RATIO, 2, 0},
-        {"MainShufJoint", IV_MEDIAN, 2, 0}, {"MainShufIndep", IV_MEDIAN, 3, 0}, {"MainGeomRatioIndep", IV_RATIO, 3, 1},
-        {"MainRotJoint", IV_MEDIAN, 4, 0}, {"MainRotIndep", IV_MEDIAN, 5, 0}, {"MainRotRatio", IV_RATIO, 4, 0},
-        {"MainRotRatioIndep", IV_RATIO, 5, 1},
-    };
-    for (size_t i = 0; i < sizeof map / sizeof *map; i++)
-        if (!strcmp(m, map[i].macro)) {
-            d->stat = (iv_stat){map[i].k, map[i].a, map[i].b, NULL, NULL};
-            return CS_OK;
-        }
-    return cs_err(CS_EINVARIANT, "interval: no seed statistic for %s", row->macro);
+    return main_stat(row, d);
 }
 
 /* ---- E3 baselines: the unseen spacings, mean over them ---- */
@@ -136,11 +141,15 @@ static cs_status main_spacings(const claim_row *row, const claim_result *res, co
         for (const char *q = src; (q = strstr(q, "/extrapolation/")); q++) if (!cut || q > cut) cut = q;
         snprintf(path, sizeof path, "%.*s/main/%s", cut ? (int)(cut - src) : 6, cut ? src : "frozen", leaf);
     }
-    const char *col = !strcmp(row->function, "claim_main_noise") ? "noise_floor_w1"
-                    : strstr(row->macro, "Rot") ? "teacher_rotated_w1" : "teacher_shuffled_w1";
+    /* the noise floor, or the teacher's own crowns under the row's probe */
+    char col[40] = "noise_floor_w1";
+    cs_status st = CS_OK;
+    if (strcmp(row->function, "claim_main_noise")) {
+        if ((st = claim_param_need(row, PARAM_PROBE))) return st;
+        snprintf(col, sizeof col, "teacher_%s_w1", param_probe_name(row->param.probe));
+    }
     tsv *t;
-    cs_status st = tsv_read(path, &t);
-    if (st) return st;
+    if ((st = tsv_read(path, &t))) return st;
     if (!(st = alloc_x(d, tsv_nrows(t), 1))) {
         size_t n = 0;
         for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
@@ -216,10 +225,11 @@ static cs_status extrap_seeds(const claim_row *row, const claim_result *res, con
         d->stat = (iv_stat){IV_WILCOXON, 0, 1, NULL, NULL};
         return CS_OK;
     }
-    /* ExtrapLowRel: the lowest spacing, ExtrapHighRel: the highest */
+    /* bound=lo: the lowest spacing, bound=hi: the highest */
+    if ((st = claim_param_need(row, PARAM_BOUND))) return st;
     int lowk = 0, highk = 0;
     for (int k = 1; k < nd; k++) { if (dd[k] < dd[lowk]) lowk = k; if (dd[k] > dd[highk]) highk = k; }
-    int k = strstr(base_macro(row->macro), "Low") ? lowk : highk;
+    int k = row->param.bound == BOUND_LO ? lowk : highk;
     if ((st = alloc_x(d, (size_t)maxs, 2))) return st;
     for (int i = 0; i < maxs; i++) { d->x[2 * i] = w[i][k][0]; d->x[2 * i + 1] = w[i][k][1]; }
     d->stat = (iv_stat){IV_REL, 0, 1, NULL, NULL};
@@ -339,19 +349,25 @@ static cs_status fs_stands(const claim_row *row, const claim_result *res, const 
     if (!c) return cs_err(CS_ENOMEM, "interval: out of memory");
     d->stat = (iv_stat){IV_CALLBACK, 0, 0, fs_stat, c};
     d->cleanup = fs_ctx_free;
-    const char *m = row->macro, *f = row->function;
+    const char *f = row->function;
+    cs_status st = CS_OK;
     c->kind = !strcmp(f, "claim_aniso_rho") ? FS_RHO : !strcmp(f, "claim_aniso_hardcore_overshoot") ? FS_OVERSHOOT
             : !strcmp(f, "claim_field_calib_dieback") ? FS_CAL_BETA : !strcmp(f, "claim_jitter_star") ? FS_CAL_JITTER
-            : strstr(m, "Elong") ? FS_ELONG : strstr(m, "Stands") ? FS_STANDS : !strcmp(m, "AnisoTrees") ? FS_ANISO_TREES : FS_ANISO;
+            : !strcmp(f, "claim_field_elong") ? FS_ELONG : FS_ANISO;
+    /* the count and held-out functions read the column their row names */
+    if (!strcmp(f, "claim_aniso_lattice_counts") || !strcmp(f, "claim_jitter_heldout")) {
+        if ((st = claim_param_need(row, PARAM_COLUMN))) return st;
+        const char *col = row->param.column;
+        c->kind = !strcmp(col, "elong_median") ? FS_ELONG : !strcmp(col, "stands") ? FS_STANDS : !strcmp(col, "aniso_trees") ? FS_ANISO_TREES : FS_ANISO;
+    }
     char tp[512];
-    cs_status st = CS_OK;
     c->scale = 1.0;
     if (c->kind == FS_CAL_JITTER) {
         /* a* is calibrated on the sweep beside it (anisotropy/jitter.tsv and its trees) */
         const char *slash = strrchr(row->source, '/');
         snprintf(tp, sizeof tp, "%.*sjitter_trees.tsv", slash ? (int)(slash - row->source + 1) : 0, row->source);
         c->step = FS_JITTER_STEP;
-        c->scale = !strcmp(m, "JitterStarPct") ? 100.0 : 1.0;
+        if (row->param.set & PARAM_SCALE) c->scale = row->param.scale;
         st = gate_read_value(PATHS_GATE("anisotropy"), "field_median", 0, &c->target);
     } else {
         fs_trees_path(row->source, tp, sizeof tp);
@@ -402,8 +418,8 @@ static int models_of(const tsv *t, char *buf, size_t n)
 }
 
 /* E7 (design.md §7 E7): the claims are statistics over the patches of
- * dist_patches.tsv beside their dist_summary.tsv (the median; a *Range
- * macro's value is the 5 % quantile; the share of patches without an
+ * dist_patches.tsv beside their dist_summary.tsv (the median; with
+ * stat=range the value is the 5 % quantile; the share of patches without an
  * overlapping crown), bootstrapped over the patches. */
 static cs_status comp_patches(const claim_row *row, const claim_result *res, const interval_spec *sp, iv_data *d)
 {
@@ -429,14 +445,15 @@ static cs_status comp_patches(const claim_row *row, const claim_result *res, con
         tsv_free(t);
         return cs_err(CS_EINVARIANT, "%s: drawn from models %s, its summary %s from %s", path, got, row->source, want);
     }
-    const char *m = !strncmp(row->macro, "Pair", 4) ? row->macro + 4 : row->macro, *f = row->function;
+    const char *f = row->function;
+    const int no_overlap = !strcmp(f, "claim_comp_no_overlap");
+    /* the share without an overlap is the joint arm's; the others name their arm and statistic */
+    if (!no_overlap && (st = claim_param_need(row, PARAM_ARM | PARAM_STAT))) { tsv_free(t); return st; }
     const char *probe = !strcmp(f, "claim_comp_dart") ? "dart" : "comparison";
-    const char *s = !strcmp(f, "claim_comp_no_overlap") || !strncmp(m, "CompGen", 7) ? "joint" : strstr(m, "Teach") ? "teacher"
-                  : strstr(m, "Indep") ? "indep" : "joint";
-    const char *col = !strcmp(f, "claim_comp_overlap") || !strcmp(f, "claim_comp_no_overlap") ? "overlapping" : "median_nn_clearance_m";
-    size_t len = strlen(m);
-    int range = len >= 5 && !strcmp(m + len - 5, "Range");
-    d->stat = (iv_stat){!strcmp(f, "claim_comp_no_overlap") ? IV_ZERO_PCT : IV_QUANTILE, 0, 0, NULL, NULL, range ? 0.05 : 0.5};
+    const char *s = no_overlap ? "joint" : param_arm_name(row->param.arm);
+    const char *col = !strcmp(f, "claim_comp_overlap") || no_overlap ? "overlapping" : "median_nn_clearance_m";
+    int range = !no_overlap && row->param.stat == STAT_RANGE;
+    d->stat = (iv_stat){no_overlap ? IV_ZERO_PCT : IV_QUANTILE, 0, 0, NULL, NULL, range ? 0.05 : 0.5};
     if (!(st = alloc_x(d, tsv_nrows(t), 1))) {
         size_t n = 0;
         for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
@@ -454,30 +471,42 @@ static cs_status comp_patches(const claim_row *row, const claim_result *res, con
 
 /* ---- one-stand claims: the replicate stands of the same family ---- */
 
-/* The replicate table's family and column for a figure-stand claim. */
-static int figure_column(const claim_row *row, char *family, size_t fn, char *arm, size_t an, double *d, const char **col)
+/* The replicate table's family, arm, spacing and column for a figure-stand
+ * claim, from its function and params; 0 when it has none, CS_EINPUT (as
+ * *st) when the row lacks a parameter. */
+static int figure_column(const claim_row *row, char *family, size_t fn, char *arm, size_t an, double *d, const char **col, cs_status *st)
 {
-    const char *m = row->macro, *f = row->function;
+    const char *f = row->function;
+    const claim_params *p = &row->param;
+    *st = CS_OK;
     if (!strcmp(f, "claim_mech_ablation_k") || !strcmp(f, "claim_mech_cover") || !strcmp(f, "claim_mech_overlap")) {
+        const int ablation = !strcmp(f, "claim_mech_ablation_k");
+        if (ablation && (*st = claim_param_need(row, PARAM_ARM | PARAM_COLUMN))) return 1;
         snprintf(family, fn, "mechanism");
-        snprintf(arm, an, "%s", !strncmp(m, "MechCoupOff", 11) ? "coupling_off" : !strcmp(m, "MechAbrOff") ? "abrasion_off" : "both_on");
+        snprintf(arm, an, "%s", ablation ? param_arm_name(p->arm) : "both_on");
         *d = 3.5;
-        *col = !strcmp(f, "claim_mech_cover") ? "cover" : !strcmp(f, "claim_mech_overlap") ? "overlap_m"
-             : strstr(m, "KTwo") ? "k2_m" : strstr(m, "KThree") ? "k3_m" : "k1_m";
+        *col = !strcmp(f, "claim_mech_cover") ? "cover" : !strcmp(f, "claim_mech_overlap") ? "overlap_m" : p->column;
         return 1;
     }
     if (!strcmp(f, "claim_hero_stems")) {
+        if ((*st = claim_param_need(row, PARAM_SPACING))) return 1;
         snprintf(family, fn, "hero");
         snprintf(arm, an, "beta_train");
-        *d = !strcmp(m, "HeroStemsDense") ? 3.0 : 6.5;
+        *d = p->spacing;
         *col = "stems";
         return 1;
     }
     if (!strcmp(f, "claim_pc_stand") || !strcmp(f, "claim_pc_clearance")) {
+        const int clearance = !strcmp(f, "claim_pc_clearance");
+        if (clearance) {
+            /* the clearance is the shown stand's, of the row's arm */
+            if ((*st = claim_param_need(row, PARAM_ARM))) return 1;
+            *d = DESIGN_PC_SPACING_M;
+        } else if ((*st = claim_param_need(row, PARAM_QUANTITY)) || (*st = claim_param_stand_spacing(row, d)))
+            return 1;
         snprintf(family, fn, "pointcloud");
-        *d = strstr(m, "OtherA") ? 5.0 : strstr(m, "OtherB") ? 4.0 : 3.0;
-        snprintf(arm, an, "%s", !strcmp(m, "PcUncoupled") ? "uncoupled" : "coupled");
-        *col = !strcmp(f, "claim_pc_clearance") ? "k1_m" : strstr(m, "Trees") ? "stems" : "contact_pct";
+        snprintf(arm, an, "%s", clearance ? param_arm_name(p->arm) : "coupled");
+        *col = clearance ? "k1_m" : !strcmp(p->quantity, "stems") ? "stems" : "contact_pct";
         return 1;
     }
     return 0;
@@ -491,11 +520,12 @@ static cs_status figure_stands(const claim_row *row, const claim_result *res, co
     char family[32], arm[32];
     double dd;
     const char *col;
-    if (!figure_column(row, family, sizeof family, arm, sizeof arm, &dd, &col))
+    cs_status st;
+    if (!figure_column(row, family, sizeof family, arm, sizeof arm, &dd, &col, &st))
         return cs_err(CS_EINVARIANT, "interval: no replicate stands for %s", row->macro);
-    tsv *t;
-    cs_status st = tsv_read(sp->replicates, &t);
     if (st) return st;
+    tsv *t;
+    if ((st = tsv_read(sp->replicates, &t))) return st;
     if (!(st = alloc_x(d, tsv_nrows(t), 1))) {
         size_t n = 0;
         for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {

@@ -60,7 +60,8 @@ static cs_status one(const claims *c, const char *dir, const readings_def *d, co
     claim_row row = *reg;
     snprintf(row.gate, sizeof row.gate, "-");
     const char *rel = strncmp(reg->source, "frozen/", 7) ? reg->source : reg->source + 7;
-    if (!strncmp(q, "Mech", 4) && strcmp(q, "MechHits"))
+    /* a claim of the mechanism's figure stand reads the reading's figure stand, or its lattice ablation */
+    if (!strcmp(rel, "mechanism/figure_stats.tsv"))
         snprintf(row.source, sizeof row.source, "%.120s/%s/mechanism/%s", dir, d->run, d->figure_stand ? "figure_stats.tsv" : "ablation.tsv");
     else snprintf(row.source, sizeof row.source, "%.120s/%s/%.100s", dir, d->run, rel);
     char *end;
@@ -70,7 +71,9 @@ static cs_status one(const claims *c, const char *dir, const readings_def *d, co
      * the results were written (a local run and a cluster run agree) */
     snprintf(out->source, sizeof out->source, "%s", row.source + strlen(dir) + 1);
     cs_status st;
-    if (!d->elong_all_axes && (!strcmp(q, "Elong") || !strcmp(q, "JitterElong"))) {
+    /* an elongation claim of a reading without all-axis elongation: the cardinal median */
+    const int elong = !strcmp(row.function, "claim_field_elong") || (!strcmp(row.function, "claim_jitter_heldout") && !strcmp(row.param.column, "elong_median"));
+    if (!d->elong_all_axes && elong) {
         st = elong_cardinal(row.source, &out->value);
         size_t l = strlen(out->source);
         snprintf(out->source + l, sizeof out->source - l, " (elong_card)");
