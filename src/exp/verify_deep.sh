@@ -16,10 +16,59 @@ set -uo pipefail
 JOBS=${JOBS:-2}
 MAKE=${MAKE:-make}
 t0=$SECONDS
+status=0
 units=($DEEP_UNITS)
 total=${#units[@]}
 mkdir -p "$DEEP"
 log="$DEEP/make.log"
+nseeds=$(awk '$1 == "seeds" {print $2}' gates/main.gate 2>/dev/null)
+absent=0 redrawn=0 redraw_bad=0 jobs_list=() designed=0
+rows=$(bash src/base/manifest.sh rows)
+sets=$(awk -F'\t' '$1 == "EXPERIMENT" && $8 == "redraw" {r[$2] = 1}
+  $1 == "UNIT" && r[$2] && $3 ~ /run_s%_joint\.tsv$/ {d = $3; sub(/\/?run_s%_joint\.tsv$/, "", d); print $2 "\t" d}
+  $1 == "UNIT" && r[$2] && $3 ~ /runs\.tsv$/ && $4 ~ /READING_SEED_LIST/ {d = $3; sub(/\/runs\.tsv$/, "", d); print $2 "\t" d "\treading"}' <<<"$rows")
+if [ -z "$nseeds" ]; then
+    echo "  FAIL    gates/main.gate: no 'seeds' line: the model part cannot be listed"; status=1
+fi
+while IFS=$'\t' read -r exp sub kind; do
+    [ -n "$exp" ] && [ -z "$kind" ] || continue
+    dir="frozen/$exp${sub:+/$sub}"
+    n=${nseeds:-0}
+    grep -qxF "$exp"$'\t'"$sub"$'\t'reading <<<"$sets" && n=${READING_NSEEDS:?}
+    for ((s = 1; s <= n; s++)); do
+        for a in joint indep; do
+            designed=$((designed + 1))
+            t=$(printf '%s/run_s%02d_%s.tsv' "$dir" "$s" "$a")
+            if [ ! -f "$t" ]; then echo "  FAIL    $t: missing (the design has seed $s, arm $a)"; absent=$((absent + 1)); continue; fi
+            w=$(sed -n 's/^# weights: \([^ ]*\) .*/\1/p' "$t" | head -n 1)
+            if [ -n "$w" ]; then w="$dir/$w"
+            else w=$(sed -n 's/^# command: .* --weights \([^ ]*\).*/\1/p' "$t" | head -n 1 | sed 's|^build/results/|frozen/|'); fi
+            v=$(sed -n 's/^# eval: \(volume [^:]*: \)\{0,1\}\([0-9][0-9]*\) teacher stands per spacing.*/\2-stands/p' "$t" | head -n 1)
+            [ -n "$v" ] || v=unstated  # main-redraw then fails naming the valid volumes
+            jobs_list+=("$w $s $a $v $dir $exp${sub:+/$sub}")
+        done
+    done
+done <<<"$sets"
+# ---- the projected time, from the wall times the frozen units recorded ----
+# (on the machines and loads that made them: a projection, not a promise). A
+# teacher unit reruns its whole folder: the wall_s of every frozen table under
+# it. A model redraw costs one evaluation: the median over the frozen models
+# of wall_s less train_s (a resumed training records its last part only, so
+# the median, not the sum, of those differences).
+wall_of() { sed -n 's/^# wall_s: \([0-9.]*\).*/\1/p' "$1" 2>/dev/null | head -n 1; }
+teach_s=$(for u in "${units[@]}"; do d=$(dirname "frozen/${u#"$DEEP"/}"); [ -d "$d" ] && echo "$d"; done | sort -u |
+          while read -r d; do grep -h -m1 -r --include='*.tsv' '^# wall_s: ' "$d" 2>/dev/null; done |
+          awk '{s += $3} END {print s + 0}')
+evals=$(for j in "${jobs_list[@]}"; do
+          set -- $j
+          t=$(printf '%s/run_s%02d_%s.tsv' "$5" "$2" "$3")
+          w=$(wall_of "$t"); tr=$(sed -n 's/^# train_time: train_s \([0-9.]*\).*/\1/p' "$t" 2>/dev/null | head -n 1)
+          [ -n "$w" ] && awk -v b="$w" -v c="${tr:-0}" 'BEGIN {print (b - c > 0 ? b - c : b)}'
+        done | sort -g)
+model_each=$(awk '{a[NR] = $1} END {print NR ? (NR % 2 ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2) : 0}' <<<"$evals")
+awk -v t="$teach_s" -v e="$model_each" -v j="$JOBS" -v nt="$total" -v nm="${#jobs_list[@]}" 'BEGIN {
+    printf "verify-deep: projected %.0f min on %d cores: %d teacher units (%.0f CPU-min) and %d model redraws (%.0f s each, median), from the wall times the frozen units recorded\n",
+           (t + e * nm) / j / 60, j, nt, t / 60, nm, e }'
 echo "verify-deep: rerunning $total teacher experiment units into $DEEP/ (make -j$JOBS; log $log)"
 unset MAKEFLAGS MFLAGS MAKELEVEL MAKEOVERRIDES
 nice $MAKE --no-print-directory -j"$JOBS" RESULTS="$DEEP" SCALE=full "${units[@]}" > "$log" 2>&1 &
@@ -39,7 +88,6 @@ while kill -0 "$pid" 2>/dev/null; do
 done
 wait "$pid"; rc=$?
 echo "verify-deep: units finished in $((SECONDS - t0)) s (make exit $rc)"
-status=0
 if [ $rc -ne 0 ]; then
     echo "verify-deep: FAIL: a unit failed (see $log):"; tail -n 5 "$log" | sed 's/^/  /'
     status=1
@@ -81,34 +129,6 @@ echo "verify-deep: teacher part: $same tables bit-identical to frozen/, $differ 
 # (data rows). The list comes from the design (gates/main.gate seeds, or
 # READING_NSEEDS for a set whose summary reads READING_SEED_LIST, x the two
 # arms), not from the files that happen to exist: a deleted unit fails.
-nseeds=$(awk '$1 == "seeds" {print $2}' gates/main.gate 2>/dev/null)
-absent=0 redrawn=0 redraw_bad=0 jobs_list=() designed=0
-rows=$(bash src/base/manifest.sh rows)
-sets=$(awk -F'\t' '$1 == "EXPERIMENT" && $8 == "redraw" {r[$2] = 1}
-  $1 == "UNIT" && r[$2] && $3 ~ /run_s%_joint\.tsv$/ {d = $3; sub(/\/?run_s%_joint\.tsv$/, "", d); print $2 "\t" d}
-  $1 == "UNIT" && r[$2] && $3 ~ /runs\.tsv$/ && $4 ~ /READING_SEED_LIST/ {d = $3; sub(/\/runs\.tsv$/, "", d); print $2 "\t" d "\treading"}' <<<"$rows")
-if [ -z "$nseeds" ]; then
-    echo "  FAIL    gates/main.gate: no 'seeds' line: the model part cannot be listed"; status=1
-fi
-while IFS=$'\t' read -r exp sub kind; do
-    [ -n "$exp" ] && [ -z "$kind" ] || continue
-    dir="frozen/$exp${sub:+/$sub}"
-    n=${nseeds:-0}
-    grep -qxF "$exp"$'\t'"$sub"$'\t'reading <<<"$sets" && n=${READING_NSEEDS:?}
-    for ((s = 1; s <= n; s++)); do
-        for a in joint indep; do
-            designed=$((designed + 1))
-            t=$(printf '%s/run_s%02d_%s.tsv' "$dir" "$s" "$a")
-            if [ ! -f "$t" ]; then echo "  FAIL    $t: missing (the design has seed $s, arm $a)"; absent=$((absent + 1)); continue; fi
-            w=$(sed -n 's/^# weights: \([^ ]*\) .*/\1/p' "$t" | head -n 1)
-            if [ -n "$w" ]; then w="$dir/$w"
-            else w=$(sed -n 's/^# command: .* --weights \([^ ]*\).*/\1/p' "$t" | head -n 1 | sed 's|^build/results/|frozen/|'); fi
-            v=$(sed -n 's/^# eval: \(volume [^:]*: \)\{0,1\}\([0-9][0-9]*\) teacher stands per spacing.*/\2-stands/p' "$t" | head -n 1)
-            [ -n "$v" ] || v=unstated  # main-redraw then fails naming the valid volumes
-            jobs_list+=("$w $s $a $v $dir $exp${sub:+/$sub}")
-        done
-    done
-done <<<"$sets"
 if [ ${#jobs_list[@]} -gt 0 ]; then
     echo "verify-deep: redrawing the samples of ${#jobs_list[@]} frozen models ($JOBS at a time)"
     redraw() {
@@ -133,5 +153,6 @@ fi
 [ $((absent + redraw_bad)) -eq 0 ] || status=1
 failed_units=$([ $rc -ne 0 ] && echo "a unit failed (make exit $rc, $log)" || echo "every unit ran")
 verdict=PASS; [ $status -eq 0 ] || verdict=FAIL
+echo "verify-deep: measured $(( (SECONDS - t0 + 30) / 60 )) min on $JOBS cores ($(awk -F: '/model name/ {sub(/^ +/, "", $2); print $2; exit}' /proc/cpuinfo 2>/dev/null))"
 echo "verify-deep: $verdict: teacher part $same of $((same + differ + missing)) tables bit-identical ($differ differ, $missing not frozen; $failed_units); model part $redrawn of $designed models redrawn bit-identical ($redraw_bad differ or failed, $absent missing); $((SECONDS - t0)) s; exit $status"
 exit $status
