@@ -14,7 +14,8 @@
 #     or the model stage;
 #  4. the experiment manifest src/base/manifest.h is the one list of
 #     experiments: the files its rows name exist, every frozen/ folder has a
-#     row, every command is named <experiment>-... and has a handler, no
+#     row, every command is named <experiment>-... (or after the
+#     experiment's gate: main-... of gates/main.gate) and has a handler, no
 #     command or unit is listed by hand in src/cli/cli.c, the Makefile or
 #     experiments.mk, and the experiment table of src/README.md is the generated one;
 #  4b. every "design.md §N" a file names is a heading of paper/design.md;
@@ -124,17 +125,27 @@ exps=$(awk -F'\t' '$1 == "EXPERIMENT" {print $2}' <<<"$rows")
 orphan=""
 for d in frozen/*/; do e=$(basename "$d"); grep -qx "$e" <<<"$exps" || orphan="$orphan $e"; done
 if [ -z "$orphan" ]; then ok "every frozen/ folder is an experiment of the manifest"; else bad "every frozen/ folder is an experiment of the manifest" "$orphan"; fi
+# a command is named after its experiment, or after that experiment's gate
+# (main-... of gates/main.gate: the commands every reading it judges runs)
+declare -A EGATE
+while IFS=$'\t' read -r kind name f1 f2 f3 rest; do
+  [ "$kind" = EXPERIMENT ] || continue
+  g=-; [ "$f3" = - ] || { g=$(basename "$f3"); g=${g%.gate}; }
+  EGATE[$name]=$g
+done <<<"$rows"
 badcmd=""
 while IFS=$'\t' read -r kind name cmd handler help; do
   [ "$kind" = COMMAND ] || continue
-  [[ "$cmd" == "$name"-* ]] || badcmd="$badcmd $cmd(not $name-...)"
+  if [ -z "${EGATE[$name]:-}" ]; then badcmd="$badcmd $cmd(no experiment $name)"
+  elif [[ "$cmd" != "$name"-* ]] && { [ "${EGATE[$name]}" = - ] || [[ "$cmd" != "${EGATE[$name]}"-* ]]; }; then
+    badcmd="$badcmd $cmd(not $name-... nor ${EGATE[$name]}-...)"; fi
   grep -qE "^int $handler\(int argc, char \*\*argv\)" src/cli/*.c src/exp/*.c || badcmd="$badcmd $cmd(no handler $handler)"
   # nothing lists the command by hand: no table of src/cli, no rule outside the manifest
   grep -q "\"$cmd\"" src/cli/cli.c && badcmd="$badcmd $cmd(listed in src/cli/cli.c)"
   grep -E "\\\$\(CLI\) $cmd( |$)" Makefile src/exp/experiments.mk | grep -qE '\$\(RESULTS\)|\$@' && badcmd="$badcmd $cmd(a hand unit in the Makefile or experiments.mk)"
 done <<<"$rows"
-if [ -z "$badcmd" ]; then ok "every experiment command is named <experiment>-..., has its handler and is listed only in the manifest"
-else bad "every experiment command is named <experiment>-..., has its handler and is listed only in the manifest" "$badcmd"; fi
+if [ -z "$badcmd" ]; then ok "every experiment command is named <experiment>-... or <its gate>-..., has its handler and is listed only in the manifest"
+else bad "every experiment command is named <experiment>-... or <its gate>-..., has its handler and is listed only in the manifest" "$badcmd"; fi
 hand=$(grep -nE '^\s*(REPRODUCE_UNITS|DEEP_UNITS|MANIFEST_EXPERIMENTS)\s*\+?=\s*\S' Makefile src/exp/experiments.mk)
 if [ -z "$hand" ]; then ok "no unit list by hand in the Makefile or experiments.mk"; else bad "no unit list by hand in the Makefile or experiments.mk" "$hand"; fi
 readme=$(awk '/^<!-- experiments: generated/ {on = 1; next} /^<!-- end of experiments -->/ {on = 0} on' src/README.md)
