@@ -42,7 +42,14 @@ while IFS=$'\t' read -r exp sub kind; do
             if [ ! -f "$t" ]; then echo "  FAIL    $t: missing (the design has seed $s, arm $a)"; absent=$((absent + 1)); continue; fi
             w=$(sed -n 's/^# weights: \([^ ]*\) .*/\1/p' "$t" | head -n 1)
             if [ -n "$w" ]; then w="$dir/$w"
-            else w=$(sed -n 's/^# command: .* --weights \([^ ]*\).*/\1/p' "$t" | head -n 1 | sed 's|^build/results/|frozen/|'); fi
+            else
+                # no weights beside it: the unit's --weights in the manifest,
+                # under frozen/ (a command line is a record of where the run
+                # that made the table found them, not where they are frozen)
+                w=$(awk -F'\t' -v e="$exp" -v u="${sub:+$sub/}run_s%_$a.tsv" '$1 == "UNIT" && $2 == e && $3 == u && match($5, /--weights [^ ]+/) {
+                      print substr($5, RSTART + 10, RLENGTH - 10); exit }' <<<"$rows")
+                w=${w//@R@/frozen}; w=${w//\$\*/$(printf '%02d' "$s")}
+            fi
             v=$(sed -n 's/^# eval: \(volume [^:]*: \)\{0,1\}\([0-9][0-9]*\) teacher stands per spacing.*/\2-stands/p' "$t" | head -n 1)
             [ -n "$v" ] || v=unstated  # main-redraw then fails naming the valid volumes
             jobs_list+=("$w $s $a $v $dir $exp${sub:+/$sub}")
@@ -121,8 +128,8 @@ echo "verify-deep: teacher part: $same tables bit-identical to frozen/, $differ 
 # 16-stands; paper-reading/main/, extension-pair/main/, model-readings/*/main/:
 # the readings at 96-stands). For every seed x arm of the design the unit's frozen run
 # table must be there; its "# weights:" line names the weights beside it, or
-# else its command's --weights (a re-evaluation, whose weights are another
-# experiment's frozen file); its "# eval:" line gives the volume by the
+# else the unit's --weights in the manifest, under frozen/ (a re-evaluation,
+# whose weights are another experiment's frozen file); its "# eval:" line gives the volume by the
 # teacher stands per spacing it states (src/exp/mainrun.h: 16 or 96).
 # `crownshy main-redraw` draws the unit's clearance samples again (no training)
 # into $DEEP/model/<set>/ and each must equal the frozen samples_s<seed>_<arm>.tsv
