@@ -37,7 +37,7 @@ top=$(ls "$tmp/unpack")
 dir="$tmp/unpack/$top"
 [ "$top" = "crownshy-$ver" ] && ok "the archive unpacks into one folder crownshy-$ver" || bad "archive layout" "top level is '$top'"
 missing=""
-for p in Makefile README.md LICENSE CITATION.cff .ci/run src/cli/main.c tests/run.sh gates/main.gate audit/pins.tsv audit/claims.tsv paper/numbers.tex frozen/main/runs.tsv figures/main.png; do
+for p in Makefile README.md LICENSE CITATION.cff .ci/run src/cli/main.c tests/run.sh gates/main.gate audit/pins.tsv audit/claims.tsv paper/numbers.tex frozen/extension-pair-16-stands/main/runs.tsv figures/main.png; do
   [ -f "$dir/$p" ] || missing="$missing $p"
 done
 [ -z "$missing" ] && ok "the archive holds the package (sources, frozen/, audit/, paper/, figures/, gates/, tests/, LICENSE, CITATION.cff, .ci/run)" || bad "archive content" "missing:$missing"

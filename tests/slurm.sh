@@ -201,12 +201,12 @@ n1=$(submitted "$T/slurm-1.log" | wc -l)
 if [ "$n1" -eq "$total" ]; then ok "first Slurm pass submitted all $total units, one job each"
 else bad "first Slurm pass submitted $n1 of $total units (log $T/slurm-1.log)"; fi
 
-# Cancel one training job (main/run_*) in the middle of its training; if it finishes
+# Cancel one training job (extension-pair-16-stands/main/run_*) in the middle of its training; if it finishes
 # before the cancel lands, try the next. Its checkpoint (build/.../ckpt/) stays, so the
 # resubmitted job resumes from it, and must still give the local run's results.
 JOBS=$TA/slurm/reproduce/smoke/slurm/jobs.tsv
 cancelled=""
-mapfile -t cands < <(awk -F'\t' '$1 ~ /^main\/run_s/ {print $1 "\t" $2 "\t" $3}' "$JOBS")
+mapfile -t cands < <(awk -F'\t' '$1 ~ /^extension-pair-16-stands\/main\/run_s/ {print $1 "\t" $2 "\t" $3}' "$JOBS")
 deadline=$((SECONDS + 300))
 while [ -z "$cancelled" ] && [ "$SECONDS" -lt "$deadline" ]; do
     q=$(squeue -h -u "$(id -un)" -o '%i %T')
@@ -232,7 +232,7 @@ done
 sleep 1
 echo "slurm test: cancelled job $cancelled_id ($cancelled) while it was running; its log ends:"
 tail -n 3 "$log" | sed 's/^/    /'
-ck=$T/slurm/ckpt/smoke/main_${cancelled#main/run_}; ck=${ck%.tsv}.ckpt
+ck=$T/slurm/ckpt/smoke/extension-pair-16-stands_${cancelled#extension-pair-16-stands/main/run_}; ck=${ck%.tsv}.ckpt
 if [ -f "$ck" ]; then echo "slurm test: its checkpoint $ck is left for the resubmitted job"; fi
 wait_drained 600 || fatal "jobs still queued after 10 min (squeue; logs in $T/slurm/reproduce/smoke/slurm/logs)"
 t_slurm1=$((SECONDS - t0))

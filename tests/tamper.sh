@@ -157,14 +157,14 @@ printf 'The clearance was %s~m.\n' "$v" > "$scratch/paper/sections/extra.tex"
 expect "paper subfolder" "paper/sections/extra.tex" "MechOn"
 # 16. a failing experiment's frozen files deleted and re-sealed: a failure, never PENDING
 fresh
-rm -f "$scratch"/frozen/main/*.tsv
+rm -f "$scratch"/frozen/extension-pair-16-stands/main/*.tsv
 reseal
-expect "failing experiment deleted and resealed" "frozen/main/runs.tsv" "MainGeomRatio"
+expect "failing experiment deleted and resealed" "frozen/extension-pair-16-stands/main/runs.tsv" "MainGeomRatio"
 # 17. an aggregate against its per-run tables (one per-run number changed, resealed)
 fresh
-awk -F'\t' 'BEGIN{OFS="\t"} !/^#/ && $4=="unseen" && $5=="generated" && !d {$6=$6+0.001; d=1} {print}' "$scratch/frozen/main/run_s01_joint.tsv" > "$scratch/x" && mv "$scratch/x" "$scratch/frozen/main/run_s01_joint.tsv"
+awk -F'\t' 'BEGIN{OFS="\t"} !/^#/ && $4=="unseen" && $5=="generated" && !d {$6=$6+0.001; d=1} {print}' "$scratch/frozen/extension-pair-16-stands/main/run_s01_joint.tsv" > "$scratch/x" && mv "$scratch/x" "$scratch/frozen/extension-pair-16-stands/main/run_s01_joint.tsv"
 reseal
-expect "aggregate vs per-run" "frozen/main/run_s01_joint.tsv" "MainRel"
+expect "aggregate vs per-run" "frozen/extension-pair-16-stands/main/run_s01_joint.tsv" "MainRel"
 # 18. provenance stripped (resealed)
 fresh
 grep -v '^#' "$scratch/frozen/mechanism/sweep.tsv" > "$scratch/x" && mv "$scratch/x" "$scratch/frozen/mechanism/sweep.tsv"
@@ -172,8 +172,8 @@ reseal
 expect "provenance stripped" "frozen/mechanism/sweep.tsv" "MechHits"
 # 19. a *.tmp* file and a dotfile in frozen/: never invisible
 fresh
-cp "$scratch/frozen/main/runs.tsv" "$scratch/frozen/main/runs.tsv.tmp.99.1"
-expect "*.tmp file in frozen/" "frozen/main/runs.tsv.tmp.99.1" "MainRel"
+cp "$scratch/frozen/extension-pair-16-stands/main/runs.tsv" "$scratch/frozen/extension-pair-16-stands/main/runs.tsv.tmp.99.1"
+expect "*.tmp file in frozen/" "frozen/extension-pair-16-stands/main/runs.tsv.tmp.99.1" "MainRel"
 if (cd "$scratch" && "$cli" hash-frozen >/dev/null 2>&1); then bad "hash-frozen refuses a *.tmp file" "exit 0"; else ok "hash-frozen refuses a *.tmp file"; fi
 fresh
 cp "$scratch/frozen/field/heldout.tsv" "$scratch/frozen/field/.heldout.tsv"
@@ -235,24 +235,24 @@ reseal
 expect "seed 4 copied as seed 5" "unit identities" "run_s05_joint.tsv" "seed"
 # 22. the evidence of E3/E4, each edit resealed
 fresh
-printf '\x01' | dd of="$scratch/frozen/main/weights_s01_joint.ckpt" bs=1 seek=200 conv=notrunc status=none
+printf '\x01' | dd of="$scratch/frozen/extension-pair-16-stands/main/weights_s01_joint.ckpt" bs=1 seek=200 conv=notrunc status=none
 reseal
-expect "weights byte" "frozen/main/weights_s01_joint.ckpt" "MainRel"
+expect "weights byte" "frozen/extension-pair-16-stands/main/weights_s01_joint.ckpt" "MainRel"
 fresh
-f="$scratch/frozen/main/samples_s01_joint.tsv"
+f="$scratch/frozen/extension-pair-16-stands/main/samples_s01_joint.tsv"
 awk -F'\t' 'BEGIN{OFS="\t"} !/^#/ && $4=="generated" && !d && $5+0==$5 {$5=$5+0.25; d=1} {print}' "$f" > "$scratch/x" && mv "$scratch/x" "$f"
 h=$(sha256sum < "$f" | cut -d' ' -f1)
-sed -i "s/^# samples: samples_s01_joint.tsv sha256 [0-9a-f]*/# samples: samples_s01_joint.tsv sha256 $h/" "$scratch/frozen/main/run_s01_joint.tsv"
+sed -i "s/^# samples: samples_s01_joint.tsv sha256 [0-9a-f]*/# samples: samples_s01_joint.tsv sha256 $h/" "$scratch/frozen/extension-pair-16-stands/main/run_s01_joint.tsv"
 reseal
 expect "samples value (provenance hash rewritten too)" "W1 from samples" "run_s01_joint.tsv" "MainRel"
 fresh
-awk '!/^#/ && n++==1 {print} {print}' "$scratch/frozen/main/run_s02_joint.tsv" > "$scratch/x" && mv "$scratch/x" "$scratch/frozen/main/run_s02_joint.tsv"
+awk '!/^#/ && n++==1 {print} {print}' "$scratch/frozen/extension-pair-16-stands/main/run_s02_joint.tsv" > "$scratch/x" && mv "$scratch/x" "$scratch/frozen/extension-pair-16-stands/main/run_s02_joint.tsv"
 reseal
-expect "extra run-table row" "frozen/main/run_s02_joint.tsv" "repeats the grid point" "MainRel"
+expect "extra run-table row" "frozen/extension-pair-16-stands/main/run_s02_joint.tsv" "repeats the grid point" "MainRel"
 fresh
-rm -f "$scratch/frozen/main/weights_s03_indep.ckpt" "$scratch/frozen/main/samples_s03_indep.tsv"
+rm -f "$scratch/frozen/extension-pair-16-stands/main/weights_s03_indep.ckpt" "$scratch/frozen/extension-pair-16-stands/main/samples_s03_indep.tsv"
 reseal
-expect "weights and samples deleted together" "frozen/main/weights_s03_indep.ckpt" "missing" "MainRel"
+expect "weights and samples deleted together" "frozen/extension-pair-16-stands/main/weights_s03_indep.ckpt" "missing" "MainRel"
 # a whole unit of a complete reading deleted and the rest resealed: its frozen
 # summary (an aggregate of the units) names it; with the summary deleted too,
 # the design grid of the summary fails; never pending
@@ -286,9 +286,9 @@ printf 'teacher_sha256\t%s\tsrc/forest/teacher.c\ttamper-test\n' "$fake" >> "$sc
 expect "superseded record edited, not re-pinned" "audit/pins_superseded.tsv" "superseded reading"
 if [ $have_git = 1 ] && fresh_git; then
   printf 'teacher_sha256\t%s\tsrc/forest/teacher.c\ttamper-test\n' "$fake" >> "$scratch/audit/pins_superseded.tsv"
-  find "$scratch/frozen/main" -name '*.tsv' -exec sed -i "s/^# teacher_sha256: .*/# teacher_sha256: $fake/" {} +
+  find "$scratch/frozen/extension-pair-16-stands/main" -name '*.tsv' -exec sed -i "s/^# teacher_sha256: .*/# teacher_sha256: $fake/" {} +
   launder
-  expect "made-up superseded hash in frozen/main, re-pinned (.git)" "audit/pins_superseded.tsv" "no past version of src/forest/teacher.c"
+  expect "made-up superseded hash in frozen/extension-pair-16-stands/main, re-pinned (.git)" "audit/pins_superseded.tsv" "no past version of src/forest/teacher.c"
   out=$(cd "$scratch" && "$cli" verify --no-figures 2>&1)
   if grep -q '^  PENDING PairVoneMainRel .*superseded reading' <<<"$out" && ! grep -q '^  PASS    PairVoneMainRel ' <<<"$out"; then ok "claims of a superseded table are pending, never reproduced"
   else bad "claims of a superseded table are pending, never reproduced" "$(grep -E '^  [A-Z]+ +PairVoneMainRel ' <<<"$out" | head -2)"; fi
@@ -350,12 +350,12 @@ sed -i 's/^    const claim_row \*row = \*state;$/    const claim_row *row = *sta
 expect "claim test returns early" "tests/test_claims.c" "every claim whose test"
 # 28. regular files only in frozen/: a symlink (to a file, to a folder)
 fresh
-ln -s runs.tsv "$scratch/frozen/main/runs_link.tsv"
-expect "symlink in frozen/" "frozen/main/runs_link.tsv" "non-regular"
+ln -s runs.tsv "$scratch/frozen/extension-pair-16-stands/main/runs_link.tsv"
+expect "symlink in frozen/" "frozen/extension-pair-16-stands/main/runs_link.tsv" "non-regular"
 if (cd "$scratch" && "$cli" hash-frozen >/dev/null 2>&1); then bad "hash-frozen refuses a symlink" "exit 0"; else ok "hash-frozen refuses a symlink"; fi
 fresh
-ln -s ../mechanism "$scratch/frozen/main/mech"
-expect "symlinked folder in frozen/" "frozen/main/mech" "non-regular"
+ln -s ../../mechanism "$scratch/frozen/extension-pair-16-stands/main/mech"
+expect "symlinked folder in frozen/" "frozen/extension-pair-16-stands/main/mech" "non-regular"
 rm -rf "$scratch"
 echo "[==========] tamper tests run."
 echo "[  PASSED  ] $pass test(s)."

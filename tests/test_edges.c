@@ -2,13 +2,15 @@
  * paper/, non-finite values are named, directories and byte-order marks are
  * clear input errors or handled, the field table loads in O(n log n),
  * concurrent atomic writers never share a temp file, the gate map and the
- * aggregate map parse strictly, per-tree tables name the claims they feed.
+ * aggregate map parse strictly, per-tree tables name the claims they feed,
+ * a file a frozen record names is found where it lies now.
  * CLI cases run build/crownshy in a scratch copy (build/test-tmp/edges_*). */
 #include "testutil.h"
 #include "afile.h"
 #include "audit_data.h"
 #include "claims.h"
 #include "field.h"
+#include "paths.h"
 #include <fcntl.h>
 #include <sys/file.h>
 #include <unistd.h>
@@ -203,7 +205,7 @@ static void test_directory_as_input_is_input_error(void **s)
     assert_int_equal(tu_run_cli("env -u FIELD_TABLE ", "field-summary frozen", out, sizeof out), 3);
     assert_non_null(strstr(out, "frozen: is a directory"));
     assert_null(strstr(out, "out of memory"));
-    assert_int_equal(tu_run_cli("", "check-tsv frozen/main", out, sizeof out), 3);
+    assert_int_equal(tu_run_cli("", "check-tsv frozen/extension-pair-16-stands/main", out, sizeof out), 3);
     assert_non_null(strstr(out, "is a directory"));
     assert_int_equal(tu_run_cli("", "gates frozen", out, sizeof out), 3);
     assert_non_null(strstr(out, "is a directory"));
@@ -350,11 +352,28 @@ static void test_per_tree_tables_name_their_claims(void **s)
     audit_feeds(&c, "frozen/field/heldout_trees.tsv", buf, sizeof buf);
     assert_non_null(strstr(buf, "Elong"));
     assert_non_null(strstr(buf, "via frozen/field/heldout.tsv"));
-    audit_feeds(&c, "frozen/main/run_s03_indep.tsv", buf, sizeof buf);
+    audit_feeds(&c, "frozen/extension-pair-16-stands/main/run_s03_indep.tsv", buf, sizeof buf);
     assert_non_null(strstr(buf, "MainRel"));
     audit_feeds(&c, "frozen/readings/one-sided-60m/field/heldout_trees.tsv", buf, sizeof buf);
     assert_non_null(strstr(buf, "readings"));
     claims_free(&c);
+}
+
+/* A file a frozen record names by the place it was frozen at is followed to
+ * where it lies now (paths.h); any other named file is left as named. */
+static void test_recorded_paths_follow_their_folder(void **s)
+{
+    (void)s;
+    char p[512];
+    assert_int_equal(paths_recorded("frozen/generator-probes/pair/../../main/weights_s01_joint.ckpt", p, sizeof p), 1);
+    assert_string_equal(p, "frozen/extension-pair-16-stands/main/weights_s01_joint.ckpt");
+    assert_int_equal(access(p, F_OK), 0);
+    assert_int_equal(paths_recorded("frozen/extrapolation/runs.tsv", p, sizeof p), 1);
+    assert_string_equal(p, "frozen/extension-pair-16-stands/extrapolation/runs.tsv");
+    assert_int_equal(paths_recorded("frozen/generator-probes/plain/../../model-readings/plain/main/weights_s01_joint.ckpt", p, sizeof p), 0);
+    assert_string_equal(p, "frozen/generator-probes/plain/../../model-readings/plain/main/weights_s01_joint.ckpt");
+    assert_int_equal(paths_recorded("frozen/paper-reading/main/./runs.tsv", p, sizeof p), 0);
+    assert_string_equal(p, "frozen/paper-reading/main/./runs.tsv");
 }
 
 static void test_verify_documents_exit_codes(void **s)
@@ -423,6 +442,7 @@ int main(void)
         cmocka_unit_test(test_gate_map_parses_strictly),
         cmocka_unit_test(test_aggregate_map_parses_strictly),
         cmocka_unit_test(test_per_tree_tables_name_their_claims),
+        cmocka_unit_test(test_recorded_paths_follow_their_folder),
         cmocka_unit_test(test_verify_documents_exit_codes),
         cmocka_unit_test(test_deps_paper_updates_apt_first),
         cmocka_unit_test(test_file_size_limit_is_an_environment_error),

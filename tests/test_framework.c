@@ -52,12 +52,12 @@ static void test_registry_rejects_bad_gate_reference(void **s)
 static void test_registry_rejects_gated_probe_row(void **s)
 {
     (void)s;
-    const char *p = registry("reg_probe", "MainRotJoint\tprobe\tfrozen/main/runs.tsv\tclaim_main_probe\tmain.gate:shuffle_ratio_min\tt\t5.1\t%.3f\t-\t-\n");
+    const char *p = registry("reg_probe", "MainRotJoint\tprobe\tfrozen/extension-pair-16-stands/main/runs.tsv\tclaim_main_probe\tmain.gate:shuffle_ratio_min\tt\t5.1\t%.3f\t-\t-\n");
     claims c;
     assert_int_equal(claims_load(p, &c), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), "'gate'"));
     assert_non_null(strstr(cs_errmsg(), "probe"));
-    p = registry("reg_probe_ok", "MainRotJoint\tprobe\tfrozen/main/runs.tsv\tclaim_main_probe\t-\tt\t5.1\t%.3f\t-\t-\n");
+    p = registry("reg_probe_ok", "MainRotJoint\tprobe\tfrozen/extension-pair-16-stands/main/runs.tsv\tclaim_main_probe\t-\tt\t5.1\t%.3f\t-\t-\n");
     assert_int_equal(claims_load(p, &c), CS_OK);
     claims_free(&c);
 }
@@ -160,7 +160,7 @@ static void test_design_claim_reads_gate_value(void **s)
 static void test_unimplemented_function_is_pending_with_reason(void **s)
 {
     (void)s;
-    claim_row row = {.macro = "MainRel", .kind = "measured", .source = "frozen/main/runs.tsv", .function = "claim_no_such_fn", .gate = "-", .format = "%.1f"};
+    claim_row row = {.macro = "MainRel", .kind = "measured", .source = "frozen/extension-pair-16-stands/main/runs.tsv", .function = "claim_no_such_fn", .gate = "-", .format = "%.1f"};
     claim_result r;
     claims_eval(&row, &r);
     assert_int_equal(r.status, VERDICT_PENDING);
@@ -198,12 +198,12 @@ static void test_missing_registered_source_fails(void **s)
     tu_write(p, "\\newcommand{\\MainRel}{53.6}\n");
     numbers_tex nt;
     assert_int_equal(numbers_read(p, &nt), CS_OK);
-    claim_row row = {.macro = "MainRel", .kind = "measured", .source = "frozen/main/none.tsv", .function = "claim_design_main_seeds", .gate = "-", .format = "%.1f"};
+    claim_row row = {.macro = "MainRel", .kind = "measured", .source = "frozen/extension-pair-16-stands/main/none.tsv", .function = "claim_design_main_seeds", .gate = "-", .format = "%.1f"};
     claim_result r;
     claims_eval(&row, &r);
     assert_int_equal(r.status, VERDICT_FAIL);
     assert_non_null(strstr(r.why, "registered frozen file missing"));
-    assert_non_null(strstr(r.why, "frozen/main/none.tsv"));
+    assert_non_null(strstr(r.why, "frozen/extension-pair-16-stands/main/none.tsv"));
     char msg[1200];
     assert_int_equal(verify_consistent(&row, &r, &nt, msg, sizeof msg), VERDICT_FAIL);
     numbers_free(&nt);

@@ -86,21 +86,22 @@ static void test_frozen_replicates_give_the_generated_intervals(void **s)
     assert_true(ci.lo <= ci.hi);
 }
 
-/* The seed bootstrap on the frozen E3 run table of frozen/main/ (whatever
- * reading the registry's MainJoint points at): the interval of the frozen
- * rows, written as `crownshy numbers` writes it, against the interval of the
- * rows with one seed changed. */
+/* The seed bootstrap on the frozen E3 run table of
+ * frozen/extension-pair-16-stands/main/ (whatever reading the registry's
+ * MainJoint points at): the interval of the frozen rows, written as
+ * `crownshy numbers` writes it, against the interval of the rows with one
+ * seed changed. */
 static void test_one_perturbed_seed_fails_the_claim_test_naming_it(void **s)
 {
     (void)s;
     const char *tmp = "build/test_interval_runs.tsv", *ref_tsv = "build/test_interval_ref.tsv";
     /* seed 4's joint error, a little higher but keeping its rank: the median (the claim) stays,
      * the lower end of the interval (an average of order statistics it enters) moves */
-    perturb_copy("frozen/main/runs.tsv", tmp, "4\tjoint\tgenerated", 3, 0.0003);
+    perturb_copy("frozen/extension-pair-16-stands/main/runs.tsv", tmp, "4\tjoint\tgenerated", 3, 0.0003);
     const claim_row *orig = claims_find(&g_c, "MainJoint");
     assert_non_null(orig);
     claim_row row = *orig;
-    snprintf(row.source, sizeof row.source, "frozen/main/runs.tsv");
+    snprintf(row.source, sizeof row.source, "frozen/extension-pair-16-stands/main/runs.tsv");
     claim_result r;
     claims_eval(&row, &r);
     assert_int_equal(r.status, VERDICT_PASS);

@@ -507,7 +507,7 @@ static void test_frozen_weights_load_as_the_pair_reading(void **s)
     static const char *arms[2] = {"joint", "indep"};
     for (int a = 0; a < 2; a++) {
         char p[256];
-        snprintf(p, sizeof p, "frozen/main/weights_s01_%s.ckpt", arms[a]);
+        snprintf(p, sizeof p, "frozen/extension-pair-16-stands/main/weights_s01_%s.ckpt", arms[a]);
         model *m;
         double scale = 0;
         assert_int_equal(train_load_model(p, &m, 2, &scale), CS_OK);

@@ -3,12 +3,12 @@
  * the git ledger of pinned files (design.md §9).
  *
  * audit/aggregates.tsv (pinned) has one row per aggregate column:
- *   aggregate   frozen table, e.g. frozen/main/runs.tsv
+ *   aggregate   frozen table, e.g. frozen/extension-pair-16-stands/main/runs.tsv
  *   value       its column checked, or "-" (lineage only)
  *   reduce      mean | sum | count | min | max | "-" (lineage only)
  *   parts       the per-run table of one aggregate row: a template whose
  *               {col} is that row's cell and {col:0N} the cell as an integer
- *               zero-padded to N digits, e.g. frozen/main/run_s{seed:02}_{arm}.tsv
+ *               zero-padded to N digits, e.g. frozen/extension-pair-16-stands/main/run_s{seed:02}_{arm}.tsv
  *   part_value  the per-run column reduced ("-" for count)
  *   filter      "col=template;col=template" selecting the per-run rows, or "-"
  * Sums run in file order, so a mean is compared bit for bit with the

@@ -2,7 +2,7 @@
  * (design.md §9). See audit_evidence.h.
  *
  * audit/grids.tsv (pinned) has one row per block of a table's design grid:
- *   table    a frozen table, or a glob of them (frozen/main/run_s*_*.tsv)
+ *   table    a frozen table, or a glob of them (frozen/extension-pair-16-stands/main/run_s*_*.tsv)
  *   filter   "col=value;col=value" selecting the block's rows, or "-"
  *   columns  comma-separated key columns
  *   values   one source per column, ';'-separated: "gate FILE:KEY" (the
@@ -13,6 +13,7 @@
 #include "audit_evidence.h"
 #include "audit_data.h"
 #include "gate.h"
+#include "paths.h"
 #include "prov.h"
 #include "sha256.h"
 #include "tsv.h"
@@ -50,9 +51,11 @@ static size_t check_named_files(const claims *c, const char *p, checklist *cl, s
     int lineno = 0;
     while (fgets(line, sizeof line, f) && line[0] == '#') {
         lineno++;
-        char *colon = strstr(line, ": "), name[256], hex[65], cur[65], file[1400], affected[600];
+        char *colon = strstr(line, ": "), name[256], hex[65], cur[65], named[1300], file[1400], affected[600];
         if (!colon || !named_file(colon + 2, name, sizeof name, hex)) continue;
-        snprintf(file, sizeof file, "%s/%s", dir, name);
+        /* a record names a file by the place it was frozen at (paths.h) */
+        snprintf(named, sizeof named, "%s/%s", dir, name);
+        paths_recorded(named, file, sizeof file);
         (*checked)++;
         struct stat sb;
         int missing = lstat(file, &sb) != 0 || !S_ISREG(sb.st_mode);
@@ -118,7 +121,7 @@ void audit_evidence(const claims *c, checklist *cl)
     char msg[2048];
     int nw1 = 0;
     cs_status st = gate_read_value(PATHS_GATE("main"), "seeds", 0, &seeds);
-    if (!st) st = claim_main_samples_check(PATHS_FROZEN_DIR, (int)seeds, msg, sizeof msg, &nw1);
+    if (!st) st = claim_main_samples_check(PATHS_PAIR_16_STANDS_DIR, (int)seeds, msg, sizeof msg, &nw1);
     else snprintf(msg, sizeof msg, "%s", cs_errmsg());
     if (st) {
         char affected[600], table[1024];

@@ -7,8 +7,8 @@
 #define EVALVOL_H
 #include "cs.h"
 
-/* The small volume: the pair runs of frozen/main/ (16 teacher stands and 256
- * generated patches per spacing). */
+/* The small volume: the pair runs of frozen/extension-pair-16-stands/main/
+ * (16 teacher stands and 256 generated patches per spacing). */
 #define EVALVOL_SMALL "16-stands"
 #define EVALVOL_SMALL_EVAL_STANDS 16
 #define EVALVOL_SMALL_GEN_PATCHES 256

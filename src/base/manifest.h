@@ -18,7 +18,10 @@
  *
  * EXPERIMENT(name, code, source, gate, claims, figure, deep, what)
  *   name    one word used everywhere: frozen/<name>/, the command prefix
- *           <name>-..., `make <name>`, the provenance's experiment
+ *           <name>-..., `make <name>`, the provenance's experiment; the
+ *           commands every generator reading runs are named after the gate
+ *           of the experiment that lists them (main-..., gates/main.gate;
+ *           their provenance's experiment is main; tests/layout.sh)
  *   code    the study's label (E0..E9)
  *   source  the experiment's code; gate, claims, figure: its preregistered
  *           gate file, its claim code, its gnuplot script ("-": none)
@@ -98,21 +101,19 @@ UNIT(irreducibility, "refine_field_sectors.tsv", "@R@/irreducibility/refine_fiel
 UNIT(irreducibility, "reduction_field.tsv", "@R@/field/calibration.tsv", "$(CLI) irreducibility-reduction --stands $(TEACHER_STANDS) --beta $$($(CLI) field-beta @R@/field/calibration.tsv) --tag field --stand-rows --out @R@", "top")
 UNIT(irreducibility, "reduction_field_sectors.tsv", "@R@/irreducibility/reduction_field.tsv", "", "side")
 
-EXPERIMENT(main, "E3", "src/exp/exp_main.c", "gates/main.gate", "src/claims/claim_main.c", "figures/main-pair.gp", "redraw", "joint vs independent generation at the unseen spacings: one training and evaluation unit per (seed, arm), baselines, summary")
-COMMAND(main, "main-run", cli_main_run, "E3/E4: one (seed, arm) training + evaluation unit")
-COMMAND(main, "main-baselines", cli_main_baselines, "E3/E4: direction-blind baseline and noise floor")
-COMMAND(main, "main-summary", cli_main_summary, "E3/E4: gather the runs into the frozen tables")
-COMMAND(main, "main-redraw", cli_main_redraw, "E3/E4: draw a unit's clearance samples again from its frozen weights")
-COMMAND(main, "main-train", cli_main_train, "E3/E4: train one (seed, arm, reading) unit: weights and training table")
-COMMAND(main, "main-eval", cli_main_eval, "E3/E4: evaluate one unit from its weights, without training: run table and samples")
-UNIT(main, "run_s%_joint.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --seed $* --arm joint --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/main_s$*_joint.ckpt --samples @R@/main/samples_s$*_joint.tsv --weights @R@/main/weights_s$*_joint.ckpt --out $@", "-")
-UNIT(main, "run_s%_indep.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --seed $* --arm indep --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/main_s$*_indep.ckpt --samples @R@/main/samples_s$*_indep.tsv --weights @R@/main/weights_s$*_indep.ckpt --out $@", "-")
-UNIT(main, "baselines.tsv", "", "$(CLI) main-baselines --scale $(SCALE) --samples @R@/main/samples_baselines.tsv --stand-rows --out $@", "-")
-UNIT(main, "baselines_stands.tsv", "@R@/main/baselines.tsv", "", "-")
-UNIT(main, "runs.tsv", "$(foreach s,$(MAIN_SEED_LIST),@R@/main/run_s$(s)_joint.tsv @R@/main/run_s$(s)_indep.tsv) @R@/main/baselines.tsv", "$(CLI) main-summary --dir @R@ --seeds $(MAIN_NSEEDS)", "top")
-
-EXPERIMENT(extrapolation, "E4", "src/exp/exp_main.c", "gates/extrapolation.gate", "src/claims/claim_main.c", "figures/main-pair.gp", "redraw", "E3's runs at the spacings outside the training range (3.0 m and 7.5 m), written by main-summary")
-UNIT(extrapolation, "runs.tsv", "@R@/main/runs.tsv", "", "side")
+EXPERIMENT(extension-pair-16-stands, "E3", "src/exp/exp_main.c", "gates/main.gate", "src/claims/claim_main.c", "-", "redraw", "the pair-aware generator (design.md §8, an extension added after the first verdict) trained and first judged at the 16-stands evaluation volume, joint vs independent generation at the unseen spacings: one training and evaluation unit per (seed, arm), baselines, the summary and the runs at the extrapolation spacings; the weights extension-pair re-evaluates")
+COMMAND(extension-pair-16-stands, "main-run", cli_main_run, "E3/E4: one (seed, arm) training + evaluation unit")
+COMMAND(extension-pair-16-stands, "main-baselines", cli_main_baselines, "E3/E4: direction-blind baseline and noise floor")
+COMMAND(extension-pair-16-stands, "main-summary", cli_main_summary, "E3/E4: gather the runs into the frozen tables")
+COMMAND(extension-pair-16-stands, "main-redraw", cli_main_redraw, "E3/E4: draw a unit's clearance samples again from its frozen weights")
+COMMAND(extension-pair-16-stands, "main-train", cli_main_train, "E3/E4: train one (seed, arm, reading) unit: weights and training table")
+COMMAND(extension-pair-16-stands, "main-eval", cli_main_eval, "E3/E4: evaluate one unit from its weights, without training: run table and samples")
+UNIT(extension-pair-16-stands, "main/run_s%_joint.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --seed $* --arm joint --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/extension-pair-16-stands_s$*_joint.ckpt --samples @R@/extension-pair-16-stands/main/samples_s$*_joint.tsv --weights @R@/extension-pair-16-stands/main/weights_s$*_joint.ckpt --out $@", "-")
+UNIT(extension-pair-16-stands, "main/run_s%_indep.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --seed $* --arm indep --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/extension-pair-16-stands_s$*_indep.ckpt --samples @R@/extension-pair-16-stands/main/samples_s$*_indep.tsv --weights @R@/extension-pair-16-stands/main/weights_s$*_indep.ckpt --out $@", "-")
+UNIT(extension-pair-16-stands, "main/baselines.tsv", "", "$(CLI) main-baselines --scale $(SCALE) --samples @R@/extension-pair-16-stands/main/samples_baselines.tsv --stand-rows --out $@", "-")
+UNIT(extension-pair-16-stands, "main/baselines_stands.tsv", "@R@/extension-pair-16-stands/main/baselines.tsv", "", "-")
+UNIT(extension-pair-16-stands, "main/runs.tsv", "$(foreach s,$(MAIN_SEED_LIST),@R@/extension-pair-16-stands/main/run_s$(s)_joint.tsv @R@/extension-pair-16-stands/main/run_s$(s)_indep.tsv) @R@/extension-pair-16-stands/main/baselines.tsv", "$(CLI) main-summary --dir @R@/extension-pair-16-stands --seeds $(MAIN_NSEEDS)", "top")
+UNIT(extension-pair-16-stands, "extrapolation/runs.tsv", "@R@/extension-pair-16-stands/main/runs.tsv", "", "side")
 
 EXPERIMENT(field, "E5", "src/exp/exp_field.c", "gates/field.gate", "src/claims/claim_field.c", "figures/field.gp", "rerun", "die-back calibrated to the field's median clearance, then held-out spread, elongation and the uncoupled control")
 COMMAND(field, "field-calibrate", cli_field_calibrate, "E5: calibrate die-back beta to the field tree-mean median clearance")
@@ -138,7 +139,7 @@ UNIT(anisotropy, "heldout.tsv", "@R@/field/calibration.tsv @R@/anisotropy/jitter
 EXPERIMENT(comparison, "E7", "src/exp/exp_comp.c", "-", "src/claims/claim_comp.c", "-", "-", "a 24-tree patch at 5.0 m by the teacher, the joint and the independent model of seed 1, and the dart probe")
 COMMAND(comparison, "comparison-run", cli_comparison_run, "E7: comparison patch (teacher, joint, independent) and dart probe")
 COMMAND(comparison, "comparison-dist", cli_comparison_dist, "E7: the comparison patch and the dart probe as distributions over fresh patches")
-UNIT(comparison, "patch.tsv", "@R@/main/run_s01_joint.tsv @R@/main/run_s01_indep.tsv", "$(CLI) comparison-run --joint @R@/main/weights_s01_joint.ckpt --indep @R@/main/weights_s01_indep.ckpt --out @R@", "top")
+UNIT(comparison, "patch.tsv", "@R@/extension-pair-16-stands/main/run_s01_joint.tsv @R@/extension-pair-16-stands/main/run_s01_indep.tsv", "$(CLI) comparison-run --joint @R@/extension-pair-16-stands/main/weights_s01_joint.ckpt --indep @R@/extension-pair-16-stands/main/weights_s01_indep.ckpt --out @R@", "top")
 
 EXPERIMENT(paper-reading, "E3", "src/exp/exp_main.c", "gates/main.gate", "src/claims/claim_main.c", "figures/main.gp", "redraw", "the generator as the reference paper describes it (design.md §8 readings: tokens from the noisy profile, position and size, standardised; plain attention), 12 seeds x 2 arms at the 96-stands evaluation volume: the reading the preregistered main and extrapolation gates judge; its E7 distribution")
 UNIT(paper-reading, "main/run_s%_joint.tsv", "", "mkdir -p $(B)/ckpt/$(SCALE) && $(CLI) main-run --reading paper --volume 96-stands --seed $* --arm joint --scale $(SCALE) --ckpt $(B)/ckpt/$(SCALE)/paper-main_s$*_joint.ckpt --samples @R@/paper-reading/main/samples_s$*_joint.tsv --weights @R@/paper-reading/main/weights_s$*_joint.ckpt --out $@", "-")
@@ -149,12 +150,12 @@ UNIT(paper-reading, "main/runs.tsv", "$(foreach s,$(MAIN_SEED_LIST),@R@/paper-re
 UNIT(paper-reading, "comparison/dist_summary.tsv", "@R@/paper-reading/main/run_s01_joint.tsv @R@/paper-reading/main/run_s01_indep.tsv", "$(CLI) comparison-dist --joint @R@/paper-reading/main/weights_s01_joint.ckpt --indep @R@/paper-reading/main/weights_s01_indep.ckpt --out @R@/paper-reading", "top")
 
 EXPERIMENT(extension-pair, "E3", "src/exp/exp_main.c", "-", "src/claims/claim_main.c", "figures/main-pair.gp", "redraw", "the pair-aware generator (design.md §8, an extension added after the first verdict): E3's frozen pair units re-evaluated from their weights at the 96-stands volume, and its E7 distribution")
-UNIT(extension-pair, "main/run_s%_joint.tsv", "@R@/main/run_s%_joint.tsv", "$(CLI) main-eval --reading pair --volume 96-stands --seed $* --arm joint --scale $(SCALE) --weights @R@/main/weights_s$*_joint.ckpt --trained @R@/main/run_s$*_joint.tsv --samples @R@/extension-pair/main/samples_s$*_joint.tsv --out $@", "-")
-UNIT(extension-pair, "main/run_s%_indep.tsv", "@R@/main/run_s%_indep.tsv", "$(CLI) main-eval --reading pair --volume 96-stands --seed $* --arm indep --scale $(SCALE) --weights @R@/main/weights_s$*_indep.ckpt --trained @R@/main/run_s$*_indep.tsv --samples @R@/extension-pair/main/samples_s$*_indep.tsv --out $@", "-")
+UNIT(extension-pair, "main/run_s%_joint.tsv", "@R@/extension-pair-16-stands/main/run_s%_joint.tsv", "$(CLI) main-eval --reading pair --volume 96-stands --seed $* --arm joint --scale $(SCALE) --weights @R@/extension-pair-16-stands/main/weights_s$*_joint.ckpt --trained @R@/extension-pair-16-stands/main/run_s$*_joint.tsv --samples @R@/extension-pair/main/samples_s$*_joint.tsv --out $@", "-")
+UNIT(extension-pair, "main/run_s%_indep.tsv", "@R@/extension-pair-16-stands/main/run_s%_indep.tsv", "$(CLI) main-eval --reading pair --volume 96-stands --seed $* --arm indep --scale $(SCALE) --weights @R@/extension-pair-16-stands/main/weights_s$*_indep.ckpt --trained @R@/extension-pair-16-stands/main/run_s$*_indep.tsv --samples @R@/extension-pair/main/samples_s$*_indep.tsv --out $@", "-")
 UNIT(extension-pair, "main/baselines.tsv", "", "$(CLI) main-baselines --volume 96-stands --scale $(SCALE) --samples @R@/extension-pair/main/samples_baselines.tsv --stand-rows --out $@", "-")
 UNIT(extension-pair, "main/baselines_stands.tsv", "@R@/extension-pair/main/baselines.tsv", "", "-")
 UNIT(extension-pair, "main/runs.tsv", "$(foreach s,$(MAIN_SEED_LIST),@R@/extension-pair/main/run_s$(s)_joint.tsv @R@/extension-pair/main/run_s$(s)_indep.tsv) @R@/extension-pair/main/baselines.tsv", "$(CLI) main-summary --dir @R@/extension-pair --seeds $(MAIN_NSEEDS)", "top")
-UNIT(extension-pair, "comparison/dist_summary.tsv", "@R@/main/run_s01_joint.tsv @R@/main/run_s01_indep.tsv", "$(CLI) comparison-dist --joint @R@/main/weights_s01_joint.ckpt --indep @R@/main/weights_s01_indep.ckpt --out @R@/extension-pair", "top")
+UNIT(extension-pair, "comparison/dist_summary.tsv", "@R@/extension-pair-16-stands/main/run_s01_joint.tsv @R@/extension-pair-16-stands/main/run_s01_indep.tsv", "$(CLI) comparison-dist --joint @R@/extension-pair-16-stands/main/weights_s01_joint.ckpt --indep @R@/extension-pair-16-stands/main/weights_s01_indep.ckpt --out @R@/extension-pair", "top")
 
 EXPERIMENT(model-readings, "E3", "src/claims/model_readings.c", "-", "src/claims/model_readings.c", "figures/model-readings.gp", "redraw", "the intermediate generator readings (plain, paper-fourier; 4 seeds, the 96-stands volume, descriptive) and the readings table beside the paper reading and the pair extension")
 COMMAND(model-readings, "model-readings-summary", cli_model_readings_summary, "E3/E4: the generator readings table from the runs under --dir")
@@ -191,8 +192,8 @@ COMMAND(generator-probes, "generator-probes-summary", cli_generator_probes_summa
 COMMAND(generator-probes, "generator-probes-run", cli_generator_probes_run, "E3: one unit's frozen weights under the probes of what a generator uses, or the teacher's side (--perfect)")
 UNIT(generator-probes, "paper/probes_s%_joint.tsv", "@R@/paper-reading/main/run_s%_joint.tsv", "$(CLI) generator-probes-run --reading paper --seed $* --arm joint --scale $(SCALE) --weights @R@/paper-reading/main/weights_s$*_joint.ckpt --trained @R@/paper-reading/main/run_s$*_joint.tsv --samples @R@/generator-probes/paper/samples_s$*_joint.tsv --out $@", "-")
 UNIT(generator-probes, "paper/probes_s%_indep.tsv", "@R@/paper-reading/main/run_s%_indep.tsv", "$(CLI) generator-probes-run --reading paper --seed $* --arm indep --scale $(SCALE) --weights @R@/paper-reading/main/weights_s$*_indep.ckpt --trained @R@/paper-reading/main/run_s$*_indep.tsv --samples @R@/generator-probes/paper/samples_s$*_indep.tsv --out $@", "-")
-UNIT(generator-probes, "pair/probes_s%_joint.tsv", "@R@/main/run_s%_joint.tsv", "$(CLI) generator-probes-run --reading pair --seed $* --arm joint --scale $(SCALE) --weights @R@/main/weights_s$*_joint.ckpt --trained @R@/main/run_s$*_joint.tsv --samples @R@/generator-probes/pair/samples_s$*_joint.tsv --out $@", "-")
-UNIT(generator-probes, "pair/probes_s%_indep.tsv", "@R@/main/run_s%_indep.tsv", "$(CLI) generator-probes-run --reading pair --seed $* --arm indep --scale $(SCALE) --weights @R@/main/weights_s$*_indep.ckpt --trained @R@/main/run_s$*_indep.tsv --samples @R@/generator-probes/pair/samples_s$*_indep.tsv --out $@", "-")
+UNIT(generator-probes, "pair/probes_s%_joint.tsv", "@R@/extension-pair-16-stands/main/run_s%_joint.tsv", "$(CLI) generator-probes-run --reading pair --seed $* --arm joint --scale $(SCALE) --weights @R@/extension-pair-16-stands/main/weights_s$*_joint.ckpt --trained @R@/extension-pair-16-stands/main/run_s$*_joint.tsv --samples @R@/generator-probes/pair/samples_s$*_joint.tsv --out $@", "-")
+UNIT(generator-probes, "pair/probes_s%_indep.tsv", "@R@/extension-pair-16-stands/main/run_s%_indep.tsv", "$(CLI) generator-probes-run --reading pair --seed $* --arm indep --scale $(SCALE) --weights @R@/extension-pair-16-stands/main/weights_s$*_indep.ckpt --trained @R@/extension-pair-16-stands/main/run_s$*_indep.tsv --samples @R@/generator-probes/pair/samples_s$*_indep.tsv --out $@", "-")
 UNIT(generator-probes, "paper-fourier/probes_s%_joint.tsv", "@R@/model-readings/paper-fourier/main/run_s%_joint.tsv", "$(CLI) generator-probes-run --reading paper-fourier --seed $* --arm joint --scale $(SCALE) --weights @R@/model-readings/paper-fourier/main/weights_s$*_joint.ckpt --trained @R@/model-readings/paper-fourier/main/run_s$*_joint.tsv --samples @R@/generator-probes/paper-fourier/samples_s$*_joint.tsv --out $@", "-")
 UNIT(generator-probes, "paper-fourier/probes_s%_indep.tsv", "@R@/model-readings/paper-fourier/main/run_s%_indep.tsv", "$(CLI) generator-probes-run --reading paper-fourier --seed $* --arm indep --scale $(SCALE) --weights @R@/model-readings/paper-fourier/main/weights_s$*_indep.ckpt --trained @R@/model-readings/paper-fourier/main/run_s$*_indep.tsv --samples @R@/generator-probes/paper-fourier/samples_s$*_indep.tsv --out $@", "-")
 UNIT(generator-probes, "plain/probes_s%_joint.tsv", "@R@/model-readings/plain/main/run_s%_joint.tsv", "$(CLI) generator-probes-run --reading plain --seed $* --arm joint --scale $(SCALE) --weights @R@/model-readings/plain/main/weights_s$*_joint.ckpt --trained @R@/model-readings/plain/main/run_s$*_joint.tsv --samples @R@/generator-probes/plain/samples_s$*_joint.tsv --out $@", "-")

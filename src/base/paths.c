@@ -82,6 +82,34 @@ int paths_is_hidden_or_tmp(const char *path)
     return b[0] == '.' || strstr(b, ".tmp") != NULL;
 }
 
+int paths_recorded(const char *path, char *out, size_t n)
+{
+    static const struct { const char *named, *now; } moved[] = PATHS_FROZEN_RECORDED;
+    char norm[1024] = "";
+    size_t len = 0;
+    const char *p = path;
+    while (*p) {
+        size_t k = strcspn(p, "/");
+        if (k == 2 && !strncmp(p, "..", 2) && len) {
+            char *cut = strrchr(norm, '/');
+            len = cut ? (size_t)(cut - norm) : 0;
+            norm[len] = '\0';
+        } else if (k && !(k == 1 && p[0] == '.') && len + k + 2 < sizeof norm) {
+            len += (size_t)snprintf(norm + len, sizeof norm - len, "%s%.*s", len ? "/" : "", (int)k, p);
+        }
+        p += k + (p[k] == '/');
+    }
+    for (size_t i = 0; i < sizeof moved / sizeof *moved; i++) {
+        size_t m = strlen(moved[i].named);
+        if (!strncmp(norm, moved[i].named, m)) {
+            snprintf(out, n, "%s%s", moved[i].now, norm + m);
+            return 1;
+        }
+    }
+    snprintf(out, n, "%s", path);
+    return 0;
+}
+
 cs_status paths_input_file(const char *path)
 {
     struct stat sb;

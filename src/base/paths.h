@@ -63,6 +63,15 @@
 #define PATHS_FIG_PLOTTED "figures/plotted.sha256"
 #define PATHS_FIG_RENDERER "figures/renderer.tsv"
 #define PATHS_FROZEN_DIR "frozen"
+/* The pair extension's runs at volume 16-stands: tier 1 recomputes every W1
+ * of their run tables and baselines from the samples beside them. */
+#define PATHS_PAIR_16_STANDS_DIR PATHS_FROZEN_DIR "/extension-pair-16-stands"
+/* Folders of frozen/ that provenance lines of frozen tables (records, kept as
+ * written) name by the place they were frozen at, each with the place they
+ * lie at now: {named, now}. */
+#define PATHS_FROZEN_RECORDED                                                       \
+    {{PATHS_FROZEN_DIR "/main/", PATHS_PAIR_16_STANDS_DIR "/main/"},                \
+     {PATHS_FROZEN_DIR "/extrapolation/", PATHS_PAIR_16_STANDS_DIR "/extrapolation/"}}
 /* The documentation pages the audit reads for typed numbers (design.md §9):
  * README.md and every *.md under these folders; the changelog is history. */
 #define PATHS_README "README.md"
@@ -97,6 +106,11 @@ void paths_list_free(paths_list *l);
 /* An input file must exist and be a regular file: CS_EINPUT naming it
  * ("is a directory", "cannot open: ...") instead of a later odd error. */
 cs_status paths_input_file(const char *path);
+/* The file a frozen table's provenance names by path (its directory joined
+ * with the name the record gives): 1 and its place now in out when, with "."
+ * and ".." resolved by name (no link followed), it lies in a folder of
+ * PATHS_FROZEN_RECORDED; else 0 and path unchanged in out. */
+int paths_recorded(const char *path, char *out, size_t n);
 /* Append a copy of s (unsorted). */
 cs_status paths_list_add(paths_list *l, const char *s);
 

@@ -1,8 +1,8 @@
 /* claim_main: computing functions for the E3 main and E4 extrapolation
  * claims (reference paper §5.1-§5.2; gates/main.gate, gates/extrapolation.gate),
  * from a reading's main/runs.tsv, main/baselines.tsv and extrapolation/runs.tsv
- * written by src/exp/exp_main.c (the pair extension: frozen/main/,
- * frozen/extrapolation/), or from its per-run tables directly: a source
+ * written by src/exp/exp_main.c (frozen/extension-pair-16-stands/: the pair
+ * extension at 16-stands), or from its per-run tables directly: a source
  * "<root>/main/run_s*_*.tsv" (the paper reading, frozen/paper-reading/), or a
  * main/runs.tsv not made yet, is gathered by src/claims/mainruns.h with
  * main-summary's reduction, and is pending, naming the frozen seeds and the

@@ -7,9 +7,10 @@
  *
  * Evaluation volumes (mainrun_plan.volume; evalvol.h), named by their teacher
  * stands per evaluation spacing at full scale (smoke scale shrinks both):
- * 16-stands, the volume of the pair runs in frozen/main/ (16 teacher stands
- * and 256 generated patches per spacing; probes at every spacing, as many as
- * that model had); 96-stands, the volume of the generator readings (design.md
+ * 16-stands, the volume of the pair runs in
+ * frozen/extension-pair-16-stands/main/ (16 teacher stands and 256 generated
+ * patches per spacing; probes at every spacing, as many as that model had);
+ * 96-stands, the volume of the generator readings (design.md
  * §8 "Readings of the generator"): more stands and patches per spacing for a
  * lower noise floor, the probes at the unseen spacings only (no claim reads
  * them at the extrapolation spacings), the same for every reading. Evaluation
@@ -67,9 +68,9 @@ typedef struct {
 void mainrun_rows_free(mainrun_row *rows, size_t n);
 
 /* Probes of a unit at an unseen (unseen = 1) or an extrapolation spacing:
- * at 16-stands as the pair runs in frozen/main/ (pair model every probe on
- * both arms; the plain model shuffled on the joint arm, none on the
- * independent one), at 96-stands every probe at the unseen spacings and none
+ * at 16-stands as the pair runs in frozen/extension-pair-16-stands/main/
+ * (pair model every probe on both arms; the plain model shuffled on the joint
+ * arm, none on the independent one), at 96-stands every probe at the unseen spacings and none
  * at the extrapolation ones. */
 int mainrun_nprobe(const mainrun_plan *pl, const model_cfg *cfg, int unseen);
 

@@ -124,9 +124,9 @@ echo "verify-deep: teacher part: $same tables bit-identical to frozen/, $differ 
 # ---- the model part: redraw samples from the frozen weights ----
 # Every frozen model of every experiment whose manifest row says "redraw"
 # (src/base/manifest.h): each UNIT row of such an experiment that writes
-# run_s%_joint.tsv names a set of units (main/: the pair runs at volume
-# 16-stands; paper-reading/main/, extension-pair/main/, model-readings/*/main/:
-# the readings at 96-stands). For every seed x arm of the design the unit's frozen run
+# run_s%_joint.tsv names a set of units (extension-pair-16-stands/main/: the
+# pair runs at volume 16-stands; paper-reading/main/, extension-pair/main/,
+# model-readings/*/main/: the readings at 96-stands). For every seed x arm of the design the unit's frozen run
 # table must be there; its "# weights:" line names the weights beside it, or
 # else the unit's --weights in the manifest, under frozen/ (a re-evaluation,
 # whose weights are another experiment's frozen file); its "# eval:" line gives the volume by the
