@@ -109,25 +109,10 @@ static cs_status render_dir(const char *dir)
     return CS_OK;
 }
 
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap);
-    for (size_t k; buf && (k = fread(buf + n, 1, cap - n - 1, f)) > 0;) {
-        n += k;
-        if (n + 1 == cap) { char *nb = realloc(buf, cap *= 2); if (!nb) { free(buf); buf = NULL; break; } buf = nb; }
-    }
-    fclose(f);
-    if (buf) buf[n] = '\0';
-    return buf;
-}
-
 /* The first TeX error of the render's log and the input line it names. */
 static void render_error(const char *log, char *out, size_t n)
 {
-    char *text = slurp(log);
+    char *text = afile_read(log);
     snprintf(out, n, "see %s", log);
     if (!text) return;
     char *e = strstr(text, "\n! ");
@@ -172,7 +157,7 @@ void audit_render(const claims *c, const claim_result *res, checklist *cl)
              dir, root, root);
     int rc = system(cmd);
     snprintf(p, sizeof p, "%s/hidden.txt", dir);
-    char *text = rc == 0 ? slurp(p) : NULL;
+    char *text = rc == 0 ? afile_read(p) : NULL;
     if (!text) {
         char why[2000];
         snprintf(p, sizeof p, "%s/hidden.log", dir);

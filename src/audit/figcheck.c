@@ -71,27 +71,11 @@ static int value_of(const char *text, const char *key, char *out, size_t n)
     return 0;
 }
 
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    size_t cap = 4096, len = 0;
-    char *s = malloc(cap);
-    size_t k;
-    while (s && (k = fread(s + len, 1, cap - len - 1, f)) > 0) {
-        len += k;
-        if (cap - len < 2) { char *t = realloc(s, cap *= 2); if (!t) { free(s); s = NULL; } else s = t; }
-    }
-    fclose(f);
-    if (s) s[len] = '\0';
-    return s;
-}
-
 cs_status figcheck_renderer_compare(const char *pinned_path, const char *now, int *same, char *diff, size_t n)
 {
     *same = 0;
     diff[0] = '\0';
-    char *pinned = slurp(pinned_path);
+    char *pinned = afile_read(pinned_path);
     if (!pinned) { snprintf(diff, n, "%s missing (make figures writes it)", pinned_path); return CS_OK; }
     size_t o = 0;
     int differ = 0;

@@ -73,3 +73,19 @@ void afile_abort(afile *a)
     unlink(a->tmp);
     release(a);
 }
+
+char *afile_read(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    size_t cap = 4096, len = 0;
+    char *s = malloc(cap);
+    size_t k;
+    while (s && (k = fread(s + len, 1, cap - len - 1, f)) > 0) {
+        len += k;
+        if (cap - len < 2) { char *t = realloc(s, cap *= 2); if (!t) { free(s); s = NULL; } else s = t; }
+    }
+    fclose(f);
+    if (s) s[len] = '\0';
+    return s;
+}

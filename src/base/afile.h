@@ -1,4 +1,4 @@
-/* afile: atomic file writes (design.md §11). A file is written as
+/* afile: atomic file writes (design.md §11), and the one whole-file reader. A file is written as
  * "<path>.tmp.<pid>.<n>" (unique, so concurrent writers never collide) and renamed over <path> only on commit, after flush and fsync, so a killed
  * run never leaves a half-written result that later counts as done. Used by
  * the TSV writer, numbers.tex / comparison.tex and audit/frozen.sha256. */
@@ -23,5 +23,9 @@ cs_status afile_open(afile *a, const char *path);
 cs_status afile_commit(afile *a);
 /* Close and remove the temp file; releases a. */
 void afile_abort(afile *a);
+/* A whole file read into a NUL-terminated malloc'd string (the reader's
+ * counterpart, for small text files: logs, renderer records); NULL when it
+ * cannot be opened or memory runs out. */
+char *afile_read(const char *path);
 
 #endif
