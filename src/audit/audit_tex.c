@@ -469,6 +469,22 @@ size_t paper_scan_file(const char *path, const claims *c, const double *vals, co
     return bad;
 }
 
+/* Does a line of a source file give NAME the value x: "#define NAME x" at
+ * the line's start (define), or an initialiser "NAME = x" anywhere in it? */
+static int source_holds(const char *file, const char *name, int define, double x)
+{
+    FILE *f = fopen(file, "r");
+    char l[512], pat[100];
+    snprintf(pat, sizeof pat, define ? "#define %s " : "%s = ", name);
+    int ok = 0;
+    while (f && !ok && fgets(l, sizeof l, f)) {
+        const char *m = define ? (strncmp(l, pat, strlen(pat)) ? NULL : l) : strstr(l, pat);
+        ok = m && strtod(m + strlen(pat), NULL) == x;
+    }
+    if (f) fclose(f);
+    return ok;
+}
+
 /* audit/design_numbers.tsv: macro, value, source, what. A source is
  * "gate FILE:KEY" (a value of the key, or a hundred times it: a percentage),
  * "count FILE:KEY" (how many values the key has), "excess FILE:KEY" (a hundred
@@ -510,21 +526,8 @@ static size_t design_consts(checklist *cl, design_const **out)
             else if (!strcmp(kind, "count") && !gate_read_values(path, key, g, 64, &ng)) ok = (double)ng == x;
             else if (!strcmp(kind, "log10") && !gate_read_values(path, key, g, 64, &ng)) ok = ng == 1 && g[0] > 0 && fabs(-log10(g[0]) - x) <= 1e-9;
             else if (!strcmp(kind, "excess") && !gate_read_values(path, key, g, 64, &ng)) ok = ng == 1 && fabs(100 * (g[0] - 1) - x) <= 1e-9 * fmax(1, fabs(x));
-            else if (!strcmp(kind, "member")) {
-                /* an initialiser "NAME = value" in a source file, as written */
-                FILE *f = fopen(file, "r");
-                char l[512], pat[100];
-                snprintf(pat, sizeof pat, "%s = ", key);
-                while (f && !ok && fgets(l, sizeof l, f)) { const char *m = strstr(l, pat); ok = m && strtod(m + strlen(pat), NULL) == x; }
-                if (f) fclose(f);
-            }
-            else if (!strcmp(kind, "define")) {
-                FILE *f = fopen(file, "r");
-                char l[512], pat[100];
-                snprintf(pat, sizeof pat, "#define %s ", key);
-                while (f && !ok && fgets(l, sizeof l, f)) if (!strncmp(l, pat, strlen(pat))) ok = strtod(l + strlen(pat), NULL) == x;
-                if (f) fclose(f);
-            }
+            else if (!strcmp(kind, "member")) ok = source_holds(file, key, 0, x);
+            else if (!strcmp(kind, "define")) ok = source_holds(file, key, 1, x);
         }
         if (!ok) { checklist_add(cl, VERDICT_FAIL, "design numbers", "%s:%d: %s = %g is not what its source '%s' holds", PATHS_DESIGN_NUMBERS, line, mac, x, src); continue; }
         snprintf(v[n].macro, sizeof v[n].macro, "%s", mac);
