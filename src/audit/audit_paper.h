@@ -11,6 +11,11 @@
 int paper_is_generated(const char *path);
 /* The i-th generated paper file (NULL past the last). */
 const char *paper_generated(size_t i);
+/* A design constant the text prints through its macro (audit/design_numbers.tsv). */
+typedef struct { char macro[64], value[32]; int line; } design_const;
+/* Every row of audit/design_numbers.tsv checked at its source (a failing row
+ * is a FAIL item of cl, left out); *out malloc'd; returns how many hold. */
+size_t audit_design_consts(checklist *cl, design_const **out);
 /* paper/constants.tex from audit/design_numbers.tsv: one macro per design
  * constant the text prints (hide: the audit's render, each printing the
  * hidden word). Errors name the file, line and field. */
