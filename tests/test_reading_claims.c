@@ -374,6 +374,57 @@ static void training_choice_over_the_blind_level(void **st)
     }
 }
 
+/* How many seeds a row reads is its params' seeds (or, absent, the gate's
+ * preregistered count), never where its units lie: a twelve-seed unit set
+ * under generator-sensitivity/ read at four seeds and at twelve; a gated row
+ * that names its own seeds refused, naming the row. */
+static void seeds_come_from_the_row_not_the_path(void **st)
+{
+    (void)st;
+    const char *dir = fixture("reading_claims_seeds", 1);
+    char root[800], choice[900], cmd[1000], src[1000];
+    snprintf(root, sizeof root, "%.*s", (int)(strlen(dir) - strlen("/paper-reading/main")), dir);
+    snprintf(choice, sizeof choice, "%s/generator-sensitivity/stands-x4/main", root);
+    snprintf(cmd, sizeof cmd, "mkdir -p '%s'", choice);
+    assert_int_equal(system(cmd), 0);
+    for (int s = 1; s <= 12; s++) { write_unit(choice, s, 0); write_unit(choice, s, 1); }
+    snprintf(src, sizeof src, "%s/run_s*_*.tsv", choice);
+    claim_row row;
+    claim_result r;
+    double x[12], four, twelve;
+    for (int s = 1; s <= 12; s++) x[s - 1] = err_of(s, 0, 0);
+    assert_int_equal(stats_median(x, 4, &four), CS_OK);
+    assert_int_equal(stats_median(x, 12, &twelve), CS_OK);
+    assert_true(four != twelve);
+    row_of(&row, "SeedsFour", src, "claim_main_median", "-", "%.6f");
+    assert_int_equal(claim_params_parse("arm=joint;seeds=4", "claims.tsv", 3, &row.param), CS_OK);
+    claims_eval(&row, &r);
+    assert_int_equal(r.status, VERDICT_PASS);
+    if (r.value != four) fail_msg("seeds=4: observed %.17g, expected %.17g", r.value, four);
+    assert_int_equal(claim_params_parse("arm=joint", "claims.tsv", 3, &row.param), CS_OK);
+    claims_eval(&row, &r);
+    assert_int_equal(r.status, VERDICT_PASS);
+    if (r.value != twelve) fail_msg("no seeds (the gate's twelve): observed %.17g, expected %.17g", r.value, twelve);
+    /* the same four seeds read from the paper reading's own folder: the path chooses nothing */
+    snprintf(src, sizeof src, "%s/run_s*_*.tsv", dir);
+    row_of(&row, "SeedsOne", src, "claim_main_median", "-", "%.6f");
+    assert_int_equal(claim_params_parse("arm=joint;seeds=1", "claims.tsv", 3, &row.param), CS_OK);
+    claims_eval(&row, &r);
+    assert_int_equal(r.status, VERDICT_PASS);
+    if (r.value != err_of(1, 0, 0)) fail_msg("seeds=1: observed %.17g, expected %.17g", r.value, err_of(1, 0, 0));
+    row_of(&row, "SeedsGated", src, "claim_main_rel", "main.gate:rel_improvement_min", "%.6f");
+    assert_int_equal(claim_params_parse("seeds=1", "claims.tsv", 3, &row.param), CS_OK);
+    claims_eval(&row, &r);
+    assert_int_equal(r.status, VERDICT_FAIL);
+    if (!strstr(r.why, "SeedsGated is gated")) fail_msg("gated row with seeds: '%s'", r.why);
+    assert_int_equal(claim_params_parse("arm=joint;seeds=2.5", "claims.tsv", 3, &row.param), CS_OK);
+    snprintf(row.gate, sizeof row.gate, "-");
+    snprintf(row.function, sizeof row.function, "claim_main_median");
+    claims_eval(&row, &r);
+    assert_int_equal(r.status, VERDICT_FAIL);
+    if (!strstr(r.why, "seeds=a whole number")) fail_msg("seeds=2.5: '%s'", r.why);
+}
+
 /* What the paper's shuffle ratio requires of a teacher (src/claims/perfect.c)
  * from a sensitivity table with three teachers' shuffled levels (other
  * quantities' rows ignored), against the registry's paper values 0.415 m
@@ -407,7 +458,7 @@ static void perfect_generator_levels(void **st)
 
 /* What a generator uses (src/claims/claim_probe.c): a reading's probe tables
  * for seeds 1-4 give the median probed error over the median unprobed one,
- * pending while a seed is missing; the teacher's table gives its level. */
+ * pending while a seed is missing (the registry row's seeds=4); the teacher's table gives its level. */
 static void generator_probe_ratios(void **st)
 {
     (void)st;
@@ -424,17 +475,17 @@ static void generator_probe_ratios(void **st)
         if (s < 4) tu_write(p, buf);
         else {
             snprintf(src, sizeof src, "%s/probes_s*_joint.tsv", dir);
-            claim_result r = eval("ProbeXSelfJoint", src, "claim_probe_self", "-");
+            claim_result r = eval("ProbePaperSelfJoint", src, "claim_probe_self", "-");
             assert_int_equal(r.status, VERDICT_PENDING);
             assert_non_null(strstr(r.why, "3 of 4 seeds frozen; missing s04"));
             tu_write(p, buf);
         }
     }
-    claim_result r = eval("ProbeXSelfJoint", src, "claim_probe_self", "-");
+    claim_result r = eval("ProbePaperSelfJoint", src, "claim_probe_self", "-");
     assert_int_equal(r.status, VERDICT_PASS);
     /* per seed the self error is (2 + 2.5 + 2.5) / 3 e; medians over seeds of e = 0.425 */
     ASSERT_NEAR(r.value, 7.0 / 3.0, 1e-12);
-    r = eval("ProbeXNnSwapJoint", src, "claim_probe_nnswap", "-");
+    r = eval("ProbePaperNnSwapJoint", src, "claim_probe_nnswap", "-");
     assert_int_equal(r.status, VERDICT_FAIL);
     assert_non_null(strstr(r.why, "no rows of the nnswap probe"));
     snprintf(p, sizeof p, "%s/probes.tsv", dir);
@@ -455,6 +506,7 @@ int main(void)
         cmocka_unit_test(comparison_medians_and_ranges),
         cmocka_unit_test(awaited_tables_pend_others_fail),
         cmocka_unit_test(training_choice_over_the_blind_level),
+        cmocka_unit_test(seeds_come_from_the_row_not_the_path),
         cmocka_unit_test(perfect_generator_levels),
         cmocka_unit_test(generator_probe_ratios),
     };

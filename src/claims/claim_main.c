@@ -58,10 +58,10 @@ static int summary_absent(const char *path, char *dir, size_t n)
 }
 
 /* The units of dir (mainruns.h); a set not yet whole leaves res pending. */
-static cs_status load_units(const char *dir, mainruns *m, claim_result *res)
+static cs_status load_units(const claim_row *row, const char *dir, mainruns *m, claim_result *res)
 {
     int want;
-    cs_status st = mainruns_wanted(dir, &want);
+    cs_status st = claim_param_seeds(row, &want);
     if (!st) st = mainruns_load(dir, want, m);
     if (st) return st;
     if (m->nmissing) {
@@ -75,10 +75,10 @@ static cs_status load_units(const char *dir, mainruns *m, claim_result *res)
 /* A set not yet whole leaves res pending; the values of an arm whose every
  * seed is frozen are kept all the same (r->partial), for the descriptive rows
  * that read that arm alone (arm_whole). */
-static cs_status read_units(const char *dir, main_runs *r, claim_result *res)
+static cs_status read_units(const claim_row *row, const char *dir, main_runs *r, claim_result *res)
 {
     static mainruns m;
-    cs_status st = load_units(dir, &m, res);
+    cs_status st = load_units(row, dir, &m, res);
     if (st) return st;
     const int pending = res->status == VERDICT_PENDING;
     r->n = m.want;
@@ -107,12 +107,12 @@ static int arm_whole(const claim_row *row, const main_runs *r, claim_result *res
     return 1;
 }
 
-static cs_status read_runs(const char *path, main_runs *r, claim_result *res)
+static cs_status read_runs(const claim_row *row, const char *path, main_runs *r, claim_result *res)
 {
     tsv *t;
     memset(r, 0, sizeof *r);
     char dir[300];
-    if (mainruns_unit_set(path, dir, sizeof dir) || summary_absent(path, dir, sizeof dir)) return read_units(dir, r, res);
+    if (mainruns_unit_set(path, dir, sizeof dir) || summary_absent(path, dir, sizeof dir)) return read_units(row, dir, r, res);
     cs_status st = tsv_read(path, &t);
     if (st) return st;
     int seen[MAXSEED][NK] = {{0}};
@@ -196,7 +196,7 @@ cs_status claim_main_median(const claim_row *row, claim_result *res)
     main_runs r;
     int k;
     cs_status st = claim_param_seed_column(row, &k);
-    if (!st) st = read_runs(row->source, &r, res);
+    if (!st) st = read_runs(row, row->source, &r, res);
     if (st || !arm_whole(row, &r, res, k, -1)) return st;
     claim_set_value(row, res, med(r.v[k], r.n));
     return CS_OK;
@@ -209,7 +209,7 @@ cs_status claim_main_median(const claim_row *row, claim_result *res)
 cs_status claim_main_coupled(const claim_row *row, claim_result *res)
 {
     main_runs r;
-    cs_status st = read_runs(row->source, &r, res);
+    cs_status st = read_runs(row, row->source, &r, res);
     if (st || !arm_whole(row, &r, res, 0, 2)) return st;
     double thr;
     if ((st = gate_read_value(PATHS_GATE("main"), "shuffle_ratio_min", 0, &thr))) return st;
@@ -226,7 +226,7 @@ cs_status claim_main_range(const claim_row *row, claim_result *res)
     int k;
     cs_status st = claim_param_need(row, PARAM_BOUND);
     if (!st) st = claim_param_seed_column(row, &k);
-    if (!st) st = read_runs(row->source, &r, res);
+    if (!st) st = read_runs(row, row->source, &r, res);
     if (st || res->status == VERDICT_PENDING) return st;
     const double *x = r.v[k];
     claim_set_value(row, res, row->param.bound == BOUND_HI ? stats_max(x, (size_t)r.n) : stats_min(x, (size_t)r.n));
@@ -236,7 +236,7 @@ cs_status claim_main_range(const claim_row *row, claim_result *res)
 cs_status claim_main_rel(const claim_row *row, claim_result *res)
 {
     main_runs r;
-    cs_status st = read_runs(row->source, &r, res);
+    cs_status st = read_runs(row, row->source, &r, res);
     if (st || res->status == VERDICT_PENDING) return st;
     double mj = med(r.v[0], r.n), mi = med(r.v[1], r.n);
     double rel = (mi - mj) / mi;
@@ -248,7 +248,7 @@ cs_status claim_main_rel(const claim_row *row, claim_result *res)
 cs_status claim_main_p(const claim_row *row, claim_result *res)
 {
     main_runs r;
-    cs_status st = read_runs(row->source, &r, res);
+    cs_status st = read_runs(row, row->source, &r, res);
     if (st || res->status == VERDICT_PENDING) return st;
     double p;
     if ((st = stats_wilcoxon_exact(r.v[1], r.v[0], (size_t)r.n, &p, NULL, NULL))) return st;
@@ -260,7 +260,7 @@ cs_status claim_main_p(const claim_row *row, claim_result *res)
 cs_status claim_main_geom_ratio(const claim_row *row, claim_result *res)
 {
     main_runs r;
-    cs_status st = read_runs(row->source, &r, res);
+    cs_status st = read_runs(row, row->source, &r, res);
     if (st || !arm_whole(row, &r, res, 0, 2)) return st;
     double ratio = med(r.v[2], r.n) / med(r.v[0], r.n);
     claim_set_value(row, res, ratio);
@@ -289,7 +289,7 @@ cs_status claim_main_iso(const claim_row *row, claim_result *res)
     char runs[200];
     reading_path(row->source, "runs.tsv", runs, sizeof runs);
     tmp.status = VERDICT_PASS;
-    if (read_runs(runs, &r, &tmp) != CS_OK) {
+    if (read_runs(row, runs, &r, &tmp) != CS_OK) {
         res->gate = VERDICT_PENDING;
         snprintf(res->gate_detail, sizeof res->gate_detail, "needs %s: %s", runs, cs_errmsg());
     } else if (tmp.status == VERDICT_PENDING) {
@@ -314,7 +314,7 @@ cs_status claim_main_probe(const claim_row *row, claim_result *res)
     if (row->param.stat != STAT_MEDIAN && row->param.stat != STAT_RATIO) return claim_param_bad(row, "stat", "median or ratio");
     const int ratio_of = row->param.stat == STAT_RATIO ? k % 2 : -1;
     main_runs r;
-    if ((st = read_runs(row->source, &r, res))) return st;
+    if ((st = read_runs(row, row->source, &r, res))) return st;
     if (!arm_whole(row, &r, res, k, ratio_of)) return CS_OK;
     if (!r.has[k]) return cs_err(CS_EINPUT, "%s: no %s rows (runs made without the probes)", row->source, kind_name(k));
     double v = med(r.v[k], r.n);
@@ -361,7 +361,7 @@ cs_status claim_main_meta(const claim_row *row, claim_result *res)
     if (!params && strcmp(row->param.quantity, "steps_per_s")) return claim_param_bad(row, "quantity", "params or steps_per_s");
     runs_dir(row->source, dir, sizeof dir);
     int want;
-    if ((st = mainruns_wanted(dir, &want))) return st;
+    if ((st = claim_param_seeds(row, &want))) return st;
     double v[2 * MAXSEED];
     size_t nv = 0, units = 0;
     for (int s = 1; s <= want && !(params && units); s++)
@@ -408,7 +408,7 @@ cs_status claim_main_sofar(const claim_row *row, claim_result *res)
     if (!mainruns_unit_set(row->source, dir, sizeof dir)) return cs_err(CS_EINPUT, "%s: claim_main_sofar reads a unit set <dir>/run_s*_*.tsv", row->source);
     static mainruns m;
     int want;
-    st = mainruns_wanted(dir, &want);
+    st = claim_param_seeds(row, &want);
     if (!st) st = mainruns_load(dir, want, &m);
     if (st) return st;
     double j[MAXSEED], i[MAXSEED], sh[MAXSEED], ro[MAXSEED];
@@ -437,10 +437,10 @@ cs_status claim_main_sofar(const claim_row *row, claim_result *res)
 /* extrapolation: per spacing, median over seeds of each arm's W1 */
 typedef struct { int n; double d[4]; double joint[4][MAXSEED], indep[4][MAXSEED]; int nj[4], ni[4]; } extrap_runs;
 
-static cs_status read_extrap_units(const char *dir, extrap_runs *e, claim_result *res)
+static cs_status read_extrap_units(const claim_row *row, const char *dir, extrap_runs *e, claim_result *res)
 {
     static mainruns m;
-    cs_status st = load_units(dir, &m, res);
+    cs_status st = load_units(row, dir, &m, res);
     if (st || res->status == VERDICT_PENDING) return st;
     if (!m.nex) return cs_err(CS_EINPUT, "%s: no extrapolation rows in its run tables", dir);
     e->n = m.nex;
@@ -453,11 +453,11 @@ static cs_status read_extrap_units(const char *dir, extrap_runs *e, claim_result
     return CS_OK;
 }
 
-static cs_status read_extrap(const char *path, extrap_runs *e, claim_result *res)
+static cs_status read_extrap(const claim_row *row, const char *path, extrap_runs *e, claim_result *res)
 {
     memset(e, 0, sizeof *e);
     char dir[300];
-    if (mainruns_unit_set(path, dir, sizeof dir)) return read_extrap_units(dir, e, res);
+    if (mainruns_unit_set(path, dir, sizeof dir)) return read_extrap_units(row, dir, e, res);
     tsv *t;
     cs_status st = tsv_read(path, &t);
     if (st) return st;
@@ -485,7 +485,7 @@ cs_status claim_extrap_rel(const claim_row *row, claim_result *res)
 {
     extrap_runs e;
     cs_status st = claim_param_need(row, PARAM_BOUND);
-    if (!st) st = read_extrap(row->source, &e, res);
+    if (!st) st = read_extrap(row, row->source, &e, res);
     if (st || res->status == VERDICT_PENDING) return st;
     gate *g;
     if ((st = claim_gate_load("extrapolation.gate", &g))) return st;
@@ -521,7 +521,7 @@ cs_status claim_extrap_rel(const claim_row *row, claim_result *res)
 cs_status claim_extrap_p(const claim_row *row, claim_result *res)
 {
     extrap_runs e;
-    cs_status st = read_extrap(row->source, &e, res);
+    cs_status st = read_extrap(row, row->source, &e, res);
     if (st || res->status == VERDICT_PENDING) return st;
     /* Pooled over the extrapolation spacings at the level of the seed: the two
      * spacings of one seed share one trained model, so the independent unit of

@@ -4,6 +4,7 @@
  * spelling of its macro. */
 #include "claims.h"
 #include "design.h"
+#include "mainruns.h"
 #include "paths.h"
 #include <math.h>
 #include <stddef.h>
@@ -40,10 +41,11 @@ static const struct { const char *key; key_type type; const char *const *names; 
     {"x", K_NUMBER, NULL, 0, F(x)},
     {"scale", K_NUMBER, NULL, 0, F(scale)},
     {"spacing", K_NUMBER, NULL, 0, F(spacing)},
+    {"seeds", K_NUMBER, NULL, 0, F(seeds)},
 };
 #undef F
 #define NKEYS (sizeof KEYS / sizeof *KEYS)
-_Static_assert(NKEYS == 12 && PARAM_SPACING == 1u << 11, "one PARAM_* bit per key, in KEYS order");
+_Static_assert(NKEYS == 13 && PARAM_SEEDS == 1u << 12, "one PARAM_* bit per key, in KEYS order");
 
 void claim_params_format(const claim_params *p, char *buf, size_t n)
 {
@@ -171,5 +173,15 @@ cs_status claim_param_stand_spacing(const claim_row *row, double *d)
     if (st) return st;
     const param_stand s = row->param.stand;
     *d = s == STAND_OTHER_A ? DESIGN_PC_OTHER_A_SPACING_M : s == STAND_OTHER_B ? DESIGN_PC_OTHER_B_SPACING_M : DESIGN_PC_SPACING_M;
+    return CS_OK;
+}
+
+cs_status claim_param_seeds(const claim_row *row, int *want)
+{
+    if (!(row->param.set & PARAM_SEEDS)) return mainruns_gate_seeds(want);
+    const double s = row->param.seeds;
+    if (strcmp(row->gate, "-")) return cs_err(CS_EINPUT, "%s:%d: field 'params': %s is gated: its seeds are the gate's, not seeds=%g", PATHS_CLAIMS, row->line, row->macro, s);
+    if (!(s >= 1 && s <= MAINRUNS_MAXSEED && s == (int)s)) return claim_param_bad(row, "seeds", "a whole number of seeds, 1..64");
+    *want = (int)s;
     return CS_OK;
 }

@@ -2,7 +2,7 @@
  * paper §5.1), from the probe tables of src/exp/genprobe.c (probes named in src/base/probekind.h). A reading's
  * claim reads one arm's unit set, source
  * "<root>/generator-probes/<reading>/probes_s*_<arm>.tsv" with seeds
- * 1..MAINRUNS_READING_SEEDS: per seed the mean W1 over the unseen spacings
+ * 1..N (the row's seeds=N): per seed the mean W1 over the unseen spacings
  * under the probe and without it; the claim is the median over seeds of the
  * probed error over the median of the unprobed one (as MainGeomRatio), so 1
  * means the generator does not use what the probe takes away. Pending, naming
@@ -78,10 +78,12 @@ static cs_status ratio_over(const claim_row *row, claim_result *res, probekind k
     return CS_OK;
 }
 
-/* The ratio claim of probe k: the design's seeds of a descriptive reading. */
+/* The ratio claim of probe k over the row's seeds. */
 static cs_status reading_ratio(const claim_row *row, claim_result *res, probekind k)
 {
-    return ratio_over(row, res, k, MAINRUNS_READING_SEEDS);
+    int want;
+    cs_status st = claim_param_seeds(row, &want);
+    return st ? st : ratio_over(row, res, k, want);
 }
 
 /* The teacher's own crowns under probe k: mean W1 over the unseen spacings. */

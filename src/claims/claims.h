@@ -35,6 +35,7 @@ enum {
     PARAM_X = 1u << 9,        /* x=NUMBER: that choice's value */
     PARAM_SCALE = 1u << 10,   /* scale=NUMBER: the value is shown times this (100 for a percent) */
     PARAM_SPACING = 1u << 11, /* spacing=NUMBER: the stand spacing read, metres */
+    PARAM_SEEDS = 1u << 12,   /* seeds=N: the seeds read of a unit set (1..N); absent: the preregistered seeds of gates/main.gate */
 };
 typedef struct {
     unsigned set;
@@ -44,7 +45,7 @@ typedef struct {
     param_stat stat;
     param_stand stand;
     char column[32], quantity[32], of[64], choice[32];
-    double x, scale, spacing;
+    double x, scale, spacing, seeds;
 } claim_params;
 
 typedef struct {
@@ -94,6 +95,10 @@ cs_status claim_param_need(const claim_row *row, unsigned keys);
 /* CS_EINPUT naming the row's line: its key `key` holds a value the row's
  * function does not compute (`allowed` lists what it does). */
 cs_status claim_param_bad(const claim_row *row, const char *key, const char *allowed);
+/* The seeds a row reads of its unit set: its seeds=N, or the preregistered
+ * count of gates/main.gate when it gives none. A gated row gives none (its
+ * gate's count rules it): CS_EINPUT naming the row otherwise. */
+cs_status claim_param_seeds(const claim_row *row, int *want);
 /* The registry spelling of an arm and a probe ("joint", "rotated", ...): the
  * same words name the arms and probes in the frozen tables. */
 const char *param_arm_name(param_arm a);

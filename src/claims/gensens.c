@@ -41,7 +41,7 @@ static cs_status over_blind(const claim_row *row, claim_result *res, int a)
         return cs_err(CS_EINPUT, "%s: the source must be a unit set <dir>/run_s*_*.tsv", row->source);
     static mainruns m;
     int want;
-    cs_status st = mainruns_wanted(dir, &want);
+    cs_status st = claim_param_seeds(row, &want);
     if (!st) st = mainruns_load(dir, want, &m);
     if (st) return st;
     /* a descriptive row reads its arm once that arm is whole (design.md §8.2) */

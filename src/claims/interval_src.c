@@ -42,11 +42,11 @@ static int run_col(const char *arm, const char *probe)
 
 /* Every unit of a reading's unit set, or an error: a claim still pending has
  * no interval, so an incomplete set here is an inconsistency. */
-static cs_status unit_set_load(const char *dir, const mainruns **out)
+static cs_status unit_set_load(const claim_row *row, const char *dir, const mainruns **out)
 {
     static mainruns m;
     int want;
-    cs_status st = mainruns_wanted(dir, &want);
+    cs_status st = claim_param_seeds(row, &want);
     if (!st) st = mainruns_load(dir, want, &m);
     if (st) return st;
     if (m.complete != want) return cs_err(CS_EINVARIANT, "%s: %d of %d seeds frozen: no interval before the set is complete", dir, m.complete, want);
@@ -57,10 +57,10 @@ static cs_status unit_set_load(const char *dir, const mainruns **out)
 /* A reading's unit set (<dir>/run_s*_*.tsv): the per-seed errors as
  * mainruns gathers them for the claims (main-summary's reduction); only
  * asked for once every unit is frozen (a pending claim has no interval). */
-static cs_status unit_set_seeds(const char *dir, double v[MAXSEED][6], int *maxs)
+static cs_status unit_set_seeds(const claim_row *row, const char *dir, double v[MAXSEED][6], int *maxs)
 {
     const mainruns *m;
-    cs_status st = unit_set_load(dir, &m);
+    cs_status st = unit_set_load(row, dir, &m);
     if (st) return st;
     const int want = m->want;
     for (int s = 0; s < want && s < MAXSEED; s++)
@@ -104,7 +104,7 @@ static cs_status main_seeds(const claim_row *row, const claim_result *res, const
     for (int i = 0; i < MAXSEED; i++) for (int k = 0; k < 6; k++) v[i][k] = NAN;
     char dir[300];
     tsv *t = NULL;
-    cs_status st = mainruns_unit_set(row->source, dir, sizeof dir) ? unit_set_seeds(dir, v, &maxs) : tsv_read(row->source, &t);
+    cs_status st = mainruns_unit_set(row->source, dir, sizeof dir) ? unit_set_seeds(row, dir, v, &maxs) : tsv_read(row->source, &t);
     if (st) return st;
     for (size_t r = 0; t && r < tsv_nrows(t) && !st; r++) {
         long s;
@@ -170,10 +170,10 @@ static cs_status main_spacings(const claim_row *row, const claim_result *res, co
 /* ---- E4: seeds of extrapolation/runs.tsv ---- */
 
 /* The extrapolation rows of a reading's unit set, as mainruns gathers them. */
-static cs_status unit_set_extrap(const char *dir, double dd[4], double w[MAXSEED][4][2], int *nd, int *maxs)
+static cs_status unit_set_extrap(const claim_row *row, const char *dir, double dd[4], double w[MAXSEED][4][2], int *nd, int *maxs)
 {
     const mainruns *m;
-    cs_status st = unit_set_load(dir, &m);
+    cs_status st = unit_set_load(row, dir, &m);
     if (st) return st;
     const int want = m->want;
     *nd = m->nex < 4 ? m->nex : 4;
@@ -193,7 +193,7 @@ static cs_status extrap_seeds(const claim_row *row, const claim_result *res, con
     int nd = 0, maxs = 0;
     char dir[300];
     tsv *t = NULL;
-    cs_status st = mainruns_unit_set(row->source, dir, sizeof dir) ? unit_set_extrap(dir, dd, w, &nd, &maxs) : tsv_read(row->source, &t);
+    cs_status st = mainruns_unit_set(row->source, dir, sizeof dir) ? unit_set_extrap(row, dir, dd, w, &nd, &maxs) : tsv_read(row->source, &t);
     if (st) return st;
     for (size_t r = 0; t && r < tsv_nrows(t) && !st; r++) {
         long s;

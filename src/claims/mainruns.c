@@ -18,9 +18,8 @@ int mainruns_unit_set(const char *source, char *dir, size_t n)
     return 1;
 }
 
-cs_status mainruns_wanted(const char *dir, int *want)
+cs_status mainruns_gate_seeds(int *want)
 {
-    if (strstr(dir, "model-readings/") || strstr(dir, "generator-sensitivity/")) { *want = MAINRUNS_READING_SEEDS; return CS_OK; }
     double w;
     cs_status st = gate_read_value(PATHS_GATE("main"), "seeds", 0, &w);
     if (st) return st;

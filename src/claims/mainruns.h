@@ -16,8 +16,6 @@
 
 #define MAINRUNS_MAXSEED 64
 #define MAINRUNS_MAXSP 4
-/* seeds of a descriptive reading (READING_NSEEDS of src/exp/experiments.mk) */
-#define MAINRUNS_READING_SEEDS 4
 
 typedef struct {
     int want;     /* seeds the design asks for */
@@ -33,11 +31,9 @@ typedef struct {
     double ex[2][MAINRUNS_MAXSP][MAINRUNS_MAXSEED];
 } mainruns;
 
-/* The seeds the design asks of the reading under `dir` (a main/ folder):
- * gates/main.gate's seeds, or MAINRUNS_READING_SEEDS for a descriptive
- * reading or a training choice of the paper reading (a path holding
- * "model-readings/" or "generator-sensitivity/"). */
-cs_status mainruns_wanted(const char *dir, int *want);
+/* The preregistered seeds of a gated reading (gates/main.gate's seeds); a
+ * descriptive reading states its own in the registry (claim params seeds=). */
+cs_status mainruns_gate_seeds(int *want);
 /* Read every unit of seeds 1..want present under dir. m->complete == want
  * and m->nmissing == 0 when the set is whole; otherwise the values of the
  * present units are read but must not be reported as the reading's result. */
