@@ -251,13 +251,21 @@ static void extension_map_judges_extension_rows_only(void **st)
     assert_non_null(p);
     assert_non_null(m);
     assert_string_equal(p->gate, "main.gate:rel_improvement_min");
-    assert_true(p->gate_map_ext && claims_is_extension(p));
+    assert_true(p->gate_map_ext && claims_is_beside(p));
     assert_string_equal(m->gate, "main.gate:rel_improvement_min");
-    assert_false(m->gate_map_ext || claims_is_extension(m));
+    assert_false(m->gate_map_ext || claims_is_beside(m));
     /* the paper's claims read the paper reading; the pair extension its own
      * units, re-evaluated at the readings' volume */
     assert_non_null(strstr(m->source, "frozen/paper-reading/"));
     assert_string_equal(p->source, "frozen/extension-pair/main/run_s*_*.tsv");
+    /* a training choice at the gate's seeds: judged through the same map, by
+     * the gate's count of seeds (no seeds of its own), never a paper claim */
+    const claim_row *v = claims_find(&c, "MoreStandsMainGeomRatio");
+    assert_non_null(v);
+    assert_string_equal(v->kind, "variant");
+    assert_string_equal(v->gate, "main.gate:shuffle_ratio_min");
+    assert_true(v->gate_map_ext && claims_is_beside(v));
+    assert_false(v->param.set & PARAM_SEEDS);
     const char *dir = tu_tmpdir("reading_claims_maps");
     char bad[1200], cmd[4000];
     snprintf(bad, sizeof bad, "%s/ext.tsv", dir);
@@ -266,6 +274,11 @@ static void extension_map_judges_extension_rows_only(void **st)
     assert_non_null(strstr(cs_errmsg(), "extension claims only"));
     snprintf(bad, sizeof bad, "%s/main.tsv", dir);
     snprintf(cmd, sizeof cmd, "cp %s %s && printf 'PairMainP\\tmain.gate:wilcoxon_p_max\\n' >> %s", PATHS_GATE_MAP, bad, bad);
+    assert_int_equal(system(cmd), 0);
+    assert_int_equal(claims_apply_gate_maps(&c, bad, PATHS_GATE_MAP_EXT), CS_EINPUT);
+    assert_non_null(strstr(cs_errmsg(), PATHS_GATE_MAP_EXT));
+    snprintf(bad, sizeof bad, "%s/main_variant.tsv", dir);
+    snprintf(cmd, sizeof cmd, "cp %s %s && printf 'MoreEpochsMainP\\tmain.gate:wilcoxon_p_max\\n' >> %s", PATHS_GATE_MAP, bad, bad);
     assert_int_equal(system(cmd), 0);
     assert_int_equal(claims_apply_gate_maps(&c, bad, PATHS_GATE_MAP_EXT), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), PATHS_GATE_MAP_EXT));
@@ -405,6 +418,15 @@ static void seeds_come_from_the_row_not_the_path(void **st)
     claims_eval(&row, &r);
     assert_int_equal(r.status, VERDICT_PASS);
     if (r.value != twelve) fail_msg("no seeds (the gate's twelve): observed %.17g, expected %.17g", r.value, twelve);
+    /* the choice's direction-blind precondition, judged on the ratio itself at twelve seeds */
+    row_of(&row, "MoreStandsMainIso", src, "claim_gensens_joint_blind", "main.gate:joint_over_direction_blind_max", "%.6f");
+    snprintf(row.kind, sizeof row.kind, "variant");
+    claims_eval(&row, &r);
+    assert_int_equal(r.status, VERDICT_PASS);
+    const double blind = (0.6 + 0.8 + 0.95) / 3;
+    if (r.value != twelve / blind) fail_msg("MoreStandsMainIso: observed %.17g, expected %.17g", r.value, twelve / blind);
+    assert_int_equal(r.gate, VERDICT_FAIL); /* about 0.42 over 0.78 > 0.5 */
+    if (r.gate_observed != twelve / blind) fail_msg("judged %.17g, expected %.17g", r.gate_observed, twelve / blind);
     /* the same four seeds read from the paper reading's own folder: the path chooses nothing */
     snprintf(src, sizeof src, "%s/run_s*_*.tsv", dir);
     row_of(&row, "SeedsOne", src, "claim_main_median", "-", "%.6f");

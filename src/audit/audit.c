@@ -312,7 +312,7 @@ static void check_pins(const claims *c, checklist *cl, const pinset *ps)
                 size_t off = 0, cnt = 0;
                 affected[0] = '\0';
                 for (size_t i = 0; i < c->n && off < sizeof affected - 40; i++)
-                    if (!strcmp(c->rows[i].kind, "measured") || !strcmp(c->rows[i].kind, "probe") || claims_is_extension(&c->rows[i])) off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
+                    if (!strcmp(c->rows[i].kind, "measured") || !strcmp(c->rows[i].kind, "probe") || claims_is_beside(&c->rows[i])) off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
                 if (!cnt) snprintf(affected, sizeof affected, "every measured claim");
             } else if (!strcmp(key, "design_sha256") || !strcmp(key, "design_numbers_sha256")) {
                 snprintf(affected, sizeof affected, "every claim resting on the design constants (%s)", path);
@@ -554,7 +554,7 @@ static void check_registry(const claims *c, checklist *cl)
         if (strcmp(c->rows[r].gate_reg, c->rows[r].gate)) {
             checklist_add(cl, VERDICT_FAIL, "registry gate column", "%s:%d: the gate column of %s says '%s' but the pinned %s%s%.0d says '%s' (the map decides which claim a gate judges); claim: %s",
                           PATHS_CLAIMS, c->rows[r].line, c->rows[r].macro, c->rows[r].gate_reg,
-                          claims_is_extension(&c->rows[r]) ? PATHS_GATE_MAP_EXT : PATHS_GATE_MAP,
+                          claims_is_beside(&c->rows[r]) ? PATHS_GATE_MAP_EXT : PATHS_GATE_MAP,
                           c->rows[r].gate_map_line ? ":" : "", c->rows[r].gate_map_line, c->rows[r].gate, c->rows[r].macro);
             bad++;
         }

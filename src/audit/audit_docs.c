@@ -95,29 +95,36 @@ static void gate_judged_text(const claim_row *row, const claim_result *r, char *
     snprintf(buf, n, " (judged %.3g%.*s)", r->gate_observed, (int)len, op ? op : "");
 }
 
-/* One table row per gate file: the gated claims of kind ext (0: the
- * reference paper's, 1: the extension's) with our value beside the paper's. */
+/* The group a gated claim is tallied in: 0 the reference paper's, 1 the pair
+ * extension's, 2 a training choice's at the gate's seeds (kind variant). */
+static int group_of(const claim_row *row)
+{
+    return !claims_is_beside(row) ? 0 : !strcmp(row->kind, "extension") ? 1 : 2;
+}
+
+/* One table row per gate file: the gated claims of group ext with our value
+ * beside the paper's. */
 static void findings_rows(sbuf *b, const claims *c, const claim_result *res, int ext)
 {
     for (size_t i = 0; i < c->n; i++) {
         const char *g = c->rows[i].gate;
         size_t gl = strcspn(g, ":");
-        if (!strcmp(g, "-") || claims_is_extension(&c->rows[i]) != ext) continue;
+        if (!strcmp(g, "-") || group_of(&c->rows[i]) != ext) continue;
         int first = 1;
         for (size_t j = 0; j < i && first; j++)
-            first = claims_is_extension(&c->rows[j]) != ext || strncmp(c->rows[j].gate, g, gl) || c->rows[j].gate[gl] != ':';
+            first = group_of(&c->rows[j]) != ext || strncmp(c->rows[j].gate, g, gl) || c->rows[j].gate[gl] != ':';
         if (!first) continue;
         size_t k[3] = {0};
         sbuf cl = {0};
         for (size_t j = i; j < c->n; j++) {
-            if (claims_is_extension(&c->rows[j]) != ext || strncmp(c->rows[j].gate, g, gl) || c->rows[j].gate[gl] != ':') continue;
+            if (group_of(&c->rows[j]) != ext || strncmp(c->rows[j].gate, g, gl) || c->rows[j].gate[gl] != ':') continue;
             k[judged(&c->rows[j], &res[j])]++;
             char judged_as[96];
             gate_judged_text(&c->rows[j], &res[j], judged_as, sizeof judged_as);
             sb_printf(&cl, "%s`%s` %s%s%s / %s", cl.n ? "; " : "", c->rows[j].macro, res[j].status == VERDICT_PASS ? res[j].text : "pending",
                       judged_as, res[j].status == VERDICT_PASS && superseded(&c->rows[j]) ? " (superseded reading)" : "", c->rows[j].reference);
         }
-        sb_printf(b, "| `" PATHS_GATES_DIR "/%.*s`%s | %zu | %zu | %zu | %s |\n", (int)gl, g, ext ? " (pair)" : "", k[0], k[1], k[2], cl.err ? "(out of memory)" : cl.s ? cl.s : "");
+        sb_printf(b, "| `" PATHS_GATES_DIR "/%.*s`%s | %zu | %zu | %zu | %s |\n", (int)gl, g, ext == 1 ? " (pair)" : ext == 2 ? " (variant)" : "", k[0], k[1], k[2], cl.err ? "(out of memory)" : cl.s ? cl.s : "");
         free(cl.s);
     }
 }
@@ -126,10 +133,11 @@ static void findings_rows(sbuf *b, const claims *c, const claim_result *res, int
  * the extension's claims in rows of their own, never in the paper's tally. */
 static void findings(sbuf *b, const claims *c, const claim_result *res)
 {
-    size_t k[3] = {0}, ke[3] = {0}, sup = 0;
+    size_t k[3] = {0}, ke[3] = {0}, kv[3] = {0}, sup = 0;
     for (size_t i = 0; i < c->n; i++) {
         if (!strcmp(c->rows[i].gate, "-")) continue;
-        if (claims_is_extension(&c->rows[i])) { ke[judged(&c->rows[i], &res[i])]++; continue; }
+        const int grp = group_of(&c->rows[i]);
+        if (grp) { (grp == 1 ? ke : kv)[judged(&c->rows[i], &res[i])]++; continue; }
         k[judged(&c->rows[i], &res[i])]++;
         sup += superseded(&c->rows[i]) != 0;
     }
@@ -145,13 +153,16 @@ static void findings(sbuf *b, const claims *c, const claim_result *res)
     sb_printf(b, "Gates (does our value meet the paper's preregistered threshold?) on the reference paper's claims: "
                  "**%zu reproduced, %zu not reproduced, %zu pending** (pending: data not on this machine, or units still running%s). "
                  "The pair extension, same thresholds (rows marked pair): %zu meet, %zu do not, %zu pending. "
+                 "The paper reading under a training choice that met both preconditions at four seeds, run at the gate's seeds, "
+                 "same thresholds (rows marked variant): %zu meet, %zu do not, %zu pending. "
                  "Agreement (is the paper's value inside our 95 %% interval? `crownshy report`): %zu inside, %zu reached by a reading or choice, "
                  "%zu unexplained, %zu without an interval. A claim can meet its gate and still disagree.\n\n", k[0], k[1], k[2],
               sup ? ", or a table made by a superseded reading of the pinned code, until its unit is re-run" : "", ke[0], ke[1], ke[2],
-              ak.inside, ak.reached, ak.unexplained, ak.nointerval);
+              kv[0], kv[1], kv[2], ak.inside, ak.reached, ak.unexplained, ak.nointerval);
     sb_printf(b, "| gate | reproduced | not reproduced | pending | claims: ours / paper |\n|---|---|---|---|---|\n");
     findings_rows(b, c, res, 0);
     findings_rows(b, c, res, 1);
+    findings_rows(b, c, res, 2);
 }
 
 /* Is s inside a code span of line (an odd number of backticks before it)? A
@@ -301,7 +312,7 @@ static void measured_collect(const claims *c, const claim_result *res, measured 
     m->paper = calloc(2 * (c->n ? c->n : 1), sizeof *m->paper);
     for (size_t r = 0; m->v && m->who && m->text && m->paper && r < c->n; r++) {
         const char *k = c->rows[r].kind;
-        if (strcmp(k, "measured") && strcmp(k, "needs-data") && strcmp(k, "probe") && strcmp(k, "extension")) continue;
+        if (strcmp(k, "measured") && strcmp(k, "needs-data") && strcmp(k, "probe") && !claims_kind_beside(k)) continue;
         char *end;
         double ref = strtod(c->rows[r].reference, &end);
         if (res[r].status == VERDICT_PASS && isfinite(res[r].value)) {

@@ -476,7 +476,7 @@ void audit_paper_text(const claims *c, const claim_result *res, checklist *cl)
     const char **who = calloc(2 * (c->n ? c->n : 1), sizeof *who);
     size_t nv = 0, before = cl->n;
     for (size_t r = 0; vals && who && r < c->n; r++) {
-        if (strcmp(c->rows[r].kind, "measured") && strcmp(c->rows[r].kind, "needs-data") && strcmp(c->rows[r].kind, "probe") && strcmp(c->rows[r].kind, "extension")) continue;
+        if (strcmp(c->rows[r].kind, "measured") && strcmp(c->rows[r].kind, "needs-data") && strcmp(c->rows[r].kind, "probe") && !claims_kind_beside(c->rows[r].kind)) continue;
         char *end;
         double ref = strtod(c->rows[r].reference, &end);
         if (res[r].status == VERDICT_PASS && isfinite(res[r].value)) { vals[nv] = res[r].value; who[nv++] = c->rows[r].macro; }

@@ -129,24 +129,26 @@ cs_status verify_external_inputs(const claims *c, const claim_result *res, const
 }
 
 /* What the gated claims say about the reference paper, tallied by print_claims. */
-typedef struct { size_t rep, notrep, gpend; char notrep_list[1024]; size_t ext[3]; char ext_fail[512], ext_src[512]; } gate_tally;
+/* ext*: [0] the extension's claims, [1] the variants' (claims_kind_beside) */
+typedef struct { size_t rep, notrep, gpend; char notrep_list[1024]; size_t ext[2][3]; char ext_fail[2][512], ext_src[2][512]; } gate_tally;
 
 /* An extension claim's gate (design.md §8): tallied apart from the reference
  * paper's, with the frozen tables it rests on. */
 static void tally_extension(const claim_row *row, const claim_result *r, verdict v, gate_tally *t)
 {
+    const int b = strcmp(row->kind, "extension") != 0;
     int k = v == VERDICT_FAIL || r->gate == VERDICT_PENDING ? 2 : r->gate == VERDICT_PASS ? 0 : 1;
-    t->ext[k]++;
+    t->ext[b][k]++;
     if (k == 1) {
-        size_t l = strlen(t->ext_fail);
-        snprintf(t->ext_fail + l, sizeof t->ext_fail - l, "%s%s", l ? ", " : "", row->macro);
+        size_t l = strlen(t->ext_fail[b]);
+        snprintf(t->ext_fail[b] + l, sizeof t->ext_fail[b] - l, "%s%s", l ? ", " : "", row->macro);
     }
     char dir[300];
     const char *slash = strrchr(row->source, '/');
     snprintf(dir, sizeof dir, "%.*s/", slash ? (int)(slash - row->source) : 0, row->source);
-    if (!strstr(t->ext_src, dir)) {
-        size_t l = strlen(t->ext_src);
-        snprintf(t->ext_src + l, sizeof t->ext_src - l, "%s%s", l ? ", " : "", dir);
+    if (!strstr(t->ext_src[b], dir)) {
+        size_t l = strlen(t->ext_src[b]);
+        snprintf(t->ext_src[b] + l, sizeof t->ext_src[b] - l, "%s%s", l ? ", " : "", dir);
     }
 }
 
@@ -171,7 +173,7 @@ static void print_claims(const claims *c, const claim_result *res, const numbers
         }
         int gated = strcmp(c->rows[i].gate, "-") != 0;
         const char *label = verdict_name(v);
-        const int ext = gated && claims_is_extension(&c->rows[i]);
+        const int ext = gated && claims_is_beside(&c->rows[i]);
         /* a table made by a superseded reading: its numbers are that reading's
          * until re-run; never counted as reproduced (nor as not reproduced) */
         if (v != VERDICT_FAIL && !strncmp(c->rows[i].source, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1) && audit_table_superseded(c->rows[i].source)) {
@@ -185,7 +187,7 @@ static void print_claims(const claims *c, const claim_result *res, const numbers
             tally_extension(&c->rows[i], &res[i], v, t);
             if (v != VERDICT_FAIL && res[i].gate == VERDICT_FAIL) {
                 label = "NOTMET";
-                snprintf(msg, sizeof msg, "%s = %s: the extension does not meet the threshold of %s: %s (%s); numbers.tex states FAIL",
+                snprintf(msg, sizeof msg, "%s = %s: this reading beside the verdict does not meet the threshold of %s: %s (%s); numbers.tex states FAIL",
                          c->rows[i].macro, res[i].text, c->rows[i].gate, res[i].gate_detail, c->rows[i].source);
             }
         } else if (gated && v != VERDICT_FAIL) {
@@ -215,7 +217,7 @@ static void print_claims(const claims *c, const claim_result *res, const numbers
                      : ar.kind == ATTRIB_UNTESTED ? "; unexplained, not varied" : "", ar.kind == ATTRIB_EXPLAINED ? ar.by : "",
                      agree_name(ag.kind), ag.by[0] ? ": " : "", ag.by);
         }
-        const char *iv = !strcmp(c->rows[i].kind, "measured") || !strcmp(c->rows[i].kind, "extension") ? (ci[i].has ? ci[i].text : "none") : "-";
+        const char *iv = !strcmp(c->rows[i].kind, "measured") || claims_kind_beside(c->rows[i].kind) ? (ci[i].has ? ci[i].text : "none") : "-";
         printf("  %-7s %-19s %-12s %-22s %-10s %-8s %s%s\n", label, c->rows[i].macro, val, iv, c->rows[i].kind, g, msg, dist);
         count[v]++;
     }
@@ -320,9 +322,12 @@ cs_status verify_run(const verify_opts *o)
     attrib_free(&at);
     printf("reference paper's gated claims: %zu reproduced, %zu not reproduced%s%s%s, %zu pending\n", rep, notrep,
            notrep ? " (" : "", notrep_list, notrep ? ")" : "", gpend);
-    if (gt.ext[0] + gt.ext[1] + gt.ext[2])
-        printf("extension claims (a generator reading added after the first verdict, design.md §8; same thresholds, %s): %zu meet, %zu do not%s%s%s, %zu pending; tables: %s\n",
-               PATHS_GATE_MAP_EXT, gt.ext[0], gt.ext[1], gt.ext[1] ? " (" : "", gt.ext_fail, gt.ext[1] ? ")" : "", gt.ext[2], gt.ext_src);
+    static const char *const beside[2] = {"extension claims (a generator reading added after the first verdict, design.md §8",
+                                          "variant claims (the paper reading under one unstated training choice, at the gate's seeds, design.md §8"};
+    for (int b = 0; b < 2; b++)
+        if (gt.ext[b][0] + gt.ext[b][1] + gt.ext[b][2])
+            printf("%s; same thresholds, %s): %zu meet, %zu do not%s%s%s, %zu pending; tables: %s\n", beside[b], PATHS_GATE_MAP_EXT, gt.ext[b][0],
+                   gt.ext[b][1], gt.ext[b][1] ? " (" : "", gt.ext_fail[b], gt.ext[b][1] ? ")" : "", gt.ext[b][2], gt.ext_src[b]);
     printf("%s\n", prereg_line);
     st = print_verdict(count, o->strict ? notrep : 0);
     if (have_nt) numbers_free(&nt);

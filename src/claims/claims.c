@@ -92,8 +92,8 @@ cs_status claims_load(const char *path, claims *out)
             }
         if (st) break;
         if (strcmp(w->kind, "measured") && strcmp(w->kind, "design") && strcmp(w->kind, "field") && strcmp(w->kind, "needs-data") &&
-            strcmp(w->kind, "probe") && strcmp(w->kind, "extension")) {
-            st = cs_err(CS_EINPUT, "%s:%d: field 'kind': unknown kind '%s' (measured, design, field, needs-data, probe, extension)", path, w->line, w->kind);
+            strcmp(w->kind, "probe") && !claims_kind_beside(w->kind)) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'kind': unknown kind '%s' (measured, design, field, needs-data, probe, extension, variant)", path, w->line, w->kind);
             break;
         }
         /* probe: measured like a claim, added after the first verdict, never gated */
@@ -133,9 +133,14 @@ cs_status claims_load(const char *path, claims *out)
     return CS_OK;
 }
 
-int claims_is_extension(const claim_row *row)
+int claims_kind_beside(const char *kind)
 {
-    return !strcmp(row->kind, "extension");
+    return !strcmp(kind, "extension") || !strcmp(kind, "variant");
+}
+
+int claims_is_beside(const claim_row *row)
+{
+    return claims_kind_beside(row->kind);
 }
 
 int claims_awaited_source(const char *source)
@@ -169,7 +174,7 @@ static cs_status apply_map(claims *c, const char *map_path, int ext, int reset)
         for (size_t i = 0; i < c->n && !row; i++) if (!strcmp(c->rows[i].macro, m)) row = &c->rows[i];
         if (!row) st = cs_err(CS_EINPUT, "%s:%d: field 'macro': '%s' is not a claim of the registry", map_path, line, m);
         else if (row->gate_map_line) st = cs_err(CS_EINPUT, "%s:%d: field 'macro': %s is mapped twice (line %d)", map_path, line, m, row->gate_map_line);
-        else if (ext >= 0 && claims_is_extension(row) != ext)
+        else if (ext >= 0 && claims_is_beside(row) != ext)
             st = cs_err(CS_EINPUT, "%s:%d: field 'macro': %s is of kind %s: %s", map_path, line, m, row->kind,
                         ext ? "this map judges the extension claims only" : "an extension claim is judged through " PATHS_GATE_MAP_EXT);
         else if (!strcmp(g, "-") || !gate_ref_ok(g) || strlen(g) >= sizeof row->gate)

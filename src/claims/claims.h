@@ -118,9 +118,12 @@ cs_status claims_apply_gate_map(claims *c, const char *map_path);
 /* The two pinned maps: main_map may name no row of kind extension, ext_map
  * only such rows (CS_EINPUT naming the map's file and line otherwise). */
 cs_status claims_apply_gate_maps(claims *c, const char *main_map, const char *ext_map);
-/* Kind extension: a claim of a generator reading added after the first
- * verdict, gated by the same thresholds, never one of the reference paper's. */
-int claims_is_extension(const claim_row *row);
+/* Kinds extension and variant: a claim of a generator reading added after the
+ * first verdict, gated by the same thresholds beside the reference paper's
+ * claims, never one of them: the pair extension (extension), or the paper's
+ * method under one unstated training choice, at the gate's seeds (variant). */
+int claims_kind_beside(const char *kind);
+int claims_is_beside(const claim_row *row);
 /* A frozen source that is a reading's unit still being run: under one of the
  * readings' folders of design.md §8 (the generator probes', the paper reading's, the pair
  * reading's 96-stands main and extrapolation folders, the descriptive readings'; the

@@ -62,6 +62,9 @@ static cs_status over_blind(const claim_row *row, claim_result *res, int a)
         snprintf(res->where + l, sizeof res->where - l, "; that arm whole, the other still running");
     }
     claim_set_value(row, res, med / blind);
+    /* a choice at the gate's seeds is judged by the direction-blind
+     * precondition on this ratio itself (a variant row) */
+    if (!a && strcmp(row->gate, "-")) claim_judge(row, res, GATE_LE, med / blind);
     return CS_OK;
 }
 

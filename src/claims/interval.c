@@ -175,7 +175,7 @@ cs_status interval_eval(const interval_table *t, const claim_row *row, const cla
 {
     memset(out, 0, sizeof *out);
     snprintf(out->text, sizeof out->text, "--");
-    if (strcmp(row->kind, "measured") && strcmp(row->kind, "extension")) return CS_OK;
+    if (strcmp(row->kind, "measured") && !claims_kind_beside(row->kind)) return CS_OK;
     if (res->status != VERDICT_PASS) { snprintf(out->why, sizeof out->why, "the claim is not computed"); return CS_OK; }
     const interval_spec *sp = interval_table_find(t, row->function);
     if (!sp) return cs_err(CS_EINPUT, "%s: no row for %s (the computing function of measured claim %s): its interval method is not stated",
