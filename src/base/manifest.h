@@ -211,7 +211,7 @@ EXPERIMENT(hero, "E9", "src/exp/exp_stands.c", "-", "src/claims/claim_teacher.c"
 COMMAND(hero, "hero-figure", cli_hero_figure, "E9: crowns of the hero figure (hard-core, L = 36 m, d = 3.0..6.5)")
 UNIT(hero, "figure_crowns.tsv", "$(TEACHER_DEPS) @R@/field/calibration.tsv", "$(CLI) hero-figure --beta $$($(CLI) field-beta @R@/field/calibration.tsv) --out @R@", "top")
 
-EXPERIMENT(replicates, "E1", "src/cli/cli_replicates.c", "-", "src/claims/interval_src.c", "-", "rerun", "replicate stands of the numbers resting on one figure stand (E1 figure stand, E8 point-cloud stands, E9 hero stems): the same family, disjoint seeds; their intervals (design.md §6.1)")
+EXPERIMENT(replicates, "E1", "src/cli/cli_replicates.c", "-", "src/agree/interval_src.c", "-", "rerun", "replicate stands of the numbers resting on one figure stand (E1 figure stand, E8 point-cloud stands, E9 hero stems): the same family, disjoint seeds; their intervals (design.md §6.1)")
 COMMAND(replicates, "replicates-run", cli_replicates_run, "E1/E8/E9: replicate stands of the one-stand figure numbers")
 UNIT(replicates, "figure_stands.tsv", "$(TEACHER_DEPS)", "$(CLI) replicates-run --stands $(REPLICATE_STANDS) --out @R@", "top")
 
