@@ -68,7 +68,7 @@ VARIANT(readings, "one-sided-36m", "--teacher teacher-1", "--layout 4m-on-36m")
 VARIANT(readings, "mutual-36m", "--teacher teacher-2", "--layout 4m-on-36m")
 VARIANT(readings, "arc-36m", "--teacher teacher-2-arc", "--layout 4m-on-36m")
 
-EXPERIMENT(sensitivity, "E0", "src/cli/cli_sens.c", "-", "src/claims/sens.c", "figures/sensitivity.gp", "rerun", "the cheap teacher numbers with one unstated choice (src/base/unstated.c) moved either side of ours, everything else pinned: one unit per choice and value, and a centre unit with our choices")
+EXPERIMENT(sensitivity, "E0", "src/exp/exp_sensitivity.c", "-", "src/claims/sens.c", "figures/sensitivity.gp", "rerun", "the cheap teacher numbers with one unstated choice (src/base/unstated.c) moved either side of ours, everything else pinned: one unit per choice and value, and a centre unit with our choices")
 COMMAND(sensitivity, "sensitivity-run", cli_sensitivity_run, "E0: one sensitivity unit: one unstated choice at one value, or the centre")
 COMMAND(sensitivity, "sensitivity-summary", cli_sensitivity_summary, "E0: the sensitivity table from the units under --dir")
 UNIT(sensitivity, "%/unit.tsv", "$(SENS_DEPS)", "$(CLI) sensitivity-run --unit $* $(SENS_ARGS) --out $(@D)", "-")
