@@ -2,8 +2,9 @@
 # `make verify` (main job) and `make check` (tests) install missing Debian
 # packages themselves when run as root; otherwise they print the apt-get line.
 # Sources are discovered: src/ has one folder per stage of the pipeline
-# (base -> forest -> model -> exp, claims -> cli); every .c under them except
-# src/cli/ is library code, every tests/test_*.c is one cmocka binary.
+# (base -> forest, model -> exp, claims -> agree -> audit -> cli); every .c
+# under them except src/cli/ is library code, every tests/test_*.c is one
+# cmocka binary.
 # Headers are included by name ("teacher.h"), with one -I per stage, so a
 # pinned source's bytes do not depend on where its stage folder is.
 
@@ -20,7 +21,7 @@ CC ?= cc
 # costs a third of the compile time of `make verify` from clean. DEBUG=1 adds it.
 CFLAGS ?= -std=c11 -O2 -ffp-contract=off $(if $(DEBUG),-g) -Wall -Wextra -Wno-unused-parameter -Wno-psabi -Wno-missing-field-initializers \
           -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
-STAGES := base forest model exp claims audit
+STAGES := base forest model exp claims agree audit
 CPPFLAGS += $(addprefix -Isrc/,$(STAGES) cli)
 LDLIBS := -lgsl -lopenblas -lm
 SANFLAGS := -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined

@@ -7,11 +7,11 @@
 #     is at most 6 levels (a file's level is 1 + the deepest level of the
 #     files it includes: cs.h is 1, a CLI handler at most 6);
 #  3. each stage imports only its own stage and the stages below it:
-#       base   <- forest, model <- exp, claims <- audit <- cli
+#       base   <- forest, model <- exp, claims <- agree <- audit <- cli
 #     forest and model do not import each other, exp and claims do not import
 #     each other, an experiment file imports no other experiment file (only
-#     exp_common), and nothing the claims reach (transitively) is the teacher
-#     or the model stage;
+#     exp_common), and nothing the claims, their intervals and agreement or
+#     the audit reach (transitively) is the teacher or the model stage;
 #  4. the experiment manifest src/base/manifest.h is the one list of
 #     experiments: the files its rows name exist, every frozen/ folder has a
 #     row, every command is named <experiment>-... (or after the
@@ -24,11 +24,11 @@
 #  6. a header-only module declares no function (it would be another
 #     module's: an import circle the include graph does not show);
 #  7. no function over 80 lines, except the exemptions named there;
-#  8. no claim behaviour chosen by how a macro is spelt: in src/claims and
-#     src/exp no strstr/strncmp/strcmp/has_suffix of a `macro` field against a
-#     string literal, no arithmetic into a macro (a prefix or suffix cut), no
-#     char pointer taken from one (the way such tests hid); what a function
-#     computes comes from the registry row's params.
+#  8. no claim behaviour chosen by how a macro is spelt: in src/claims,
+#     src/agree and src/exp no strstr/strncmp/strcmp/has_suffix of a `macro`
+#     field against a string literal, no arithmetic into a macro (a prefix or
+#     suffix cut), no char pointer taken from one (the way such tests hid);
+#     what a function computes comes from the registry row's params.
 # Prints cmocka-style lines so tests/run.sh counts it like a test binary.
 set -u
 cd "$(dirname "$0")/.."
@@ -87,7 +87,7 @@ if [ "${depth%% *}" -le 6 ]; then ok "include depth at most 6 levels (deepest: $
 else bad "include depth at most 6 levels" "deepest: $depth"; fi
 
 # 3. direction of imports
-rank() { case "$1" in base) echo 0;; forest|model) echo 1;; exp|claims) echo 2;; audit) echo 3;; cli) echo 4;; *) echo 9;; esac; }
+rank() { case "$1" in base) echo 0;; forest|model) echo 1;; exp|claims) echo 2;; agree) echo 3;; audit) echo 4;; cli) echo 5;; *) echo 9;; esac; }
 wrong=""
 while read -r a b; do
   [ -n "$a" ] || continue
@@ -105,12 +105,12 @@ reach=$(awk -v stages="$(for m in "${!STAGE[@]}"; do echo -n "$m=${STAGE[$m]} ";
   BEGIN { n = split(stages, s, " "); for (i = 1; i <= n; i++) { split(s[i], kv, "="); st[kv[1]] = kv[2] } }
   { dep[$1] = dep[$1] " " $2 }
   END {
-    for (m in st) if (st[m] == "claims" || st[m] == "audit") { q[m]; seen[m] }
+    for (m in st) if (st[m] == "claims" || st[m] == "agree" || st[m] == "audit") { q[m]; seen[m] }
     do { grew = 0; for (m in q) { k = split(dep[m], d, " "); for (i = 1; i <= k; i++) if (!(d[i] in seen)) { seen[d[i]]; q[d[i]]; grew = 1 } } } while (grew)
     for (m in seen) if (m == "teacher" || m == "stand_grow" || st[m] == "model" || st[m] == "exp") print m
   }' <<<"$edges" | sort | tr '\n' ' ')
-if [ -z "$reach" ]; then ok "the claims and the audit reach neither the teacher nor the model"
-else bad "the claims and the audit reach neither the teacher nor the model" "reached: $reach"; fi
+if [ -z "$reach" ]; then ok "the claims, the agreement and the audit reach neither the teacher nor the model"
+else bad "the claims, the agreement and the audit reach neither the teacher nor the model" "reached: $reach"; fi
 
 # 4. the experiment manifest (src/base/manifest.h) is the one list of experiments
 rows=$(bash src/base/manifest.sh rows)
@@ -216,8 +216,8 @@ spelt=$(grep -nE -e "$spell_fn[[:space:]]*$spell_arg[[:space:]]*,[[:space:]]*\""
                  -e "$spell_fn[[:space:]]*\"[^\"]*\"[[:space:]]*,[[:space:]]*$spell_arg" \
                  -e '(->|\.)macro[[:space:]]*[-+]' \
                  -e 'char[[:space:]]*\*[[:space:]]*[A-Za-z_]+[[:space:]]*=[[:space:]]*([A-Za-z_]+\()?[^,;()"]*(->|\.)macro[[:space:]]*[;),]' \
-                 src/claims/*.c src/claims/*.h src/exp/*.c src/exp/*.h /dev/null | sed 's/:[[:space:]]*/: /2')
-if [ -z "$spelt" ]; then ok "no claim behaviour chosen by a macro's spelling (src/claims, src/exp)"
+                 src/claims/*.c src/claims/*.h src/agree/*.c src/agree/*.h src/exp/*.c src/exp/*.h /dev/null | sed 's/:[[:space:]]*/: /2')
+if [ -z "$spelt" ]; then ok "no claim behaviour chosen by a macro's spelling (src/claims, src/agree, src/exp)"
 else bad "no claim behaviour chosen by a macro's spelling" "$(echo "$spelt" | wc -l) line(s), each to read the row's params instead:
 $spelt"; fi
 

@@ -1,4 +1,4 @@
-/* Tests of the claim intervals (src/claims/interval.c, agree.c; design.md
+/* Tests of the claim intervals (src/agree/interval.c, agree.c; design.md
  * §6.1): every measured claim has a stated method; one perturbed replicate
  * row changes a claim's interval and fails the claim test's check, naming
  * the claim; replicates that do not give the claim's value are refused; the

@@ -106,11 +106,15 @@ static cs_status current_pins(pinset *s)
     /* pinned with the gates: which claim each gate judges */
     add_file_pin(s, "gate_map_sha256", PATHS_GATE_MAP);
     add_file_pin(s, "gate_map_sha256", PATHS_GATE_MAP_EXT);
-    /* the claim-computing code and the registry: an edit changes a verdict's inputs */
-    paths_list cc = {0};
-    paths_list_files(PATHS_CLAIMS_SRC_DIR, ".c", 0, &cc);
-    for (size_t i = 0; i < cc.n; i++) add_file_pin(s, "claim_code_sha256", cc.p[i]);
-    paths_list_free(&cc);
+    /* the claim-computing code, the intervals and agreement it is judged by,
+     * and the registry: an edit changes a verdict's inputs */
+    const char *claim_dirs[] = {PATHS_CLAIMS_SRC_DIR, PATHS_AGREE_SRC_DIR};
+    for (size_t d = 0; d < sizeof claim_dirs / sizeof *claim_dirs; d++) {
+        paths_list cc = {0};
+        paths_list_files(claim_dirs[d], ".c", 0, &cc);
+        for (size_t i = 0; i < cc.n; i++) add_file_pin(s, "claim_code_sha256", cc.p[i]);
+        paths_list_free(&cc);
+    }
     /* the code that judges them: the audit, verify, the generated paper files */
     paths_list ac = {0};
     paths_list_files(PATHS_AUDIT_SRC_DIR, ".c", 0, &ac);

@@ -68,7 +68,7 @@ VARIANT(readings, "one-sided-36m", "--teacher teacher-1", "--layout 4m-on-36m")
 VARIANT(readings, "mutual-36m", "--teacher teacher-2", "--layout 4m-on-36m")
 VARIANT(readings, "arc-36m", "--teacher teacher-2-arc", "--layout 4m-on-36m")
 
-EXPERIMENT(sensitivity, "E0", "src/cli/cli_sens.c", "-", "src/claims/sens.c", "figures/sensitivity.gp", "rerun", "the cheap teacher numbers with one unstated choice (src/base/unstated.c) moved either side of ours, everything else pinned: one unit per choice and value, and a centre unit with our choices")
+EXPERIMENT(sensitivity, "E0", "src/exp/exp_sensitivity.c", "-", "src/claims/sens.c", "figures/sensitivity.gp", "rerun", "the cheap teacher numbers with one unstated choice (src/base/unstated.c) moved either side of ours, everything else pinned: one unit per choice and value, and a centre unit with our choices")
 COMMAND(sensitivity, "sensitivity-run", cli_sensitivity_run, "E0: one sensitivity unit: one unstated choice at one value, or the centre")
 COMMAND(sensitivity, "sensitivity-summary", cli_sensitivity_summary, "E0: the sensitivity table from the units under --dir")
 UNIT(sensitivity, "%/unit.tsv", "$(SENS_DEPS)", "$(CLI) sensitivity-run --unit $* $(SENS_ARGS) --out $(@D)", "-")
@@ -211,7 +211,7 @@ EXPERIMENT(hero, "E9", "src/exp/exp_stands.c", "-", "src/claims/claim_teacher.c"
 COMMAND(hero, "hero-figure", cli_hero_figure, "E9: crowns of the hero figure (hard-core, L = 36 m, d = 3.0..6.5)")
 UNIT(hero, "figure_crowns.tsv", "$(TEACHER_DEPS) @R@/field/calibration.tsv", "$(CLI) hero-figure --beta $$($(CLI) field-beta @R@/field/calibration.tsv) --out @R@", "top")
 
-EXPERIMENT(replicates, "E1", "src/cli/cli_replicates.c", "-", "src/claims/interval_src.c", "-", "rerun", "replicate stands of the numbers resting on one figure stand (E1 figure stand, E8 point-cloud stands, E9 hero stems): the same family, disjoint seeds; their intervals (design.md §6.1)")
+EXPERIMENT(replicates, "E1", "src/cli/cli_replicates.c", "-", "src/agree/interval_src.c", "-", "rerun", "replicate stands of the numbers resting on one figure stand (E1 figure stand, E8 point-cloud stands, E9 hero stems): the same family, disjoint seeds; their intervals (design.md §6.1)")
 COMMAND(replicates, "replicates-run", cli_replicates_run, "E1/E8/E9: replicate stands of the one-stand figure numbers")
 UNIT(replicates, "figure_stands.tsv", "$(TEACHER_DEPS)", "$(CLI) replicates-run --stands $(REPLICATE_STANDS) --out @R@", "top")
 

@@ -36,8 +36,10 @@
 /* The numbers the paper text may type: constants of the design, each with
  * the file that fixes it. */
 #define PATHS_DESIGN_NUMBERS "audit/design_numbers.tsv"
-/* The claim-computing code, pinned file by file. */
+/* The claim-computing code, and the code that gives each claim its interval
+ * and its agreement with the paper: pinned file by file. */
 #define PATHS_CLAIMS_SRC_DIR "src/claims"
+#define PATHS_AGREE_SRC_DIR "src/agree"
 #define PATHS_AUDIT_SRC_DIR "src/audit"
 /* How each measured claim's interval is computed (design.md §6.1; pinned). */
 #define PATHS_INTERVALS "audit/intervals.tsv"

@@ -11,8 +11,8 @@
  * Output replicates/figure_stands.tsv, one row per (family, arm, spacing,
  * stand): family arm spacing_m stand stems trees k1_m k2_m k3_m cover
  * overlap_m contact_pct (nan where the family does not define a column).
- * It runs three experiments' figure stands, so it lives beside the other
- * cross-experiment runner (cli_sens.c), not among the experiments. */
+ * It runs three experiments' figure stands, and an experiment file imports
+ * no other (tests/layout.sh): its loop lives here, not among the experiments. */
 #include "cli.h"
 #include "exp_common.h"
 #include "exp_mechanism.h"

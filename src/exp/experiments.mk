@@ -57,7 +57,7 @@ REPLICATE_STANDS := 100
 ANISO_SWEEP_STANDS := 12
 endif
 
-# E0 sensitivity (src/cli/cli_sens.c): E1 and E2 at 4 stands per cell (the
+# E0 sensitivity (src/exp/exp_sensitivity.c): E1 and E2 at 4 stands per cell (the
 # full run: 8; the centre unit uses the same count, so the columns compare),
 # E5/E6 at the full run's counts; smoke 1.
 ifeq ($(SCALE),smoke)

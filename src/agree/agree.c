@@ -266,8 +266,8 @@ cs_status agree_write_comparison(const char *path, const claims *c, const claim_
                "%% Every claim of the reference paper beside our value and the verdict of its gate.\n"
                "%% rel.\\ diff = (ours - reference) / |reference| for measured claims with a non-zero numeric reference.\n"
                "%% beyond 10 %%: which run reading (frozen/readings/) or unstated choice (frozen/sensitivity/) reaches the\n"
-               "%% reference value (src/claims/attrib.c), or unexplained; untested: no reading or choice varies it.\n"
-               "%% 95 %% interval and agreement: design.md section 6.1 (src/claims/interval.c, agree.c).\n"
+               "%% reference value (src/agree/attrib.c), or unexplained; untested: no reading or choice varies it.\n"
+               "%% 95 %% interval and agreement: design.md section 6.1 (src/agree/interval.c, agree.c).\n"
                "\\begin{longtable}{llrrrrllp{4.0cm}l}\n\\toprule\n"
                "claim & kind & reference & ours & 95\\,\\%% interval & rel.\\ diff & gate & status & beyond 10\\,\\%%: reached by & agreement\\\\\n\\midrule\n\\endhead\n");
     for (size_t i = 0; i < c->n; i++) {
