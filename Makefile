@@ -102,7 +102,7 @@ $(SPLIT): tests/bench/step_split.c $(B)/libcrownshy.a
 # Every cmocka binary, then all of them again under ASan+UBSan; one aggregate line.
 check: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS) $(ASAN_TESTS) $(SPLIT)
-	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/manifest.sh tests/citation.sh tests/paper_deps.sh tests/fonts.sh tests/spot.sh tests/docs.sh tests/readings_full.sh -- $(ASAN_TESTS)
+	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/walls.sh tests/manifest.sh tests/citation.sh tests/paper_deps.sh tests/fonts.sh tests/spot.sh tests/docs.sh tests/readings_full.sh -- $(ASAN_TESTS)
 
 # One claim's test alone, by its macro: make test-claim MACRO=MainRel
 .PHONY: test-claim
