@@ -50,7 +50,6 @@ cost() {
   END {
     printf "study cost, %s\n", title
     if (!n) { printf "  no unit listed at SCALE=%s\n", scale; exit }
-    printf "%-24s %6s %9s %10s\n", "experiment", "units", "recorded", "CPU-hours"
     for (i = 1; i <= n; i++) {
       w = W[i]; src = "recorded"
       if (w == "") { w = median(byk[K[i]]); src = "kind" }
@@ -59,6 +58,8 @@ cost() {
       cpu[E[i]] += w; total += w; if (src == "recorded") { rec[E[i]]++; totrec++ }
       if (H[i] == "trained") trained++
     }
+    if (!totrec) { printf "  none of its %d units has a recorded wall time here: no projection (make reproduce SCALE=%s records them)\n", n, scale; exit }
+    printf "%-24s %6s %9s %10s\n", "experiment", "units", "recorded", "CPU-hours"
     for (e in units) printf "%-24s %6d %9d %10.2f%s\n", e, units[e], rec[e], cpu[e] / 3600, unknown[e] ? sprintf("  (%d with no time of their kind)", unknown[e]) : ""
     printf "whole study at SCALE=%s: %d units (%d with a recorded time), %.2f CPU-hours%s\n", scale, n, totrec, total / 3600,
            totunknown ? sprintf(" (%d units with no recorded time of their kind left out)", totunknown) : ""
