@@ -103,7 +103,7 @@ $(SPLIT): tests/bench/step_split.c $(B)/libcrownshy.a
 # Every cmocka binary, then all of them again under ASan+UBSan; one aggregate line.
 check: deps
 	@$(MAKE) --no-print-directory $(CLI) $(TESTS) $(ASAN_TESTS) $(SPLIT)
-	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/manifest.sh tests/citation.sh tests/paper_deps.sh tests/fonts.sh tests/spot.sh tests/docs.sh tests/readings_full.sh -- $(ASAN_TESTS)
+	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/walls.sh tests/manifest.sh tests/citation.sh tests/paper_deps.sh tests/fonts.sh tests/spot.sh tests/docs.sh tests/readings_full.sh -- $(ASAN_TESTS)
 
 # One claim's test alone, by its macro: make test-claim MACRO=MainRel
 .PHONY: test-claim
@@ -153,13 +153,15 @@ figures: deps
 # core's FMA peak and, as fractions of it measured beside each, the own product,
 # sgemm, training and sampling of the plain and pair models, every goal judged,
 # and the projected wall time of E3+E4 (README "Speed"); then where a training
-# step's time goes (tests/bench/step_split.c, design.md §10.1).
+# step's time goes (tests/bench/step_split.c, design.md §10.1); last the whole
+# study's cost at full and at smoke scale (src/exp/study_cost.sh), the pair
+# training units also from the model bench's rates (kept in $(B)/bench/).
 bench: deps
 	@$(MAKE) --no-print-directory $(CLI) $(SPLIT)
 	@$(CLI) bench-teacher
-	@$(CLI) bench-model
+	@mkdir -p $(B)/bench; set -o pipefail; $(CLI) bench-model | tee $(B)/bench/model.txt
 	@$(SPLIT)
-	@bash src/exp/study_cost.sh
+	@BENCH_MODEL_OUT=$(B)/bench/model.txt SMOKE_ROOT=$(B)/smoke SMOKE_STATE=$(B)/reproduce/smoke bash src/exp/study_cost.sh
 
 numbers: deps
 	@$(MAKE) --no-print-directory $(CLI)

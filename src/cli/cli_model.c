@@ -221,30 +221,31 @@ static int bench_path(gemm_isa isa, const model_cfg *cfg, long batch, long round
     const double sps = 1e3 / r.ms[SPEED_PLAIN].med, psps = 1e3 / r.ms[SPEED_PAIR].med;
     printf("plain_train_steps_per_s\t%.2f\npair_train_steps_per_s\t%.2f\n", sps, psps);
     printf("pair_to_plain_step_time\t%.3f\n", r.ms[SPEED_PAIR].med / r.ms[SPEED_PLAIN].med);
-    const double vs_sgemm = r.item[SPEED_PLAIN].frac.med / r.item[SPEED_SGEMM].frac.med;
-    int ok = goal("own product, fraction of FMA peak", r.item[SPEED_PRODUCT].frac.med, 0.85, "%.3f");
-    ok &= goal("pair model training, fraction of FMA peak", r.item[SPEED_PAIR].frac.med, 0.75, "%.3f");
-    ok &= goal("plain model training, fraction of same-run sgemm", vs_sgemm, 0.60, "%.3f");
-    ok &= goal("plain model steps/s", sps, 55, "%.1f");
-    ok &= goal("pair model steps/s", psps, 55, "%.1f");
+    /* one goal per figure, each against this path's peak measured beside it;
+     * sgemm is printed as a yardstick and judges nothing (which kernel
+     * OpenBLAS picks on a given core is its choice, not ours) */
+    int ok = goal("own product, fraction of this path's FMA peak", r.item[SPEED_PRODUCT].frac.med, SPEED_GOAL_PRODUCT, "%.3f");
+    ok &= goal("pair model training, fraction of this path's FMA peak", r.item[SPEED_PAIR].frac.med, SPEED_GOAL_TRAIN, "%.3f");
+    ok &= goal("plain model training, fraction of this path's FMA peak", r.item[SPEED_PLAIN].frac.med, SPEED_GOAL_TRAIN, "%.3f");
     double wall, uj, ui;
     long nsteps;
     int nunits;
     if ((st = projection(&r, &wall, &uj, &ui, &nsteps, &nunits))) return cli_fail("bench-model", st);
-    printf("projected E3+E4 on this path: %d pair-model units (%ld training steps + evaluation each; joint %.0f s, independent %.0f s), two at a time: %.1f min\n",
-           nunits, nsteps, uj, ui, wall);
-    ok &= goal("E3+E4 within 60 min on 2 cores (projected), minutes under the budget", 60 - wall, 0, "%.1f");
+    /* these rates x these counts: the whole study's cost is study_cost.sh's */
+    printf("projected E3+E4 on this path: %d pair-model units (%ld training steps + evaluation each; joint %.0f s, independent %.0f s), "
+           "two at a time: %.1f min (budget 60 min; CPU time, the teacher's part of a unit left out)\n", nunits, nsteps, uj, ui, wall);
+    printf("pair_unit_s\tjoint %.17g\tindep %.17g\n", uj, ui);
     *failed += !ok;
     return 0;
 }
 
 int cli_cmd_bench_model(int argc, char **argv)
 {
-    long repeats = 7, steps = 4, batch = 64;
+    long repeats = 7, steps = 16, batch = 64;
     const char *path = "all";
     const opt_spec o[] = {
         {"repeats", OPT_LONG, &repeats, 1, 15, "rounds, medians and ranges over them are reported (default 7)"},
-        {"steps", OPT_LONG, &steps, 1, 1e9, "training or Euler steps per measurement (default 4)"},
+        {"steps", OPT_LONG, &steps, 1, 1e9, "consecutive training or Euler steps per measurement, after untimed ones on the same model (default 16)"},
         {"batch", OPT_LONG, &batch, 1, 4096, "patches per step (default 64)"},
         {"path", OPT_STR, &path, 0, 0, "all (every vector path this CPU has, widest first), avx512, avx2 or scalar (default all)"},
     };

@@ -19,6 +19,7 @@
 # RESULTS= when given on the command line), SCALE, SLURM_ARGS and MAKE set.
 # Bookkeeping lives in REPRODUCE_STATE (build/reproduce/<results dir name>/):
 #   walltimes.tsv   last wall time seen per unit (for the ETA)
+#   runs.tsv        per local run that made every unit: date, units, -j, seconds
 #   slurm/jobs.tsv  one line per submission: unit, job id, log, submit time (last wins)
 #   slurm/logs/     one log per job; slurm/rc/<job id> the exit status of its make
 set -euo pipefail
@@ -228,6 +229,11 @@ run_local() {
         return "$rc"
     fi
     echo "reproduce: $total/$total units up to date in $RESULTS (${#DONE[@]} made in $(fmt_s $((SECONDS - t0))))"
+    # a run that made every unit: its measured wall time, against which
+    # study_cost.sh's projection of the same units can be checked
+    if [ "$ntodo" -eq "$total" ]; then
+        printf '%s\t%s\t%s\t%s\n' "$(date -u +%FT%TZ)" "${#DONE[@]}" "$j" "$((SECONDS - t0))" >> "$STATE/runs.tsv"
+    fi
 }
 
 # ---- Slurm bookkeeping ---------------------------------------------------------------

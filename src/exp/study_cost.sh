@@ -1,60 +1,106 @@
 #!/usr/bin/env bash
 # study_cost: what the whole study costs to reproduce (design.md §10), from
-# the manifest's units and the wall times the frozen units recorded. Reads
-# the full run's unit list (`make reproduce-status`: every unit the manifest
-# expands to at SCALE=full) and, for each unit, the `# wall_s:` of its frozen
-# table; a unit not frozen yet takes the median of the frozen units of its
-# kind (the same path with the seed and arm left out), else of its experiment,
-# else it is counted as unknown. Prints per experiment the units, how many
-# have a recorded time, and the CPU-hours; then the whole study's CPU-hours
-# and its wall time with `make -j2` and on N two-core Slurm nodes (the units
-# spread evenly: a lower bound that ignores the order the units depend on).
-# Recorded times come from the machines and loads the units ran on, so this
-# is a measured figure of the study as run, not of this machine.
+# the manifest's units and the wall times the units recorded. For each scale
+# (full, and smoke so that the projection can be checked against a measured
+# `make reproduce SCALE=smoke`), the unit list is the one `make
+# reproduce-status` expands the manifest to, and each unit's time is read by
+# unit_walls (unit_wall.sh, the reader verify_deep.sh uses too): at full scale
+# from frozen/, at smoke scale from the smoke results and the wall times
+# `make reproduce` recorded for them. A unit with no recorded time takes the
+# median of its kind (the same path with the seed and arm left out), else of
+# its experiment, else it is counted as unknown. Prints per experiment the
+# units, how many have a recorded time, and the CPU-hours; then the scale's
+# CPU-hours and its wall time with `make -j2` and on N two-core Slurm nodes
+# (the units spread evenly over the cores: a lower bound that ignores the
+# order the units depend on, and the same at both scales, so a measured smoke
+# run checks it). With BENCH_MODEL_OUT (the output of `crownshy bench-model`)
+# the pair model's training units are also projected from this machine's
+# measured rates (step and Euler-step times x the plan's counts), beside
+# their recorded times. Recorded times come from the machines and loads the
+# units ran on: a measured figure of the study as run, not of this machine.
 # usage: src/exp/study_cost.sh [NODES...]   (default nodes: 4 8)
+#   env: SMOKE_ROOT (default build/smoke), SMOKE_STATE (build/reproduce/smoke),
+#        BENCH_MODEL_OUT (optional)
 set -u
 cd "$(dirname "$0")/../.."
+. src/exp/unit_wall.sh
 nodes=${*:-4 8}
-status=$(make -s --no-print-directory reproduce-status SCALE=full 2>/dev/null) || { echo "study_cost: make reproduce-status failed" >&2; exit 4; }
-# every frozen table's recorded wall time: "path wall" (path under frozen/)
-walls=$(grep -m1 -r --include='*.tsv' '^# wall_s: ' frozen 2>/dev/null | sed -E 's|^frozen/([^:]*):# wall_s: ([0-9.]+).*|\1 \2|')
-# tables frozen from a re-evaluation of earlier weights record the evaluation's time only
-reeval=$(grep -l -m1 -r --include='run_s*.tsv' '^# trained_wall_s: ' frozen 2>/dev/null | wc -l)
-awk -v nodes="$nodes" -v reeval="$reeval" '
-  FNR == NR { T[$1] = $2; next }
-  # a unit that writes unit.tsv last (a sensitivity unit) ran every table of its folder
-  function walls(path,   d, p, sum, any) {
-    if (path !~ /\/unit\.tsv$/) return (path in T) ? T[path] : ""
-    d = path; sub(/unit\.tsv$/, "", d); sum = 0; any = 0
-    for (p in T) if (index(p, d) == 1) { sum += T[p]; any = 1 }
-    return any ? sum : ""
-  }
+smoke_root=${SMOKE_ROOT:-build/smoke}
+smoke_state=${SMOKE_STATE:-build/reproduce/smoke}
+
+units_at() {  # the unit paths (under the results root) of one scale
+    make -s --no-print-directory reproduce-status SCALE="$1" 2>/dev/null |
+        awk '$1 ~ /^(done|missing|queued|running|failed)$/ { print $2 }'
+}
+
+# cost SCALE TITLE: the per-experiment table and the totals of one scale, from
+# "path unit_s how" lines on stdin
+cost() {
+    awk -F'\t' -v nodes="$nodes" -v scale="$1" -v title="$2" '
   function kind(path,   k) { k = path; gsub(/_s[0-9][0-9]_(joint|indep)/, "_s%_ARM", k); gsub(/_s[0-9][0-9]\./, "_s%.", k); return k }
   function median(list,   n, a, i, j, t) {
     n = split(list, a, " "); if (!n) return ""
     for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++) if (a[j] + 0 < a[i] + 0) { t = a[i]; a[i] = a[j]; a[j] = t }
     return n % 2 ? a[(n + 1) / 2] : (a[n / 2] + a[n / 2 + 1]) / 2
   }
-  $1 !~ /^(done|missing|queued|running|failed)$/ { next }
-  { path = $2; ex = path; sub(/\/.*/, "", ex)
-    n++; P[n] = path; E[n] = ex; K[n] = kind(path)
-    w = walls(path); W[n] = w
-    if (w != "") { byk[K[n]] = byk[K[n]] " " w; bye[ex] = bye[ex] " " w }
+  { path = $1; ex = path; sub(/\/.*/, "", ex)
+    n++; E[n] = ex; K[n] = kind(path); W[n] = $2; H[n] = $3
+    if ($2 != "") { byk[K[n]] = byk[K[n]] " " $2; bye[ex] = bye[ex] " " $2 }
     units[ex]++ }
   END {
-    printf "study cost (the full run, from the manifest and the frozen units\x27 recorded wall times)\n"
-    printf "%-24s %6s %9s %10s\n", "experiment", "units", "recorded", "CPU-hours"
+    printf "study cost, %s\n", title
+    if (!n) { printf "  no unit listed at SCALE=%s\n", scale; exit }
     for (i = 1; i <= n; i++) {
       w = W[i]; src = "recorded"
       if (w == "") { w = median(byk[K[i]]); src = "kind" }
       if (w == "") { w = median(bye[E[i]]); src = "experiment" }
       if (w == "") { unknown[E[i]]++; totunknown++; continue }
-      cpu[E[i]] += w; total += w; if (src == "recorded") rec[E[i]]++
+      cpu[E[i]] += w; total += w; if (src == "recorded") { rec[E[i]]++; totrec++ }
+      if (H[i] == "trained") trained++
     }
+    if (!totrec) { printf "  none of its %d units has a recorded wall time here: no projection (make reproduce SCALE=%s records them)\n", n, scale; exit }
+    printf "%-24s %6s %9s %10s\n", "experiment", "units", "recorded", "CPU-hours"
     for (e in units) printf "%-24s %6d %9d %10.2f%s\n", e, units[e], rec[e], cpu[e] / 3600, unknown[e] ? sprintf("  (%d with no time of their kind)", unknown[e]) : ""
-    printf "whole study: %d units, %.1f CPU-hours%s\n", n, total / 3600, totunknown ? sprintf(" (%d units with no recorded time of their kind left out)", totunknown) : ""
-    if (reeval) printf "(%d of the recorded tables are re-evaluations of earlier weights: they record the evaluation, not the training, so a run that retrains them costs more)\n", reeval
-    printf "make -j2 on one two-core machine: about %.1f h\n", total / 3600 / 2
+    printf "whole study at SCALE=%s: %d units (%d with a recorded time), %.2f CPU-hours%s\n", scale, n, totrec, total / 3600,
+           totunknown ? sprintf(" (%d units with no recorded time of their kind left out)", totunknown) : ""
+    if (trained) printf "(%d training units are frozen as re-evaluations of their weights: each is counted at the wall time its training run recorded, trained_wall_s)\n", trained
+    printf "  make -j2 on one two-core machine: about %.2f h (%.1f min)\n", total / 3600 / 2, total / 60 / 2
     k = split(nodes, N, " ")
-    for (i = 1; i <= k; i++) printf "Slurm, %d two-core nodes: about %.1f h (units spread evenly; dependencies ignored)\n", N[i], total / 3600 / (2 * N[i])
-  }' <(printf '%s\n' "$walls") <(printf '%s\n' "$status")
+    for (i = 1; i <= k; i++) printf "  Slurm, %d two-core nodes: about %.2f h (units spread evenly; dependencies ignored)\n", N[i], total / 3600 / (2 * N[i])
+  }'
+}
+
+full_units=$(units_at full) || { echo "study_cost: make reproduce-status failed" >&2; exit 4; }
+full=$(unit_walls frozen <<<"$full_units")
+cut -f1,2,4 <<<"$full" | cost full "the full run, from the manifest and the frozen units' recorded wall times"
+
+# this machine's rates x the plan's counts, for the pair model's training units
+if [ -n "${BENCH_MODEL_OUT:-}" ] && [ -f "$BENCH_MODEL_OUT" ]; then
+    awk -F'\t' '
+      FNR == NR { if ($1 == "path" && !path) path = $2
+                  if ($1 == "pair_unit_s" && !j) { split($2, a, " "); split($3, b, " "); j = a[2]; i = b[2] }
+                  next }
+      $1 ~ /^extension-pair-16-stands\/main\/run_s[0-9]+_(joint|indep)\.tsv$/ {
+          units++; if ($2 != "") { rec += $2; nrec++ }
+          meas += $1 ~ /_joint\.tsv$/ ? j : i }
+      END {
+        if (!j) exit
+        printf "the %d pair-model training units (extension-pair-16-stands): recorded %.2f CPU-hours (%d recorded); this machine, path %s, measured rates x counts: %.2f CPU-hours (ratio recorded / measured %.2f; the measured figure is CPU time and leaves the teacher part of a unit out)\n",
+               units, rec / 3600, nrec, path, meas / 3600, (meas > 0 ? rec / meas : 0)
+      }' "$BENCH_MODEL_OUT" - <<<"$full"
+fi
+
+# the same projection at smoke scale: the units' wall times of the smoke run
+# in $smoke_root, else those `make reproduce` recorded for it
+smoke_units=$(units_at smoke)
+smoke=$(unit_walls "$smoke_root" <<<"$smoke_units")
+if [ -f "$smoke_state/walltimes.tsv" ]; then
+    smoke=$(awk -F'\t' 'FNR == NR { R[$1] = $2; next } { if ($2 == "" && ($1 in R)) { $2 = R[$1]; $4 = "recorded" } print }' OFS='\t' \
+            "$smoke_state/walltimes.tsv" - <<<"$smoke")
+fi
+cut -f1,2,4 <<<"$smoke" | cost smoke "the smoke run, from the wall times its units recorded in $smoke_root (projected the same way; compare a measured make -j2 reproduce SCALE=smoke)"
+if [ -f "$smoke_state/runs.tsv" ]; then
+    awk -F'\t' 'END { if (NR) printf "  measured: the last make reproduce SCALE=smoke made %s units with -j%s in %.1f min (%s)\n", $2, $3, $4 / 60, $1 }' "$smoke_state/runs.tsv"
+else
+    echo "  measured: no make reproduce SCALE=smoke has finished in this tree ($smoke_state/runs.tsv)"
+fi

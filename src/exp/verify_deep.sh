@@ -57,24 +57,23 @@ while IFS=$'\t' read -r exp sub kind; do
     done
 done <<<"$sets"
 # ---- the projected time, from the wall times the frozen units recorded ----
-# (on the machines and loads that made them: a projection, not a promise). A
-# teacher unit reruns its whole folder: the wall_s of every frozen table under
-# it. A model redraw costs one evaluation: the median over the frozen models
-# of wall_s less train_s (a resumed training records its last part only, so
-# the median, not the sum, of those differences).
-wall_of() { sed -n 's/^# wall_s: \([0-9.]*\).*/\1/p' "$1" 2>/dev/null | head -n 1; }
-teach_s=$(for u in "${units[@]}"; do d=$(dirname "frozen/${u#"$DEEP"/}"); [ -d "$d" ] && echo "$d"; done | sort -u |
-          while read -r d; do grep -h -m1 -r --include='*.tsv' '^# wall_s: ' "$d" 2>/dev/null; done |
-          awk '{s += $3} END {print s + 0}')
-evals=$(for j in "${jobs_list[@]}"; do
-          set -- $j
-          t=$(printf '%s/run_s%02d_%s.tsv' "$5" "$2" "$3")
-          w=$(wall_of "$t"); tr=$(sed -n 's/^# train_time: train_s \([0-9.]*\).*/\1/p' "$t" 2>/dev/null | head -n 1)
-          [ -n "$w" ] && awk -v b="$w" -v c="${tr:-0}" 'BEGIN {print (b - c > 0 ? b - c : b)}'
-        done | sort -g)
-model_each=$(awk '{a[NR] = $1} END {print NR ? (NR % 2 ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2) : 0}' <<<"$evals")
+# (on the machines and loads that made them: a projection, not a promise),
+# read per unit by unit_walls (unit_wall.sh, the reader study_cost.sh uses):
+# the rerun makes every unit of the experiments whose manifest row says
+# "rerun" (the units the registered ones need included), each at its
+# recorded wall time; a model redraw costs one evaluation, the median over
+# the frozen models of their evaluation part (a re-evaluation's own wall
+# time, or a training run's wall time less its training).
+. src/exp/unit_wall.sh
+rerun_re=$(awk -F'\t' '$1 == "EXPERIMENT" && $8 == "rerun" { r = r (r == "" ? "" : "|") $2 } END { print "^(" r ")/" }' <<<"$rows")
+teach_s=$(env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL "$MAKE" -s --no-print-directory reproduce-status SCALE=full 2>/dev/null |
+          awk -v re="$rerun_re" '$1 ~ /^(done|missing|queued|running|failed)$/ && $2 ~ re { print $2 }' |
+          unit_walls frozen | awk -F'\t' '{ s += $2 } END { print s + 0 }')
+model_each=$(for j in "${jobs_list[@]}"; do set -- $j; printf '%s/run_s%02d_%s.tsv\n' "$6" "$2" "$3"; done |
+             unit_walls frozen | awk -F'\t' '$3 != "" { print $3 }' | sort -g |
+             awk '{ a[NR] = $1 } END { print NR ? (NR % 2 ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2) : 0 }')
 awk -v t="$teach_s" -v e="$model_each" -v j="$JOBS" -v nt="$total" -v nm="${#jobs_list[@]}" 'BEGIN {
-    printf "verify-deep: projected %.0f min on %d cores: %d teacher units (%.0f CPU-min) and %d model redraws (%.0f s each, median), from the wall times the frozen units recorded\n",
+    printf "verify-deep: projected %.0f min on %d cores: %d teacher units (%.0f CPU-min, with the units they need) and %d model redraws (%.0f s each, median), from the wall times the frozen units recorded\n",
            (t + e * nm) / j / 60, j, nt, t / 60, nm, e }'
 echo "verify-deep: rerunning $total teacher experiment units into $DEEP/ (make -j$JOBS; log $log)"
 unset MAKEFLAGS MFLAGS MAKELEVEL MAKEOVERRIDES

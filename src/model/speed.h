@@ -17,6 +17,18 @@
 
 enum { SPEED_MAX_ROUNDS = 15 };
 
+/* The goals `make bench` judges, each a fraction of the path's own FMA peak
+ * measured beside the figure (never of another library's rate, whose kernel
+ * choice on a given core is not ours): the own product on the products of a
+ * training pass, and a training step of either model. */
+#define SPEED_GOAL_PRODUCT 0.85
+#define SPEED_GOAL_TRAIN 0.75
+
+/* Training steps run before each timed run of consecutive steps on one
+ * model, so a figure is the sustained rate of training, not the rate of a
+ * step entered with another measurement's data in the caches. */
+enum { SPEED_WARMUP_STEPS = 4 };
+
 /* One quantity over the rounds: rate (GFLOP/s, or ms for times) and its
  * fraction of the neighbouring peak; median, minimum and maximum. */
 typedef struct { double med, lo, hi; } speed_stat;
@@ -51,7 +63,8 @@ double speed_forward_flops(const model_cfg *cfg, int B);
 
 /* `rounds` rounds (1..SPEED_MAX_ROUNDS) on the current gemm path at the
  * reference configuration with batch B (cfg's joint/pair are set per item);
- * `steps` training or Euler steps per measurement. */
+ * `steps` consecutive training steps (after SPEED_WARMUP_STEPS untimed ones
+ * on the same model) or Euler steps (after one untimed) per measurement. */
 cs_status speed_run(const model_cfg *ref, int B, int rounds, int steps, speed_result *r);
 
 #endif

@@ -14,20 +14,30 @@
  *                 layer norms, the pair terms, the noise, AdamW, ...
  * and the bound: a step whose products ran at their hot rate and whose rest
  * took what it took, as a fraction of the peak, beside the step time that
- * the pair goal of 0.75 allows. A replay overwrites C (gradients included),
- * so every round trains a model of its own from the same seeds.
+ * the training goal (SPEED_GOAL_TRAIN of the peak, speed.h; judged by
+ * bench-model) allows. A replay overwrites C (gradients included), so every
+ * round trains a model of its own from the same seeds.
  *
- * Times are wall time from the time-stamp counter (steady on the CPUs this
- * runs on; the kernel's thread clock costs a system call per reading in a VM,
- * which the ~2,300 readings of a step would add to it). A step whose wall
- * time exceeds the thread's CPU time (read twice per step) by 5 % was
- * preempted and is discarded with its products; the count is printed. Not
- * run by `make check` or CI: a measurement, like the rest of `make bench`.
+ * A step is timed in the thread's CPU time (CLOCK_THREAD_CPUTIME_ID, read
+ * twice per step), which time spent in other processes does not enter, and
+ * beside it in wall time from the time-stamp counter. A step whose wall time
+ * exceeds its CPU time by 5 % (and 0.2 ms) was preempted: it is discarded
+ * with its products, and the count is printed. The products inside a step
+ * are timed on the time-stamp counter (steady on the CPUs this runs on): the
+ * thread clock costs a system call per reading in a VM, which the ~2,300
+ * readings of a step would add to the step; in a kept step wall and CPU time
+ * agree, and the products' wall time is scaled by the step's CPU/wall ratio,
+ * so the rest (step less products) is taken in one clock. The replays run
+ * after the steps: back to back the fastest of three passes, hot the
+ * fastest of three timed runs of each call (a preempted run is never the
+ * fastest). Not run by `make check` or CI: a measurement, like the rest of
+ * `make bench`.
  *
  * usage: step_split [--rounds N] [--steps N] [--path all|avx512|avx2|scalar] */
 #include "gemm.h"
 #include "model.h"
 #include "patch.h"
+#include "speed.h"
 #include "stats.h"
 #include "train.h"
 #include <stdio.h>
@@ -164,9 +174,9 @@ static const char *const s_name[S_NS] = {"step_ms", "products_in_step_ms", "prod
                                          "products_hot_ms", "rest_ms", "bound_of_peak", "step_of_peak"};
 
 /* One round: a fresh model, `steps` timed steps, then the last step's
- * products replayed. v[S_STEP..S_REST] (ms) for the round; returns 0 or 1
- * on failure. */
-static int round_run(const model_cfg *cfg, patch_set *ps, int steps, double v[S_NS], double *gflop_products, int *preempted)
+ * products replayed. v[S_STEP..S_REST] (ms) for the round; returns 0, 1 on
+ * failure, or 2 when every step tried was preempted (no figure). */
+static int round_run(const model_cfg *cfg, patch_set *ps, int steps, double v[S_NS], double *gflop_products, int *preempted, int *timed)
 {
     train_opts o = train_opts_default();
     o.batch = BATCH;
@@ -178,9 +188,10 @@ static int round_run(const model_cfg *cfg, patch_set *ps, int steps, double v[S_
     double step = 0, in = 0;
     int kept = 0, tried = 0;
     /* a step the kernel preempted (its wall time beyond its thread CPU time)
-     * is discarded, products and all: up to four tries per kept step */
-    while (kept < steps && tried < 4 * steps) {
+     * is discarded, products and all: up to eight tries per kept step */
+    while (kept < steps && tried < 8 * steps) {
         tried++;
+        (*timed)++;
         ncalls = 0;
         recording = 1;
         double c0 = thread_cpu_s(), t0 = now_s();
@@ -189,11 +200,13 @@ static int round_run(const model_cfg *cfg, patch_set *ps, int steps, double v[S_
         recording = 0;
         if (st || overflow) { train_free(t); return 1; }
         if (wall > 1.05 * cpu + 2e-4) { (*preempted)++; continue; }
-        step += wall;
+        step += cpu;
         kept++;
-        for (int i = 0; i < ncalls; i++) in += calls[i].s;
+        double prod = 0;
+        for (int i = 0; i < ncalls; i++) prod += calls[i].s;
+        in += wall > cpu ? prod * cpu / wall : prod;
     }
-    if (!kept) { train_free(t); return 1; }
+    if (!kept) { train_free(t); return 2; }
     steps = kept;
     double fl = 0, seq = 1e30, hot = 0;
     for (int i = 0; i < ncalls; i++) fl += 2.0 * calls[i].M * calls[i].N * calls[i].K;
@@ -205,9 +218,14 @@ static int round_run(const model_cfg *cfg, patch_set *ps, int steps, double v[S_
     }
     for (int i = 0; i < ncalls; i++) {
         for (int w = 0; w < 3; w++) replay(&calls[i]);
-        double t0 = now_s();
-        replay(&calls[i]);
-        hot += now_s() - t0;
+        double best = 1e30;
+        for (int q = 0; q < 3; q++) {
+            double t0 = now_s();
+            replay(&calls[i]);
+            double d = now_s() - t0;
+            if (d < best) best = d;
+        }
+        hot += best;
     }
     train_free(t);
     v[S_STEP] = 1e3 * step / steps;
@@ -238,14 +256,18 @@ static int split_path(gemm_isa isa, patch_set *ps, int rounds, int steps)
         model_cfg cfg = model_cfg_reference(PATCH_NCOND);
         cfg.pair = mk == 0;
         double v[S_NS][MAX_ROUNDS], pk[MAX_ROUNDS], gp = 0;
-        int preempted = 0;
+        int preempted = 0, timed = 0;
         const double model_fl = model_train_flops(&cfg, BATCH) / 1e9;
-        for (int q = 0; q < rounds; q++) {
+        int nr = 0;
+        for (int q0 = 0; q0 < rounds; q0++) {
             double p0 = gemm_peak_gflops(isa, 1L << 21), r[S_NS];
-            if (round_run(&cfg, ps, steps, r, &gp, &preempted)) {
+            int rc = round_run(&cfg, ps, steps, r, &gp, &preempted, &timed);
+            if (rc == 2) continue; /* a round the machine's load left without a figure */
+            if (rc) {
                 fprintf(stderr, "step_split: a training step failed%s\n", overflow ? " (more gemm calls than recorded)" : "");
                 return 1;
             }
+            const int q = nr++;
             double p1 = gemm_peak_gflops(isa, 1L << 21);
             pk[q] = 0.5 * (p0 + p1);
             for (int s = S_STEP; s <= S_REST; s++) v[s][q] = r[s];
@@ -253,20 +275,25 @@ static int split_path(gemm_isa isa, patch_set *ps, int rounds, int steps)
             v[S_BOUND][q] = model_fl / ((r[S_HOT] + r[S_REST]) * 1e-3) / pk[q];
             v[S_FRAC][q] = model_fl / (r[S_STEP] * 1e-3) / pk[q];
         }
-        double lo, hi, pmed = median_of(pk, rounds, &lo, &hi);
+        printf("%s_steps_discarded\t%d\tof %d timed (preempted: wall time beyond the thread's CPU time by 5 %%)\n", model_name[mk], preempted, timed);
+        if (!nr) {
+            printf("%s: every step of every round was preempted: no split on this path (run on a quieter machine)\n", model_name[mk]);
+            continue;
+        }
+        double lo, hi, pmed = median_of(pk, nr, &lo, &hi);
         printf("%s_gflop_per_step\t%.3f\t(products %.3f)\n", model_name[mk], model_fl, gp);
-        printf("%s_steps_discarded\t%d\t(preempted: wall time beyond the thread's CPU time by 5 %%)\n", model_name[mk], preempted);
+        if (nr < rounds) printf("%s_rounds\t%d of %d (the others: every step preempted)\n", model_name[mk], nr, rounds);
         printf("%s_fma_peak_gflops\t%.1f\t[%.1f, %.1f]\n", model_name[mk], pmed, lo, hi);
         double med[S_NS];
         for (int s = 0; s < S_NS; s++) {
-            med[s] = median_of(v[s], rounds, &lo, &hi);
+            med[s] = median_of(v[s], nr, &lo, &hi);
             printf("%s_%s\t%.3f\t[%.3f, %.3f]", model_name[mk], s_name[s], med[s], lo, hi);
             if (s >= S_IN && s <= S_HOT) printf("\t%.3f of peak", gp / (med[s] * 1e-3) / pmed);
             printf("\n");
         }
-        const double allowed = model_fl / (0.75 * pmed) * 1e3;
-        printf("%s_goal_step_ms\t%.3f\t(0.75 of the peak); with the products at their hot rate the rest may take %.3f ms, "
-               "it takes %.3f\n", model_name[mk], allowed, allowed - med[S_HOT], med[S_REST]);
+        const double allowed = model_fl / (SPEED_GOAL_TRAIN * pmed) * 1e3;
+        printf("%s_step_ms_at_goal\t%.3f\t(%.2f of the peak); with the products at their hot rate the rest may take %.3f ms, "
+               "it takes %.3f\n", model_name[mk], allowed, SPEED_GOAL_TRAIN, allowed - med[S_HOT], med[S_REST]);
     }
     return 0;
 }
