@@ -290,8 +290,8 @@ if [ $have_git = 1 ] && fresh_git; then
   launder
   expect "made-up superseded hash in frozen/extension-pair-16-stands/main, re-pinned (.git)" "audit/pins_superseded.tsv" "no past version of src/forest/teacher.c"
   out=$(cd "$scratch" && "$cli" verify --no-figures 2>&1)
-  if grep -q '^  PENDING PairVoneMainRel .*superseded reading' <<<"$out" && ! grep -q '^  PASS    PairVoneMainRel ' <<<"$out"; then ok "claims of a superseded table are pending, never reproduced"
-  else bad "claims of a superseded table are pending, never reproduced" "$(grep -E '^  [A-Z]+ +PairVoneMainRel ' <<<"$out" | head -2)"; fi
+  if grep -q '^  PENDING PairSixteenStandsMainRel .*superseded reading' <<<"$out" && ! grep -q '^  PASS    PairSixteenStandsMainRel ' <<<"$out"; then ok "claims of a superseded table are pending, never reproduced"
+  else bad "claims of a superseded table are pending, never reproduced" "$(grep -E '^  [A-Z]+ +PairSixteenStandsMainRel ' <<<"$out" | head -2)"; fi
 else echo "[  SKIPPED ] made-up superseded hash (.git): no git history here"; fi
 # 24b. a pin row deleted: every part of the instrument the code pins must be
 # pinned (the last rows too: the set of pins grows with the registry)

@@ -43,7 +43,7 @@ static void test_summary_recomputes_from_the_unit_tables(void **s)
 /* Quantities whose units run at the full run's counts and seeds: the centre
  * row equals the frozen claim exactly. The E3 reference levels are measured at
  * evaluation volume 16-stands, that of the pair extension's first verdicts:
- * they are compared with those claims (PairVoneMainIso, PairVoneMainNoise),
+ * they are compared with those claims (PairSixteenStandsMainIso, PairSixteenStandsMainNoise),
  * not with the readings' at 96-stands (design.md §8). */
 static void test_centre_equals_the_full_run_where_counts_agree(void **s)
 {
@@ -55,7 +55,7 @@ static void test_centre_equals_the_full_run_where_counts_agree(void **s)
     assert_int_equal(sens_compute(&g_c, PATHS_SENS_DIR, rows), CS_OK);
     for (size_t k = 0; k < sizeof same / sizeof *same; k++) {
         char macro[64];
-        snprintf(macro, sizeof macro, "%s%s", strncmp(same[k], "Main", 4) ? "" : "PairVone", same[k]);
+        snprintf(macro, sizeof macro, "%s%s", strncmp(same[k], "Main", 4) ? "" : "PairSixteenStands", same[k]);
         const claim_row *row = claims_find(&g_c, macro);
         assert_non_null(row);
         claim_result r;
