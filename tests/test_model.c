@@ -374,6 +374,70 @@ static void check_sample_passes(int pair)
 static void test_sample_same_bits_for_any_pass_size(void **s) { (void)s; check_sample_passes(0); }
 static void test_pair_sample_same_bits_for_any_pass_size(void **s) { (void)s; check_sample_passes(1); }
 
+/* model_sample runs a forward-only pass (nothing a backward reads is kept;
+ * the MLP's GELU stores only its output, nn.h). Reference: the sampler as
+ * an Euler loop on model_forward, the training forward that keeps every
+ * activation, drawing the start noise in the same order. The samples must
+ * be bit-identical on every gemm path this CPU has (the layer kernels
+ * follow the path), and the paths must agree with each other. Reference
+ * shapes, so the register-blocked kernels of the runs are the ones used. */
+static void euler_on_model_forward(model *m, gsl_rng *r, int B, const float *feat, const float *cond,
+                                   int steps, float *x)
+{
+    const size_t n = (size_t)B * m->cfg.T * m->cfg.P;
+    float *v = malloc(sizeof(float) * n), *t = malloc(sizeof(float) * B);
+    for (size_t i = 0; i < n; i++) x[i] = (float)gsl_ran_gaussian_ziggurat(r, 1.0);
+    const float dt = 1.f / (float)steps;
+    for (int k = 0; k < steps; k++) {
+        for (int b = 0; b < B; b++) t[b] = (float)k / (float)steps;
+        assert_int_equal(model_forward(m, B, x, feat, cond, t, v), CS_OK);
+        for (size_t i = 0; i < n; i++) x[i] += dt * v[i];
+    }
+    free(v); free(t);
+}
+
+static void check_sample_forward_only(int pair, int joint)
+{
+    enum { B = 6, STEPS = 3 };
+    model_cfg c = model_cfg_reference(3);
+    c.pair = pair;
+    c.joint = joint;
+    const size_t n = (size_t)B * c.T * c.P;
+    float *feat = malloc(sizeof(float) * B * c.T * c.nfeat), cond[B * 3];
+    float *xr = malloc(sizeof(float) * n), *xs = malloc(sizeof(float) * n), *x0 = malloc(sizeof(float) * n);
+    unsigned st = 29;
+    tu_fill(feat, (size_t)B * c.T * c.nfeat, 1, &st); tu_fill(cond, B * 3, 1, &st);
+    const gemm_isa paths[] = {GEMM_AVX512, GEMM_AVX2, GEMM_SCALAR};
+    const gemm_isa before = gemm_get_isa();
+    int first = 1;
+    for (int q = 0; q < 3; q++) {
+        if (!gemm_isa_available(paths[q])) continue;
+        gemm_set_isa(paths[q]);
+        gsl_rng *r = NULL;
+        model *m = pass_model(&c, B, 4, 12, &r); /* passes of 4 and 2 patches */
+        if (pair) {
+            assert_int_equal(model_norm_fit(m, feat, B), CS_OK);
+        }
+        gsl_rng *rref = gsl_rng_clone(r);
+        assert_int_equal(model_sample(m, r, B, feat, cond, STEPS, xs), CS_OK);
+        euler_on_model_forward(m, rref, B, feat, cond, STEPS, xr);
+        if (memcmp(xs, xr, sizeof(float) * n) != 0) {
+            print_error("path %d: the forward-only sampler differs from the Euler loop on model_forward\n", (int)paths[q]);
+            fail();
+        }
+        if (first) memcpy(x0, xs, sizeof(float) * n);
+        else assert_memory_equal(xs, x0, sizeof(float) * n);
+        first = 0;
+        gsl_rng_free(r); gsl_rng_free(rref);
+        model_free(m);
+    }
+    gemm_set_isa(before);
+    free(feat); free(xr); free(xs); free(x0);
+}
+static void test_sample_is_the_euler_loop_on_model_forward(void **s) { (void)s; check_sample_forward_only(0, 1); }
+static void test_pair_sample_is_the_euler_loop_on_model_forward(void **s) { (void)s; check_sample_forward_only(1, 1); }
+static void test_pair_indep_sample_is_the_euler_loop_on_model_forward(void **s) { (void)s; check_sample_forward_only(1, 0); }
+
 static void test_forward_rejects_oversized_batch(void **s)
 {
     (void)s;
@@ -532,6 +596,9 @@ int main(void)
         cmocka_unit_test(test_sample_same_bits_for_any_pass_size),
         cmocka_unit_test(test_pair_fm_grad_same_bits_for_any_pass_size),
         cmocka_unit_test(test_pair_sample_same_bits_for_any_pass_size),
+        cmocka_unit_test(test_sample_is_the_euler_loop_on_model_forward),
+        cmocka_unit_test(test_pair_sample_is_the_euler_loop_on_model_forward),
+        cmocka_unit_test(test_pair_indep_sample_is_the_euler_loop_on_model_forward),
         cmocka_unit_test(test_reading_names_and_legacy_configurations),
         cmocka_unit_test(test_reading_gradients),
         cmocka_unit_test(test_reading_parameter_counts),

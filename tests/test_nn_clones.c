@@ -253,6 +253,86 @@ static void check_layernorm(gemm_isa isa)
     gemm_set_isa(before);
 }
 
+/* The GELU's sigmoid(2u) of one value as DEF_VGSIG / DEF_VEXP compute it
+ * (nn.c, nn_vec.h), written naively: float operations one at a time, the
+ * clamps as comparisons and 2^n from its exponent bits. The naive reference
+ * of the intrinsic bias + GELU kernels. */
+static float ref_gsig(float x)
+{
+    float u = 0.7978845608028654f * (x + 0.044715f * x * x * x);
+    float y = -2.f * u;
+    if (y < -87.0f) y = -87.0f;
+    if (y > 88.0f) y = 88.0f;
+    float kn = (y * 1.44269504088896341f + 12582912.0f) - 12582912.0f;
+    float r = y - kn * 0.693145751953125f;
+    r = r - kn * 1.428606765330187e-06f;
+    float p = 1.f / 5040.f;
+    p = p * r + 1.f / 720.f;
+    p = p * r + 1.f / 120.f;
+    p = p * r + 1.f / 24.f;
+    p = p * r + 1.f / 6.f;
+    p = p * r + 0.5f;
+    p = p * r + 1.f;
+    p = p * r + 1.f;
+    unsigned bits = (unsigned)((int)kn + 127) << 23;
+    float two;
+    memcpy(&two, &bits, sizeof two);
+    return 1.f / (1.f + p * two);
+}
+
+static int same_bits(float a, float b) { return memcmp(&a, &b, sizeof a) == 0 || (isnan(a) && isnan(b)); }
+
+/* bias + GELU at the model's MLP width and beyond (N = 256 + 21: the
+ * kernels' blocks of 8 x 16 and 16 x 8 lanes, single vectors and the scalar
+ * tail) on one path, against the baseline copy and the one-value reference,
+ * on values that reach both clamps of the exponential, infinities, signed
+ * zeros, subnormals and a NaN; then the forward-only form (sig NULL, as the
+ * sampler calls it) gives the same outputs and leaves h alone. */
+static void check_bias_gelu_wide(gemm_isa isa)
+{
+    if (!gemm_isa_available(isa)) { print_message("path %d not on this CPU: skipped\n", (int)isa); return; }
+    gemm_isa before = gemm_set_isa(isa);
+    enum { R = 7, NC = 277, NE = R * NC };
+    unsigned st = 41;
+    float *ha = malloc(sizeof(float) * NE), *hb = malloc(sizeof(float) * NE), *h0 = malloc(sizeof(float) * NE);
+    float *sa = malloc(sizeof(float) * NE), *sb = malloc(sizeof(float) * NE);
+    float *oa = malloc(sizeof(float) * NE), *ob = malloc(sizeof(float) * NE), *of = malloc(sizeof(float) * NE);
+    float bias[NC];
+    tu_fill(bias, NC, 1, &st);
+    tu_fill(h0, NE, 12, &st); /* |x| up to 13: both clamps are reached */
+    const float special[] = {0.f, -0.f, INFINITY, -INFINITY, NAN, 1e-40f, -1e-40f, 1e-30f, -1e30f, 1e30f,
+                             -9.5f, 9.5f, -200.f, 200.f, 3e38f, -3e38f};
+    for (size_t k = 0; k < sizeof special / sizeof *special; k++) { /* bias 0 there: x is the special value */
+        h0[37 * k + 5] = special[k];
+        bias[(37 * k + 5) % NC] = 0.f;
+    }
+    for (int c = 0; c < NC; c += 13) h0[4 * NC + c] = -bias[c]; /* x = +0 exactly */
+    memcpy(ha, h0, sizeof(float) * NE);
+    memcpy(hb, h0, sizeof(float) * NE);
+    nn_bias_gelu_forward_save(ha, sa, oa, bias, R, NC);
+    base_bias_gelu_forward_save(hb, sb, ob, bias, R, NC);
+    same(ha, hb, NE, "wide bias+gelu pre-activation");
+    for (int i = 0; i < NE; i++) {
+        const float x = h0[i] + bias[i % NC], sg = ref_gsig(x);
+        if (!same_bits(sa[i], sg) || !same_bits(sb[i], sg) || !same_bits(oa[i], x * sg)) {
+            print_error("path %d, value %d (x = %.9g): sigmoid %.9g / %.9g, naive %.9g; out %.9g, naive %.9g\n",
+                        (int)isa, i, x, sa[i], sb[i], sg, oa[i], x * sg);
+            fail();
+        }
+    }
+    memcpy(ha, h0, sizeof(float) * NE);
+    nn_bias_gelu_forward_save(ha, NULL, of, bias, R, NC);
+    for (int i = 0; i < NE; i++)
+        if (!same_bits(of[i], oa[i])) { print_error("forward-only bias+gelu differs at %d\n", i); fail(); }
+    assert_memory_equal(ha, h0, sizeof(float) * NE);
+    free(ha); free(hb); free(h0); free(sa); free(sb); free(oa); free(ob); free(of);
+    gemm_set_isa(before);
+}
+
+static void test_bias_gelu_wide_avx512(void **s) { (void)s; check_bias_gelu_wide(GEMM_AVX512); }
+static void test_bias_gelu_wide_avx2(void **s) { (void)s; check_bias_gelu_wide(GEMM_AVX2); }
+static void test_bias_gelu_wide_scalar(void **s) { (void)s; check_bias_gelu_wide(GEMM_SCALAR); }
+
 static void test_layernorm_avx512(void **s) { (void)s; check_layernorm(GEMM_AVX512); }
 static void test_layernorm_avx2(void **s) { (void)s; check_layernorm(GEMM_AVX2); }
 
@@ -273,6 +353,9 @@ int main(void)
         cmocka_unit_test(test_layernorm_avx512),
         cmocka_unit_test(test_layernorm_avx2),
         cmocka_unit_test(test_reference_shape_attention_avx2),
+        cmocka_unit_test(test_bias_gelu_wide_avx512),
+        cmocka_unit_test(test_bias_gelu_wide_avx2),
+        cmocka_unit_test(test_bias_gelu_wide_scalar),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

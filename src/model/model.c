@@ -313,9 +313,10 @@ static void pair_geometry(model *m, float *phi, float *phit, const float *feat, 
 
 /* model_forward on weights already transposed by transpose_all and (pair
  * model) the patches' geometry in phi/phit; 1 <= B <= Bmax checked by the
- * callers. */
-static void forward(model *m, int B, const float *xt, const float *feat,
-                    const float *cond, const float *t, float *v, const float *phi, const float *phit)
+ * callers. keep = 0 (sampling) leaves out what only a backward reads: the
+ * MLP's pre-activations and sigmoids are not stored (nn.h); v is the same. */
+static void forward(model *m, int B, const float *xt, const float *feat, const float *cond,
+                    const float *t, float *v, const float *phi, const float *phit, int keep)
 {
     const model_cfg *c = &m->cfg;
     const int T = c->T, P = c->P, C = c->C, F = c->F, N = B * T;
@@ -367,7 +368,7 @@ static void forward(model *m, int B, const float *xt, const float *feat,
         nn_linear_bias_residual_forward(m->xm[l], m->att[l], NULL, w + o->proj_b, m->x[l],
                                         m->ln2[l], m->mu2[l], m->rs2[l], w + o->ln2_g, w + o->ln2_b,
                                         N, C, C, wt + o->proj_w);
-        nn_linear_bias_gelu_forward(m->h[l], m->hs[l], m->hg[l], m->ln2[l], NULL, w + o->fc1_b,
+        nn_linear_bias_gelu_forward(m->h[l], keep ? m->hs[l] : NULL, m->hg[l], m->ln2[l], NULL, w + o->fc1_b,
                                     N, C, F, wt + o->fc1_w);
         const int last = l + 1 == c->L;
         const size_t g_next = last ? m->lnf_g : m->blk[l + 1].ln1_g, b_next = last ? m->lnf_b : m->blk[l + 1].ln1_b;
@@ -384,7 +385,7 @@ static void forward(model *m, int B, const float *xt, const float *feat,
  * geometry is computed here into the front of m->phi (training), or, when
  * geom_all is set, was computed for the whole batch (sampling). */
 static void forward_pass(model *m, int b0, int nb, const float *xt, const float *feat,
-                         const float *cond, const float *t, float *v, int geom_all)
+                         const float *cond, const float *t, float *v, int geom_all, int keep)
 {
     const model_cfg *c = &m->cfg;
     const size_t TP = (size_t)c->T * c->P, TTQ = (size_t)c->T * c->T * PAIRATTN_Q;
@@ -392,7 +393,7 @@ static void forward_pass(model *m, int b0, int nb, const float *xt, const float 
     if (!geom_all) pair_geometry(m, m->phi, m->phit, fb, nb);
     const size_t g = geom_all ? b0 * TTQ : 0;
     forward(m, nb, xt + b0 * TP, fb, cond + (size_t)b0 * c->ncond, t + b0, v + b0 * TP, m->phi + g,
-            m->phit + g);
+            m->phit + g, keep);
 }
 
 /* Patches per pass (m->micro, or the whole batch when unset). */
@@ -404,7 +405,7 @@ cs_status model_forward(model *m, int B, const float *xt, const float *feat,
     if (B < 1 || B > m->Bmax) return cs_err(CS_EINPUT, "model_forward: batch %d outside 1..%d", B, m->Bmax);
     transpose_all(m);
     pair_geometry(m, m->phi, m->phit, feat, B);
-    forward(m, B, xt, feat, cond, t, v, m->phi, m->phit);
+    forward(m, B, xt, feat, cond, t, v, m->phi, m->phit, 1);
     return CS_OK;
 }
 
@@ -506,7 +507,7 @@ cs_status model_fm_grad(model *m, gsl_rng *noise, int B, const float *x1,
     for (int b0 = 0; b0 < B; b0 += mb) {
         const int nb = B - b0 < mb ? B - b0 : mb;
         const size_t o = (size_t)b0 * n;
-        forward_pass(m, b0, nb, m->fm_xt, feat, cond, m->fm_t, m->fm_v, 0);
+        forward_pass(m, b0, nb, m->fm_xt, feat, cond, m->fm_t, m->fm_v, 0, 1);
         fm_loss_add(m->fm_v + o, m->fm_u + o, (size_t)nb * n, k, m->fm_dv + o, &s);
         if (!isfinite(s)) return cs_err(CS_ENUMERIC, "flow-matching loss is not finite (%g)", s / (double)ntot);
         backward(m, m->fm_dv + o, b0 == 0);
@@ -532,7 +533,7 @@ cs_status model_sample(model *m, gsl_rng *noise, int B, const float *feat,
         /* in passes of m->micro patches, as model_fm_grad: patches do not
          * interact in the forward, so v is the same as in one pass */
         for (int b0 = 0; b0 < B; b0 += mb)
-            forward_pass(m, b0, B - b0 < mb ? B - b0 : mb, x, feat, cond, m->fm_t, m->fm_v, 1);
+            forward_pass(m, b0, B - b0 < mb ? B - b0 : mb, x, feat, cond, m->fm_t, m->fm_v, 1, 0);
         for (size_t i = 0; i < n; i++) x[i] += dt * m->fm_v[i];
     }
     for (size_t i = 0; i < n; i++)

@@ -151,7 +151,9 @@ cs_status model_fm_grad(model *m, gsl_rng *noise, int B, const float *x1,
                         const float *feat, const float *cond, double *loss);
 
 /* Generate x[B*T*P]: x ~ N(0, I) from `noise`, then nsteps Euler steps
- * x += v(x, t_k)/nsteps, t_k = k/nsteps. */
+ * x += v(x, t_k)/nsteps, t_k = k/nsteps. Each v is a forward-only pass
+ * (what only model_backward reads is not kept): the values of
+ * model_forward, bit for bit. */
 cs_status model_sample(model *m, gsl_rng *noise, int B, const float *feat,
                        const float *cond, int nsteps, float *x);
 

@@ -48,13 +48,16 @@ void nn_gelu_backward_saved(float *dinp, const float *dout, const float *in,
                             const float *sig, size_t n);
 
 /* Fused forms used by the model (one pass instead of two; same values as the
- * unfused kernels): h[M x N] += b row-wise, then nn_gelu_forward_save(out, sig, h). */
+ * unfused kernels): h[M x N] += b row-wise, then nn_gelu_forward_save(out, sig, h).
+ * sig == NULL: out[M x N] = gelu(h + b) alone, h and no sigmoid written. */
 void nn_bias_gelu_forward_save(float *h, float *sig, float *out, const float *b, int M, int N);
 /* out[M x N] = (y + b) + x, row-wise bias (out may alias y or x). */
 void nn_bias_residual_forward(float *out, const float *y, const float *b, const float *x, int M, int N);
 
 /* Fused linear layers (same values as the unfused sequences, one sweep):
- * nn_linear_forward(h, in, w, NULL) then nn_bias_gelu_forward_save(h, sig, out, b). */
+ * nn_linear_forward(h, in, w, NULL) then nn_bias_gelu_forward_save(h, sig, out, b).
+ * sig == NULL: forward only (sampling), out alone is the result; h then
+ * holds the product without the bias, and no sigmoid is saved. */
 void nn_linear_bias_gelu_forward(float *h, float *sig, float *out, const float *in,
                                  const float *w, const float *b, int M, int K, int N, float *wt);
 /* nn_linear_forward(out, in, w, NULL), nn_bias_residual_forward(out, out, b, x), then,

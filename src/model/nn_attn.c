@@ -117,19 +117,16 @@ A512 void hw_block(float *Cm, ptrdiff_t ldc, const float *A, const ptrdiff_t ars
     _Pragma("GCC unroll 12") for (int r = 0; r < 12; r++) _mm512_storeu_ps(Cm + r * ldc, c[r]);
 }
 
-/* softmax_row on 12 rows of 24 (chunks j 0-7, 8-15, 16-23), in three passes
- * over the rows (maxima; exponentials and sums; scaling) so that the rows'
- * long dependency chains overlap instead of following one another. */
+/* softmax_row on 12 rows of 24 (chunks j 0-7, 8-15, 16-23), in passes over
+ * the rows (maxima; exponentials, four rows at a time; sums; scaling) so
+ * that the rows' long dependency chains overlap instead of following one
+ * another; maxima and exponentials on intrinsics (nn_vec.h). */
 A512 void softmax24x12(float *s)
 {
     float mx[12], inv[12];
-    for (int r = 0; r < 12; r++) mx[r] = vmaxv(s + r * 24, 24);
-    for (int r = 0; r < 12; r++) {
-        float *row = s + r * 24;
-        st16(row, vexp16(ld16(row) - splat16(mx[r])));
-        st(row + 16, vexp(ld(row + 16) - splat(mx[r])));
-        inv[r] = vsum(row, 24);
-    }
+    for (int r = 0; r < 12; r++) mx[r] = max24_avx(s + r * 24);
+    for (int r = 0; r < 12; r += 4) exp_rows4_avx512(s, mx, r);
+    for (int r = 0; r < 12; r++) inv[r] = vsum(s + r * 24, 24);
     for (int r = 0; r < 12; r++) inv[r] = 1.f / inv[r];
     for (int r = 0; r < 12; r++) {
         float *row = s + r * 24;
@@ -243,20 +240,14 @@ A256 void hw_block8(float *Cm, ptrdiff_t ldc, const float *A, const ptrdiff_t ar
     }
 }
 
-/* softmax_row on 12 rows of 24 in three passes over the rows (maxima;
- * exponentials and sums; scaling), as softmax24x12. */
+/* softmax_row on 12 rows of 24 in passes over the rows as softmax24x12
+ * (exponentials two rows at a time). */
 A256 void softmax24x12_8(float *s)
 {
     float mx[12], inv[12];
-    for (int r = 0; r < 12; r++) mx[r] = vmaxv(s + r * 24, 24);
-    for (int r = 0; r < 12; r++) {
-        float *row = s + r * 24;
-        const vf vm = splat(mx[r]);
-        st(row, vexp(ld(row) - vm));
-        st(row + 8, vexp(ld(row + 8) - vm));
-        st(row + 16, vexp(ld(row + 16) - vm));
-        inv[r] = vsum(row, 24);
-    }
+    for (int r = 0; r < 12; r++) mx[r] = max24_avx(s + r * 24);
+    for (int r = 0; r < 12; r += 2) exp_rows2_avx2(s, mx, r);
+    for (int r = 0; r < 12; r++) inv[r] = vsum(s + r * 24, 24);
     for (int r = 0; r < 12; r++) inv[r] = 1.f / inv[r];
     for (int r = 0; r < 12; r++) {
         float *row = s + r * 24;

@@ -180,4 +180,95 @@ DEF_VEXP(vexp16, vf16, vi16, splat16)
 #endif
 
 
+/* ---- the softmax of rows of 24 on intrinsics (nn_attn.c) ------------------ */
+/* The operations of vmaxv and vexp / vexp16 in their order, lane by lane,
+ * with three steps as single instructions of the same results: vmax(a, b)
+ * = a > b ? a : b is x86 max(a, b); the exponential's clamps x < lo ? lo : x
+ * and x > hi ? hi : x are max(lo, x) and min(hi, x) (operands in that
+ * order: a NaN passes through as before); and on AVX-512 p * 2^kn, 2^kn
+ * built from exponent bits, is scalef(p, kn) (kn is an integer in
+ * [-126, 127] after the clamps: the same normal power of two, the same
+ * rounded product). Several vectors go through each step before the next,
+ * so that their long dependency chains overlap (test_nn_clones compares
+ * the attention with the baseline build, clamped scores included). */
+#if defined(NN_AVX512) || defined(NN_AVX2)
+#include <immintrin.h>
+#define EXP_CONSTS(SET1) \
+    const __typeof__(SET1(0.f)) e_lo = SET1(-87.0f), e_hi = SET1(88.0f), e_l2e = SET1(1.44269504088896341f), \
+        e_sh = SET1(12582912.0f), e_hi2 = SET1(0.693145751953125f), e_lo2 = SET1(1.428606765330187e-06f)
+/* v[k] = exp(v[k]) for k < NV, statement by statement; kn[k] and r[k] scratch.
+ * POW2(p, kn) is p * 2^kn. */
+#define EXP_STAGES(V, NV, MUL, ADD, SUB, SET1, MAX, MIN, POW2) do { \
+    __typeof__(V[0]) kn_[NV], r_[NV]; \
+    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = MIN(e_hi, MAX(e_lo, V[k])); \
+    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) kn_[k] = SUB(ADD(MUL(V[k], e_l2e), e_sh), e_sh); \
+    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) r_[k] = SUB(V[k], MUL(kn_[k], e_hi2)); \
+    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) r_[k] = SUB(r_[k], MUL(kn_[k], e_lo2)); \
+    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(SET1(1.f / 5040.f), r_[k]), SET1(1.f / 720.f)); \
+    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(1.f / 120.f)); \
+    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(1.f / 24.f)); \
+    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(1.f / 6.f)); \
+    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(0.5f)); \
+    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(1.f)); \
+    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(1.f)); \
+    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = POW2(V[k], kn_[k]); \
+} while (0)
+
+/* vmaxv(x, 24): max over the three 8-lane chunks, then the butterfly */
+__attribute__((target("avx2"), always_inline)) static inline float max24_avx(const float *x)
+{
+    __m256 m = _mm256_max_ps(_mm256_loadu_ps(x), _mm256_loadu_ps(x + 8));
+    m = _mm256_max_ps(m, _mm256_loadu_ps(x + 16));
+    m = _mm256_max_ps(m, _mm256_permute2f128_ps(m, m, 1)); /* SWAP4 */
+    m = _mm256_max_ps(m, _mm256_permute_ps(m, 0x4E));      /* SWAP2 */
+    m = _mm256_max_ps(m, _mm256_permute_ps(m, 0xB1));      /* SWAP1 */
+    return _mm256_cvtss_f32(m);
+}
+
+__attribute__((target("avx2"), always_inline)) static inline __m256 pow2_avx2(__m256 p, __m256 kn)
+{
+    const __m256i n = _mm256_slli_epi32(_mm256_add_epi32(_mm256_cvttps_epi32(kn), _mm256_set1_epi32(127)), 23);
+    return _mm256_mul_ps(p, _mm256_castsi256_ps(n));
+}
+
+/* s[i][j] = exp(s[i][j] - mx[i]) for 2 rows of 24 at row i (6 vectors; the
+ * subtrahend splat(mx) as vexp's caller forms it: 0 + mx) */
+__attribute__((target("avx2"), always_inline)) static inline void exp_rows2_avx2(float *s, const float *mx, int i)
+{
+    EXP_CONSTS(_mm256_set1_ps);
+    __m256 v[6];
+    _Pragma("GCC unroll 6") for (int k = 0; k < 6; k++)
+        v[k] = _mm256_sub_ps(_mm256_loadu_ps(s + (i + k / 3) * 24 + 8 * (k % 3)), _mm256_set1_ps(0.f + mx[i + k / 3]));
+    EXP_STAGES(v, 6, _mm256_mul_ps, _mm256_add_ps, _mm256_sub_ps, _mm256_set1_ps, _mm256_max_ps, _mm256_min_ps, pow2_avx2);
+    _Pragma("GCC unroll 6") for (int k = 0; k < 6; k++) _mm256_storeu_ps(s + (i + k / 3) * 24 + 8 * (k % 3), v[k]);
+}
+#endif
+#ifdef NN_AVX512
+/* 4 rows of 24 at row i on 6 16-lane vectors: each row's lanes 0-15, and the
+ * lanes 16-23 of two rows side by side in one vector (lane-wise operations:
+ * where a value sits does not change it) */
+__attribute__((target("avx512f"), always_inline)) static inline void exp_rows4_avx512(float *s, const float *mx, int i)
+{
+    EXP_CONSTS(_mm512_set1_ps);
+    __m512 v[6];
+    _Pragma("GCC unroll 2") for (int u = 0; u < 2; u++) {
+        float *a = s + (i + 2 * u) * 24, *b = a + 24;
+        const float ma = 0.f + mx[i + 2 * u], mb = 0.f + mx[i + 2 * u + 1];
+        v[3 * u] = _mm512_sub_ps(_mm512_loadu_ps(a), _mm512_set1_ps(ma));
+        v[3 * u + 1] = _mm512_sub_ps(_mm512_loadu_ps(b), _mm512_set1_ps(mb));
+        const __m256 ta = _mm256_sub_ps(_mm256_loadu_ps(a + 16), _mm256_set1_ps(ma));
+        const __m256 tb = _mm256_sub_ps(_mm256_loadu_ps(b + 16), _mm256_set1_ps(mb));
+        v[3 * u + 2] = _mm512_castpd_ps(_mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(ta)), _mm256_castps_pd(tb), 1));
+    }
+    EXP_STAGES(v, 6, _mm512_mul_ps, _mm512_add_ps, _mm512_sub_ps, _mm512_set1_ps, _mm512_max_ps, _mm512_min_ps, _mm512_scalef_ps);
+    _Pragma("GCC unroll 2") for (int u = 0; u < 2; u++) {
+        float *a = s + (i + 2 * u) * 24, *b = a + 24;
+        _mm512_storeu_ps(a, v[3 * u]);
+        _mm512_storeu_ps(b, v[3 * u + 1]);
+        _mm256_storeu_ps(a + 16, _mm512_castps512_ps256(v[3 * u + 2]));
+        _mm256_storeu_ps(b + 16, _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(v[3 * u + 2]), 1)));
+    }
+}
+#endif
+
 #endif
