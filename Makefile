@@ -26,7 +26,7 @@ CPPFLAGS += $(addprefix -Isrc/,$(STAGES) cli)
 LDLIBS := -lgsl -lopenblas -lm
 SANFLAGS := -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 
-DEB_PKGS := libgsl-dev libopenblas-dev libcmocka-dev gnuplot-nox fonts-dejavu-core texlive-latex-base texlive-latex-recommended poppler-utils
+DEB_PKGS := libgsl-dev libopenblas-dev libcmocka-dev gnuplot-nox fonts-dejavu-core texlive-latex-base texlive-latex-recommended poppler-utils universal-ctags
 SCALE ?= full
 export OPENBLAS_NUM_THREADS := 1
 

@@ -172,20 +172,6 @@ static void claims_of_code(const claims *c, const char *path, char *buf, size_t 
 
 /* The instrument pins that name a reading (not the gates: a gate is never
  * superseded, it is preregistered). */
-/* v is the teacher version `base` of a reading: base itself, or base with
- * one of the teacher's die-back suffixes (teacher.h teacher_version()). */
-static int reading_version(const char *v, const char *base)
-{
-    size_t l = strlen(base);
-    if (strncmp(v, base, l)) return 0;
-    return !v[l] || !strcmp(v + l, "-arc") || !strcmp(v + l, "-target");
-}
-
-static int reading_key(const char *key)
-{
-    return !strcmp(key, "teacher_version") || !strcmp(key, "teacher_sha256") || !strcmp(key, "estimator_sha256");
-}
-
 /* Line of (key, value) in the superseded pins t (may be NULL), 0 if absent. */
 static int superseded_line(const tsv *t, const char *key, const char *value)
 {
@@ -214,7 +200,7 @@ static cs_status supersede(const pinset *ps)
     }
     for (size_t r = 0; r < tsv_nrows(old); r++) {
         const char *key = tsv_str(old, r, "key"), *val = tsv_str(old, r, "value");
-        if (!key || !val || !reading_key(key)) continue;
+        if (!key || !val || !prov_reading_key(key)) continue;
         for (size_t i = 0; i < n; i++)
             if (!strcmp(cur[i].key, key) && strcmp(cur[i].value, val) && !superseded_line(sup, key, val)) { newv[r] = val; add++; }
     }
@@ -437,13 +423,80 @@ static void check_frozen(const claims *c, checklist *cl, paths_list *frozen_file
     if (!bad) checklist_add(cl, VERDICT_PASS, "frozen hashes", "%zu frozen files match %s", ok, PATHS_FROZEN_HASHES);
 }
 
+/* Tables made by one superseded reading, one line per frozen folder. */
+enum { SUP_GROUPS = 32 };
+typedef struct { char dir[256], old[256], claims[700]; int line; size_t files; } sup_group;
+
+/* The four pinned keys of table p (tsv t) against the pins: a mismatch the
+ * readings expect passes; one a superseded reading of pins_superseded.tsv
+ * excuses is named in old (first_line: its line); any other is a finding.
+ * Returns the mismatches; *excused counts the excused ones. */
+static int provenance_keys(const char *p, const tsv *t, const pinset *ps, const tsv *sup, checklist *cl, char *old, size_t on, int *first_line,
+                           int *excused, size_t *bad)
+{
+    static const char *const keys[] = {"teacher_version", "teacher_sha256", "estimator_sha256", "gates_sha256"};
+    size_t off = 0;
+    int mismatch = 0;
+    for (int k = 0; k < 4; k++) {
+        const char *v = tsv_meta(t, keys[k]);
+        const char *want = NULL;
+        for (size_t j = 0; j < ps->n; j++) if (!strcmp(ps->p[j].key, keys[k])) want = ps->p[j].value;
+        if (v && want && !strcmp(v, want)) continue;
+        /* The readings (design.md §7 E0) and the sensitivity's dieback units run
+         * the pinned teacher under its other die-back readings too: under their
+         * folders those versions (teacher_version(): the pinned or the one-sided
+         * one, optionally "-arc" or "-target") are expected, not a mismatch. */
+        char one[32] = "";
+        if (k == 0 && prov_teacher_version_one_sided(one, sizeof one)) one[0] = '\0';
+        if (k == 0 && v && (!strncmp(p, PATHS_FROZEN_DIR "/readings/", strlen(PATHS_FROZEN_DIR) + 10) ||
+                            !strncmp(p, PATHS_SENS_DIR "/", strlen(PATHS_SENS_DIR) + 1)) &&
+            ((one[0] && prov_reading_version(v, one)) || (want && prov_reading_version(v, want)) || !strcmp(v, "per run")))
+            continue;
+        mismatch++;
+        int line = v && prov_reading_key(keys[k]) ? superseded_line(sup, keys[k], v) : 0;
+        if (line) {
+            (*excused)++;
+            if (!*first_line) *first_line = line;
+            off += (size_t)snprintf(old + off, off < on ? on - off : 0, "%s%s %.12s", off ? ", " : "", keys[k] + (strncmp(keys[k], "teacher_v", 9) ? 0 : 8), v);
+            continue;
+        }
+        checklist_add(cl, VERDICT_FAIL, "provenance", "%s: provenance %s = %.16s does not match the current pin %.16s (frozen with other code: regenerate)",
+                      p, keys[k], v ? v : "(missing)", want ? want : "(none)");
+        (*bad)++;
+    }
+    return mismatch;
+}
+
+/* Table p, made wholly by the superseded reading old, into its folder's group. */
+static void group_superseded(const claims *c, const char *p, const char *old, int first_line, sup_group *sups, size_t *nsup, checklist *cl, size_t *bad)
+{
+    char dir[256];
+    snprintf(dir, sizeof dir, "%.*s", (int)(strrchr(p, '/') - p), p);
+    size_t k = 0;
+    while (k < *nsup && (strcmp(sups[k].dir, dir) || strcmp(sups[k].old, old))) k++;
+    if (k == *nsup && *nsup < SUP_GROUPS) {
+        snprintf(sups[k].dir, sizeof sups[k].dir, "%s", dir);
+        snprintf(sups[k].old, sizeof sups[k].old, "%s", old);
+        sups[k].line = first_line, sups[k].files = 0, sups[k].claims[0] = '\0';
+        (*nsup)++;
+    }
+    if (k == *nsup) {
+        checklist_add(cl, VERDICT_FAIL, "provenance", "%s: more than %d folder/reading pairs made by superseded readings: re-run them", p, SUP_GROUPS);
+        (*bad)++;
+        return;
+    }
+    char affected[600];
+    claims_of(c, p, NULL, affected, sizeof affected);
+    size_t l = strlen(sups[k].claims);
+    if (strcmp(affected, "(no claim)")) snprintf(sups[k].claims + l, sizeof sups[k].claims - l, "%s%s", l ? ", " : "", affected);
+    sups[k].files++;
+}
+
 static void check_provenance(const claims *c, checklist *cl, const paths_list *frozen_files, const pinset *ps)
 {
-    const pin *cur = ps->p;
-    size_t n = ps->n;
     tsv *sup = NULL;
     tsv_read(PATHS_PINS_SUPERSEDED, &sup); /* absent: no superseded reading */
-    struct { char dir[256], old[256], claims[700]; int line; size_t files; } sups[32];
+    sup_group sups[SUP_GROUPS];
     size_t nsup = 0;
     size_t checked = 0, bad = 0;
     for (size_t i = 0; i < frozen_files->n; i++) {
@@ -452,7 +505,6 @@ static void check_provenance(const claims *c, checklist *cl, const paths_list *f
         if (len < 4 || strcmp(p + len - 4, ".tsv")) continue;
         tsv *t;
         if (tsv_read(p, &t)) { checklist_add(cl, VERDICT_FAIL, "provenance", "%s", cs_errmsg()); bad++; continue; }
-        const char *keys[] = {"teacher_version", "teacher_sha256", "estimator_sha256", "gates_sha256"};
         const char *status = tsv_meta(t, "status");
         if (!(tsv_meta(t, "experiment") && tsv_meta(t, "teacher_version"))) {
             /* provenance is required: only a table of published figures (not
@@ -467,64 +519,9 @@ static void check_provenance(const claims *c, checklist *cl, const paths_list *f
         } else {
             checked++;
             char old[512] = "";
-            size_t off = 0;
-            int mismatch = 0, excused = 0, first_line = 0;
-            for (int k = 0; k < 4; k++) {
-                const char *v = tsv_meta(t, keys[k]);
-                const char *want = NULL;
-                for (size_t j = 0; j < n; j++) if (!strcmp(cur[j].key, keys[k])) want = cur[j].value;
-                if (v && want && !strcmp(v, want)) continue;
-                /* The readings (design.md §7 E0) run the pinned teacher under its
-                 * one-sided switch and its other die-back readings too (the
-                 * sensitivity's dieback units as well): under frozen/readings/
-                 * and frozen/sensitivity/ those version strings (teacher_version():
-                 * the pinned or the one-sided version, optionally "-arc" or
-                 * "-target") are expected, not a mismatch. */
-                char one[32] = "";
-                if (k == 0 && prov_teacher_version_one_sided(one, sizeof one)) one[0] = '\0';
-                if (k == 0 && v && (!strncmp(p, PATHS_FROZEN_DIR "/readings/", strlen(PATHS_FROZEN_DIR) + 10) ||
-                                    !strncmp(p, PATHS_SENS_DIR "/", strlen(PATHS_SENS_DIR) + 1)) &&
-                    ((one[0] && reading_version(v, one)) || (want && reading_version(v, want)) || !strcmp(v, "per run")))
-                    continue;
-                mismatch++;
-                int line = v && reading_key(keys[k]) ? superseded_line(sup, keys[k], v) : 0;
-                if (line) {
-                    excused++;
-                    if (!first_line) first_line = line;
-                    off += (size_t)snprintf(old + off, off < sizeof old ? sizeof old - off : 0, "%s%s %.12s",
-                                            off ? ", " : "", keys[k] + (strncmp(keys[k], "teacher_v", 9) ? 0 : 8), v);
-                    continue;
-                }
-                checklist_add(cl, VERDICT_FAIL, "provenance", "%s: provenance %s = %.16s does not match the current pin %.16s (frozen with other code: regenerate)",
-                              p, keys[k], v ? v : "(missing)", want ? want : "(none)");
-                bad++;
-            }
-            if (mismatch && excused == mismatch) {
-                /* one line per frozen folder and reading, not per file */
-                char dir[256];
-                snprintf(dir, sizeof dir, "%.*s", (int)(strrchr(p, '/') - p), p);
-                size_t k = 0;
-                while (k < nsup && (strcmp(sups[k].dir, dir) || strcmp(sups[k].old, old))) k++;
-                if (k == nsup && nsup < sizeof sups / sizeof *sups) {
-                    snprintf(sups[k].dir, sizeof sups[k].dir, "%s", dir);
-                    snprintf(sups[k].old, sizeof sups[k].old, "%s", old);
-                    sups[k].line = first_line;
-                    sups[k].files = 0;
-                    sups[k].claims[0] = '\0';
-                    nsup++;
-                }
-                if (k == nsup) {
-                    checklist_add(cl, VERDICT_FAIL, "provenance", "%s: more than %zu folder/reading pairs made by superseded readings: re-run them", p, sizeof sups / sizeof *sups);
-                    bad++;
-                } else {
-                    char affected[600];
-                    claims_of(c, p, NULL, affected, sizeof affected);
-                    size_t l = strlen(sups[k].claims);
-                    if (strcmp(affected, "(no claim)"))
-                        snprintf(sups[k].claims + l, sizeof sups[k].claims - l, "%s%s", l ? ", " : "", affected);
-                    sups[k].files++;
-                }
-            }
+            int excused = 0, first_line = 0; /* one line per frozen folder and reading, not per file: */
+            const int mismatch = provenance_keys(p, t, ps, sup, cl, old, sizeof old, &first_line, &excused, &bad);
+            if (mismatch && excused == mismatch) group_superseded(c, p, old, first_line, sups, &nsup, cl, &bad);
         }
         tsv_free(t);
     }

@@ -162,3 +162,15 @@ cs_status prov_write(tsv_writer *w, prov *p)
     else tsv_writer_meta(w, "worst_overlap_m", "n/a");
     return CS_OK;
 }
+
+int prov_reading_version(const char *v, const char *base)
+{
+    size_t l = strlen(base);
+    if (strncmp(v, base, l)) return 0;
+    return !v[l] || !strcmp(v + l, "-arc") || !strcmp(v + l, "-target");
+}
+
+int prov_reading_key(const char *key)
+{
+    return !strcmp(key, "teacher_version") || !strcmp(key, "teacher_sha256") || !strcmp(key, "estimator_sha256");
+}

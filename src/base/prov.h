@@ -41,4 +41,11 @@ cs_status prov_gates_sha256(const char *gates_dir, char hex[65]);
 /* Monotonic seconds. */
 double prov_now(void);
 
+/* v is the teacher version `base` under one of the teacher's readings: base
+ * itself, or base with a die-back suffix (teacher.h teacher_version()). */
+int prov_reading_version(const char *v, const char *base);
+/* Whether a provenance key names the code a reading changes (the teacher's
+ * version and sources, the estimator's): the keys a superseded reading excuses. */
+int prov_reading_key(const char *key);
+
 #endif
