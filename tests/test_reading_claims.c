@@ -427,6 +427,12 @@ static void seeds_come_from_the_row_not_the_path(void **st)
     if (r.value != twelve / blind) fail_msg("MoreStandsMainIso: observed %.17g, expected %.17g", r.value, twelve / blind);
     assert_int_equal(r.gate, VERDICT_FAIL); /* about 0.42 over 0.78 > 0.5 */
     if (r.gate_observed != twelve / blind) fail_msg("judged %.17g, expected %.17g", r.gate_observed, twelve / blind);
+    /* its extrapolation gate reads the paper reading's baselines too (the same stands), never pending */
+    row_of(&row, "MoreStandsExtrapLowRel", src, "claim_extrap_rel", "extrapolation.gate:rel_improvement_min", "%.6f");
+    snprintf(row.kind, sizeof row.kind, "variant");
+    claims_eval(&row, &r);
+    assert_int_equal(r.status, VERDICT_PASS);
+    if (r.gate == VERDICT_PENDING) fail_msg("MoreStandsExtrapLowRel: gate pending: %s", r.gate_detail);
     /* the same four seeds read from the paper reading's own folder: the path chooses nothing */
     snprintf(src, sizeof src, "%s/run_s*_*.tsv", dir);
     row_of(&row, "SeedsOne", src, "claim_main_median", "-", "%.6f");

@@ -24,6 +24,9 @@
 #include <string.h>
 #include <unistd.h>
 
+/* the folder of the paper reading under its training choices (design.md §8.2) */
+#define GENSENS_DIR "/generator-sensitivity/"
+
 #define MAXSEED 64
 
 /* Per seed: k = 0 joint generated, 1 indep generated, 2 joint shuffled (the
@@ -168,7 +171,10 @@ cs_status claim_main_baseline_mean(const char *source, const char *col, const ch
 {
     char path[200];
     size_t ls = strlen(source), lb = strlen("baselines.tsv");
+    const char *choice = strstr(source, GENSENS_DIR);
     if (ls >= lb && !strcmp(source + ls - lb, "baselines.tsv")) snprintf(path, sizeof path, "%s", source);
+    /* a training choice is evaluated on the paper reading's stands: its baselines are that reading's */
+    else if (choice) snprintf(path, sizeof path, "%.*s/paper-reading/main/baselines.tsv", (int)(choice - source), source);
     else reading_path(source, "baselines.tsv", path, sizeof path);
     tsv *t;
     cs_status st = tsv_read(path, &t);

@@ -20,19 +20,6 @@
 #include <stdio.h>
 #include <string.h>
 
-#define GENSENS_DIR "/generator-sensitivity/"
-
-/* The baselines of the unit set in dir: a training choice's are the paper
- * reading's (<root>/paper-reading/main/ beside <root>/generator-sensitivity/),
- * a reading's its own (dir/baselines.tsv). */
-static cs_status baselines_path(const char *dir, char *out, size_t n)
-{
-    const char *cut = strstr(dir, GENSENS_DIR);
-    if (cut) snprintf(out, n, "%.*s/paper-reading/main/baselines.tsv", (int)(cut - dir), dir);
-    else snprintf(out, n, "%s/baselines.tsv", dir);
-    return CS_OK;
-}
-
 /* Median over seeds of arm a's error (0 joint, 1 indep) over the blind level. */
 static cs_status over_blind(const claim_row *row, claim_result *res, int a)
 {
@@ -51,12 +38,12 @@ static cs_status over_blind(const claim_row *row, claim_result *res, int a)
         res->status = VERDICT_PENDING;
         return CS_OK;
     }
-    char base[400];
+    char set[400], base[400];
     double blind, med;
-    if ((st = baselines_path(dir, base, sizeof base)) || (st = claim_main_baseline_mean(base, "direction_blind_w1", "unseen", 0, &blind, NULL, 0))) return st;
+    snprintf(set, sizeof set, "%.300s/run_s*_*.tsv", dir);
+    if ((st = claim_main_baseline_mean(set, "direction_blind_w1", "unseen", 0, &blind, base, sizeof base))) return st;
     if ((st = stats_median(m.err[a][0], (size_t)m.want, &med))) return st;
-    snprintf(res->where, sizeof res->where, "%.200s/run_s*_*.tsv (%d seeds, %s arm) over %.200s (direction_blind_w1, unseen)", dir, m.want,
-             a ? "indep" : "joint", base);
+    snprintf(res->where, sizeof res->where, "%.200s/run_s*_*.tsv (%d seeds, %s arm) over %.200s", dir, m.want, a ? "indep" : "joint", base);
     if (arm_only) {
         size_t l = strlen(res->where);
         snprintf(res->where + l, sizeof res->where - l, "; that arm whole, the other still running");
