@@ -124,7 +124,7 @@ static void findings_rows(sbuf *b, const claims *c, const claim_result *res, int
             sb_printf(&cl, "%s`%s` %s%s%s / %s", cl.n ? "; " : "", c->rows[j].macro, res[j].status == VERDICT_PASS ? res[j].text : "pending",
                       judged_as, res[j].status == VERDICT_PASS && superseded(&c->rows[j]) ? " (superseded reading)" : "", c->rows[j].reference);
         }
-        sb_printf(b, "| `" PATHS_GATES_DIR "/%.*s`%s | %zu | %zu | %zu | %s |\n", (int)gl, g, ext == 1 ? " (pair)" : ext == 2 ? " (variant)" : "", k[0], k[1], k[2], cl.err ? "(out of memory)" : cl.s ? cl.s : "");
+        sb_printf(b, "| `" PATHS_GATES_DIR "/%.*s`%s | %zu | %zu | %zu | %s |\n", (int)gl, g, ext ? " (pair)" : "", k[0], k[1], k[2], cl.err ? "(out of memory)" : cl.s ? cl.s : "");
         free(cl.s);
     }
 }
@@ -153,8 +153,7 @@ static void findings(sbuf *b, const claims *c, const claim_result *res)
     sb_printf(b, "Gates (does our value meet the paper's preregistered threshold?) on the reference paper's claims: "
                  "**%zu reproduced, %zu not reproduced, %zu pending** (pending: data not on this machine, or units still running%s). "
                  "The pair extension, same thresholds (rows marked pair): %zu meet, %zu do not, %zu pending. "
-                 "The paper reading under a training choice that met both preconditions at four seeds, run at the gate's seeds, "
-                 "same thresholds (rows marked variant): %zu meet, %zu do not, %zu pending. "
+                 "Two training choices at the gate's seeds (variants, same thresholds; `make verify` lists them): %zu meet, %zu do not, %zu pending. "
                  "Agreement (is the paper's value inside our 95 %% interval? `crownshy report`): %zu inside, %zu reached by a reading or choice, "
                  "%zu unexplained, %zu without an interval. A claim can meet its gate and still disagree.\n\n", k[0], k[1], k[2],
               sup ? ", or a table made by a superseded reading of the pinned code, until its unit is re-run" : "", ke[0], ke[1], ke[2],
@@ -162,7 +161,6 @@ static void findings(sbuf *b, const claims *c, const claim_result *res)
     sb_printf(b, "| gate | reproduced | not reproduced | pending | claims: ours / paper |\n|---|---|---|---|---|\n");
     findings_rows(b, c, res, 0);
     findings_rows(b, c, res, 1);
-    findings_rows(b, c, res, 2);
 }
 
 /* Is s inside a code span of line (an odd number of backticks before it)? A
