@@ -317,7 +317,8 @@ t21c() {
 t21d() {
   fresh
   local d="$scratch/frozen/paper-reading/main" f e
-  for f in run samples weights; do e=tsv; [ $f = weights ] && e=ckpt; cp "$d/${f}_s04_joint.$e" "$d/${f}_s05_joint.$e"; done
+  # a new file in place of seed 5's (a hard link into the shared copy)
+  for f in run samples weights; do e=tsv; [ $f = weights ] && e=ckpt; cp --remove-destination "$d/${f}_s04_joint.$e" "$d/${f}_s05_joint.$e"; done
   reseal
   expect "seed 4 copied as seed 5" "unit identities" "run_s05_joint.tsv" "seed"
 }
