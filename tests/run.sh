@@ -5,10 +5,11 @@
 # crash, a non-zero exit without a cmocka summary) counts as one failure, so a
 # broken test never passes silently. Binaries after a "--" argument are the
 # sanitizer build; they are counted the same way.
-# Two lanes (TEST_JOBS=1: one): the shell tests in one, in their order, and
-# the binaries, then the sanitizer binaries, in the other. Each shell test
-# works in a folder of its own (those that run verify in this tree share a
-# lane), and a binary never runs beside its sanitizer build (both use
+# Two lanes (TEST_JOBS=1: one): the first shell test given (the longest:
+# make check gives tamper.sh first) in one, and the binaries, the sanitizer
+# binaries and then the other shell tests, in their order, in the other. Each
+# shell test works in a folder of its own (those that run verify in this tree
+# share a lane), and a binary never runs beside its sanitizer build (both use
 # build/test-tmp/<test>).
 # Test temporaries (build/test-tmp) are removed at the end unless KEEP_TEST_TMP=1.
 set -u
@@ -42,19 +43,21 @@ run_one() {
   cat "$res/$k.msg"
   echo "$p $f $((SECONDS - t0)) $name" > "$res/$k"
 }
-# lane K TEST...: the tests one after another ("--" starts the sanitizer build)
+# lane K TEST...: the tests one after another ("--" starts the sanitizer
+# binaries; a shell test is never one)
 lane() {
   local k=$1 label="" t; shift
   for t in "$@"; do
     if [ "$t" = "--" ]; then label=" [asan+ubsan]"; continue; fi
-    k=$((k + 1)); run_one "$k" "$t" "$label"
+    k=$((k + 1))
+    case $t in *.sh) run_one "$k" "$t" "" ;; *) run_one "$k" "$t" "$label" ;; esac
   done
 }
 shells=() bins=()
 for t in "$@"; do case $t in *.sh) shells+=("$t") ;; *) bins+=("$t") ;; esac; done
-if [ "${TEST_JOBS:-2}" -gt 1 ]; then
-  lane 0 "${shells[@]}" &
-  lane 1000 "${bins[@]}" &
+if [ "${TEST_JOBS:-2}" -gt 1 ] && [ ${#shells[@]} -gt 0 ]; then
+  lane 0 "${shells[0]}" &
+  lane 1000 "${bins[@]}" "${shells[@]:1}" &
   wait
 else
   lane 0 "${shells[@]}"
