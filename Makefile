@@ -100,9 +100,10 @@ $(SPLIT): tests/bench/step_split.c $(B)/libcrownshy.a
 	$(CC) $(CPPFLAGS) $(CFLAGS) $< $(B)/libcrownshy.a $(SPLIT_WRAP) $(LDLIBS) -o $@
 
 # ---- tests ------------------------------------------------------------------
-# Every cmocka binary, then all of them again under ASan+UBSan; one aggregate line.
+# Every cmocka binary, then all of them again under ASan+UBSan; one aggregate
+# line. Built on both cores unless make already runs parallel.
 check: deps
-	@$(MAKE) --no-print-directory $(CLI) $(TESTS) $(ASAN_TESTS) $(SPLIT)
+	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j2) $(CLI) $(TESTS) $(ASAN_TESTS) $(SPLIT)
 	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/walls.sh tests/manifest.sh tests/citation.sh tests/paper_deps.sh tests/fonts.sh tests/spot.sh tests/docs.sh tests/readings_full.sh -- $(ASAN_TESTS)
 
 # One claim's test alone, by its macro: make test-claim MACRO=MainRel

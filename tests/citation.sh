@@ -1,4 +1,7 @@
 #!/usr/bin/env bash
+# What it catches: a CITATION.cff a citation tool would refuse (a required
+# key missing), a version or licence that disagrees with `make dist` or
+# LICENSE, a reference without a year.
 # LICENSE and CITATION.cff (design.md §9): CITATION.cff is Citation File
 # Format 1.2.0 with the keys the format requires (cff-version, message, title,
 # authors; each reference: type, title, authors), its version is the one

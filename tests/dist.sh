@@ -1,4 +1,7 @@
 #!/usr/bin/env bash
+# What it catches: a release archive that differs between two builds, holds
+# build output or lacks part of the package, or whose unpacked copy (no .git)
+# does not build and verify to the clone's claim table.
 # The release archive (design.md §9): `make dist` twice gives the same bytes;
 # the archive holds the package (LICENSE, CITATION.cff, .ci/run, Makefile,
 # sources, frozen/, audit/, paper/, figures/, gates/, tests/) and no build

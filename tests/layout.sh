@@ -1,4 +1,8 @@
 #!/usr/bin/env bash
+# What it catches: a stage importing up the pipeline or an import cycle, an
+# oversized file or function, an experiment listed by hand beside the
+# manifest, a comment naming a path or design.md section that is gone, a claim
+# chosen by how its macro is spelt.
 # The layout of src/: the pipeline is visible in its folders and
 # imports only point down it. Checks, from the sources alone:
 #  1. no source file over 600 lines;

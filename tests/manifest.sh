@@ -1,4 +1,7 @@
 #!/usr/bin/env bash
+# What it catches: a new experiment that needs a file the "Adding an
+# experiment" section does not name, or that make, the CLI, trace or verify
+# do not pick up from the manifest alone.
 # manifest.sh: a new experiment is added through the manifest alone. In a
 # scratch copy of the package (build/manifest-test/repo, its own git), adds a
 # toy experiment "toy" with exactly the files the "Adding an

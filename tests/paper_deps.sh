@@ -1,4 +1,7 @@
 #!/usr/bin/env bash
+# What it catches: `make paper` on a partial texlive failing without naming
+# what to install (the .sty, its Debian package, the command), or speaking
+# when nothing is missing.
 # make paper's TeX set-up (src/cli/paper_deps.sh): with every package present it
 # passes silently; with a package missing (a kpsewhich that does not find it,
 # as on a machine with only part of texlive) and no install allowed, it exits 1

@@ -1,4 +1,8 @@
 #!/usr/bin/env bash
+# What it catches: a reading whose full set of seeds would leave a gated
+# claim unjudged, make the package inconsistent or mix the pair extension into
+# the reference paper's tally; and pending claims that stop naming their
+# missing units.
 # The paper reading's verdict with its full set of seeds (design.md §8 "Which
 # claims read which reading"): in a scratch copy of the package, the units of
 # frozen/paper-reading/main/ still missing are fabricated from seed 1's tables

@@ -1,4 +1,7 @@
 #!/usr/bin/env bash
+# What it catches: the Slurm engine submitting the wrong units (after a
+# cancelled job, or again when nothing is left) or giving results that differ
+# from a local run.
 # tests/slurm.sh: `make reproduce ENGINE=slurm` on a real single-node Slurm (design.md §13).
 #
 # Run as root from the repository (CI does: .ci/run). It

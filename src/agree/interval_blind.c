@@ -6,7 +6,11 @@
  * the stand index k (its stands at every spacing drawn together); a resample
  * pools the patches of the drawn stands, in draw order, at each spacing, and
  * takes the W1 and their mean as the claim does. The frozen stands in their
- * own order must give the claim's value bit for bit. */
+ * own order must give the claim's value bit for bit. The W1 reads each pool
+ * in ascending order: each spacing's pools are put in order once, with the
+ * stand of every value, and a resample's pool in order is that order with
+ * each value repeated as often as its stand was drawn: the values and order
+ * a sort of the gathered pool gives, without a sort per resample. */
 #include "interval_stands.h"
 #include "estimator.h"
 #include <math.h>
@@ -22,16 +26,37 @@ typedef struct {
     double *teach[IV_MAXD], *blind[IV_MAXD];
     double *ga, *gb;                     /* gather buffers: ns x the largest stand */
     size_t cap;                          /* the largest stand's patches */
+    /* per spacing, each pool's values in ascending order with their stands:
+     * a resample's pooled values in order are these, each as many times as
+     * its stand was drawn (what sorting the gathered values gives) */
+    double *sblind[IV_MAXD], *steach[IV_MAXD];
+    size_t *kblind[IV_MAXD], *kteach[IV_MAXD];
+    size_t *mult;                        /* draws of each stand in one resample */
+    int sorted;                          /* every value finite: the ordered pools are used */
 } blind_ctx;
 
 static void blind_free(void *p)
 {
     blind_ctx *c = p;
     if (!c) return;
-    for (size_t i = 0; i < IV_MAXD; i++) { free(c->off[i]); free(c->cnt[i]); free(c->teach[i]); free(c->blind[i]); }
+    for (size_t i = 0; i < IV_MAXD; i++) {
+        free(c->off[i]); free(c->cnt[i]); free(c->teach[i]); free(c->blind[i]);
+        free(c->sblind[i]); free(c->steach[i]); free(c->kblind[i]); free(c->kteach[i]);
+    }
+    free(c->mult);
     free(c->ga);
     free(c->gb);
     free(c);
+}
+
+/* The values of the drawn stands in ascending order: each value of the
+ * ordered pool as many times as its stand was drawn. */
+static size_t expand(const double *v, const size_t *k, size_t tot, const size_t *mult, double *out)
+{
+    size_t g = 0;
+    for (size_t j = 0; j < tot; j++)
+        for (size_t t = mult[k[j]]; t; t--) out[g++] = v[j];
+    return g;
 }
 
 static cs_status blind_stat(const double *x, size_t n, size_t m, const void *ctxp, double *out)
@@ -39,6 +64,19 @@ static cs_status blind_stat(const double *x, size_t n, size_t m, const void *ctx
     (void)m;
     const blind_ctx *c = ctxp;
     double sum = 0;
+    if (c->sorted) {
+        memset(c->mult, 0, c->ns * sizeof *c->mult);
+        for (size_t r = 0; r < n; r++) c->mult[(size_t)x[r]]++;
+        for (size_t i = 0; i < c->nd; i++) {
+            const size_t tot = c->off[i][c->ns - 1] + c->cnt[i][c->ns - 1];
+            const size_t ga = expand(c->sblind[i], c->kblind[i], tot, c->mult, c->ga);
+            const size_t gb = expand(c->steach[i], c->kteach[i], tot, c->mult, c->gb);
+            if (!ga || ga != gb) return cs_err(CS_EINPUT, "estimator: empty sample");
+            sum += est_w1_sorted(c->ga, ga, c->gb, gb);
+        }
+        *out = sum / (double)c->nd;
+        return CS_OK;
+    }
     for (size_t i = 0; i < c->nd; i++) {
         size_t g = 0;
         for (size_t r = 0; r < n; r++) {
@@ -136,6 +174,51 @@ static cs_status read_samples(const char *path, blind_ctx *c, const double *dd)
     return st;
 }
 
+static const double *order_vals;
+static int order_cmp(const void *a, const void *b)
+{
+    const double x = order_vals[*(const size_t *)a], y = order_vals[*(const size_t *)b];
+    return x < y ? -1 : x > y;
+}
+
+/* One pool of one spacing in ascending order, with the stand of each value. */
+static cs_status order_pool(const blind_ctx *c, size_t i, const double *v, double **sv, size_t **sk)
+{
+    const size_t tot = c->off[i][c->ns - 1] + c->cnt[i][c->ns - 1];
+    size_t *idx = malloc((tot ? tot : 1) * sizeof *idx), *stand = malloc((tot ? tot : 1) * sizeof *stand);
+    *sv = malloc((tot ? tot : 1) * sizeof **sv);
+    *sk = malloc((tot ? tot : 1) * sizeof **sk);
+    if (!idx || !stand || !*sv || !*sk) { free(idx); free(stand); return cs_err(CS_ENOMEM, "interval: out of memory"); }
+    for (size_t k = 0; k < c->ns; k++)
+        for (size_t p = 0; p < c->cnt[i][k]; p++) stand[c->off[i][k] + p] = k;
+    for (size_t j = 0; j < tot; j++) idx[j] = j;
+    order_vals = v;
+    qsort(idx, tot, sizeof *idx, order_cmp);
+    for (size_t j = 0; j < tot; j++) { (*sv)[j] = v[idx[j]]; (*sk)[j] = stand[idx[j]]; }
+    free(idx);
+    free(stand);
+    return CS_OK;
+}
+
+/* The ordered pools, when every value is finite (otherwise each resample
+ * sorts its gathered values and the estimator names the value it refuses). */
+static cs_status order_pools(blind_ctx *c)
+{
+    for (size_t i = 0; i < c->nd; i++) {
+        const size_t tot = c->off[i][c->ns - 1] + c->cnt[i][c->ns - 1];
+        for (size_t j = 0; j < tot; j++)
+            if (!isfinite(c->teach[i][j]) || !isfinite(c->blind[i][j])) return CS_OK;
+    }
+    if (!(c->mult = calloc(c->ns ? c->ns : 1, sizeof *c->mult))) return cs_err(CS_ENOMEM, "interval: out of memory");
+    for (size_t i = 0; i < c->nd; i++) {
+        cs_status st = order_pool(c, i, c->blind[i], &c->sblind[i], &c->kblind[i]);
+        if (!st) st = order_pool(c, i, c->teach[i], &c->steach[i], &c->kteach[i]);
+        if (st) return st;
+    }
+    c->sorted = 1;
+    return CS_OK;
+}
+
 cs_status iv_blind_stands(const claim_row *row, const claim_result *res, const interval_spec *spec, iv_data *d)
 {
     (void)res; (void)spec;
@@ -149,6 +232,7 @@ cs_status iv_blind_stands(const claim_row *row, const claim_result *res, const i
     double dd[IV_MAXD];
     if (!st) st = read_stands(rows, c, dd);
     if (!st) st = read_samples(samples, c, dd);
+    if (!st) st = order_pools(c);
     if (!st) st = iv_stand_units(d, c->ns, rows, "the patches of each evaluation stand, their values in samples_baselines.tsv");
     return st;
 }
