@@ -331,6 +331,18 @@ static void awaited_tables_pend_others_fail(void **st)
     assert_non_null(strstr(r.why, "of 4 seeds frozen"));
 }
 
+/* The folder of the training choice stands-x4 beside the paper reading of a
+ * fixture (dir: its paper-reading/main), made empty. */
+static const char *choice_dir(const char *dir)
+{
+    static char choice[900];
+    char cmd[1000];
+    snprintf(choice, sizeof choice, "%.*s/generator-sensitivity/stands-x4/main", (int)(strlen(dir) - strlen("/paper-reading/main")), dir);
+    snprintf(cmd, sizeof cmd, "mkdir -p '%s'", choice);
+    assert_int_equal(system(cmd), 0);
+    return choice;
+}
+
 /* A training choice of the paper reading (generator-sensitivity/<choice>/main/,
  * 4 seeds): each arm's median error over the paper reading's direction-blind
  * level, pending while a unit is missing. The choice's units are the
@@ -339,11 +351,8 @@ static void training_choice_over_the_blind_level(void **st)
 {
     (void)st;
     const char *dir = fixture("reading_claims_gensens", 1);
-    char root[800], choice[900], cmd[1000], src[1000];
-    snprintf(root, sizeof root, "%.*s", (int)(strlen(dir) - strlen("/paper-reading/main")), dir);
-    snprintf(choice, sizeof choice, "%s/generator-sensitivity/stands-x4/main", root);
-    snprintf(cmd, sizeof cmd, "mkdir -p '%s'", choice);
-    assert_int_equal(system(cmd), 0);
+    const char *choice = choice_dir(dir);
+    char src[1000];
     for (int s = 1; s <= 4; s++) { write_unit(choice, s, 0); if (s < 4) write_unit(choice, s, 1); }
     snprintf(src, sizeof src, "%s/run_s*_*.tsv", choice);
     claim_result r = eval("GenStandsJointBlind", src, "claim_gensens_joint_blind", "-");
@@ -395,11 +404,8 @@ static void seeds_come_from_the_row_not_the_path(void **st)
 {
     (void)st;
     const char *dir = fixture("reading_claims_seeds", 1);
-    char root[800], choice[900], cmd[1000], src[1000];
-    snprintf(root, sizeof root, "%.*s", (int)(strlen(dir) - strlen("/paper-reading/main")), dir);
-    snprintf(choice, sizeof choice, "%s/generator-sensitivity/stands-x4/main", root);
-    snprintf(cmd, sizeof cmd, "mkdir -p '%s'", choice);
-    assert_int_equal(system(cmd), 0);
+    const char *choice = choice_dir(dir);
+    char src[1000];
     for (int s = 1; s <= 12; s++) { write_unit(choice, s, 0); write_unit(choice, s, 1); }
     snprintf(src, sizeof src, "%s/run_s*_*.tsv", choice);
     claim_row row;
