@@ -1,7 +1,8 @@
 /* Behaviour at the edges (design.md §11): bad input never reaches
  * paper/, non-finite values are named, directories and byte-order marks are
  * clear input errors or handled, the field table loads in O(n log n),
- * concurrent atomic writers never share a temp file, the gate map and the
+ * concurrent atomic writers never share a temp file, a writer terminated
+ * mid-write leaves none behind, the gate map and the
  * aggregate map parse strictly, per-tree tables name the claims they feed,
  * a file a frozen record names is found where it lies now.
  * CLI cases run build/crownshy in a scratch copy (build/test-tmp/edges_*). */
@@ -12,7 +13,9 @@
 #include "field.h"
 #include "paths.h"
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/file.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 static char out[65536];
@@ -293,6 +296,55 @@ static void test_concurrent_atomic_writers_do_not_collide(void **s)
     assert_string_equal(line, "second\n");
 }
 
+/* A writer terminated between open and commit (SIGTERM: what scancel, a
+ * batch system's time limit or kill send) removes its live temp files and
+ * still dies of that signal, so make and Slurm see the unit as failed; a file
+ * it committed before stays. Two live files, so one registration cannot pass. */
+static void test_terminated_writer_leaves_no_temp_file(void **s)
+{
+    (void)s;
+    const char *dir = tu_tmpdir("edges_term");
+    char done[600], p1[600], p2[600];
+    snprintf(done, sizeof done, "%s/done.tsv", dir);
+    snprintf(p1, sizeof p1, "%s/run_s01_joint.tsv", dir);
+    snprintf(p2, sizeof p2, "%s/samples_s01_joint.tsv", dir);
+    int ready[2];
+    assert_int_equal(pipe(ready), 0);
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        close(ready[0]);
+        afile_remove_on_signal();
+        afile d, a, b;
+        if (afile_open(&d, done) != CS_OK) _exit(90);
+        fputs("committed\n", d.f);
+        if (afile_commit(&d) != CS_OK) _exit(91);
+        if (afile_open(&a, p1) != CS_OK || afile_open(&b, p2) != CS_OK) _exit(92);
+        fputs("half a unit\n", a.f);
+        fputs("half its samples\n", b.f);
+        fflush(a.f);
+        fflush(b.f);
+        if (write(ready[1], "r", 1) != 1) _exit(93);
+        for (;;) pause();
+    }
+    close(ready[1]);
+    char c;
+    if (read(ready[0], &c, 1) != 1) fail_msg("the writer exited before it was ready");
+    close(ready[0]);
+    assert_int_equal(kill(pid, SIGTERM), 0);
+    int st = 0;
+    assert_int_equal(waitpid(pid, &st, 0), pid);
+    if (!WIFSIGNALED(st) || WTERMSIG(st) != SIGTERM)
+        fail_msg("the writer did not die of SIGTERM (status %#x)", st);
+    char cmd[800];
+    snprintf(cmd, sizeof cmd, "cd '%s' && test \"$(ls -A)\" = done.tsv", dir);
+    if (system(cmd) != 0) {
+        snprintf(cmd, sizeof cmd, "ls -A '%s' >&2", dir);
+        if (system(cmd) != 0) {}
+        fail_msg("%s: expected only done.tsv after SIGTERM (listing above)", dir);
+    }
+}
+
 static void test_gate_map_parses_strictly(void **s)
 {
     (void)s;
@@ -439,6 +491,7 @@ int main(void)
         cmocka_unit_test(test_field_table_million_rows_loads),
         cmocka_unit_test(test_field_table_duplicate_still_named),
         cmocka_unit_test(test_concurrent_atomic_writers_do_not_collide),
+        cmocka_unit_test(test_terminated_writer_leaves_no_temp_file),
         cmocka_unit_test(test_gate_map_parses_strictly),
         cmocka_unit_test(test_aggregate_map_parses_strictly),
         cmocka_unit_test(test_per_tree_tables_name_their_claims),

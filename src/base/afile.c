@@ -2,6 +2,7 @@
 #include "afile.h"
 #include <errno.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -21,8 +22,55 @@ cs_status afile_mkdir_parents(const char *path)
     return CS_OK;
 }
 
+/* the temp files open now, read by the signal handler: a slot holds the
+ * afile's own tmp string from open until after its rename or unlink */
+static char *volatile live[AFILE_LIVE];
+
+static void watch(char *tmp)
+{
+    for (int i = 0; i < AFILE_LIVE; i++)
+        if (!live[i]) { live[i] = tmp; return; }
+}
+
+static void unwatch(const char *tmp)
+{
+    for (int i = 0; i < AFILE_LIVE; i++)
+        if (live[i] == tmp) live[i] = NULL;
+}
+
+/* unlink, sigaction and raise are async-signal-safe; the signal stays
+ * blocked until the handler returns, then kills with the default action */
+static void on_signal(int sig)
+{
+    int saved = errno;
+    for (int i = 0; i < AFILE_LIVE; i++)
+        if (live[i]) unlink(live[i]);
+    struct sigaction dfl;
+    memset(&dfl, 0, sizeof dfl);
+    dfl.sa_handler = SIG_DFL;
+    sigemptyset(&dfl.sa_mask);
+    sigaction(sig, &dfl, NULL);
+    raise(sig);
+    errno = saved;
+}
+
+void afile_remove_on_signal(void)
+{
+    static const int sigs[] = {SIGTERM, SIGINT, SIGHUP};
+    for (size_t i = 0; i < sizeof sigs / sizeof sigs[0]; i++) {
+        struct sigaction old, sa;
+        if (sigaction(sigs[i], NULL, &old) != 0 || old.sa_handler == SIG_IGN) continue;
+        memset(&sa, 0, sizeof sa);
+        sa.sa_handler = on_signal;
+        sigemptyset(&sa.sa_mask);
+        for (size_t j = 0; j < sizeof sigs / sizeof sigs[0]; j++) sigaddset(&sa.sa_mask, sigs[j]);
+        sigaction(sigs[i], &sa, NULL);
+    }
+}
+
 static void release(afile *a)
 {
+    if (a->tmp) unwatch(a->tmp);
     free(a->path);
     free(a->tmp);
     a->path = a->tmp = NULL;
@@ -42,6 +90,7 @@ cs_status afile_open(afile *a, const char *path)
     static unsigned long serial;
     sprintf(a->tmp, "%s.tmp.%ld.%lu", path, (long)getpid(), ++serial);
     int fd = open(a->tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
+    if (fd >= 0) watch(a->tmp);
     a->f = fd >= 0 ? fdopen(fd, "w") : NULL;
     if (fd >= 0 && !a->f) { close(fd); unlink(a->tmp); }
     if (!a->f) {

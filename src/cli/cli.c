@@ -9,6 +9,7 @@
 #include "cli.h"
 #include "opts.h"
 #include "teacher.h"
+#include "afile.h"
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
@@ -85,6 +86,8 @@ int cli_main(int argc, char **argv)
      * an environment error, its temporary file removed, instead of the
      * process being killed mid-write */
     signal(SIGXFSZ, SIG_IGN);
+    /* a run cancelled (scancel, a time limit, Ctrl-C) leaves no temp file */
+    afile_remove_on_signal();
     if (argc < 2) { usage(stderr); return 2; }
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
         usage(stdout);
