@@ -23,15 +23,18 @@ typedef struct { size_t compared, inside, reached, unexplained, nointerval, meas
 
 /* Every claim's interval (has = 0 for rows without one). On an error of a
  * row the status is returned and *bad names the row; the array is complete. */
-cs_status agree_intervals(const interval_table *t, const claims *c, const claim_result *res, claim_interval **out, size_t *bad);
+cs_status agree_intervals(const interval_table *t, const claims *c, const claim_result *res, claim_interval **out,
+                          size_t *bad);
 /* agree_intervals over PATHS_INTERVALS, computed once per (c, res) and kept
  * for the process (verify, numbers and the audit read the same results):
  * the array is owned here. */
 cs_status agree_intervals_cached(const claims *c, const claim_result *res, const claim_interval **out);
 /* The agreement of one claim (AGREE_NA: not a measured number with a reference). */
-void agree_judge(const attrib_data *d, const claim_row *row, const claim_result *res, const claim_interval *ci, agree_result *out);
+void agree_judge(const attrib_data *d, const claim_row *row, const claim_result *res, const claim_interval *ci,
+                 agree_result *out);
 const char *agree_name(agree_kind k);
-void agree_count(const attrib_data *d, const claims *c, const claim_result *res, const claim_interval *ci, agree_counts *k);
+void agree_count(const attrib_data *d, const claims *c, const claim_result *res, const claim_interval *ci,
+                 agree_counts *k);
 /* The summary line (plain text; tex != 0: LaTeX). */
 void agree_line(const agree_counts *k, int tex, char *buf, size_t n);
 
@@ -51,6 +54,7 @@ cs_status agree_write_comparison(const char *path, const claims *c, const claim_
 cs_status agree_write_summary(const char *path, const claims *c, const claim_result *res, const claim_interval *ci,
                               const attrib_data *d);
 /* The same table on f (colour = 1: ANSI colours for the verdicts). */
-void agree_print_report(FILE *f, const claims *c, const claim_result *res, const claim_interval *ci, const attrib_data *d, int colour);
+void agree_print_report(FILE *f, const claims *c, const claim_result *res, const claim_interval *ci,
+                        const attrib_data *d, int colour);
 
 #endif

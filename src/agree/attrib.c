@@ -38,7 +38,10 @@ static cs_status load_one(const char *path, const char *unitcol, int sens, attri
     for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
         const char *q = tsv_str(t, r, "quantity"), *u = tsv_str(t, r, unitcol);
         double v, x = NAN;
-        if (!q || !u) { st = cs_err(CS_EINPUT, "%s:%d: field 'quantity'/'%s' missing", path, tsv_line(t, r), unitcol); break; }
+        if (!q || !u) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'quantity'/'%s' missing", path, tsv_line(t, r), unitcol);
+            break;
+        }
         if ((st = tsv_double_nf(t, r, "value", &v))) break;
         if (sens && (st = tsv_double_nf(t, r, "x", &x))) break;
         st = push(d, q, u, x, v, sens);
@@ -149,7 +152,8 @@ static long gensens_base(const claims *c, size_t r, char *choice, size_t n)
     snprintf(choice, n, "%.*s", (int)(rest - ch), ch);
     for (size_t i = 0; i < c->n; i++) {
         const claim_row *q = &c->rows[i];
-        if (i != r && !strcmp(q->macro, g->param.of) && !strcmp(q->function, g->function) && !strcmp(q->source, want)) return (long)i;
+        if (i != r && !strcmp(q->macro, g->param.of) && !strcmp(q->function, g->function) && !strcmp(q->source, want))
+            return (long)i;
     }
     return -1;
 }
@@ -201,7 +205,8 @@ static int t_closer(double v, double p, double s, int cont, double *a, double *b
 static double centre_of(const attrib_data *d, const char *macro, double v)
 {
     for (size_t i = 0; i < d->n; i++)
-        if (d->v[i].sens == 1 && !strcmp(d->v[i].quantity, macro) && !strcmp(d->v[i].unit, "centre")) return d->v[i].value;
+        if (d->v[i].sens == 1 && !strcmp(d->v[i].quantity, macro) && !strcmp(d->v[i].unit, "centre"))
+            return d->v[i].value;
     return v;
 }
 
@@ -218,8 +223,8 @@ static const char *experiment_of(const claim_row *row)
  * value inside our interval) stays inside and each that does not comes no
  * further from the paper's value, and name the first that cannot in
  * blocker. 0 when none is left. */
-static int consistent(const attrib_data *d, const claim_row *row, const attrib_value *a, int cont, double *ta, double *tb,
-                      char *blocker, size_t n)
+static int consistent(const attrib_data *d, const claim_row *row, const attrib_value *a, int cont, double *ta,
+                      double *tb, char *blocker, size_t n)
 {
     const char *ex = experiment_of(row);
     for (size_t i = 0; i < d->c->n; i++) {
@@ -227,13 +232,16 @@ static int consistent(const attrib_data *d, const claim_row *row, const attrib_v
         const claim_result *qr = &d->res[i];
         const claim_interval *qi = &d->ci[i];
         double p, rel;
-        if (!strcmp(q->macro, row->macro) || !qi->has || !claims_rel_diff(q, qr, &p, &rel) || strcmp(experiment_of(q), ex)) continue;
+        if (!strcmp(q->macro, row->macro) || !qi->has || !claims_rel_diff(q, qr, &p, &rel) ||
+            strcmp(experiment_of(q), ex))
+            continue;
         const double h = attrib_half_unit(q->reference), lo = qi->lo - h, hi = qi->hi + h;
         const int agrees = lo <= p && p <= hi;
         for (size_t j = 0; j < d->n; j++) {
             const attrib_value *b = &d->v[j];
             if (b->sens != a->sens || strcmp(b->unit, a->unit) || strcmp(b->quantity, q->macro)) continue;
-            if ((a->sens == 1 && !(b->x == a->x)) || !isfinite(b->value)) continue; /* not computable there: not measured */
+            if ((a->sens == 1 && !(b->x == a->x)) || !isfinite(b->value))
+                continue; /* not computable there: not measured */
             double s = b->value - (b->sens == 1 ? centre_of(d, q->macro, qr->value) : qr->value), qa, qb;
             /* one in agreement stays in it; one outside may not move further from the paper */
             const int ok = agrees ? t_range(lo, hi, p, s, cont, &qa, &qb) : t_closer(qr->value, p, s, cont, &qa, &qb);
@@ -302,8 +310,10 @@ void attrib_count(const attrib_data *d, const claims *c, const claim_result *res
 void attrib_line(const attrib_counts *k, int tex, char *buf, size_t n)
 {
     const char *pc = tex ? "\\,\\%" : " %";
-    snprintf(buf, n, "%zu of %zu measured numbers within 10%s / %zu within 25%s of the reference paper; of the %zu beyond 10%s, "
-                     "%zu attributed (a reading or an unstated choice reaches the paper's value) and %zu unexplained (%zu of them "
-                     "measured under no reading or choice)",
-             k->in10, k->measured, pc, k->in25, pc, k->measured - k->in10, pc, k->attributed, k->unexplained, k->untested);
+    snprintf(
+        buf, n,
+        "%zu of %zu measured numbers within 10%s / %zu within 25%s of the reference paper; of the %zu beyond 10%s, "
+        "%zu attributed (a reading or an unstated choice reaches the paper's value) and %zu unexplained (%zu of them "
+        "measured under no reading or choice)",
+        k->in10, k->measured, pc, k->in25, pc, k->measured - k->in10, pc, k->attributed, k->unexplained, k->untested);
 }

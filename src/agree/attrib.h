@@ -4,10 +4,9 @@
  * 10 % of the paper's value, or an unstated choice's sensitivity values
  * (frozen/sensitivity/summary.tsv) land within 10 % of it or bracket it
  * (the paper's value lies between two of the centre run and the choice's
- * values; not for a categorical choice, the die-back rules); unexplained otherwise, and untested when no reading or choice
- * was measured for it. Reads the frozen summaries as they are; that they
- * equal their run tables is checked where the paper files are generated
- * (audit_paper.c) and by their claim tests. */
+ * values; not for a categorical choice, the die-back rules); unexplained otherwise, and untested when no reading or
+ * choice was measured for it. Reads the frozen summaries as they are; that they equal their run tables is checked where
+ * the paper files are generated (audit_paper.c) and by their claim tests. */
 #ifndef ATTRIB_H
 #define ATTRIB_H
 #include "claims.h"

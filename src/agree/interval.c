@@ -29,7 +29,8 @@ cs_status interval_table_load(const char *path, interval_table *out)
     if (!(st = meta_number(t, "seed", &seed)) && !(st = meta_number(t, "resamples", &b)))
         st = meta_number(t, "level", &level);
     if (!st && (seed < 1 || seed != floor(seed) || b < 1 || b != floor(b) || !(level > 0 && level < 1)))
-        st = cs_err(CS_EINPUT, "%s: header: seed %g, resamples %g, level %g (need integers >= 1 and a level in (0, 1))", path, seed, b, level);
+        st = cs_err(CS_EINPUT, "%s: header: seed %g, resamples %g, level %g (need integers >= 1 and a level in (0, 1))",
+                    path, seed, b, level);
     size_t n = tsv_nrows(t);
     out->s = calloc(n ? n : 1, sizeof *out->s);
     if (!st && !out->s) st = cs_err(CS_ENOMEM, "%s: out of memory", path);
@@ -40,14 +41,19 @@ cs_status interval_table_load(const char *path, interval_table *out)
         size_t sz[4] = {sizeof s->function, sizeof s->unit, sizeof s->method, sizeof s->replicates};
         for (int k = 0; k < 4 && !st; k++) {
             const char *v = tsv_str(t, r, f[k]);
-            if (!v || !v[0] || strlen(v) >= sz[k]) st = cs_err(CS_EINPUT, "%s:%d: field '%s': %s", path, tsv_line(t, r), f[k], !v ? "missing" : v[0] ? "too long" : "empty");
+            if (!v || !v[0] || strlen(v) >= sz[k])
+                st = cs_err(CS_EINPUT, "%s:%d: field '%s': %s", path, tsv_line(t, r), f[k],
+                            !v     ? "missing"
+                            : v[0] ? "too long"
+                                   : "empty");
             else strcpy(dst[k], v);
         }
         s->line = tsv_line(t, r);
         if (!st && strcmp(s->method, "bootstrap") && strcmp(s->method, "range") && strcmp(s->method, "none"))
             st = cs_err(CS_EINPUT, "%s:%d: field 'method': '%s' (bootstrap, range or none)", path, s->line, s->method);
         for (size_t q = 0; q < r && !st; q++)
-            if (!strcmp(out->s[q].function, s->function)) st = cs_err(CS_EINPUT, "%s:%d: field 'function': %s stated twice", path, s->line, s->function);
+            if (!strcmp(out->s[q].function, s->function))
+                st = cs_err(CS_EINPUT, "%s:%d: field 'function': %s stated twice", path, s->line, s->function);
         out->n = r + 1;
     }
     out->plan.seed = (unsigned long)seed;
@@ -93,7 +99,8 @@ cs_status iv_stat_eval(const double *x, size_t n, size_t m, const void *ctx, dou
     case IV_MAX: *out = stats_max(ca, n); break;
     case IV_MEAN: *out = stats_mean(ca, n); break;
     case IV_REL:
-        if (!(st = col_median(x, n, m, s->a, &ma)) && !(st = col_median(x, n, m, s->b, &mb))) *out = 100.0 * ((mb - ma) / mb);
+        if (!(st = col_median(x, n, m, s->a, &ma)) && !(st = col_median(x, n, m, s->b, &mb)))
+            *out = 100.0 * ((mb - ma) / mb);
         break;
     case IV_RATIO:
         if (!(st = col_median(x, n, m, s->a, &ma)) && !(st = col_median(x, n, m, s->b, &mb))) *out = ma / mb;
@@ -133,24 +140,28 @@ static cs_status check_own(const claim_row *row, const claim_result *res, const 
         if (d->has_own_exact) {
             /* the resamples' statistic sums in another order: the same statistic, to rounding */
             if (!(fabs(v - d->own_exact) <= 1e-12 * fabs(d->own_exact)))
-                return cs_err(CS_EINVARIANT, "%s: the resample statistic gives %.17g on the frozen units, the claim's own order %.17g: it is not the claim's statistic",
+                return cs_err(CS_EINVARIANT,
+                              "%s: the resample statistic gives %.17g on the frozen units, the claim's own order "
+                              "%.17g: it is not the claim's statistic",
                               row->macro, v, d->own_exact);
             v = d->own_exact;
         }
     } else if (d->own >= 0) v = d->x[d->own];
     else return CS_OK;
     if (v != res->value && !(isnan(v) && isnan(res->value)))
-        return cs_err(CS_EINVARIANT, "%s: its replicates (%s) give %.17g, the claim is %.17g: they are not the data the claim rests on",
-                      row->macro, d->from, v, res->value);
+        return cs_err(
+            CS_EINVARIANT,
+            "%s: its replicates (%s) give %.17g, the claim is %.17g: they are not the data the claim rests on",
+            row->macro, d->from, v, res->value);
     return CS_OK;
 }
 
-static cs_status run_method(const interval_table *t, const claim_row *row, const claim_result *res, const interval_spec *sp,
-                            iv_data *d, claim_interval *out)
+static cs_status run_method(const interval_table *t, const claim_row *row, const claim_result *res,
+                            const interval_spec *sp, iv_data *d, claim_interval *out)
 {
     if (strcmp(sp->unit, d->unit) || strcmp(sp->method, d->method))
-        return cs_err(CS_EINVARIANT, "%s:%d: %s is stated as %s over %s; the code computes %s over %s", t->path, sp->line,
-                      sp->function, sp->method, sp->unit, d->method, d->unit);
+        return cs_err(CS_EINVARIANT, "%s:%d: %s is stated as %s over %s; the code computes %s over %s", t->path,
+                      sp->line, sp->function, sp->method, sp->unit, d->method, d->unit);
     snprintf(out->from, sizeof out->from, "%s", d->from);
     out->n = d->n;
     if (!strcmp(d->method, "none")) {
@@ -160,7 +171,8 @@ static cs_status run_method(const interval_table *t, const claim_row *row, const
     }
     cs_status st = check_own(row, res, d);
     if (st) return st;
-    if (!strcmp(d->method, "bootstrap")) st = boot_percentile(d->x, d->n, d->m, iv_stat_eval, &d->stat, &t->plan, &out->lo, &out->hi);
+    if (!strcmp(d->method, "bootstrap"))
+        st = boot_percentile(d->x, d->n, d->m, iv_stat_eval, &d->stat, &t->plan, &out->lo, &out->hi);
     else st = boot_range(d->x, d->n, t->plan.level, &out->lo, &out->hi);
     if (st) return cs_err(st, "%s: interval over %s: %s", row->macro, d->from, cs_errmsg());
     out->has = 1;
@@ -178,8 +190,11 @@ cs_status interval_eval(const interval_table *t, const claim_row *row, const cla
     if (strcmp(row->kind, "measured") && !claims_kind_beside(row->kind)) return CS_OK;
     if (res->status != VERDICT_PASS) { snprintf(out->why, sizeof out->why, "the claim is not computed"); return CS_OK; }
     const interval_spec *sp = interval_table_find(t, row->function);
-    if (!sp) return cs_err(CS_EINPUT, "%s: no row for %s (the computing function of measured claim %s): its interval method is not stated",
-                           t->path, row->function, row->macro);
+    if (!sp)
+        return cs_err(
+            CS_EINPUT,
+            "%s: no row for %s (the computing function of measured claim %s): its interval method is not stated",
+            t->path, row->function, row->macro);
     snprintf(out->unit, sizeof out->unit, "%s", sp->unit);
     snprintf(out->method, sizeof out->method, "%s", sp->method);
     iv_extract ex = interval_extractor(row->function);

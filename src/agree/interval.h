@@ -52,10 +52,22 @@ cs_status interval_eval(const interval_table *t, const claim_row *row, const cla
 
 /* ---- used by the extractors (interval_src.c) ---- */
 /* The statistic of a claim over units (rows) of m columns. */
-typedef enum { IV_MEDIAN, IV_MIN, IV_MAX, IV_MEAN, IV_REL, IV_RATIO, IV_WILCOXON, IV_CALLBACK, IV_QUANTILE, IV_ZERO_PCT } iv_kind;
+typedef enum {
+    IV_MEDIAN,
+    IV_MIN,
+    IV_MAX,
+    IV_MEAN,
+    IV_REL,
+    IV_RATIO,
+    IV_WILCOXON,
+    IV_CALLBACK,
+    IV_QUANTILE,
+    IV_ZERO_PCT
+} iv_kind;
 typedef struct {
     iv_kind kind;
-    size_t a, b;      /* columns: MEDIAN..MEAN of a; REL 100 (med b - med a) / med b; RATIO med a / med b; WILCOXON p(b vs a) */
+    size_t a,
+        b; /* columns: MEDIAN..MEAN of a; REL 100 (med b - med a) / med b; RATIO med a / med b; WILCOXON p(b vs a) */
     boot_stat fn;     /* IV_CALLBACK: the statistic itself, ctx its data */
     const void *ctx;
     double q;         /* IV_QUANTILE: the level (stats_quantile of a); IV_ZERO_PCT: 100 x the share of a == 0 */

@@ -115,13 +115,22 @@ static cs_status read_stands(const char *path, blind_ctx *c, double *dd)
         long k, p;
         if (!sp) { st = cs_err(CS_EINPUT, "%s:%d: field 'split' missing", path, tsv_line(t, r)); break; }
         if (strcmp(sp, "unseen")) continue;
-        if ((st = tsv_double(t, r, "spacing", &d)) || (st = tsv_long(t, r, "stand", &k)) || (st = tsv_long(t, r, "patches", &p))) break;
+        if ((st = tsv_double(t, r, "spacing", &d)) || (st = tsv_long(t, r, "stand", &k)) ||
+            (st = tsv_long(t, r, "patches", &p)))
+            break;
         long i = spacing_index(dd, &c->nd, d);
         if (i < 0) { st = cs_err(CS_EINPUT, "%s:%d: more than %d spacings", path, tsv_line(t, r), IV_MAXD); break; }
-        if (!c->cnt[i] && !(c->cnt[i] = calloc(BL_MAXSTAND, sizeof *c->cnt[i]))) { st = cs_err(CS_ENOMEM, "interval: out of memory"); break; }
+        if (!c->cnt[i] && !(c->cnt[i] = calloc(BL_MAXSTAND, sizeof *c->cnt[i]))) {
+            st = cs_err(CS_ENOMEM, "interval: out of memory");
+            break;
+        }
         size_t have = 0;
         while (have < BL_MAXSTAND && c->cnt[i][have]) have++;
-        if (k != (long)have || p < 0 || k >= BL_MAXSTAND) { st = cs_err(CS_EINPUT, "%s:%d: field 'stand': %ld out of order (expected %zu) or field 'patches' negative", path, tsv_line(t, r), k, have); break; }
+        if (k != (long)have || p < 0 || k >= BL_MAXSTAND) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'stand': %ld out of order (expected %zu) or field 'patches' negative",
+                        path, tsv_line(t, r), k, have);
+            break;
+        }
         c->cnt[i][k] = (size_t)p;
     }
     tsv_free(t);
@@ -131,7 +140,8 @@ static cs_status read_stands(const char *path, blind_ctx *c, double *dd)
         size_t ns = 0;
         while (ns < BL_MAXSTAND && c->cnt[i][ns]) ns++;
         if (i == 0) c->ns = ns;
-        else if (ns != c->ns) return cs_err(CS_EINPUT, "%s: %zu stands at %g m, %zu at %g m", path, ns, dd[i], c->ns, dd[0]);
+        else if (ns != c->ns)
+            return cs_err(CS_EINPUT, "%s: %zu stands at %g m, %zu at %g m", path, ns, dd[i], c->ns, dd[0]);
         if (!(c->off[i] = malloc(ns * sizeof *c->off[i]))) return cs_err(CS_ENOMEM, "interval: out of memory");
         for (size_t k = 0, o = 0; k < ns; o += c->cnt[i][k], k++) c->off[i][k] = o;
     }
@@ -147,12 +157,16 @@ static cs_status read_samples(const char *path, blind_ctx *c, const double *dd)
     size_t nv[IV_MAXD][2] = {{0}};
     for (size_t i = 0; i < c->nd && !st; i++) {
         size_t tot = c->off[i][c->ns - 1] + c->cnt[i][c->ns - 1];
-        if (!(c->teach[i] = malloc(tot * sizeof *c->teach[i])) || !(c->blind[i] = malloc(tot * sizeof *c->blind[i]))) st = cs_err(CS_ENOMEM, "interval: out of memory");
+        if (!(c->teach[i] = malloc(tot * sizeof *c->teach[i])) || !(c->blind[i] = malloc(tot * sizeof *c->blind[i])))
+            st = cs_err(CS_ENOMEM, "interval: out of memory");
         for (size_t k = 0; k < c->ns; k++) if (c->cnt[i][k] > c->cap) c->cap = c->cnt[i][k];
     }
     for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
         const char *sp = tsv_str(t, r, "split"), *pr = tsv_str(t, r, "probe"), *wh = tsv_str(t, r, "which");
-        if (!sp || !pr || !wh) { st = cs_err(CS_EINPUT, "%s:%d: field 'split'/'probe'/'which' missing", path, tsv_line(t, r)); break; }
+        if (!sp || !pr || !wh) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'split'/'probe'/'which' missing", path, tsv_line(t, r));
+            break;
+        }
         if (strcmp(sp, "unseen") || strcmp(pr, "none")) continue;
         const int b = !strcmp(wh, "blind");
         if (!b && strcmp(wh, "teacher")) continue;
@@ -161,14 +175,18 @@ static cs_status read_samples(const char *path, blind_ctx *c, const double *dd)
         size_t i = 0;
         while (i < c->nd && dd[i] != d) i++;
         const size_t tot = i < c->nd ? c->off[i][c->ns - 1] + c->cnt[i][c->ns - 1] : 0;
-        if (i == c->nd || nv[i][b] == tot) { st = cs_err(CS_EINPUT, "%s:%d: more %s values at %g m than the stands' patches", path, tsv_line(t, r), wh, d); break; }
+        if (i == c->nd || nv[i][b] == tot) {
+            st = cs_err(CS_EINPUT, "%s:%d: more %s values at %g m than the stands' patches", path, tsv_line(t, r), wh,
+                        d);
+            break;
+        }
         (b ? c->blind[i] : c->teach[i])[nv[i][b]++] = v;
     }
     tsv_free(t);
     for (size_t i = 0; i < c->nd && !st; i++)
         if (nv[i][0] != c->off[i][c->ns - 1] + c->cnt[i][c->ns - 1] || nv[i][1] != nv[i][0])
-            st = cs_err(CS_EINPUT, "%s: %zu teacher and %zu blind values at %g m, the stands give %zu patches", path, nv[i][0], nv[i][1], dd[i],
-                        c->off[i][c->ns - 1] + c->cnt[i][c->ns - 1]);
+            st = cs_err(CS_EINPUT, "%s: %zu teacher and %zu blind values at %g m, the stands give %zu patches", path,
+                        nv[i][0], nv[i][1], dd[i], c->off[i][c->ns - 1] + c->cnt[i][c->ns - 1]);
     if (!st && (!(c->ga = malloc(c->cap * c->ns * sizeof *c->ga)) || !(c->gb = malloc(c->cap * c->ns * sizeof *c->gb))))
         st = cs_err(CS_ENOMEM, "interval: out of memory");
     return st;
@@ -227,12 +245,15 @@ cs_status iv_blind_stands(const claim_row *row, const claim_result *res, const i
     const int dl = slash ? (int)(slash - row->source + 1) : 0;
     snprintf(samples, sizeof samples, "%.*ssamples_baselines.tsv", dl, row->source);
     void *ctx; /* rows: baselines_stands.tsv beside baselines.tsv */
-    cs_status st = iv_stands_begin(row, "_stands", rows, sizeof rows, sizeof(blind_ctx), blind_stat, blind_free, d, &ctx);
+    cs_status st =
+        iv_stands_begin(row, "_stands", rows, sizeof rows, sizeof(blind_ctx), blind_stat, blind_free, d, &ctx);
     blind_ctx *c = ctx;
     double dd[IV_MAXD];
     if (!st) st = read_stands(rows, c, dd);
     if (!st) st = read_samples(samples, c, dd);
     if (!st) st = order_pools(c);
-    if (!st) st = iv_stand_units(d, c->ns, rows, "the patches of each evaluation stand, their values in samples_baselines.tsv");
+    if (!st)
+        st = iv_stand_units(d, c->ns, rows,
+                            "the patches of each evaluation stand, their values in samples_baselines.tsv");
     return st;
 }

@@ -17,7 +17,8 @@
 typedef struct {
     size_t nl, nd, ns;
     double level[8];
-    size_t *off, *cnt, *judged, *resp; /* per unit u = (l nd + a) ns + k: its sectors dr[off .. off + cnt), neighbours */
+    size_t *off, *cnt, *judged,
+        *resp; /* per unit u = (l nd + a) ns + k: its sectors dr[off .. off + cnt), neighbours */
     double *dr, *step;
     int steps;                          /* 1: the step ratio, 0: the magnitude ratio */
 } refine_ctx;
@@ -71,7 +72,8 @@ static cs_status refine_stat(const double *x, size_t n, size_t m, const void *ct
 
 /* The sector rows of refine_<tag>_sectors.tsv, in the order written
  * (level, spacing, stand, neighbour, sector), into c. */
-static cs_status refine_load(refine_ctx *c, const claim_row *row, const tsv *t, const char *path, const double *ds, double tol)
+static cs_status refine_load(refine_ctx *c, const claim_row *row, const tsv *t, const char *path, const double *ds,
+                             double tol)
 {
     size_t nu = c->nl * c->nd * c->ns, nr = tsv_nrows(t);
     c->off = calloc(nu, sizeof *c->off);
@@ -80,7 +82,8 @@ static cs_status refine_load(refine_ctx *c, const claim_row *row, const tsv *t, 
     c->resp = calloc(nu, sizeof *c->resp);
     c->step = calloc(nu, sizeof *c->step);
     c->dr = calloc(nr ? nr : 1, sizeof *c->dr);
-    if (!c->off || !c->cnt || !c->judged || !c->resp || !c->step || !c->dr) return cs_err(CS_ENOMEM, "interval: out of memory");
+    if (!c->off || !c->cnt || !c->judged || !c->resp || !c->step || !c->dr)
+        return cs_err(CS_ENOMEM, "interval: out of memory");
     long last_u = -1, last_j = -1;
     int any = 0;
     cs_status st = CS_OK;
@@ -88,22 +91,29 @@ static cs_status refine_load(refine_ctx *c, const claim_row *row, const tsv *t, 
         double nres, sd, dr, step;
         long j;
         size_t k;
-        if ((st = tsv_double(t, r, "nres", &nres)) || (st = tsv_double(t, r, "spacing_m", &sd)) || (st = iv_row_stand(t, r, c->ns, &k)) ||
-            (st = tsv_long(t, r, "neighbour", &j)) || (st = tsv_double(t, r, "dr_m", &dr)) || (st = tsv_double(t, r, "step_m", &step)))
+        if ((st = tsv_double(t, r, "nres", &nres)) || (st = tsv_double(t, r, "spacing_m", &sd)) ||
+            (st = iv_row_stand(t, r, c->ns, &k)) || (st = tsv_long(t, r, "neighbour", &j)) ||
+            (st = tsv_double(t, r, "dr_m", &dr)) || (st = tsv_double(t, r, "step_m", &step)))
             break;
         size_t l = 0, a = 0;
         while (l < c->nl && c->level[l] != nres) l++;
         while (a < c->nd && ds[a] != sd) a++;
-        if (l == c->nl || a == c->nd) return cs_err(CS_EINPUT, "%s:%d: N = %g at %g m is not a cell of gates/irreducibility.gate", path, tsv_line(t, r), nres, sd);
+        if (l == c->nl || a == c->nd)
+            return cs_err(CS_EINPUT, "%s:%d: N = %g at %g m is not a cell of gates/irreducibility.gate", path,
+                          tsv_line(t, r), nres, sd);
         long u = (long)((l * c->nd + a) * c->ns + k);
         if (u != last_u) {
-            if (u < last_u || (last_u >= 0 && c->cnt[u])) return cs_err(CS_EINPUT, "%s:%d: stand %zu at N = %g, %g m: rows out of order", path, tsv_line(t, r), k, nres, sd);
+            if (u < last_u || (last_u >= 0 && c->cnt[u]))
+                return cs_err(CS_EINPUT, "%s:%d: stand %zu at N = %g, %g m: rows out of order", path, tsv_line(t, r), k,
+                              nres, sd);
             c->off[u] = r;
             c->step[u] = step;
             last_u = u;
             last_j = -1;
         } else if (step != c->step[u]) {
-            return cs_err(CS_EINVARIANT, "%s: %s:%d: field 'step_m' = %.17g, the stand's other rows %.17g: they are not the data the claim rests on",
+            return cs_err(CS_EINVARIANT,
+                          "%s: %s:%d: field 'step_m' = %.17g, the stand's other rows %.17g: they are not the data the "
+                          "claim rests on",
                           row->macro, path, tsv_line(t, r), step, c->step[u]);
         }
         if (j != last_j) { c->judged[u]++; any = 0; last_j = j; }
@@ -112,13 +122,16 @@ static cs_status refine_load(refine_ctx *c, const claim_row *row, const tsv *t, 
         if (dr > tol && !any) { c->resp[u]++; any = 1; }
     }
     for (size_t u = 0; u < nu && !st; u++)
-        if (!c->cnt[u]) st = cs_err(CS_EINPUT, "%s: no rows for stand %zu at N = %g, %g m", path, u % c->ns, c->level[u / c->ns / c->nd], ds[u / c->ns % c->nd]);
+        if (!c->cnt[u])
+            st = cs_err(CS_EINPUT, "%s: no rows for stand %zu at N = %g, %g m", path, u % c->ns,
+                        c->level[u / c->ns / c->nd], ds[u / c->ns % c->nd]);
     return st;
 }
 
 /* Every row of the pooled table (pooled, spacing_m = 0, or one spacing, at
  * each level) recomputed from the frozen stands. */
-static cs_status refine_check(const refine_ctx *c, const claim_row *row, const tsv *p, const char *path, const double *ds)
+static cs_status refine_check(const refine_ctx *c, const claim_row *row, const tsv *p, const char *path,
+                              const double *ds)
 {
     double *all = malloc(c->ns * sizeof *all);
     if (!all) return cs_err(CS_ENOMEM, "interval: out of memory");
@@ -127,17 +140,26 @@ static cs_status refine_check(const refine_ctx *c, const claim_row *row, const t
     for (size_t r = 0; r < tsv_nrows(p) && !st; r++) {
         const char *scope;
         double nres, sd;
-        if ((st = tsv_text(p, r, "scope", &scope)) || (st = tsv_double(p, r, "nres", &nres)) || (st = tsv_double(p, r, "spacing_m", &sd))) break;
+        if ((st = tsv_text(p, r, "scope", &scope)) || (st = tsv_double(p, r, "nres", &nres)) ||
+            (st = tsv_double(p, r, "spacing_m", &sd)))
+            break;
         size_t l = 0, a = 0;
         while (l < c->nl && c->level[l] != nres) l++;
         int pooled = !strcmp(scope, "pooled");
         if (pooled) a = c->nd;
         else while (a < c->nd && ds[a] != sd) a++;
-        if (l == c->nl || (!pooled && a == c->nd)) { st = cs_err(CS_EINPUT, "%s:%d: N = %g at %g m is not a cell of the design", row->source, tsv_line(p, r), nres, sd); break; }
+        if (l == c->nl || (!pooled && a == c->nd)) {
+            st = cs_err(CS_EINPUT, "%s:%d: N = %g at %g m is not a cell of the design", row->source, tsv_line(p, r),
+                        nres, sd);
+            break;
+        }
         refine_cell o = refine_pool(c, all, c->ns, 1, l, a), z = refine_pool(c, all, c->ns, 1, 0, a);
-        if (!(st = iv_check_cell(row, p, r, "stands", (double)o.stands, path)) && !(st = iv_check_cell(row, p, r, "judged", (double)o.judged, path)) &&
-            !(st = iv_check_cell(row, p, r, "responded", (double)o.resp, path)) && !(st = iv_check_cell(row, p, r, "magnitude_m", o.mag, path)) &&
-            !(st = iv_check_cell(row, p, r, "step_m", o.step, path)) && !(st = iv_check_cell(row, p, r, "step_ratio", o.step / z.step, path)))
+        if (!(st = iv_check_cell(row, p, r, "stands", (double)o.stands, path)) &&
+            !(st = iv_check_cell(row, p, r, "judged", (double)o.judged, path)) &&
+            !(st = iv_check_cell(row, p, r, "responded", (double)o.resp, path)) &&
+            !(st = iv_check_cell(row, p, r, "magnitude_m", o.mag, path)) &&
+            !(st = iv_check_cell(row, p, r, "step_m", o.step, path)) &&
+            !(st = iv_check_cell(row, p, r, "step_ratio", o.step / z.step, path)))
             st = iv_check_cell(row, p, r, "magnitude_ratio", o.mag / z.mag, path);
     }
     free(all);
@@ -149,7 +171,8 @@ cs_status iv_refine_stands(const claim_row *row, const claim_result *res, const 
     (void)res; (void)sp;
     char path[600];
     void *cv;
-    cs_status bst = iv_stands_begin(row, "_sectors", path, sizeof path, sizeof(refine_ctx), refine_stat, refine_ctx_free, d, &cv);
+    cs_status bst =
+        iv_stands_begin(row, "_sectors", path, sizeof path, sizeof(refine_ctx), refine_stat, refine_ctx_free, d, &cv);
     if (bst) return bst;
     refine_ctx *c = cv;
     c->steps = !strcmp(row->function, "claim_irred_step_shrink");
@@ -213,7 +236,8 @@ static cs_status reduction_stat(const double *x, size_t n, size_t m, const void 
 /* One sector's miss |r_t - min(r*, b - sigma_q)| at every sigma_q of the
  * grid, added to its spacing's sums and its stand's curve (each q its own
  * sum, in file order). */
-static void add_terms(double *restrict sa, double *restrict cv, const double *restrict sig, size_t nq, double rt, double rs, double bb)
+static void add_terms(double *restrict sa, double *restrict cv, const double *restrict sig, size_t nq, double rt,
+                      double rs, double bb)
 {
     for (size_t q = 0; q < nq; q++) {
         double lim = bb - sig[q], term = fabs(rt - (rs < lim ? rs : lim)); /* fmin(rs, lim): no NaN here */
@@ -243,7 +267,8 @@ static cs_status reduction_alloc(reduction_ctx *c, reduction_work *w, int q0, in
     w->stepak = calloc(c->nd * c->ns, sizeof *w->stepak);
     w->na = calloc(c->nd, sizeof *w->na);
     w->seen = calloc(c->nd * c->ns, 1);
-    if (!c->curve || !c->stepk || !c->seck || !c->sum || !w->seq || !w->sig || !w->stepa || !w->stepak || !w->na || !w->seen)
+    if (!c->curve || !c->stepk || !c->seck || !c->sum || !w->seq || !w->sig || !w->stepa || !w->stepak || !w->na ||
+        !w->seen)
         return cs_err(CS_ENOMEM, "interval: out of memory");
     for (size_t q = 0; q < nq; q++) w->sig[q] = (double)((int)q - q0) / (double)den;
     return CS_OK;
@@ -252,7 +277,8 @@ static cs_status reduction_alloc(reduction_ctx *c, reduction_work *w, int q0, in
 /* One pass over the sector rows in file order (spacing, stand, tree,
  * sector): the pipeline's sums per spacing (w->seq) and each stand index's
  * curve (c->curve). */
-static cs_status reduction_load(reduction_ctx *c, reduction_work *w, const claim_row *row, const tsv *t, const char *path, char (*keys)[48])
+static cs_status reduction_load(reduction_ctx *c, reduction_work *w, const claim_row *row, const tsv *t,
+                                const char *path, char (*keys)[48])
 {
     long last_a = -1, last_k = -1;
     cs_status st = CS_OK;
@@ -260,20 +286,26 @@ static cs_status reduction_load(reduction_ctx *c, reduction_work *w, const claim
         const char *v;
         size_t k;
         double rt, rs, bb, step;
-        if ((st = tsv_text(t, r, "spacing_m", &v)) || (st = iv_row_stand(t, r, c->ns, &k)) || (st = tsv_double(t, r, "r_teacher_m", &rt)) ||
-            (st = tsv_double(t, r, "r_star_m", &rs)) || (st = tsv_double_nf(t, r, "territory_m", &bb)) || (st = tsv_double(t, r, "step_m", &step)))
+        if ((st = tsv_text(t, r, "spacing_m", &v)) || (st = iv_row_stand(t, r, c->ns, &k)) ||
+            (st = tsv_double(t, r, "r_teacher_m", &rt)) || (st = tsv_double(t, r, "r_star_m", &rs)) ||
+            (st = tsv_double_nf(t, r, "territory_m", &bb)) || (st = tsv_double(t, r, "step_m", &step)))
             break;
         long a = iv_key_index(keys, c->nd, v);
-        if (a < 0) return cs_err(CS_EINPUT, "%s:%d: spacing %s is not a spacing row of %s", path, tsv_line(t, r), v, row->source);
+        if (a < 0)
+            return cs_err(CS_EINPUT, "%s:%d: spacing %s is not a spacing row of %s", path, tsv_line(t, r), v,
+                          row->source);
         size_t ak = (size_t)a * c->ns + k;
         if (a != last_a || (long)k != last_k) {
-            if (a < last_a || (a == last_a && (long)k < last_k) || w->seen[ak]) return cs_err(CS_EINPUT, "%s:%d: spacing %s, stand %zu: rows out of order", path, tsv_line(t, r), v, k);
+            if (a < last_a || (a == last_a && (long)k < last_k) || w->seen[ak])
+                return cs_err(CS_EINPUT, "%s:%d: spacing %s, stand %zu: rows out of order", path, tsv_line(t, r), v, k);
             w->seen[ak] = 1;
             w->stepak[ak] = step;
             last_a = a;
             last_k = (long)k;
         } else if (step != w->stepak[ak]) {
-            return cs_err(CS_EINVARIANT, "%s: %s:%d: field 'step_m' = %.17g, the stand's other rows %.17g: they are not the data the claim rests on",
+            return cs_err(CS_EINVARIANT,
+                          "%s: %s:%d: field 'step_m' = %.17g, the stand's other rows %.17g: they are not the data the "
+                          "claim rests on",
                           row->macro, path, tsv_line(t, r), step, w->stepak[ak]);
         }
         add_terms(w->seq + (size_t)a * c->nq, c->curve + k * c->nq, w->sig, c->nq, rt, rs, bb);
@@ -281,18 +313,23 @@ static cs_status reduction_load(reduction_ctx *c, reduction_work *w, const claim
         c->seck[k] += 1.0;
     }
     for (size_t i = 0; i < c->nd * c->ns && !st; i++)
-        if (!w->seen[i]) st = cs_err(CS_EINPUT, "%s: spacing %s has no rows for stand %zu", path, keys[i / c->ns], i % c->ns);
+        if (!w->seen[i])
+            st = cs_err(CS_EINPUT, "%s: spacing %s has no rows for stand %zu", path, keys[i / c->ns], i % c->ns);
     return st;
 }
 
 /* The pipeline's reduction of the frozen stands (exp_irreducibility_reduction):
  * every row of the pooled table checked, and the claim's own value. */
-static cs_status reduction_own(reduction_ctx *c, reduction_work *w, const claim_row *row, const tsv *p, const char *path, char (*keys)[48], double *own)
+static cs_status reduction_own(reduction_ctx *c, reduction_work *w, const claim_row *row, const tsv *p,
+                               const char *path, char (*keys)[48], double *own)
 {
     size_t ntot = 0, qbest = 0, nq = c->nq;
     double steptot = 0.0, best = INFINITY;
     for (size_t a = 0; a < c->nd; a++) {
-        for (size_t k = 0; k < c->ns; k++) { w->stepa[a] += w->stepak[a * c->ns + k]; c->stepk[k] += w->stepak[a * c->ns + k]; }
+        for (size_t k = 0; k < c->ns; k++) {
+            w->stepa[a] += w->stepak[a * c->ns + k];
+            c->stepk[k] += w->stepak[a * c->ns + k];
+        }
         ntot += w->na[a];
         steptot += w->stepa[a];
     }
@@ -309,10 +346,14 @@ static cs_status reduction_own(reduction_ctx *c, reduction_work *w, const claim_
         int pooled = !strcmp(scope, "pooled");
         size_t a = pooled ? 0 : (size_t)iv_key_index(keys, c->nd, v), qo = qbest;
         if (!pooled) for (size_t q = 0; q < nq; q++) if (w->seq[a * nq + q] < w->seq[a * nq + qo]) qo = q;
-        double mm = pooled ? mpool : w->seq[a * nq + qbest] / (double)w->na[a], stp = pooled ? step_mean : w->stepa[a] / (double)c->ns;
-        if (!(st = iv_check_cell(row, p, r, "sectors", (double)(pooled ? ntot : w->na[a]), path)) && !(st = iv_check_cell(row, p, r, "sigma_m", w->sig[qbest], path)) &&
-            !(st = iv_check_cell(row, p, r, "miss_m", mm, path)) && !(st = iv_check_cell(row, p, r, "step_m", stp, path)) &&
-            !(st = iv_check_cell(row, p, r, "miss_steps", mm / stp, path)) && !(st = iv_check_cell(row, p, r, "own_sigma_m", w->sig[qo], path)))
+        double mm = pooled ? mpool : w->seq[a * nq + qbest] / (double)w->na[a],
+               stp = pooled ? step_mean : w->stepa[a] / (double)c->ns;
+        if (!(st = iv_check_cell(row, p, r, "sectors", (double)(pooled ? ntot : w->na[a]), path)) &&
+            !(st = iv_check_cell(row, p, r, "sigma_m", w->sig[qbest], path)) &&
+            !(st = iv_check_cell(row, p, r, "miss_m", mm, path)) &&
+            !(st = iv_check_cell(row, p, r, "step_m", stp, path)) &&
+            !(st = iv_check_cell(row, p, r, "miss_steps", mm / stp, path)) &&
+            !(st = iv_check_cell(row, p, r, "own_sigma_m", w->sig[qo], path)))
             st = iv_check_cell(row, p, r, "own_miss_m", pooled ? mm : w->seq[a * nq + qo] / (double)w->na[a], path);
     }
     *own = c->steps ? mpool / step_mean : mpool;
@@ -324,7 +365,8 @@ cs_status iv_reduction_stands(const claim_row *row, const claim_result *res, con
     (void)res; (void)sp;
     char path[600];
     void *cv;
-    cs_status bst = iv_stands_begin(row, "_sectors", path, sizeof path, sizeof(reduction_ctx), reduction_stat, reduction_ctx_free, d, &cv);
+    cs_status bst = iv_stands_begin(row, "_sectors", path, sizeof path, sizeof(reduction_ctx), reduction_stat,
+                                    reduction_ctx_free, d, &cv);
     if (bst) return bst;
     reduction_ctx *c = cv;
     c->steps = !strcmp(row->function, "claim_irred_steps");
@@ -334,8 +376,10 @@ cs_status iv_reduction_stands(const claim_row *row, const claim_result *res, con
     /* the sigma grid, as the table states it: sigma_q = (q - q0) / den m, q = 0..qmax */
     int q0 = 0, den = 0, qmax = -1;
     const char *g = t ? tsv_meta(t, "sigma_grid") : NULL;
-    if (!st && (!g || sscanf(g, "sigma_q = (q - %d) / %d m, q = 0..%d", &q0, &den, &qmax) != 3 || den < 1 || qmax < 0 || qmax > 100000))
-        st = cs_err(CS_EINPUT, "%s: header '# sigma_grid:' missing or not 'sigma_q = (q - Q0) / DEN m, q = 0..QMAX'", path);
+    if (!st && (!g || sscanf(g, "sigma_q = (q - %d) / %d m, q = 0..%d", &q0, &den, &qmax) != 3 || den < 1 || qmax < 0 ||
+                qmax > 100000))
+        st = cs_err(CS_EINPUT, "%s: header '# sigma_grid:' missing or not 'sigma_q = (q - Q0) / DEN m, q = 0..QMAX'",
+                    path);
     c->nq = (size_t)(qmax + 1);
     char keys[IV_MAXD][48];
     /* the spacings: the pooled table's spacing rows, in order */
@@ -356,6 +400,7 @@ cs_status iv_reduction_stands(const claim_row *row, const claim_result *res, con
     reduction_work_free(&w);
     tsv_free(p);
     tsv_free(t);
-    if (!st) st = iv_stand_units(d, c->ns, path, "every interior sector per stand; the sigma refitted on each resample");
+    if (!st)
+        st = iv_stand_units(d, c->ns, path, "every interior sector per stand; the sigma refitted on each resample");
     return st;
 }

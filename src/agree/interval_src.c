@@ -49,7 +49,9 @@ static cs_status unit_set_load(const claim_row *row, const char *dir, const main
     cs_status st = claim_param_seeds(row, &want);
     if (!st) st = mainruns_load(dir, want, &m);
     if (st) return st;
-    if (m.complete != want) return cs_err(CS_EINVARIANT, "%s: %d of %d seeds frozen: no interval before the set is complete", dir, m.complete, want);
+    if (m.complete != want)
+        return cs_err(CS_EINVARIANT, "%s: %d of %d seeds frozen: no interval before the set is complete", dir,
+                      m.complete, want);
     *out = &m;
     return CS_OK;
 }
@@ -90,7 +92,8 @@ static cs_status main_stat(const claim_row *row, iv_data *d)
     } else if (!strcmp(f, "claim_main_probe")) {
         if ((st = claim_param_need(row, PARAM_PROBE | PARAM_STAT))) return st;
         /* the ratio of the probe's median to the arm's own (its column k % 2) */
-        d->stat = p->stat == STAT_RATIO ? (iv_stat){IV_RATIO, (size_t)k, (size_t)(k % 2), NULL, NULL} : (iv_stat){IV_MEDIAN, (size_t)k, 0, NULL, NULL};
+        d->stat = p->stat == STAT_RATIO ? (iv_stat){IV_RATIO, (size_t)k, (size_t)(k % 2), NULL, NULL}
+                                        : (iv_stat){IV_MEDIAN, (size_t)k, 0, NULL, NULL};
     } else
         return cs_err(CS_EINVARIANT, "interval: no seed statistic for %s (%s)", row->macro, f);
     return CS_OK;
@@ -104,7 +107,8 @@ static cs_status main_seeds(const claim_row *row, const claim_result *res, const
     for (int i = 0; i < MAXSEED; i++) for (int k = 0; k < 6; k++) v[i][k] = NAN;
     char dir[300];
     tsv *t = NULL;
-    cs_status st = mainruns_unit_set(row->source, dir, sizeof dir) ? unit_set_seeds(row, dir, v, &maxs) : tsv_read(row->source, &t);
+    cs_status st = mainruns_unit_set(row->source, dir, sizeof dir) ? unit_set_seeds(row, dir, v, &maxs)
+                                                                   : tsv_read(row->source, &t);
     if (st) return st;
     for (size_t r = 0; t && r < tsv_nrows(t) && !st; r++) {
         long s;
@@ -112,7 +116,10 @@ static cs_status main_seeds(const claim_row *row, const claim_result *res, const
         const char *arm = tsv_str(t, r, "arm"), *probe = tsv_str(t, r, "probe");
         if ((st = tsv_long(t, r, "seed", &s)) || (st = tsv_double(t, r, "error", &e))) break;
         int k = arm && probe ? run_col(arm, probe) : -1;
-        if (s < 1 || s > MAXSEED || k < 0) { st = cs_err(CS_EINPUT, "%s:%d: field 'seed'/'arm'/'probe': unexpected row", row->source, tsv_line(t, r)); break; }
+        if (s < 1 || s > MAXSEED || k < 0) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'seed'/'arm'/'probe': unexpected row", row->source, tsv_line(t, r));
+            break;
+        }
         v[s - 1][k] = e;
         if (s > maxs) maxs = (int)s;
     }
@@ -170,7 +177,8 @@ static cs_status main_spacings(const claim_row *row, const claim_result *res, co
 /* ---- E4: seeds of extrapolation/runs.tsv ---- */
 
 /* The extrapolation rows of a reading's unit set, as mainruns gathers them. */
-static cs_status unit_set_extrap(const claim_row *row, const char *dir, double dd[4], double w[MAXSEED][4][2], int *nd, int *maxs)
+static cs_status unit_set_extrap(const claim_row *row, const char *dir, double dd[4], double w[MAXSEED][4][2], int *nd,
+                                 int *maxs)
 {
     const mainruns *m;
     cs_status st = unit_set_load(row, dir, &m);
@@ -193,18 +201,24 @@ static cs_status extrap_seeds(const claim_row *row, const claim_result *res, con
     int nd = 0, maxs = 0;
     char dir[300];
     tsv *t = NULL;
-    cs_status st = mainruns_unit_set(row->source, dir, sizeof dir) ? unit_set_extrap(row, dir, dd, w, &nd, &maxs) : tsv_read(row->source, &t);
+    cs_status st = mainruns_unit_set(row->source, dir, sizeof dir) ? unit_set_extrap(row, dir, dd, w, &nd, &maxs)
+                                                                   : tsv_read(row->source, &t);
     if (st) return st;
     for (size_t r = 0; t && r < tsv_nrows(t) && !st; r++) {
         long s;
         double sp_m, w1;
         const char *arm = tsv_str(t, r, "arm");
-        if ((st = tsv_long(t, r, "seed", &s)) || (st = tsv_double(t, r, "spacing", &sp_m)) || (st = tsv_double(t, r, "w1", &w1))) break;
+        if ((st = tsv_long(t, r, "seed", &s)) || (st = tsv_double(t, r, "spacing", &sp_m)) ||
+            (st = tsv_double(t, r, "w1", &w1)))
+            break;
         int k = 0;
         while (k < nd && fabs(dd[k] - sp_m) > 1e-9) k++;
         if (k == nd && nd < 4) dd[nd++] = sp_m;
         int a = arm && !strcmp(arm, "joint") ? 0 : arm && !strcmp(arm, "indep") ? 1 : -1;
-        if (k == 4 || a < 0 || s < 1 || s > MAXSEED) { st = cs_err(CS_EINPUT, "%s:%d: unexpected row", row->source, tsv_line(t, r)); break; }
+        if (k == 4 || a < 0 || s < 1 || s > MAXSEED) {
+            st = cs_err(CS_EINPUT, "%s:%d: unexpected row", row->source, tsv_line(t, r));
+            break;
+        }
         w[s - 1][k][a] = w1;
         if (s > maxs) maxs = (int)s;
     }
@@ -238,7 +252,16 @@ static cs_status extrap_seeds(const claim_row *row, const claim_result *res, con
 
 /* ---- E5/E6: stands of a per-tree table, regrouped by fs_group ---- */
 
-typedef enum { FS_ELONG, FS_ANISO, FS_ANISO_TREES, FS_STANDS, FS_RHO, FS_OVERSHOOT, FS_CAL_BETA, FS_CAL_JITTER } fs_kind;
+typedef enum {
+    FS_ELONG,
+    FS_ANISO,
+    FS_ANISO_TREES,
+    FS_STANDS,
+    FS_RHO,
+    FS_OVERSHOOT,
+    FS_CAL_BETA,
+    FS_CAL_JITTER
+} fs_kind;
 typedef struct {
     fs_trees t;
     fs_kind kind;
@@ -282,7 +305,8 @@ static cs_status fs_level_stat(const fs_ctx *c, const double *x, size_t n, doubl
             if (!c->t.coupled[k] || c->t.level[k] != level) continue;
             any = 1;
             if (c->kind == FS_ELONG) buf[m++] = c->t.elong[k];
-            else if (c->kind == FS_CAL_BETA) buf[m++] = est_tree_mean(c->t.gap[k]); /* tree_mean_median, as field_summarize */
+            else if (c->kind == FS_CAL_BETA)
+                buf[m++] = est_tree_mean(c->t.gap[k]); /* tree_mean_median, as field_summarize */
             else if (c->an_ok[k]) buf[m++] = c->an[k];
         }
         stands += any;
@@ -299,7 +323,8 @@ static cs_status fs_stat(const double *x, size_t n, size_t m, const void *ctx, d
     const fs_ctx *c = ctx;
     double an[32];
     cs_status st = CS_OK;
-    size_t nl = c->kind == FS_ELONG || c->kind == FS_ANISO || c->kind == FS_ANISO_TREES || c->kind == FS_STANDS ? 1 : c->nlevel;
+    size_t nl =
+        c->kind == FS_ELONG || c->kind == FS_ANISO || c->kind == FS_ANISO_TREES || c->kind == FS_STANDS ? 1 : c->nlevel;
     for (size_t l = 0; l < nl && !st; l++) st = fs_level_stat(c, x, n, c->level[l], c->buf, &an[l]);
     if (st) return st;
     if (c->kind == FS_CAL_BETA || c->kind == FS_CAL_JITTER) {
@@ -332,7 +357,9 @@ static cs_status fs_levels(const char *summary, fs_ctx *c, int first_only)
         long trees;
         double lv;
         if (!arm || strcmp(arm, "coupled")) continue;
-        if ((st = tsv_long(t, r, tsv_col(t, "trees") >= 0 ? "trees" : "aniso_trees", &trees)) || (st = tsv_double(t, r, "level", &lv))) break;
+        if ((st = tsv_long(t, r, tsv_col(t, "trees") >= 0 ? "trees" : "aniso_trees", &trees)) ||
+            (st = tsv_double(t, r, "level", &lv)))
+            break;
         if (trees == 0) continue;
         if (c->nlevel == 32) { st = cs_err(CS_EINPUT, "%s: more than 32 levels", summary); break; }
         c->level[c->nlevel++] = lv;
@@ -358,7 +385,10 @@ static cs_status fs_stands(const claim_row *row, const claim_result *res, const 
     if (!strcmp(f, "claim_aniso_lattice_counts") || !strcmp(f, "claim_jitter_heldout")) {
         if ((st = claim_param_need(row, PARAM_COLUMN))) return st;
         const char *col = row->param.column;
-        c->kind = !strcmp(col, "elong_median") ? FS_ELONG : !strcmp(col, "stands") ? FS_STANDS : !strcmp(col, "aniso_trees") ? FS_ANISO_TREES : FS_ANISO;
+        c->kind = !strcmp(col, "elong_median")  ? FS_ELONG
+                  : !strcmp(col, "stands")      ? FS_STANDS
+                  : !strcmp(col, "aniso_trees") ? FS_ANISO_TREES
+                                                : FS_ANISO;
     }
     char tp[512];
     c->scale = 1.0;
@@ -371,14 +401,16 @@ static cs_status fs_stands(const claim_row *row, const claim_result *res, const 
         st = gate_read_value(PATHS_GATE("anisotropy"), "field_median", 0, &c->target);
     } else {
         fs_trees_path(row->source, tp, sizeof tp);
-        if (c->kind == FS_CAL_BETA && !(st = gate_read_value(PATHS_GATE("field"), "calibration_target_m", 0, &c->target)))
+        if (c->kind == FS_CAL_BETA &&
+            !(st = gate_read_value(PATHS_GATE("field"), "calibration_target_m", 0, &c->target)))
             st = gate_read_value(PATHS_GATE("field"), "dieback_grid", 2, &c->step);
     }
     int all_levels = c->kind == FS_RHO || c->kind == FS_OVERSHOOT || c->kind == FS_CAL_BETA || c->kind == FS_CAL_JITTER;
     if (!st) st = fs_levels(row->source, c, !all_levels);
     if (!st) st = fs_trees_read(tp, &c->t);
     for (size_t k = 0; k < c->t.n && !st; k++) if (c->t.stand[k] + 1 > c->nstand) c->nstand = c->t.stand[k] + 1;
-    if (!st && (c->nstand == 0 || c->nlevel == 0)) st = cs_err(CS_EINPUT, "%s: no stands or no buildable coupled level", tp);
+    if (!st && (c->nstand == 0 || c->nlevel == 0))
+        st = cs_err(CS_EINPUT, "%s: no stands or no buildable coupled level", tp);
     if (!st) {
         c->of = calloc(c->nstand, sizeof *c->of);
         c->cnt = calloc(c->nstand, sizeof *c->cnt);
@@ -411,7 +443,8 @@ static cs_status fs_stands(const claim_row *row, const claim_result *res, const 
 /* "--joint X --indep Y" of a table's command line. */
 static int models_of(const tsv *t, char *buf, size_t n)
 {
-    const char *c = tsv_meta(t, "command"), *j = c ? strstr(c, "--joint ") : NULL, *i = c ? strstr(c, "--indep ") : NULL;
+    const char *c = tsv_meta(t, "command"), *j = c ? strstr(c, "--joint ") : NULL,
+               *i = c ? strstr(c, "--indep ") : NULL;
     if (!j || !i) return 0;
     snprintf(buf, n, "%.*s|%.*s", (int)strcspn(j + 8, " "), j + 8, (int)strcspn(i + 8, " "), i + 8);
     return 1;
@@ -474,7 +507,8 @@ static cs_status comp_patches(const claim_row *row, const claim_result *res, con
 /* The replicate table's family, arm, spacing and column for a figure-stand
  * claim, from its function and params; 0 when it has none, CS_EINPUT (as
  * *st) when the row lacks a parameter. */
-static int figure_column(const claim_row *row, char *family, size_t fn, char *arm, size_t an, double *d, const char **col, cs_status *st)
+static int figure_column(const claim_row *row, char *family, size_t fn, char *arm, size_t an, double *d,
+                         const char **col, cs_status *st)
 {
     const char *f = row->function;
     const claim_params *p = &row->param;
@@ -538,9 +572,11 @@ static cs_status figure_stands(const claim_row *row, const claim_result *res, co
             st = tsv_double(t, r, col, &d->x[n++]);
         }
         d->n = n;
-        if (!st && n < 2) st = cs_err(CS_EINPUT, "%s: %zu replicate stands of %s/%s at %.1f m", sp->replicates, n, family, arm, dd);
+        if (!st && n < 2)
+            st = cs_err(CS_EINPUT, "%s: %zu replicate stands of %s/%s at %.1f m", sp->replicates, n, family, arm, dd);
     }
-    snprintf(d->from, sizeof d->from, "%s (%s, %s at %.1f m, %s; %zu stands)", sp->replicates, family, arm, dd, col, d->n);
+    snprintf(d->from, sizeof d->from, "%s (%s, %s at %.1f m, %s; %zu stands)", sp->replicates, family, arm, dd, col,
+             d->n);
     tsv_free(t);
     return st;
 }

@@ -52,18 +52,23 @@ cs_status iv_stand_units(iv_data *d, size_t ns, const char *rows, const char *wh
     for (size_t k = 0; k < ns; k++) d->x[k] = (double)k;
     d->unit = "stand";
     d->method = "bootstrap";
-    snprintf(d->from, sizeof d->from, "%s (%s; %zu stands, the stands of one index at every spacing drawn together)", rows, what, ns);
+    snprintf(d->from, sizeof d->from, "%s (%s; %zu stands, the stands of one index at every spacing drawn together)",
+             rows, what, ns);
     return CS_OK;
 }
 
 /* A pooled cell that its rows do not give. */
-static cs_status not_given(const claim_row *row, const tsv *pooled, size_t r, const char *col, double have, double want, const char *rows)
+static cs_status not_given(const claim_row *row, const tsv *pooled, size_t r, const char *col, double have, double want,
+                           const char *rows)
 {
-    return cs_err(CS_EINVARIANT, "%s: %s:%d: field '%s' = %.17g but its per-stand rows %s give %.17g: they are not the data the claim rests on",
-                  row->macro, tsv_path(pooled), tsv_line(pooled, r), col, have, rows, want);
+    return cs_err(
+        CS_EINVARIANT,
+        "%s: %s:%d: field '%s' = %.17g but its per-stand rows %s give %.17g: they are not the data the claim rests on",
+        row->macro, tsv_path(pooled), tsv_line(pooled, r), col, have, rows, want);
 }
 
-cs_status iv_check_cell(const claim_row *row, const tsv *pooled, size_t r, const char *col, double want, const char *rows)
+cs_status iv_check_cell(const claim_row *row, const tsv *pooled, size_t r, const char *col, double want,
+                        const char *rows)
 {
     double have;
     cs_status st = tsv_double(pooled, r, col, &have);
@@ -84,7 +89,8 @@ cs_status iv_row_stand(const tsv *t, size_t r, size_t maxk, size_t *k)
     long s;
     cs_status st = tsv_long(t, r, "stand", &s);
     if (st) return st;
-    if (s < 0 || (size_t)s >= maxk) return cs_err(CS_EINPUT, "%s:%d: field 'stand': %ld outside 0..%zu", tsv_path(t), tsv_line(t, r), s, maxk - 1);
+    if (s < 0 || (size_t)s >= maxk)
+        return cs_err(CS_EINPUT, "%s:%d: field 'stand': %ld outside 0..%zu", tsv_path(t), tsv_line(t, r), s, maxk - 1);
     *k = (size_t)s;
     return CS_OK;
 }
@@ -142,7 +148,8 @@ cs_status iv_perturb_stands(const claim_row *row, const claim_result *res, const
     if (!st) st = tsv_read(path, &t);
     char keys[IV_MAXD][48];
     c->nd = p ? tsv_nrows(p) : 0;
-    if (!st && (c->nd == 0 || c->nd > IV_MAXD)) st = cs_err(CS_EINPUT, "%s: %zu spacings (1..%d)", row->source, c->nd, IV_MAXD);
+    if (!st && (c->nd == 0 || c->nd > IV_MAXD))
+        st = cs_err(CS_EINPUT, "%s: %zu spacings (1..%d)", row->source, c->nd, IV_MAXD);
     for (size_t a = 0; a < c->nd && !st; a++) {
         const char *v;
         if (!(st = tsv_text(p, a, "spacing_m", &v))) snprintf(keys[a], sizeof keys[a], "%s", v);
@@ -154,22 +161,28 @@ cs_status iv_perturb_stands(const claim_row *row, const claim_result *res, const
         const char *v;
         size_t k;
         long j, q;
-        if ((st = tsv_text(t, r, "spacing_m", &v)) || (st = iv_row_stand(t, r, c->ns, &k)) || (st = tsv_long(t, r, "judged", &j)) ||
-            (st = tsv_long(t, r, "responded", &q)))
+        if ((st = tsv_text(t, r, "spacing_m", &v)) || (st = iv_row_stand(t, r, c->ns, &k)) ||
+            (st = tsv_long(t, r, "judged", &j)) || (st = tsv_long(t, r, "responded", &q)))
             break;
         long a = iv_key_index(keys, c->nd, v);
-        if (a < 0 || seen[(size_t)a * c->ns + k]) { st = cs_err(CS_EINPUT, "%s:%d: spacing %s, stand %zu: %s", path, tsv_line(t, r), v, k, a < 0 ? "no such spacing in the pooled table" : "twice"); break; }
+        if (a < 0 || seen[(size_t)a * c->ns + k]) {
+            st = cs_err(CS_EINPUT, "%s:%d: spacing %s, stand %zu: %s", path, tsv_line(t, r), v, k,
+                        a < 0 ? "no such spacing in the pooled table" : "twice");
+            break;
+        }
         seen[(size_t)a * c->ns + k] = 1;
         c->judged[(size_t)a * c->ns + k] = (double)j;
         c->responded[(size_t)a * c->ns + k] = (double)q;
     }
     for (size_t i = 0; i < c->nd * c->ns && !st; i++)
-        if (!seen[i]) st = cs_err(CS_EINPUT, "%s: spacing %s has no row for stand %zu", path, keys[i / c->ns], i % c->ns);
+        if (!seen[i])
+            st = cs_err(CS_EINPUT, "%s: spacing %s has no row for stand %zu", path, keys[i / c->ns], i % c->ns);
     /* every pooled row: its stands, judged and responding neighbours */
     for (size_t a = 0; a < c->nd && !st; a++) {
         double j = 0.0, q = 0.0;
         for (size_t k = 0; k < c->ns; k++) { j += c->judged[a * c->ns + k]; q += c->responded[a * c->ns + k]; }
-        if (!(st = iv_check_cell(row, p, a, "stands", (double)c->ns, path)) && !(st = iv_check_cell(row, p, a, "judged", j, path)))
+        if (!(st = iv_check_cell(row, p, a, "stands", (double)c->ns, path)) &&
+            !(st = iv_check_cell(row, p, a, "judged", j, path)))
             st = iv_check_cell(row, p, a, "responded", q, path);
     }
     tsv_free(p);
@@ -228,8 +241,8 @@ static double median_select(double *v, size_t n)
 /* Cell cc over the drawn stands, as exp_mechanism_sweep pools it: the
  * median k-th clearance of the drawn trees (exact: by est_median, else by
  * selection), the mean cover of the stands. */
-static cs_status sweep_cell(const sweep_ctx *c, const double *x, size_t n, size_t m, size_t cc, int exact, double k[3], double *cover,
-                            size_t *trees)
+static cs_status sweep_cell(const sweep_ctx *c, const double *x, size_t n, size_t m, size_t cc, int exact, double k[3],
+                            double *cover, size_t *trees)
 {
     cs_status st = CS_OK;
     for (int j = 0; j < 3 && !st; j++) {
@@ -276,36 +289,45 @@ static cs_status sweep_load(sweep_ctx *c, const claim_row *row, const tsv *t, co
     c->cover = calloc(nu, sizeof *c->cover);
     c->buf = calloc(nr ? nr : 1, sizeof *c->buf);
     for (int j = 0; j < 3; j++) c->kc[j] = calloc(nr ? nr : 1, sizeof *c->kc[j]);
-    if (!c->off || !c->cnt || !c->cover || !c->buf || !c->kc[0] || !c->kc[1] || !c->kc[2]) return cs_err(CS_ENOMEM, "interval: out of memory");
+    if (!c->off || !c->cnt || !c->cover || !c->buf || !c->kc[0] || !c->kc[1] || !c->kc[2])
+        return cs_err(CS_ENOMEM, "interval: out of memory");
     long last_u = -1;
     cs_status st = CS_OK;
     for (size_t r = 0; r < nr && !st; r++) {
         const char *b, *s;
         size_t k;
         double cov;
-        if ((st = tsv_text(t, r, "beta", &b)) || (st = tsv_text(t, r, "spacing_m", &s)) || (st = iv_row_stand(t, r, c->ns, &k)) ||
-            (st = tsv_double(t, r, "stand_cover", &cov)))
+        if ((st = tsv_text(t, r, "beta", &b)) || (st = tsv_text(t, r, "spacing_m", &s)) ||
+            (st = iv_row_stand(t, r, c->ns, &k)) || (st = tsv_double(t, r, "stand_cover", &cov)))
             break;
         for (int j = 0; j < 3 && !st; j++) st = tsv_double(t, r, sweep_cols[j], &c->kc[j][r]);
         if (st) break;
         char key[48];
         snprintf(key, sizeof key, "%.22s|%.22s", b, s);
         long cc = iv_key_index(keys, c->nc, key);
-        if (cc < 0) return cs_err(CS_EINPUT, "%s:%d: beta %s at %s m is not a row of %s", path, tsv_line(t, r), b, s, row->source);
+        if (cc < 0)
+            return cs_err(CS_EINPUT, "%s:%d: beta %s at %s m is not a row of %s", path, tsv_line(t, r), b, s,
+                          row->source);
         long u = cc * (long)c->ns + (long)k;
         if (u != last_u) {
-            if (u < last_u || c->cnt[u]) return cs_err(CS_EINPUT, "%s:%d: beta %s at %s m, stand %zu: rows out of order", path, tsv_line(t, r), b, s, k);
+            if (u < last_u || c->cnt[u])
+                return cs_err(CS_EINPUT, "%s:%d: beta %s at %s m, stand %zu: rows out of order", path, tsv_line(t, r),
+                              b, s, k);
             c->off[u] = r;
             c->cover[u] = cov;
             last_u = u;
         } else if (cov != c->cover[u]) {
-            return cs_err(CS_EINVARIANT, "%s: %s:%d: field 'stand_cover' = %.17g, the stand's other rows %.17g: they are not the data the claim rests on",
+            return cs_err(CS_EINVARIANT,
+                          "%s: %s:%d: field 'stand_cover' = %.17g, the stand's other rows %.17g: they are not the data "
+                          "the claim rests on",
                           row->macro, path, tsv_line(t, r), cov, c->cover[u]);
         }
         c->cnt[u]++;
     }
     for (size_t u = 0; u < nu && !st; u++)
-        if (!c->cnt[u]) st = cs_err(CS_EINPUT, "%s: row %zu of %s has no trees of stand %zu", path, u / c->ns + 1, row->source, u % c->ns);
+        if (!c->cnt[u])
+            st = cs_err(CS_EINPUT, "%s: row %zu of %s has no trees of stand %zu", path, u / c->ns + 1, row->source,
+                        u % c->ns);
     return st;
 }
 
@@ -320,9 +342,13 @@ static cs_status sweep_check(const sweep_ctx *c, const claim_row *row, const tsv
     for (size_t cc = 0; cc < c->nc && !st; cc++) {
         double k[3], cover, ks[3], cs;
         size_t trees;
-        if ((st = sweep_cell(c, all, c->ns, 1, cc, 1, k, &cover, &trees)) || (st = sweep_cell(c, all, c->ns, 1, cc, 0, ks, &cs, &trees))) break;
+        if ((st = sweep_cell(c, all, c->ns, 1, cc, 1, k, &cover, &trees)) ||
+            (st = sweep_cell(c, all, c->ns, 1, cc, 0, ks, &cs, &trees)))
+            break;
         for (int j = 0; j < 3 && !st; j++)
-            if (ks[j] != k[j]) st = cs_err(CS_EINVARIANT, "%s: row %zu of %s: the median by selection %.17g, est_median %.17g", row->macro, cc + 1, row->source, ks[j], k[j]);
+            if (ks[j] != k[j])
+                st = cs_err(CS_EINVARIANT, "%s: row %zu of %s: the median by selection %.17g, est_median %.17g",
+                            row->macro, cc + 1, row->source, ks[j], k[j]);
         if (!st) st = iv_check_cell(row, p, cc, "stands", (double)c->ns, path);
         if (!st) st = iv_check_cell(row, p, cc, "trees", (double)trees, path);
         for (int j = 0; j < 3 && !st; j++) st = iv_check_cell(row, p, cc, sweep_cols[j], k[j], path);
@@ -337,7 +363,8 @@ cs_status iv_sweep_stands(const claim_row *row, const claim_result *res, const i
     (void)res; (void)sp;
     char path[600];
     void *cv;
-    cs_status bst = iv_stands_begin(row, "_trees", path, sizeof path, sizeof(sweep_ctx), sweep_stat, sweep_ctx_free, d, &cv);
+    cs_status bst =
+        iv_stands_begin(row, "_trees", path, sizeof path, sizeof(sweep_ctx), sweep_stat, sweep_ctx_free, d, &cv);
     if (bst) return bst;
     sweep_ctx *c = cv;
     const char *gk[4] = {"clearance_k1_min_m", "clearance_k2_min_m", "clearance_k3_min_m", "cover_min"};
@@ -351,7 +378,8 @@ cs_status iv_sweep_stands(const claim_row *row, const claim_result *res, const i
     if (!st && (c->nc == 0 || c->nc > MAXC)) st = cs_err(CS_EINPUT, "%s: %zu rows (1..%d)", row->source, c->nc, MAXC);
     for (size_t r = 0; r < c->nc && !st; r++) {
         const char *b, *s;
-        if (!(st = tsv_text(p, r, "beta", &b)) && !(st = tsv_text(p, r, "spacing_m", &s))) snprintf(keys[r], sizeof keys[r], "%.22s|%.22s", b, s);
+        if (!(st = tsv_text(p, r, "beta", &b)) && !(st = tsv_text(p, r, "spacing_m", &s)))
+            snprintf(keys[r], sizeof keys[r], "%.22s|%.22s", b, s);
     }
     if (!st) st = iv_count_stands(t, &c->ns);
     if (!st) st = sweep_load(c, row, t, path, keys);

@@ -29,7 +29,8 @@ void iv_rows_path(const char *source, const char *suffix, char *out, size_t n);
 cs_status iv_stand_units(iv_data *d, size_t ns, const char *rows, const char *what);
 /* Column col of row r of the pooled table must be want, bit for bit; else
  * CS_EINVARIANT naming the claim, the cell and the rows. */
-cs_status iv_check_cell(const claim_row *row, const tsv *pooled, size_t r, const char *col, double want, const char *rows);
+cs_status iv_check_cell(const claim_row *row, const tsv *pooled, size_t r, const char *col, double want,
+                        const char *rows);
 /* Index of key v among keys[0..n-1] (exact text), or -1. */
 long iv_key_index(char (*keys)[48], size_t n, const char *v);
 /* The stand index of row r (0 <= k < maxk). */

@@ -28,7 +28,9 @@ static void claims_of(const claims *c, const char *path, const char *gatefile, c
     buf[0] = '\0';
     for (size_t i = 0; i < c->n && off < n; i++) {
         int hit = path && !strcmp(c->rows[i].source, path);
-        if (gatefile && !strncmp(c->rows[i].gate, gatefile, strlen(gatefile)) && c->rows[i].gate[strlen(gatefile)] == ':') hit = 1;
+        if (gatefile && !strncmp(c->rows[i].gate, gatefile, strlen(gatefile)) &&
+            c->rows[i].gate[strlen(gatefile)] == ':')
+            hit = 1;
         if (!hit) continue;
         off += (size_t)snprintf(buf + off, n - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
     }
@@ -86,7 +88,8 @@ static void registry_row_pins(pinset *s)
 /* The design constants no gate carries (design.md §2, §3, §7) and the claim
  * tests (the registry's test column names tests/test_claims.c). */
 static const char *const design_files[] = {"src/base/design.h", "src/forest/crown.h", NULL};
-static const char *const claim_tests[] = {"tests/test_claims.c", "tests/test_field_claims.c", "tests/test_interval.c", "tests/testutil.h", "tests/tamper.sh", NULL};
+static const char *const claim_tests[] = {"tests/test_claims.c", "tests/test_field_claims.c", "tests/test_interval.c",
+                                          "tests/testutil.h",    "tests/tamper.sh",           NULL};
 
 /* Every pin of the instrument as it is now, into an empty set *s (freed by
  * the caller, also on failure). */
@@ -202,7 +205,10 @@ static cs_status supersede(const pinset *ps)
         const char *key = tsv_str(old, r, "key"), *val = tsv_str(old, r, "value");
         if (!key || !val || !prov_reading_key(key)) continue;
         for (size_t i = 0; i < n; i++)
-            if (!strcmp(cur[i].key, key) && strcmp(cur[i].value, val) && !superseded_line(sup, key, val)) { newv[r] = val; add++; }
+            if (!strcmp(cur[i].key, key) && strcmp(cur[i].value, val) && !superseded_line(sup, key, val)) {
+                newv[r] = val;
+                add++;
+            }
     }
     cs_status st = CS_OK;
     if (add) {
@@ -211,11 +217,13 @@ static cs_status supersede(const pinset *ps)
         if (g) { if (fgets(commit, sizeof commit, g)) commit[strcspn(commit, "\n")] = '\0'; pclose(g); }
         tsv_writer *w;
         if (!(st = tsv_writer_open(&w, PATHS_PINS_SUPERSEDED))) {
-            tsv_writer_meta(w, "what", "earlier pins of the teacher and estimator whose frozen results are not yet re-run");
+            tsv_writer_meta(w, "what",
+                            "earlier pins of the teacher and estimator whose frozen results are not yet re-run");
             tsv_writer_meta(w, "written_by", "crownshy pin (appends a reading's pin when it changes)");
             tsv_writer_columns(w, "key\tvalue\tpath\tsuperseded_at");
             for (size_t r = 0; sup && r < tsv_nrows(sup); r++) {
-                const char *c[4] = {tsv_str(sup, r, "key"), tsv_str(sup, r, "value"), tsv_str(sup, r, "path"), tsv_str(sup, r, "superseded_at")};
+                const char *c[4] = {tsv_str(sup, r, "key"), tsv_str(sup, r, "value"), tsv_str(sup, r, "path"),
+                                    tsv_str(sup, r, "superseded_at")};
                 for (int k = 0; k < 4; k++) tsv_writer_str(w, c[k] ? c[k] : "-");
                 tsv_writer_endrow(w);
             }
@@ -246,8 +254,11 @@ cs_status audit_pin(void)
     if (st) { pinset_free(&ps); return st; }
     const pin *p = ps.p;
     size_t n = ps.n;
-    tsv_writer_meta(w, "what", "pins of the instrument: teacher version and source hash, estimator source hash, gate hashes and the claim-to-gate map; the claim code, the registry (whole and per row) and the aggregate map");
-    tsv_writer_meta(w, "regenerate", "crownshy pin (deliberate: afterwards frozen/ must be regenerated with make reproduce freeze)");
+    tsv_writer_meta(w, "what",
+                    "pins of the instrument: teacher version and source hash, estimator source hash, gate hashes and "
+                    "the claim-to-gate map; the claim code, the registry (whole and per row) and the aggregate map");
+    tsv_writer_meta(w, "regenerate",
+                    "crownshy pin (deliberate: afterwards frozen/ must be regenerated with make reproduce freeze)");
     tsv_writer_columns(w, "key\tvalue\tpath");
     for (size_t i = 0; i < n; i++) {
         tsv_writer_str(w, p[i].key); tsv_writer_str(w, p[i].value); tsv_writer_str(w, p[i].path);
@@ -268,12 +279,19 @@ static void check_pins(const claims *c, checklist *cl, const pinset *ps)
     size_t n = ps->n;
     for (size_t r = 0; r < tsv_nrows(t); r++) {
         const char *key = tsv_str(t, r, "key"), *val = tsv_str(t, r, "value"), *path = tsv_str(t, r, "path");
-        if (!key || !val || !path) { checklist_add(cl, VERDICT_FAIL, "pins", "%s:%d: missing key/value/path", PATHS_PINS, tsv_line(t, r)); continue; }
+        if (!key || !val || !path) {
+            checklist_add(cl, VERDICT_FAIL, "pins", "%s:%d: missing key/value/path", PATHS_PINS, tsv_line(t, r));
+            continue;
+        }
         const pin *m = NULL;
         for (size_t i = 0; i < n; i++) if (!strcmp(cur[i].key, key) && !strcmp(cur[i].path, path)) m = &cur[i];
         char name[96];
         snprintf(name, sizeof name, "pin %s", path);
-        if (!m) { checklist_add(cl, VERDICT_FAIL, name, "%s:%d: pinned %s for %s, which no longer exists", PATHS_PINS, tsv_line(t, r), key, path); continue; }
+        if (!m) {
+            checklist_add(cl, VERDICT_FAIL, name, "%s:%d: pinned %s for %s, which no longer exists", PATHS_PINS,
+                          tsv_line(t, r), key, path);
+            continue;
+        }
         if (strcmp(m->value, val)) {
             char affected[600];
             if (!strcmp(key, "gate_sha256")) {
@@ -292,17 +310,22 @@ static void check_pins(const claims *c, checklist *cl, const pinset *ps)
                 for (int pass = 0; pass < 2 && !cnt; pass++)
                     for (size_t i = 0; i < c->n && off < sizeof affected - 40; i++)
                         if (pass ? c->rows[i].gate_map_line != 0 : strcmp(c->rows[i].gate, c->rows[i].gate_reg) != 0)
-                            off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
+                            off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "",
+                                                    c->rows[i].macro);
                 if (!cnt) snprintf(affected, sizeof affected, "every gated claim");
             } else if (!strcmp(key, "intervals_sha256")) {
                 snprintf(affected, sizeof affected, "the interval of every measured claim (%s)", path);
             } else if (!strcmp(key, "registry_sha256") || !strcmp(key, "aggregates_sha256")) {
                 snprintf(affected, sizeof affected, "every claim (%s)", path);
-            } else if (!strcmp(key, "estimator_sha256") || !strcmp(key, "teacher_sha256") || !strcmp(key, "teacher_version")) {
+            } else if (!strcmp(key, "estimator_sha256") || !strcmp(key, "teacher_sha256") ||
+                       !strcmp(key, "teacher_version")) {
                 size_t off = 0, cnt = 0;
                 affected[0] = '\0';
                 for (size_t i = 0; i < c->n && off < sizeof affected - 40; i++)
-                    if (!strcmp(c->rows[i].kind, "measured") || !strcmp(c->rows[i].kind, "probe") || claims_is_beside(&c->rows[i])) off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
+                    if (!strcmp(c->rows[i].kind, "measured") || !strcmp(c->rows[i].kind, "probe") ||
+                        claims_is_beside(&c->rows[i]))
+                        off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "",
+                                                c->rows[i].macro);
                 if (!cnt) snprintf(affected, sizeof affected, "every measured claim");
             } else if (!strcmp(key, "design_sha256") || !strcmp(key, "design_numbers_sha256")) {
                 snprintf(affected, sizeof affected, "every claim resting on the design constants (%s)", path);
@@ -313,19 +336,25 @@ static void check_pins(const claims *c, checklist *cl, const pinset *ps)
             } else if (!strcmp(key, "grids_sha256")) {
                 snprintf(affected, sizeof affected, "every claim of a table with a design grid (%s)", path);
             } else if (!strcmp(key, "figure_script_sha256") || !strcmp(key, "figure_data_sha256")) {
-                snprintf(affected, sizeof affected, "the figures %s draws or pins (what they show, not a number)", path);
+                snprintf(affected, sizeof affected, "the figures %s draws or pins (what they show, not a number)",
+                         path);
             } else if (!strcmp(key, "gates_prereg_sha256")) {
                 snprintf(affected, sizeof affected, "every gated claim (%s)", path);
-            } else snprintf(affected, sizeof affected, "(gates as a whole)");
-            checklist_add(cl, VERDICT_FAIL, name, "%s changed: %s is %.16s…, pinned %.16s… (%s:%d); claims affected: %s",
-                          path, key, m->value, val, PATHS_PINS, tsv_line(t, r), affected);
-        } else checklist_add(cl, VERDICT_PASS, name, "%s %s matches the pin", key, strcmp(key, "teacher_version") ? "sha256" : val);
+            } else
+                snprintf(affected, sizeof affected, "(gates as a whole)");
+            checklist_add(cl, VERDICT_FAIL, name,
+                          "%s changed: %s is %.16s…, pinned %.16s… (%s:%d); claims affected: %s", path, key, m->value,
+                          val, PATHS_PINS, tsv_line(t, r), affected);
+        } else
+            checklist_add(cl, VERDICT_PASS, name, "%s %s matches the pin", key,
+                          strcmp(key, "teacher_version") ? "sha256" : val);
     }
     for (size_t i = 0; i < n; i++) {
         if (tsv_find(t, "path", cur[i].path) < 0 && strcmp(cur[i].value, "absent")) {
             char name[96];
             snprintf(name, sizeof name, "pin %s", cur[i].path);
-            checklist_add(cl, VERDICT_FAIL, name, "%s is not pinned in %s (run crownshy pin deliberately)", cur[i].path, PATHS_PINS);
+            checklist_add(cl, VERDICT_FAIL, name, "%s is not pinned in %s (run crownshy pin deliberately)", cur[i].path,
+                          PATHS_PINS);
         }
     }
     tsv_free(t);
@@ -340,7 +369,10 @@ cs_status audit_hash_frozen(void)
     for (size_t i = 0; i < l.n; i++) {
         struct stat sb;
         if (paths_is_hidden_or_tmp(l.p[i]) || lstat(l.p[i], &sb) != 0 || !S_ISREG(sb.st_mode)) {
-            st = cs_err(CS_EINPUT, "%s: a hidden, temporary or non-regular file (a symlink, a folder link, a device) in %s/ is not a frozen result: remove it before sealing", l.p[i], PATHS_FROZEN_DIR);
+            st = cs_err(CS_EINPUT,
+                        "%s: a hidden, temporary or non-regular file (a symlink, a folder link, a device) in %s/ is "
+                        "not a frozen result: remove it before sealing",
+                        l.p[i], PATHS_FROZEN_DIR);
             paths_list_free(&l);
             return st;
         }
@@ -363,7 +395,9 @@ static void check_frozen(const claims *c, checklist *cl, paths_list *frozen_file
     FILE *f = fopen(PATHS_FROZEN_HASHES, "r");
     paths_list_files(PATHS_FROZEN_DIR, "", 1, frozen_files);
     if (!f) {
-        if (frozen_files->n) checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s missing but frozen/ has %zu files (run make freeze)", PATHS_FROZEN_HASHES, frozen_files->n);
+        if (frozen_files->n)
+            checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s missing but frozen/ has %zu files (run make freeze)",
+                          PATHS_FROZEN_HASHES, frozen_files->n);
         else checklist_add(cl, VERDICT_PASS, "frozen hashes", "frozen/ is empty (no experiment frozen yet)");
         return;
     }
@@ -383,9 +417,16 @@ static void check_frozen(const claims *c, checklist *cl, paths_list *frozen_file
         char cur[65], affected[600], name[96];
         snprintf(name, sizeof name, "frozen %.80s", path);
         claims_of(c, path, NULL, affected, sizeof affected);
-        if (!file_exists(path)) { checklist_add(cl, VERDICT_FAIL, name, "%s is listed in %s:%d but missing; claims affected: %s", path, PATHS_FROZEN_HASHES, lineno, affected); bad++; continue; }
+        if (!file_exists(path)) {
+            checklist_add(cl, VERDICT_FAIL, name, "%s is listed in %s:%d but missing; claims affected: %s", path,
+                          PATHS_FROZEN_HASHES, lineno, affected);
+            bad++;
+            continue;
+        }
         if (prov_sha256_file(path, cur) || strcmp(cur, hex)) {
-            checklist_add(cl, VERDICT_FAIL, name, "%s was modified after freezing (sha256 differs from %s:%d); claims affected: %s", path, PATHS_FROZEN_HASHES, lineno, affected);
+            checklist_add(cl, VERDICT_FAIL, name,
+                          "%s was modified after freezing (sha256 differs from %s:%d); claims affected: %s", path,
+                          PATHS_FROZEN_HASHES, lineno, affected);
             bad++;
             continue;
         }
@@ -395,7 +436,11 @@ static void check_frozen(const claims *c, checklist *cl, paths_list *frozen_file
     for (size_t i = 0; i < frozen_files->n; i++) {
         int found = 0;
         for (size_t j = 0; j < listed.n && !found; j++) found = !strcmp(listed.p[j], frozen_files->p[i]);
-        if (!found) { checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s is not listed in %s (frozen by hand? run make freeze)", frozen_files->p[i], PATHS_FROZEN_HASHES); bad++; }
+        if (!found) {
+            checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s is not listed in %s (frozen by hand? run make freeze)",
+                          frozen_files->p[i], PATHS_FROZEN_HASHES);
+            bad++;
+        }
     }
     /* nothing in frozen/ is invisible: dotfiles, "*.tmp*" names, other entries */
     paths_list every = {0};
@@ -414,8 +459,11 @@ static void check_frozen(const claims *c, checklist *cl, paths_list *frozen_file
         char *tmp = strstr(shadow + (b - every.p[i]), ".tmp");
         if (tmp) *tmp = '\0';
         claims_of(c, shadow, NULL, affected, sizeof affected);
-        checklist_add(cl, VERDICT_FAIL, "frozen hashes", "%s: a %s file in %s/%s is not a frozen result (a half-written or hand-placed file): remove it; it shadows %s; claims affected: %s",
-                      every.p[i], reg ? "hidden or temporary" : "non-regular (symlink or other)", PATHS_FROZEN_DIR, sealed ? " (sealed in " PATHS_FROZEN_HASHES " by hand)" : "", shadow, affected);
+        checklist_add(cl, VERDICT_FAIL, "frozen hashes",
+                      "%s: a %s file in %s/%s is not a frozen result (a half-written or hand-placed file): remove it; "
+                      "it shadows %s; claims affected: %s",
+                      every.p[i], reg ? "hidden or temporary" : "non-regular (symlink or other)", PATHS_FROZEN_DIR,
+                      sealed ? " (sealed in " PATHS_FROZEN_HASHES " by hand)" : "", shadow, affected);
         bad++;
     }
     paths_list_free(&every);
@@ -431,8 +479,8 @@ typedef struct { char dir[256], old[256], claims[700]; int line; size_t files; }
  * readings expect passes; one a superseded reading of pins_superseded.tsv
  * excuses is named in old (first_line: its line); any other is a finding.
  * Returns the mismatches; *excused counts the excused ones. */
-static int provenance_keys(const char *p, const tsv *t, const pinset *ps, const tsv *sup, checklist *cl, char *old, size_t on, int *first_line,
-                           int *excused, size_t *bad)
+static int provenance_keys(const char *p, const tsv *t, const pinset *ps, const tsv *sup, checklist *cl, char *old,
+                           size_t on, int *first_line, int *excused, size_t *bad)
 {
     static const char *const keys[] = {"teacher_version", "teacher_sha256", "estimator_sha256", "gates_sha256"};
     size_t off = 0;
@@ -448,27 +496,33 @@ static int provenance_keys(const char *p, const tsv *t, const pinset *ps, const 
          * one, optionally "-arc" or "-target") are expected, not a mismatch. */
         char one[32] = "";
         if (k == 0 && prov_teacher_version_one_sided(one, sizeof one)) one[0] = '\0';
-        if (k == 0 && v && (!strncmp(p, PATHS_FROZEN_DIR "/readings/", strlen(PATHS_FROZEN_DIR) + 10) ||
-                            !strncmp(p, PATHS_SENS_DIR "/", strlen(PATHS_SENS_DIR) + 1)) &&
-            ((one[0] && prov_reading_version(v, one)) || (want && prov_reading_version(v, want)) || !strcmp(v, "per run")))
+        if (k == 0 && v &&
+            (!strncmp(p, PATHS_FROZEN_DIR "/readings/", strlen(PATHS_FROZEN_DIR) + 10) ||
+             !strncmp(p, PATHS_SENS_DIR "/", strlen(PATHS_SENS_DIR) + 1)) &&
+            ((one[0] && prov_reading_version(v, one)) || (want && prov_reading_version(v, want)) ||
+             !strcmp(v, "per run")))
             continue;
         mismatch++;
         int line = v && prov_reading_key(keys[k]) ? superseded_line(sup, keys[k], v) : 0;
         if (line) {
             (*excused)++;
             if (!*first_line) *first_line = line;
-            off += (size_t)snprintf(old + off, off < on ? on - off : 0, "%s%s %.12s", off ? ", " : "", keys[k] + (strncmp(keys[k], "teacher_v", 9) ? 0 : 8), v);
+            off += (size_t)snprintf(old + off, off < on ? on - off : 0, "%s%s %.12s", off ? ", " : "",
+                                    keys[k] + (strncmp(keys[k], "teacher_v", 9) ? 0 : 8), v);
             continue;
         }
-        checklist_add(cl, VERDICT_FAIL, "provenance", "%s: provenance %s = %.16s does not match the current pin %.16s (frozen with other code: regenerate)",
-                      p, keys[k], v ? v : "(missing)", want ? want : "(none)");
+        checklist_add(
+            cl, VERDICT_FAIL, "provenance",
+            "%s: provenance %s = %.16s does not match the current pin %.16s (frozen with other code: regenerate)", p,
+            keys[k], v ? v : "(missing)", want ? want : "(none)");
         (*bad)++;
     }
     return mismatch;
 }
 
 /* Table p, made wholly by the superseded reading old, into its folder's group. */
-static void group_superseded(const claims *c, const char *p, const char *old, int first_line, sup_group *sups, size_t *nsup, checklist *cl, size_t *bad)
+static void group_superseded(const claims *c, const char *p, const char *old, int first_line, sup_group *sups,
+                             size_t *nsup, checklist *cl, size_t *bad)
 {
     char dir[256];
     snprintf(dir, sizeof dir, "%.*s", (int)(strrchr(p, '/') - p), p);
@@ -481,14 +535,16 @@ static void group_superseded(const claims *c, const char *p, const char *old, in
         (*nsup)++;
     }
     if (k == *nsup) {
-        checklist_add(cl, VERDICT_FAIL, "provenance", "%s: more than %d folder/reading pairs made by superseded readings: re-run them", p, SUP_GROUPS);
+        checklist_add(cl, VERDICT_FAIL, "provenance",
+                      "%s: more than %d folder/reading pairs made by superseded readings: re-run them", p, SUP_GROUPS);
         (*bad)++;
         return;
     }
     char affected[600];
     claims_of(c, p, NULL, affected, sizeof affected);
     size_t l = strlen(sups[k].claims);
-    if (strcmp(affected, "(no claim)")) snprintf(sups[k].claims + l, sizeof sups[k].claims - l, "%s%s", l ? ", " : "", affected);
+    if (strcmp(affected, "(no claim)"))
+        snprintf(sups[k].claims + l, sizeof sups[k].claims - l, "%s%s", l ? ", " : "", affected);
     sups[k].files++;
 }
 
@@ -512,7 +568,9 @@ static void check_provenance(const claims *c, checklist *cl, const paths_list *f
             if (!(status && !strncmp(status, "PUBLISHED FIGURES", 17) && tsv_meta(t, "citation"))) {
                 char affected[600];
                 claims_of(c, p, NULL, affected, sizeof affected);
-                checklist_add(cl, VERDICT_FAIL, "provenance", "%s: no provenance ('# experiment:' and '# teacher_version:' lines; or '# status: PUBLISHED FIGURES' with '# citation:'): stripped or made by hand; claims affected: %s",
+                checklist_add(cl, VERDICT_FAIL, "provenance",
+                              "%s: no provenance ('# experiment:' and '# teacher_version:' lines; or '# status: "
+                              "PUBLISHED FIGURES' with '# citation:'): stripped or made by hand; claims affected: %s",
                               p, affected);
                 bad++;
             }
@@ -527,10 +585,15 @@ static void check_provenance(const claims *c, checklist *cl, const paths_list *f
     }
     if (sup) tsv_free(sup);
     for (size_t k = 0; k < nsup; k++)
-        checklist_add(cl, VERDICT_PENDING, "provenance", "%s/: %zu tables made by a superseded reading (%s; %s:%d), their numbers that reading's until re-run; claims: %s",
+        checklist_add(cl, VERDICT_PENDING, "provenance",
+                      "%s/: %zu tables made by a superseded reading (%s; %s:%d), their numbers that reading's until "
+                      "re-run; claims: %s",
                       sups[k].dir, sups[k].files, sups[k].old, PATHS_PINS_SUPERSEDED, sups[k].line,
                       sups[k].claims[0] ? sups[k].claims : "(no claim)");
-    if (!bad) checklist_add(cl, VERDICT_PASS, "provenance", "%zu frozen tables carry provenance matching the pins or a superseded reading listed in %s", checked, PATHS_PINS_SUPERSEDED);
+    if (!bad)
+        checklist_add(cl, VERDICT_PASS, "provenance",
+                      "%zu frozen tables carry provenance matching the pins or a superseded reading listed in %s",
+                      checked, PATHS_PINS_SUPERSEDED);
 }
 
 static void check_registry(const claims *c, checklist *cl)
@@ -540,27 +603,40 @@ static void check_registry(const claims *c, checklist *cl)
     for (size_t i = 0; fns[i]; i++) {
         int used = 0;
         for (size_t r = 0; r < c->n && !used; r++) used = !strcmp(c->rows[r].function, fns[i]);
-        if (!used) { checklist_add(cl, VERDICT_FAIL, "registry", "orphan computing function %s: no row of %s names it", fns[i], PATHS_CLAIMS); bad++; }
+        if (!used) {
+            checklist_add(cl, VERDICT_FAIL, "registry", "orphan computing function %s: no row of %s names it", fns[i],
+                          PATHS_CLAIMS);
+            bad++;
+        }
     }
     for (size_t r = 0; r < c->n; r++) {
         char want[128];
         snprintf(want, sizeof want, "tests/test_claims.c:claim_%s", c->rows[r].macro);
         if (strcmp(c->rows[r].test, want)) {
-            checklist_add(cl, VERDICT_FAIL, "registry", "%s:%d: claim %s names test '%s'; its test is %s", PATHS_CLAIMS, c->rows[r].line, c->rows[r].macro, c->rows[r].test, want);
+            checklist_add(cl, VERDICT_FAIL, "registry", "%s:%d: claim %s names test '%s'; its test is %s", PATHS_CLAIMS,
+                          c->rows[r].line, c->rows[r].macro, c->rows[r].test, want);
             bad++;
         }
     }
     /* which claims each gate judges is fixed by the pinned map, not the registry */
     for (size_t r = 0; r < c->n; r++)
         if (strcmp(c->rows[r].gate_reg, c->rows[r].gate)) {
-            checklist_add(cl, VERDICT_FAIL, "registry gate column", "%s:%d: the gate column of %s says '%s' but the pinned %s%s%.0d says '%s' (the map decides which claim a gate judges); claim: %s",
+            checklist_add(cl, VERDICT_FAIL, "registry gate column",
+                          "%s:%d: the gate column of %s says '%s' but the pinned %s%s%.0d says '%s' (the map decides "
+                          "which claim a gate judges); claim: %s",
                           PATHS_CLAIMS, c->rows[r].line, c->rows[r].macro, c->rows[r].gate_reg,
                           claims_is_beside(&c->rows[r]) ? PATHS_GATE_MAP_EXT : PATHS_GATE_MAP,
-                          c->rows[r].gate_map_line ? ":" : "", c->rows[r].gate_map_line, c->rows[r].gate, c->rows[r].macro);
+                          c->rows[r].gate_map_line ? ":" : "", c->rows[r].gate_map_line, c->rows[r].gate,
+                          c->rows[r].macro);
             bad++;
         }
-    if (!file_exists("tests/test_claims.c")) { checklist_add(cl, VERDICT_FAIL, "registry", "tests/test_claims.c missing: claims have no tests"); bad++; }
-    if (!bad) checklist_add(cl, VERDICT_PASS, "registry", "%zu claims, each with a computing function name and a test; no orphan function", c->n);
+    if (!file_exists("tests/test_claims.c")) {
+        checklist_add(cl, VERDICT_FAIL, "registry", "tests/test_claims.c missing: claims have no tests");
+        bad++;
+    }
+    if (!bad)
+        checklist_add(cl, VERDICT_PASS, "registry",
+                      "%zu claims, each with a computing function name and a test; no orphan function", c->n);
 }
 
 cs_status audit_run(const claims *c, const claim_result *res, checklist *out)

@@ -42,22 +42,34 @@ size_t audit_design_consts(checklist *cl, design_const **out)
 {
     tsv *t;
     *out = NULL;
-    if (tsv_read(PATHS_DESIGN_NUMBERS, &t)) { checklist_add(cl, VERDICT_FAIL, "design numbers", "%s", cs_errmsg()); return 0; }
+    if (tsv_read(PATHS_DESIGN_NUMBERS, &t)) {
+        checklist_add(cl, VERDICT_FAIL, "design numbers", "%s", cs_errmsg());
+        return 0;
+    }
     design_const *v = calloc(tsv_nrows(t) + 1, sizeof *v);
     size_t n = 0;
     for (size_t r = 0; v && r < tsv_nrows(t); r++) {
-        const char *src = tsv_str(t, r, "source"), *what = tsv_str(t, r, "what"), *mac = tsv_str(t, r, "macro"), *val = tsv_str(t, r, "value");
+        const char *src = tsv_str(t, r, "source"), *what = tsv_str(t, r, "what"), *mac = tsv_str(t, r, "macro"),
+                   *val = tsv_str(t, r, "value");
         double x;
         char kind[16] = "", file[200] = "", key[80] = "";
         int line = tsv_line(t, r), ok = 0;
-        if (!mac || !isupper((unsigned char)mac[0]) || strspn(mac, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz") != strlen(mac) || strlen(mac) >= 64 ||
+        if (!mac || !isupper((unsigned char)mac[0]) ||
+            strspn(mac, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz") != strlen(mac) || strlen(mac) >= 64 ||
             tsv_double(t, r, "value", &x) || !val || strlen(val) >= 32 || !src || !what || !what[0]) {
-            checklist_add(cl, VERDICT_FAIL, "design numbers", "%s:%d: fields 'macro' (letters, capitalised), 'value' (a number), 'source' and 'what' required", PATHS_DESIGN_NUMBERS, line);
+            checklist_add(
+                cl, VERDICT_FAIL, "design numbers",
+                "%s:%d: fields 'macro' (letters, capitalised), 'value' (a number), 'source' and 'what' required",
+                PATHS_DESIGN_NUMBERS, line);
             continue;
         }
         int dup = 0;
         for (size_t q = 0; q < n; q++) dup |= !strcmp(v[q].macro, mac);
-        if (dup) { checklist_add(cl, VERDICT_FAIL, "design numbers", "%s:%d: field 'macro': %s appears twice", PATHS_DESIGN_NUMBERS, line, mac); continue; }
+        if (dup) {
+            checklist_add(cl, VERDICT_FAIL, "design numbers", "%s:%d: field 'macro': %s appears twice",
+                          PATHS_DESIGN_NUMBERS, line, mac);
+            continue;
+        }
         if (!strcmp(src, "text")) ok = 1;
         else if (sscanf(src, "%15s %199[^:]:%79s", kind, file, key) == 3) {
             double g[64];
@@ -65,14 +77,21 @@ size_t audit_design_consts(checklist *cl, design_const **out)
             char path[300];
             snprintf(path, sizeof path, PATHS_GATES_DIR "/%s", file);
             if (!strcmp(kind, "gate") && !gate_read_values(path, key, g, 64, &ng))
-                for (size_t k = 0; k < ng && !ok; k++) ok = fabs(g[k] - x) <= 1e-9 * fmax(1, fabs(x)) || fabs(100 * g[k] - x) <= 1e-9 * fmax(1, fabs(x));
+                for (size_t k = 0; k < ng && !ok; k++)
+                    ok = fabs(g[k] - x) <= 1e-9 * fmax(1, fabs(x)) || fabs(100 * g[k] - x) <= 1e-9 * fmax(1, fabs(x));
             else if (!strcmp(kind, "count") && !gate_read_values(path, key, g, 64, &ng)) ok = (double)ng == x;
-            else if (!strcmp(kind, "log10") && !gate_read_values(path, key, g, 64, &ng)) ok = ng == 1 && g[0] > 0 && fabs(-log10(g[0]) - x) <= 1e-9;
-            else if (!strcmp(kind, "excess") && !gate_read_values(path, key, g, 64, &ng)) ok = ng == 1 && fabs(100 * (g[0] - 1) - x) <= 1e-9 * fmax(1, fabs(x));
+            else if (!strcmp(kind, "log10") && !gate_read_values(path, key, g, 64, &ng))
+                ok = ng == 1 && g[0] > 0 && fabs(-log10(g[0]) - x) <= 1e-9;
+            else if (!strcmp(kind, "excess") && !gate_read_values(path, key, g, 64, &ng))
+                ok = ng == 1 && fabs(100 * (g[0] - 1) - x) <= 1e-9 * fmax(1, fabs(x));
             else if (!strcmp(kind, "member")) ok = source_holds(file, key, 0, x);
             else if (!strcmp(kind, "define")) ok = source_holds(file, key, 1, x);
         }
-        if (!ok) { checklist_add(cl, VERDICT_FAIL, "design numbers", "%s:%d: %s = %g is not what its source '%s' holds", PATHS_DESIGN_NUMBERS, line, mac, x, src); continue; }
+        if (!ok) {
+            checklist_add(cl, VERDICT_FAIL, "design numbers", "%s:%d: %s = %g is not what its source '%s' holds",
+                          PATHS_DESIGN_NUMBERS, line, mac, x, src);
+            continue;
+        }
         snprintf(v[n].macro, sizeof v[n].macro, "%s", mac);
         snprintf(v[n].value, sizeof v[n].value, "%s", val);
         v[n++].line = line;
@@ -88,15 +107,18 @@ cs_status audit_write_constants(const char *path, int hide)
     design_const *d;
     size_t n = audit_design_consts(&cl, &d);
     cs_status st = CS_OK;
-    for (size_t i = 0; i < cl.n && !st; i++) if (cl.items[i].v == VERDICT_FAIL) st = cs_err(CS_EINPUT, "%s", cl.items[i].msg);
+    for (size_t i = 0; i < cl.n && !st; i++)
+        if (cl.items[i].v == VERDICT_FAIL) st = cs_err(CS_EINPUT, "%s", cl.items[i].msg);
     checklist_free(&cl);
     afile a;
     if (!st && !d) st = cs_err(CS_ENOMEM, "out of memory");
     if (!st) st = afile_open(&a, path);
     if (st) { free(d); return st; }
-    fprintf(a.f, "%% paper/constants.tex: GENERATED by `crownshy numbers` from " PATHS_DESIGN_NUMBERS ", each value checked at its source.\n"
+    fprintf(a.f, "%% paper/constants.tex: GENERATED by `crownshy numbers` from " PATHS_DESIGN_NUMBERS
+                 ", each value checked at its source.\n"
                  "%% The design constants the text prints, one macro per phrase. Never edit by hand.\n");
-    for (size_t i = 0; i < n; i++) fprintf(a.f, "\\newcommand{\\%s}{%s}\n", d[i].macro, hide ? "\\hiddenvalue{}" : d[i].value);
+    for (size_t i = 0; i < n; i++)
+        fprintf(a.f, "\\newcommand{\\%s}{%s}\n", d[i].macro, hide ? "\\hiddenvalue{}" : d[i].value);
     free(d);
     return afile_commit(&a);
 }

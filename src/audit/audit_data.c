@@ -27,7 +27,9 @@ static cs_status field(const tsv *t, size_t r, const char *col, char *dst, size_
 {
     const char *s = tsv_str(t, r, col);
     if (!s) return cs_err(CS_EINPUT, "%s: field '%s': no such column", tsv_path(t), col);
-    if (!s[0] || strlen(s) >= n) return cs_err(CS_EINPUT, "%s:%d: field '%s': %s", tsv_path(t), tsv_line(t, r), col, s[0] ? "too long" : "empty");
+    if (!s[0] || strlen(s) >= n)
+        return cs_err(CS_EINPUT, "%s:%d: field '%s': %s", tsv_path(t), tsv_line(t, r), col,
+                      s[0] ? "too long" : "empty");
     strcpy(dst, s);
     return CS_OK;
 }
@@ -69,25 +71,39 @@ cs_status aggr_load(const char *path, aggr_spec **out, size_t *n)
         const char *red[] = {"mean", "sum", "count", "min", "max", "-"};
         int ok = 0;
         for (int k = 0; k < 6; k++) ok |= !strcmp(w->reduce, red[k]);
-        if (!ok) { st = cs_err(CS_EINPUT, "%s:%d: field 'reduce': '%s' (mean, sum, count, min, max or -)", path, w->line, w->reduce); break; }
-        if (strncmp(w->aggregate, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1) || strncmp(w->parts, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1)) {
-            st = cs_err(CS_EINPUT, "%s:%d: field 'aggregate'/'parts': both must be under %s/", path, w->line, PATHS_FROZEN_DIR);
+        if (!ok) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'reduce': '%s' (mean, sum, count, min, max or -)", path, w->line,
+                        w->reduce);
+            break;
+        }
+        if (strncmp(w->aggregate, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1) ||
+            strncmp(w->parts, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1)) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'aggregate'/'parts': both must be under %s/", path, w->line,
+                        PATHS_FROZEN_DIR);
             break;
         }
         if (!template_ok(w->parts) || (strcmp(w->filter, "-") && !template_ok(w->filter))) {
-            st = cs_err(CS_EINPUT, "%s:%d: field '%s': malformed {column} or {column:0N} template", path, w->line, template_ok(w->parts) ? "filter" : "parts");
+            st = cs_err(CS_EINPUT, "%s:%d: field '%s': malformed {column} or {column:0N} template", path, w->line,
+                        template_ok(w->parts) ? "filter" : "parts");
             break;
         }
         int lineage = !strcmp(w->reduce, "-");
-        if (lineage != !strcmp(w->value, "-") || (!lineage && strcmp(w->reduce, "count") && !strcmp(w->part_value, "-"))) {
-            st = cs_err(CS_EINPUT, "%s:%d: field 'value': reduce '-' (lineage) goes with value '-'; a reduce other than count needs a part_value", path, w->line);
+        if (lineage != !strcmp(w->value, "-") ||
+            (!lineage && strcmp(w->reduce, "count") && !strcmp(w->part_value, "-"))) {
+            st = cs_err(CS_EINPUT,
+                        "%s:%d: field 'value': reduce '-' (lineage) goes with value '-'; a reduce other than count "
+                        "needs a part_value",
+                        path, w->line);
             break;
         }
         if (strcmp(w->filter, "-")) {
             char f[sizeof w->filter];
             strcpy(f, w->filter);
             for (char *save = NULL, *tok = strtok_r(f, ";", &save); tok; tok = strtok_r(NULL, ";", &save))
-                if (!strchr(tok, '=') || tok[0] == '=') { st = cs_err(CS_EINPUT, "%s:%d: field 'filter': '%s' is not column=template", path, w->line, tok); break; }
+                if (!strchr(tok, '=') || tok[0] == '=') {
+                    st = cs_err(CS_EINPUT, "%s:%d: field 'filter': '%s' is not column=template", path, w->line, tok);
+                    break;
+                }
         }
     }
     tsv_free(t);
@@ -128,7 +144,8 @@ static int expand(const char *tpl, const tsv *t, size_t r, char *out, size_t n, 
 }
 
 /* Reduce the part rows of one aggregate row; 0 on success. */
-static int reduce_part(const aggr_spec *s, const tsv *agg, size_t r, double *out, char *part, size_t pn, char *err, size_t en)
+static int reduce_part(const aggr_spec *s, const tsv *agg, size_t r, double *out, char *part, size_t pn, char *err,
+                       size_t en)
 {
     if (expand(s->parts, agg, r, part, pn, err, en)) return 1;
     char filt[512] = "";
@@ -142,7 +159,8 @@ static int reduce_part(const aggr_spec *s, const tsv *agg, size_t r, double *out
         int keep = 1;
         char f[512];
         strcpy(f, filt);
-        for (char *save = NULL, *tok = filt[0] ? strtok_r(f, ";", &save) : NULL; tok && keep; tok = strtok_r(NULL, ";", &save)) {
+        for (char *save = NULL, *tok = filt[0] ? strtok_r(f, ";", &save) : NULL; tok && keep;
+             tok = strtok_r(NULL, ";", &save)) {
             char *eq = strchr(tok, '=');
             *eq = '\0';
             const char *v = tsv_str(t, q, tok);
@@ -151,7 +169,11 @@ static int reduce_part(const aggr_spec *s, const tsv *agg, size_t r, double *out
         }
         if (bad || !keep) continue;
         double x = 0;
-        if (strcmp(s->reduce, "count") && tsv_double_nf(t, q, s->part_value, &x)) { snprintf(err, en, "%s", cs_errmsg()); bad = 1; break; }
+        if (strcmp(s->reduce, "count") && tsv_double_nf(t, q, s->part_value, &x)) {
+            snprintf(err, en, "%s", cs_errmsg());
+            bad = 1;
+            break;
+        }
         if (!strcmp(s->reduce, "min")) acc = cnt ? fmin(acc, x) : x;
         else if (!strcmp(s->reduce, "max")) acc = cnt ? fmax(acc, x) : x;
         else acc += x;
@@ -168,7 +190,10 @@ void audit_aggregates(const claims *c, checklist *cl)
 {
     aggr_spec *s;
     size_t n;
-    if (aggr_load(PATHS_AGGREGATES, &s, &n)) { checklist_add(cl, VERDICT_FAIL, "aggregates", "%s", cs_errmsg()); return; }
+    if (aggr_load(PATHS_AGGREGATES, &s, &n)) {
+        checklist_add(cl, VERDICT_FAIL, "aggregates", "%s", cs_errmsg());
+        return;
+    }
     size_t checked = 0, bad = 0;
     for (size_t i = 0; i < n; i++) {
         char affected[600], name[96];
@@ -179,7 +204,8 @@ void audit_aggregates(const claims *c, checklist *cl)
          * claims read the per-run tables; once frozen it is checked here */
         if (claims_awaited_source(s[i].aggregate) && access(s[i].aggregate, F_OK) != 0) continue;
         if (tsv_read(s[i].aggregate, &agg)) {
-            checklist_add(cl, VERDICT_FAIL, name, "%s (registered in %s:%d); claims affected: %s", cs_errmsg(), PATHS_AGGREGATES, s[i].line, affected);
+            checklist_add(cl, VERDICT_FAIL, name, "%s (registered in %s:%d); claims affected: %s", cs_errmsg(),
+                          PATHS_AGGREGATES, s[i].line, affected);
             bad++;
             continue;
         }
@@ -190,29 +216,38 @@ void audit_aggregates(const claims *c, checklist *cl)
                 /* lineage only: the part must exist */
                 struct stat sb;
                 if (expand(s[i].parts, agg, r, part, sizeof part, err, sizeof err) == 0 && stat(part, &sb) != 0) {
-                    checklist_add(cl, VERDICT_FAIL, name, "%s:%d: its per-run table %s is missing; claims affected: %s", s[i].aggregate, tsv_line(agg, r), part, affected);
+                    checklist_add(cl, VERDICT_FAIL, name, "%s:%d: its per-run table %s is missing; claims affected: %s",
+                                  s[i].aggregate, tsv_line(agg, r), part, affected);
                     bad++;
                 }
                 continue;
             }
-            if (reduce_part(&s[i], agg, r, &want, part, sizeof part, err, sizeof err) || tsv_double_nf(agg, r, s[i].value, &have)) {
+            if (reduce_part(&s[i], agg, r, &want, part, sizeof part, err, sizeof err) ||
+                tsv_double_nf(agg, r, s[i].value, &have)) {
                 if (!err[0]) snprintf(err, sizeof err, "%s", cs_errmsg());
-                checklist_add(cl, VERDICT_FAIL, name, "%s:%d: field '%s' cannot be checked against its per-run table: %s; claims affected: %s",
+                checklist_add(cl, VERDICT_FAIL, name,
+                              "%s:%d: field '%s' cannot be checked against its per-run table: %s; claims affected: %s",
                               s[i].aggregate, tsv_line(agg, r), s[i].value, err, affected);
                 bad++;
                 continue;
             }
             checked++;
             if (!(want == have || (isnan(want) && isnan(have)))) {
-                checklist_add(cl, VERDICT_FAIL, name, "%s:%d: field '%s' = %.17g but the %s of '%s' over %s%s%s is %.17g (aggregate and per-run tables disagree); claims affected: %s",
+                checklist_add(cl, VERDICT_FAIL, name,
+                              "%s:%d: field '%s' = %.17g but the %s of '%s' over %s%s%s is %.17g (aggregate and "
+                              "per-run tables disagree); claims affected: %s",
                               s[i].aggregate, tsv_line(agg, r), s[i].value, have, s[i].reduce, s[i].part_value, part,
-                              strcmp(s[i].filter, "-") ? " rows " : "", strcmp(s[i].filter, "-") ? s[i].filter : "", want, affected);
+                              strcmp(s[i].filter, "-") ? " rows " : "", strcmp(s[i].filter, "-") ? s[i].filter : "",
+                              want, affected);
                 bad++;
             }
         }
         tsv_free(agg);
     }
-    if (!bad) checklist_add(cl, VERDICT_PASS, "aggregates", "%zu aggregate cells equal the reduction of their per-run tables (%s, %zu rules)", checked, PATHS_AGGREGATES, n);
+    if (!bad)
+        checklist_add(cl, VERDICT_PASS, "aggregates",
+                      "%zu aggregate cells equal the reduction of their per-run tables (%s, %zu rules)", checked,
+                      PATHS_AGGREGATES, n);
     free(s);
 }
 
@@ -235,7 +270,8 @@ void audit_feeds(const claims *c, const char *path, char *buf, size_t n)
     size_t off = 0, cnt = 0;
     buf[0] = '\0';
     for (size_t i = 0; i < c->n && off < n; i++)
-        if (!strcmp(c->rows[i].source, path) || (strchr(c->rows[i].source, '*') && fnmatch(c->rows[i].source, path, FNM_PATHNAME) == 0))
+        if (!strcmp(c->rows[i].source, path) ||
+            (strchr(c->rows[i].source, '*') && fnmatch(c->rows[i].source, path, FNM_PATHNAME) == 0))
             off += (size_t)snprintf(buf + off, n - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
     if (cnt) return;
     aggr_spec *s;
@@ -246,7 +282,8 @@ void audit_feeds(const claims *c, const char *path, char *buf, size_t n)
             parts_glob(s[k].parts, glob);
             if (fnmatch(glob, path, FNM_PATHNAME) != 0 || !strcmp(s[k].aggregate, path)) continue;
             for (size_t i = 0; i < c->n && off < n; i++)
-                if (!strcmp(c->rows[i].source, s[k].aggregate)) off += (size_t)snprintf(buf + off, n - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
+                if (!strcmp(c->rows[i].source, s[k].aggregate))
+                    off += (size_t)snprintf(buf + off, n - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
             if (cnt && off < n) snprintf(buf + off, n - off, " (via %s)", s[k].aggregate);
             else if (!strncmp(s[k].aggregate, PATHS_READINGS_DIR "/", strlen(PATHS_READINGS_DIR) + 1)) {
                 snprintf(buf, n, "the readings table %s (via %s)", PATHS_READINGS_TEX, s[k].aggregate);
@@ -269,8 +306,14 @@ void audit_feeds(const claims *c, const char *path, char *buf, size_t n)
         }
         free(s);
     }
-    if (!cnt && !strncmp(path, PATHS_READINGS_DIR "/", strlen(PATHS_READINGS_DIR) + 1)) { snprintf(buf, n, "the readings table %s", PATHS_READINGS_TEX); cnt = 1; }
-    if (!cnt && !strncmp(path, PATHS_SENS_DIR "/", strlen(PATHS_SENS_DIR) + 1)) { snprintf(buf, n, "the sensitivity table %s", PATHS_SENS_TEX); cnt = 1; }
+    if (!cnt && !strncmp(path, PATHS_READINGS_DIR "/", strlen(PATHS_READINGS_DIR) + 1)) {
+        snprintf(buf, n, "the readings table %s", PATHS_READINGS_TEX);
+        cnt = 1;
+    }
+    if (!cnt && !strncmp(path, PATHS_SENS_DIR "/", strlen(PATHS_SENS_DIR) + 1)) {
+        snprintf(buf, n, "the sensitivity table %s", PATHS_SENS_TEX);
+        cnt = 1;
+    }
     if (!cnt) snprintf(buf, n, "(no claim)");
 }
 
@@ -328,7 +371,8 @@ void audit_ledger(FILE *o)
     }
     /* the preregistration commit pinned in audit/gates_prereg.sha256, an ancestor of HEAD */
     if (audit_prereg_commit(base, sizeof base)) {
-        fprintf(o, "  (the pinned preregistration commit is not an ancestor of HEAD in this history: shallow clone, or a rewritten history)\n");
+        fprintf(o, "  (the pinned preregistration commit is not an ancestor of HEAD in this history: shallow clone, or "
+                   "a rewritten history)\n");
         return;
     }
     tsv *t;
@@ -352,12 +396,15 @@ void audit_ledger(FILE *o)
         int uncommitted = !audit_run_line(cmd, dirty, sizeof dirty);
         if (!strcmp(n_commits, "0") && !uncommitted) continue;
         char last[700] = "";
-        snprintf(cmd, sizeof cmd, "git log -1 --format='%%h %%ad %%s' --date=short %s..HEAD -- '%s' 2>/dev/null | cut -c1-110", base, path);
+        snprintf(cmd, sizeof cmd,
+                 "git log -1 --format='%%h %%ad %%s' --date=short %s..HEAD -- '%s' 2>/dev/null | cut -c1-110", base,
+                 path);
         audit_run_line(cmd, last, sizeof last);
-        fprintf(o, "  %-34s %s commit(s) since %s%s%s%s\n", path, n_commits, base, uncommitted ? ", uncommitted changes" : "",
-                last[0] ? "; last: " : "", last);
+        fprintf(o, "  %-34s %s commit(s) since %s%s%s%s\n", path, n_commits, base,
+                uncommitted ? ", uncommitted changes" : "", last[0] ? "; last: " : "", last);
         shown++;
     }
     tsv_free(t);
-    fprintf(o, "  %zu of %zu pinned paths changed after %s (the commit that added the preregistered gates; HEAD %s)\n", shown, pinned, base, head);
+    fprintf(o, "  %zu of %zu pinned paths changed after %s (the commit that added the preregistered gates; HEAD %s)\n",
+            shown, pinned, base, head);
 }

@@ -68,7 +68,8 @@ static int marker_text(const char *name, const claims *c, const claim_result *re
  * its unit is re-run (as verify counts it). */
 static int superseded(const claim_row *row)
 {
-    return !strncmp(row->source, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1) && audit_table_superseded(row->source);
+    return !strncmp(row->source, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1) &&
+           audit_table_superseded(row->source);
 }
 
 /* A gated claim's verdict as verify counts it: 0 reproduced, 1 not, 2 pending. */
@@ -84,7 +85,8 @@ static int judged(const claim_row *row, const claim_result *r)
 static void gate_judged_text(const claim_row *row, const claim_result *r, char *buf, size_t n)
 {
     buf[0] = '\0';
-    if (r->status != VERDICT_PASS || !r->has_observed || !isfinite(r->gate_observed) || !strcmp(row->format, "text")) return;
+    if (r->status != VERDICT_PASS || !r->has_observed || !isfinite(r->gate_observed) || !strcmp(row->format, "text"))
+        return;
     char t[64];
     snprintf(t, sizeof t, row->format, r->gate_observed);
     if (!strcmp(t, r->text) || fabs(r->gate_observed * 100 - r->value) <= 1e-9 * fabs(r->value)) return;
@@ -121,10 +123,16 @@ static void findings_rows(sbuf *b, const claims *c, const claim_result *res, int
             k[judged(&c->rows[j], &res[j])]++;
             char judged_as[96];
             gate_judged_text(&c->rows[j], &res[j], judged_as, sizeof judged_as);
-            sb_printf(&cl, "%s`%s` %s%s%s / %s", cl.n ? "; " : "", c->rows[j].macro, res[j].status == VERDICT_PASS ? res[j].text : "pending",
-                      judged_as, res[j].status == VERDICT_PASS && superseded(&c->rows[j]) ? " (superseded reading)" : "", c->rows[j].reference);
+            sb_printf(&cl, "%s`%s` %s%s%s / %s", cl.n ? "; " : "", c->rows[j].macro,
+                      res[j].status == VERDICT_PASS ? res[j].text : "pending", judged_as,
+                      res[j].status == VERDICT_PASS && superseded(&c->rows[j]) ? " (superseded reading)" : "",
+                      c->rows[j].reference);
         }
-        sb_printf(b, "| `" PATHS_GATES_DIR "/%.*s`%s | %zu | %zu | %zu | %s |\n", (int)gl, g, ext ? " (pair)" : "", k[0], k[1], k[2], cl.err ? "(out of memory)" : cl.s ? cl.s : "");
+        sb_printf(b, "| `" PATHS_GATES_DIR "/%.*s`%s | %zu | %zu | %zu | %s |\n", (int)gl, g, ext ? " (pair)" : "",
+                  k[0], k[1], k[2],
+                  cl.err ? "(out of memory)"
+                  : cl.s ? cl.s
+                         : "");
         free(cl.s);
     }
 }
@@ -150,14 +158,19 @@ static void findings(sbuf *b, const claims *c, const claim_result *res)
         agree_count(&at, c, res, ci, &ak);
         attrib_free(&at);
     }
-    sb_printf(b, "Gates (does our value meet the paper's preregistered threshold?) on the reference paper's claims: "
-                 "**%zu reproduced, %zu not reproduced, %zu pending** (pending: data not on this machine, or units still running%s). "
-                 "The pair extension, same thresholds (rows marked pair): %zu meet, %zu do not, %zu pending. "
-                 "Two training choices at the gate's seeds (variants, same thresholds; `make verify` lists them): %zu meet, %zu do not, %zu pending. "
-                 "Agreement (is the paper's value inside our 95 %% interval? `crownshy report`): %zu inside, %zu reached by a reading or choice, "
-                 "%zu unexplained, %zu without an interval. A claim can meet its gate and still disagree.\n\n", k[0], k[1], k[2],
-              sup ? ", or a table made by a superseded reading of the pinned code, until its unit is re-run" : "", ke[0], ke[1], ke[2],
-              kv[0], kv[1], kv[2], ak.inside, ak.reached, ak.unexplained, ak.nointerval);
+    sb_printf(b,
+              "Gates (does our value meet the paper's preregistered threshold?) on the reference paper's claims: "
+              "**%zu reproduced, %zu not reproduced, %zu pending** (pending: data not on this machine, or units still "
+              "running%s). "
+              "The pair extension, same thresholds (rows marked pair): %zu meet, %zu do not, %zu pending. "
+              "Two training choices at the gate's seeds (variants, same thresholds; `make verify` lists them): %zu "
+              "meet, %zu do not, %zu pending. "
+              "Agreement (is the paper's value inside our 95 %% interval? `crownshy report`): %zu inside, %zu reached "
+              "by a reading or choice, "
+              "%zu unexplained, %zu without an interval. A claim can meet its gate and still disagree.\n\n",
+              k[0], k[1], k[2],
+              sup ? ", or a table made by a superseded reading of the pinned code, until its unit is re-run" : "",
+              ke[0], ke[1], ke[2], kv[0], kv[1], kv[2], ak.inside, ak.reached, ak.unexplained, ak.nointerval);
     sb_printf(b, "| gate | reproduced | not reproduced | pending | claims: ours / paper |\n|---|---|---|---|---|\n");
     findings_rows(b, c, res, 0);
     findings_rows(b, c, res, 1);
@@ -232,8 +245,14 @@ cs_status docs_render(const char *path, const claims *c, const claim_result *res
     }
     free(line);
     fclose(f);
-    if (in_block) { free(b.s); return cs_err(CS_EINPUT, "%s:%d: %s... has no closing %s", path, block_line, FIND_BEGIN, FIND_END); }
-    if (bad_line) { free(b.s); return cs_err(CS_EINPUT, "%s:%d: marker <!--%s--> names no claim of %s", path, bad_line, unknown, PATHS_CLAIMS); }
+    if (in_block) {
+        free(b.s);
+        return cs_err(CS_EINPUT, "%s:%d: %s... has no closing %s", path, block_line, FIND_BEGIN, FIND_END);
+    }
+    if (bad_line) {
+        free(b.s);
+        return cs_err(CS_EINPUT, "%s:%d: marker <!--%s--> names no claim of %s", path, bad_line, unknown, PATHS_CLAIMS);
+    }
     if (b.err) { free(b.s); return cs_err(CS_ENOMEM, "out of memory"); }
     *out = b.s ? b.s : calloc(1, 1);
     return *out ? CS_OK : cs_err(CS_ENOMEM, "out of memory");
@@ -251,7 +270,8 @@ static int code_holds(const char *src, const char *lit)
     int found = 0;
     while (!found && getline(&line, &cap, f) > 0)
         for (char *p = line; !found && (p = strstr(p, lit)); p++)
-            found = (p == line || !(isalnum((unsigned char)p[-1]) || p[-1] == '.')) && !(isalnum((unsigned char)p[ll]) || (p[ll] == '.' && isdigit((unsigned char)p[ll + 1])));
+            found = (p == line || !(isalnum((unsigned char)p[-1]) || p[-1] == '.')) &&
+                    !(isalnum((unsigned char)p[ll]) || (p[ll] == '.' && isdigit((unsigned char)p[ll + 1])));
     free(line);
     fclose(f);
     return found;
@@ -284,8 +304,10 @@ static size_t design_constants(double **out, checklist *cl, size_t *bad)
             const char *src = tsv_str(t, r, "source");
             if (tsv_double(t, r, "value", &x) || !src) continue;
             if (fi && (!code_holds(src, tsv_str(t, r, "value")) || !tsv_str(t, r, "what"))) {
-                if (cl) checklist_add(cl, VERDICT_FAIL, "docs: design constants", "%s:%d: source '%s' does not hold %s as a literal (or no 'what')", files[fi],
-                                      tsv_line(t, r), src, tsv_str(t, r, "value"));
+                if (cl)
+                    checklist_add(cl, VERDICT_FAIL, "docs: design constants",
+                                  "%s:%d: source '%s' does not hold %s as a literal (or no 'what')", files[fi],
+                                  tsv_line(t, r), src, tsv_str(t, r, "value"));
                 (*bad)++;
                 continue;
             }
@@ -314,10 +336,16 @@ static void measured_collect(const claims *c, const claim_result *res, measured 
         char *end;
         double ref = strtod(c->rows[r].reference, &end);
         if (res[r].status == VERDICT_PASS && isfinite(res[r].value)) {
-            m->v[m->n] = res[r].value; m->who[m->n] = c->rows[r].macro; m->text[m->n] = res[r].text; m->paper[m->n++] = 0;
+            m->v[m->n] = res[r].value;
+            m->who[m->n] = c->rows[r].macro;
+            m->text[m->n] = res[r].text;
+            m->paper[m->n++] = 0;
         }
         if (end != c->rows[r].reference && !*end && isfinite(ref)) {
-            m->v[m->n] = ref; m->who[m->n] = c->rows[r].macro; m->text[m->n] = c->rows[r].reference; m->paper[m->n++] = 1;
+            m->v[m->n] = ref;
+            m->who[m->n] = c->rows[r].macro;
+            m->text[m->n] = c->rows[r].reference;
+            m->paper[m->n++] = 1;
         }
     }
 }
@@ -338,7 +366,8 @@ static int exemption(const char *comment, size_t len)
     size_t i = 0;
     for (; i < len && i < sizeof low - 1; i++) low[i] = (char)tolower((unsigned char)comment[i]);
     low[i] = '\0';
-    static const char *words[] = {"exempt", "nocheck", "no-check", "no check", "ignore", "skip-audit", "audit-off", "audit: off", NULL};
+    static const char *words[] = {"exempt",     "nocheck",   "no-check",   "no check", "ignore",
+                                  "skip-audit", "audit-off", "audit: off", NULL};
     for (int k = 0; words[k]; k++) if (strstr(low, words[k])) return 1;
     return 0;
 }
@@ -348,7 +377,10 @@ static size_t scan_numbers(const char *path, int lineno, const char *line, const
 {
     size_t bad = 0;
     for (const char *s = line; *s; ) {
-        if (!isdigit((unsigned char)*s) || (s > line && (isalnum((unsigned char)s[-1]) || strchr("\\_.", s[-1])))) { s++; continue; }
+        if (!isdigit((unsigned char)*s) || (s > line && (isalnum((unsigned char)s[-1]) || strchr("\\_.", s[-1])))) {
+            s++;
+            continue;
+        }
         /* a section reference (§3.1, § 5.2) is no number of the study */
         {
             const char *q = s;
@@ -373,9 +405,12 @@ static size_t scan_numbers(const char *path, int lineno, const char *line, const
             for (size_t q = 0; q < m->nd && !constant; q++) constant = fabs(x - m->d[q]) <= 1e-9 * fmax(1.0, fabs(x));
             for (size_t q = 0; q < m->n && !constant; q++)
                 if (rounds(x, dec, sig, neg, m->v[q])) {
-                    checklist_add(cl, VERDICT_FAIL, "docs: typed numbers", "%s:%d: '%.*s' typed by hand rounds %s %.6g; write <!--%s%s-->%s" MARK_END " (crownshy numbers fills it); claim: %s",
-                                  path, lineno, (int)(e - s), s, m->paper[q] ? "the reference paper's value" : "the measured value", m->v[q], m->who[q],
-                                  m->paper[q] ? "Paper" : "", m->text[q], m->who[q]);
+                    checklist_add(cl, VERDICT_FAIL, "docs: typed numbers",
+                                  "%s:%d: '%.*s' typed by hand rounds %s %.6g; write <!--%s%s-->%s" MARK_END
+                                  " (crownshy numbers fills it); claim: %s",
+                                  path, lineno, (int)(e - s), s,
+                                  m->paper[q] ? "the reference paper's value" : "the measured value", m->v[q],
+                                  m->who[q], m->paper[q] ? "Paper" : "", m->text[q], m->who[q]);
                     bad++;
                     break;
                 }
@@ -400,7 +435,8 @@ static size_t scan_links(const char *path, int lineno, const char *line, checkli
         snprintf(p, sizeof p, "%.*s%.*s", slash ? (int)(slash - path + 1) : 0, path, (int)tl, t);
         struct stat sb;
         if (stat(p, &sb) != 0) {
-            checklist_add(cl, VERDICT_FAIL, "docs: links", "%s:%d: link to '%.*s': %s does not exist", path, lineno, (int)tl, t, p);
+            checklist_add(cl, VERDICT_FAIL, "docs: links", "%s:%d: link to '%.*s': %s does not exist", path, lineno,
+                          (int)tl, t, p);
             bad++;
         }
     }
@@ -422,12 +458,18 @@ static size_t scan_page(const char *path, const measured *m, checklist *cl)
         for (char *s = line; (s = strstr(s, "<!--")); ) {
             size_t nl;
             const char *v, *ve;
-            if (marker_at(line, s, &nl, &v, &ve)) { size_t k = (size_t)(ve + strlen(MARK_END) - s); memset(s, ' ', k); s += k; continue; }
+            if (marker_at(line, s, &nl, &v, &ve)) {
+                size_t k = (size_t)(ve + strlen(MARK_END) - s);
+                memset(s, ' ', k);
+                s += k;
+                continue;
+            }
             char *e = strstr(s + 4, "-->");
             size_t len = e ? (size_t)(e - s - 4) : strlen(s + 4);
             if (exemption(s + 4, len)) {
-                checklist_add(cl, VERDICT_FAIL, "docs: self-exemption", "%s:%d: comment '%.*s' asks for an exemption from the audit: none is honoured; remove it", path, lineno,
-                              (int)(len < 80 ? len : 80), s + 4);
+                checklist_add(cl, VERDICT_FAIL, "docs: self-exemption",
+                              "%s:%d: comment '%.*s' asks for an exemption from the audit: none is honoured; remove it",
+                              path, lineno, (int)(len < 80 ? len : 80), s + 4);
                 bad++;
             }
             s += 4;
@@ -490,7 +532,9 @@ size_t docs_check_page(const char *path, const claims *c, const claim_result *re
             const char *v, *ve;
             if (marker_at(lb, s, &nl, &v, &ve)) snprintf(claim, sizeof claim, "; claim: %.*s", (int)nl, s + 4);
         }
-        checklist_add(cl, VERDICT_FAIL, "docs: generated", "%s:%d differs from a fresh generation ('%.200s'): edited by hand or stale (crownshy numbers regenerates it)%s",
+        checklist_add(cl, VERDICT_FAIL, "docs: generated",
+                      "%s:%d differs from a fresh generation ('%.200s'): edited by hand or stale (crownshy numbers "
+                      "regenerates it)%s",
                       path, d, lb, claim);
         bad++;
     }
@@ -549,7 +593,9 @@ void audit_docs(const claims *c, const claim_result *res, checklist *cl)
         if (f) fclose(f);
     }
     if (!bad)
-        checklist_add(cl, VERDICT_PASS, "docs", "%zu documentation pages (%s and the reference pages): %zu generated regions equal a fresh generation; no measured number typed; no exemption comment; every relative link resolves",
+        checklist_add(cl, VERDICT_PASS, "docs",
+                      "%zu documentation pages (%s and the reference pages): %zu generated regions equal a fresh "
+                      "generation; no measured number typed; no exemption comment; every relative link resolves",
                       pages.n, PATHS_README, regions);
     paths_list_free(&pages);
 }

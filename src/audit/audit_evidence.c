@@ -61,7 +61,8 @@ static size_t check_named_files(const claims *c, const char *p, checklist *cl, s
         int missing = lstat(file, &sb) != 0 || !S_ISREG(sb.st_mode);
         if (!missing && !prov_sha256_file(file, cur) && !strcmp(cur, hex)) continue;
         audit_feeds(c, p, affected, sizeof affected);
-        checklist_add(cl, VERDICT_FAIL, "provenance files", "%s:%d names %s (sha256 %.16s…), which is %s; claims affected: %s", p, lineno, file, hex,
+        checklist_add(cl, VERDICT_FAIL, "provenance files",
+                      "%s:%d names %s (sha256 %.16s…), which is %s; claims affected: %s", p, lineno, file, hex,
                       missing ? "missing" : "different (its sha256 differs)", affected);
         bad++;
     }
@@ -131,7 +132,9 @@ void audit_evidence(const claims *c, checklist *cl)
         bad++;
     }
     if (!bad)
-        checklist_add(cl, VERDICT_PASS, "evidence", "%zu files named by provenance exist with their hashes; %zu weights files sealed; %d W1 recomputed from their samples, bit for bit",
+        checklist_add(cl, VERDICT_PASS, "evidence",
+                      "%zu files named by provenance exist with their hashes; %zu weights files sealed; %d W1 "
+                      "recomputed from their samples, bit for bit",
                       named, seals, nw1);
 }
 
@@ -148,13 +151,15 @@ static cs_status grid_source(const char *src, grid_axis *ax, const char *where)
         char buf[1024];
         snprintf(buf, sizeof buf, "%s", src + 5);
         for (char *s = NULL, *t = strtok_r(buf, ",", &s); t; t = strtok_r(NULL, ",", &s)) {
-            if (ax->n == GRID_MAXV) return cs_err(CS_EINPUT, "%s: field 'values': more than %d values in a list", where, GRID_MAXV);
+            if (ax->n == GRID_MAXV)
+                return cs_err(CS_EINPUT, "%s: field 'values': more than %d values in a list", where, GRID_MAXV);
             snprintf(ax->v[ax->n++], 48, "%s", t);
         }
         return ax->n ? CS_OK : cs_err(CS_EINPUT, "%s: field 'values': empty list", where);
     }
     char kind[8], file[128], key[64];
-    if (sscanf(src, "%7s %127[^:]:%63s", kind, file, key) != 3) return cs_err(CS_EINPUT, "%s: field 'values': '%s' is not 'gate|seq|range FILE:KEY' or 'list a,b'", where, src);
+    if (sscanf(src, "%7s %127[^:]:%63s", kind, file, key) != 3)
+        return cs_err(CS_EINPUT, "%s: field 'values': '%s' is not 'gate|seq|range FILE:KEY' or 'list a,b'", where, src);
     char path[300];
     snprintf(path, sizeof path, PATHS_GATES_DIR "/%s", file);
     double v[GRID_MAXV];
@@ -162,10 +167,12 @@ static cs_status grid_source(const char *src, grid_axis *ax, const char *where)
     cs_status st = gate_read_values(path, key, v, GRID_MAXV, &n);
     if (st) return st;
     if (!strcmp(kind, "gate")) for (size_t i = 0; i < n; i++) snprintf(ax->v[ax->n++], 48, "%.17g", v[i]);
-    else if (!strcmp(kind, "seq") && n == 1 && v[0] >= 1 && v[0] <= GRID_MAXV) for (int i = 1; i <= (int)v[0]; i++) snprintf(ax->v[ax->n++], 48, "%d", i);
+    else if (!strcmp(kind, "seq") && n == 1 && v[0] >= 1 && v[0] <= GRID_MAXV)
+        for (int i = 1; i <= (int)v[0]; i++) snprintf(ax->v[ax->n++], 48, "%d", i);
     else if (!strcmp(kind, "range") && n == 3 && v[2] > 0) {
         long m = lround((v[1] - v[0]) / v[2]);
-        if (m < 0 || m >= GRID_MAXV) return cs_err(CS_EINPUT, "%s: field 'values': '%s' spans %ld values (1..%d)", where, src, m + 1, GRID_MAXV);
+        if (m < 0 || m >= GRID_MAXV)
+            return cs_err(CS_EINPUT, "%s: field 'values': '%s' spans %ld values (1..%d)", where, src, m + 1, GRID_MAXV);
         for (long i = 0; i <= m; i++) snprintf(ax->v[ax->n++], 48, "%.17g", v[0] + (double)i * v[2]);
     } else return cs_err(CS_EINPUT, "%s: field 'values': '%s' does not fit %s:%s", where, src, file, key);
     return CS_OK;
@@ -197,7 +204,8 @@ static int grid_filter_keeps(const tsv *t, size_t r, const char *filter)
 
 /* One block of one table: FAIL items for a missing, repeated or extra row;
  * covered[r] marks the rows the block owns. Returns the failures. */
-static size_t grid_block(const claims *c, const tsv *t, const char *filter, const char *cols, const char *vals, int gline, char *covered, checklist *cl)
+static size_t grid_block(const claims *c, const tsv *t, const char *filter, const char *cols, const char *vals,
+                         int gline, char *covered, checklist *cl)
 {
     char where[128], names[GRID_MAXC][64], cbuf[256], vbuf[1024], affected[600];
     snprintf(where, sizeof where, PATHS_GRIDS ":%d", gline);
@@ -209,9 +217,16 @@ static size_t grid_block(const claims *c, const tsv *t, const char *filter, cons
     char *s1 = NULL, *s2 = NULL, *cn = strtok_r(cbuf, ",", &s1), *vs = strtok_r(vbuf, ";", &s2);
     for (; cn && vs && nc < GRID_MAXC; nc++, cn = strtok_r(NULL, ",", &s1), vs = strtok_r(NULL, ";", &s2)) {
         snprintf(names[nc], 64, "%s", cn);
-        if (grid_source(vs, &ax[nc], where)) { checklist_add(cl, VERDICT_FAIL, "design grids", "%s", cs_errmsg()); return 1; }
+        if (grid_source(vs, &ax[nc], where)) {
+            checklist_add(cl, VERDICT_FAIL, "design grids", "%s", cs_errmsg());
+            return 1;
+        }
     }
-    if (!nc || cn || vs) { checklist_add(cl, VERDICT_FAIL, "design grids", "%s: fields 'columns'/'values': one source per column (at most %d)", where, GRID_MAXC); return 1; }
+    if (!nc || cn || vs) {
+        checklist_add(cl, VERDICT_FAIL, "design grids",
+                      "%s: fields 'columns'/'values': one source per column (at most %d)", where, GRID_MAXC);
+        return 1;
+    }
     size_t total = 1, bad = 0;
     for (size_t k = 0; k < nc; k++) total *= ax[k].n;
     int *seen = calloc(total, sizeof *seen), *first = calloc(total, sizeof *first);
@@ -228,10 +243,14 @@ static size_t grid_block(const claims *c, const tsv *t, const char *filter, cons
         covered[r] = 1;
         if (k < nc) {
             const char *v = tsv_str(t, r, names[k]);
-            checklist_add(cl, VERDICT_FAIL, "design grids", "%s:%d: field '%s' = %s is not in its design grid (%s); claims affected: %s", tsv_path(t), tsv_line(t, r), names[k], v ? v : "(missing)", where, affected);
+            checklist_add(cl, VERDICT_FAIL, "design grids",
+                          "%s:%d: field '%s' = %s is not in its design grid (%s); claims affected: %s", tsv_path(t),
+                          tsv_line(t, r), names[k], v ? v : "(missing)", where, affected);
             bad++;
         } else if (seen[idx]++) {
-            checklist_add(cl, VERDICT_FAIL, "design grids", "%s:%d repeats the grid point of line %d (%s: one row per point); claims affected: %s", tsv_path(t), tsv_line(t, r), first[idx], where, affected);
+            checklist_add(cl, VERDICT_FAIL, "design grids",
+                          "%s:%d repeats the grid point of line %d (%s: one row per point); claims affected: %s",
+                          tsv_path(t), tsv_line(t, r), first[idx], where, affected);
             bad++;
         } else first[idx] = tsv_line(t, r);
     }
@@ -239,8 +258,14 @@ static size_t grid_block(const claims *c, const tsv *t, const char *filter, cons
         if (seen[i]) continue;
         char pt[256] = "";
         size_t o = 0, rem = i, div = total;
-        for (size_t k = 0; k < nc; k++) { div /= ax[k].n; o += (size_t)snprintf(pt + o, sizeof pt - o, "%s%s=%s", k ? ", " : "", names[k], ax[k].v[(rem / div) % ax[k].n]); }
-        checklist_add(cl, VERDICT_FAIL, "design grids", "%s lacks the grid point %s%s%s (%s); claims affected: %s", tsv_path(t), pt, strcmp(filter, "-") ? " of " : "", strcmp(filter, "-") ? filter : "", where, affected);
+        for (size_t k = 0; k < nc; k++) {
+            div /= ax[k].n;
+            o += (size_t)snprintf(pt + o, sizeof pt - o, "%s%s=%s", k ? ", " : "", names[k],
+                                  ax[k].v[(rem / div) % ax[k].n]);
+        }
+        checklist_add(cl, VERDICT_FAIL, "design grids", "%s lacks the grid point %s%s%s (%s); claims affected: %s",
+                      tsv_path(t), pt, strcmp(filter, "-") ? " of " : "", strcmp(filter, "-") ? filter : "", where,
+                      affected);
         bad++;
     }
     free(seen);
@@ -256,13 +281,16 @@ static size_t grid_table(const claims *c, const char *path, const tsv *spec, con
     size_t bad = 0;
     for (size_t r = 0; covered && r < tsv_nrows(spec); r++) {
         if (strcmp(tsv_str(spec, r, "table"), pattern)) continue;
-        bad += grid_block(c, t, tsv_str(spec, r, "filter"), tsv_str(spec, r, "columns"), tsv_str(spec, r, "values"), tsv_line(spec, r), covered, cl);
+        bad += grid_block(c, t, tsv_str(spec, r, "filter"), tsv_str(spec, r, "columns"), tsv_str(spec, r, "values"),
+                          tsv_line(spec, r), covered, cl);
     }
     for (size_t r = 0; covered && r < tsv_nrows(t); r++)
         if (!covered[r]) {
             char affected[600];
             audit_feeds(c, path, affected, sizeof affected);
-            checklist_add(cl, VERDICT_FAIL, "design grids", "%s:%d: a row outside every block of its design grid (%s); claims affected: %s", path, tsv_line(t, r), PATHS_GRIDS, affected);
+            checklist_add(cl, VERDICT_FAIL, "design grids",
+                          "%s:%d: a row outside every block of its design grid (%s); claims affected: %s", path,
+                          tsv_line(t, r), PATHS_GRIDS, affected);
             bad++;
         }
     free(covered);
@@ -276,7 +304,11 @@ void audit_grids(const claims *c, checklist *cl)
     if (tsv_read(PATHS_GRIDS, &spec)) { checklist_add(cl, VERDICT_FAIL, "design grids", "%s", cs_errmsg()); return; }
     const char *need[] = {"table", "filter", "columns", "values"};
     for (int k = 0; k < 4; k++)
-        if (tsv_col(spec, need[k]) < 0) { checklist_add(cl, VERDICT_FAIL, "design grids", "%s: no column '%s'", PATHS_GRIDS, need[k]); tsv_free(spec); return; }
+        if (tsv_col(spec, need[k]) < 0) {
+            checklist_add(cl, VERDICT_FAIL, "design grids", "%s: no column '%s'", PATHS_GRIDS, need[k]);
+            tsv_free(spec);
+            return;
+        }
     size_t bad = 0, tables = 0;
     for (size_t r = 0; r < tsv_nrows(spec); r++) {
         const char *pat = tsv_str(spec, r, "table");
@@ -287,7 +319,9 @@ void audit_grids(const claims *c, checklist *cl)
         if (strncmp(pat, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1) || glob(pat, 0, NULL, &g) != 0) {
             char affected[600];
             audit_feeds(c, pat, affected, sizeof affected);
-            checklist_add(cl, VERDICT_FAIL, "design grids", "%s:%d: field 'table': no frozen table matches %s; claims affected: %s", PATHS_GRIDS, tsv_line(spec, r), pat, affected);
+            checklist_add(cl, VERDICT_FAIL, "design grids",
+                          "%s:%d: field 'table': no frozen table matches %s; claims affected: %s", PATHS_GRIDS,
+                          tsv_line(spec, r), pat, affected);
             bad++;
             continue;
         }
@@ -295,7 +329,9 @@ void audit_grids(const claims *c, checklist *cl)
         globfree(&g);
     }
     tsv_free(spec);
-    if (!bad) checklist_add(cl, VERDICT_PASS, "design grids", "%zu frozen tables hold exactly the rows of their design grids (%s)", tables, PATHS_GRIDS);
+    if (!bad)
+        checklist_add(cl, VERDICT_PASS, "design grids",
+                      "%zu frozen tables hold exactly the rows of their design grids (%s)", tables, PATHS_GRIDS);
 }
 
 /* ---- git: the preregistration commit and the past versions of a file ---- */
@@ -353,12 +389,18 @@ static int git_past_value_in(const char *how, const char *path, int version, con
             snprintf(rev, sizeof rev, "%.63s", line + 2);
             /* without --follow the path is the same at every commit, merges included
              * (git prints no name for a merge) */
-            if (strcmp(how, "--follow") && !git_blob_value(rev, path, version, v, sizeof v) && !strcmp(v, value)) { found = 1; snprintf(commit, cn, "%.12s", rev); }
+            if (strcmp(how, "--follow") && !git_blob_value(rev, path, version, v, sizeof v) && !strcmp(v, value)) {
+                found = 1;
+                snprintf(commit, cn, "%.12s", rev);
+            }
             continue;
         }
         if (strcmp(how, "--follow")) continue;
         if (!line[0] || !rev[0]) continue;
-        if (!git_blob_value(rev, line, version, v, sizeof v) && !strcmp(v, value)) { found = 1; snprintf(commit, cn, "%.12s", rev); }
+        if (!git_blob_value(rev, line, version, v, sizeof v) && !strcmp(v, value)) {
+            found = 1;
+            snprintf(commit, cn, "%.12s", rev);
+        }
     }
     while (fgets(line, sizeof line, p)) {}
     pclose(p);
@@ -369,7 +411,8 @@ static int git_past_value_in(const char *how, const char *path, int version, con
  * (--full-history), and under earlier names (--follow, which skips merges)? */
 static int git_past_value(const char *path, int version, const char *value, char *commit, size_t cn)
 {
-    return git_past_value_in("--full-history", path, version, value, commit, cn) || git_past_value_in("--follow", path, version, value, commit, cn);
+    return git_past_value_in("--full-history", path, version, value, commit, cn) ||
+           git_past_value_in("--follow", path, version, value, commit, cn);
 }
 
 /* ---- the gates against their preregistered content ---- */
@@ -395,12 +438,20 @@ void audit_gates_prereg(const claims *c, checklist *cl)
     static char ppath[64][128], phex[64][65];
     int ok;
     size_t np = prereg_copy(ppath, phex, 64, &ok), bad = 0;
-    if (!ok || !np) { checklist_add(cl, VERDICT_FAIL, "gates preregistered", "%s: missing or malformed (the pinned copy of the preregistered gates' hashes); every gated claim affected", PATHS_GATES_PREREG); return; }
+    if (!ok || !np) {
+        checklist_add(
+            cl, VERDICT_FAIL, "gates preregistered",
+            "%s: missing or malformed (the pinned copy of the preregistered gates' hashes); every gated claim affected",
+            PATHS_GATES_PREREG);
+        return;
+    }
     char base[64] = "";
     const int state = audit_prereg_state(base, sizeof base);
     int git = state == PREREG_ANCESTOR;
     if (state == PREREG_NOT_ANCESTOR) {
-        checklist_add(cl, VERDICT_FAIL, "gates preregistered", "the preregistration commit %s pinned in %s is not an ancestor of HEAD (a rewritten or grafted history); every gated claim affected",
+        checklist_add(cl, VERDICT_FAIL, "gates preregistered",
+                      "the preregistration commit %s pinned in %s is not an ancestor of HEAD (a rewritten or grafted "
+                      "history); every gated claim affected",
                       base, PATHS_GATES_PREREG);
         bad++;
     }
@@ -415,29 +466,42 @@ void audit_gates_prereg(const claims *c, checklist *cl)
         int reg = lstat(g.p[i], &sb) == 0 && S_ISREG(sb.st_mode);
         if (reg) prov_sha256_file(g.p[i], cur);
         int in_git = git && !git_blob_value(base, g.p[i], 0, then, sizeof then);
-        const char *why = !reg ? "is not a regular file" : k == np ? "is not among the preregistered gates" : strcmp(cur, phex[k]) ? "differs from its pinned preregistered hash" : NULL;
+        const char *why = !reg                   ? "is not a regular file"
+                          : k == np              ? "is not among the preregistered gates"
+                          : strcmp(cur, phex[k]) ? "differs from its pinned preregistered hash"
+                                                 : NULL;
         if (!why && git && !in_git) why = "was not added at the preregistration commit";
         if (!why && in_git && strcmp(cur, then)) why = "differs from its content at the preregistration commit";
-        if (!why && in_git && strcmp(then, phex[k])) why = "is pinned in " PATHS_GATES_PREREG " with a hash its preregistered content does not have";
+        if (!why && in_git && strcmp(then, phex[k]))
+            why = "is pinned in " PATHS_GATES_PREREG " with a hash its preregistered content does not have";
         if (!why) continue;
         snprintf(affected, sizeof affected, "(no claim)");
         size_t off = 0, cnt = 0;
         for (size_t r = 0; r < c->n && off < sizeof affected - 80; r++)
             if (!strncmp(c->rows[r].gate, b, strlen(b)) && c->rows[r].gate[strlen(b)] == ':')
-                off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "", c->rows[r].macro);
-        checklist_add(cl, VERDICT_FAIL, "gates preregistered", "%s %s (%s%s%s): a preregistered threshold is never changed; claims affected: %s", g.p[i], why,
-                      git ? "preregistration commit " : "no .git: checked against ", git ? base : PATHS_GATES_PREREG, git ? ", " PATHS_GATES_PREREG : "", affected);
+                off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "",
+                                        c->rows[r].macro);
+        checklist_add(cl, VERDICT_FAIL, "gates preregistered",
+                      "%s %s (%s%s%s): a preregistered threshold is never changed; claims affected: %s", g.p[i], why,
+                      git ? "preregistration commit " : "no .git: checked against ", git ? base : PATHS_GATES_PREREG,
+                      git ? ", " PATHS_GATES_PREREG : "", affected);
         bad++;
     }
     for (size_t k = 0; k < np; k++) {
         int found = 0;
         for (size_t i = 0; i < g.n && !found; i++) found = !strcmp(g.p[i], ppath[k]);
-        if (!found) { checklist_add(cl, VERDICT_FAIL, "gates preregistered", "%s is missing (preregistered, %s)", ppath[k], PATHS_GATES_PREREG); bad++; }
+        if (!found) {
+            checklist_add(cl, VERDICT_FAIL, "gates preregistered", "%s is missing (preregistered, %s)", ppath[k],
+                          PATHS_GATES_PREREG);
+            bad++;
+        }
     }
     paths_list_free(&g);
     if (!bad)
         checklist_add(cl, VERDICT_PASS, "gates preregistered", "%zu gate files byte-identical to %s%s", np,
-                      git ? "their content at the preregistration commit " : "their pinned preregistered hashes (no .git) in ", git ? base : PATHS_GATES_PREREG);
+                      git ? "their content at the preregistration commit "
+                          : "their pinned preregistered hashes (no .git) in ",
+                      git ? base : PATHS_GATES_PREREG);
 }
 
 /* Does this history hold the preregistration commit recorded in the pinned
@@ -454,21 +518,34 @@ static int history_has_prereg(void)
 void audit_superseded_real(checklist *cl)
 {
     tsv *t;
-    if (tsv_read(PATHS_PINS_SUPERSEDED, &t)) { checklist_add(cl, VERDICT_FAIL, "superseded pins", "%s", cs_errmsg()); return; }
+    if (tsv_read(PATHS_PINS_SUPERSEDED, &t)) {
+        checklist_add(cl, VERDICT_FAIL, "superseded pins", "%s", cs_errmsg());
+        return;
+    }
     int git = have_git(), full = git && history_has_prereg();
     size_t bad = 0, n = tsv_nrows(t);
     for (size_t r = 0; r < n; r++) {
         const char *k = tsv_str(t, r, "key"), *v = tsv_str(t, r, "value"), *p = tsv_str(t, r, "path");
-        if (!k || !v || !p) { checklist_add(cl, VERDICT_FAIL, "superseded pins", "%s:%d: fields 'key', 'value', 'path' required", PATHS_PINS_SUPERSEDED, tsv_line(t, r)); bad++; continue; }
+        if (!k || !v || !p) {
+            checklist_add(cl, VERDICT_FAIL, "superseded pins", "%s:%d: fields 'key', 'value', 'path' required",
+                          PATHS_PINS_SUPERSEDED, tsv_line(t, r));
+            bad++;
+            continue;
+        }
         int version = !strcmp(k, "teacher_version");
         if (!version && strcmp(k, "teacher_sha256") && strcmp(k, "estimator_sha256")) {
-            checklist_add(cl, VERDICT_FAIL, "superseded pins", "%s:%d: field 'key': '%s' is not a reading's pin (teacher_version, teacher_sha256, estimator_sha256)", PATHS_PINS_SUPERSEDED, tsv_line(t, r), k);
+            checklist_add(
+                cl, VERDICT_FAIL, "superseded pins",
+                "%s:%d: field 'key': '%s' is not a reading's pin (teacher_version, teacher_sha256, estimator_sha256)",
+                PATHS_PINS_SUPERSEDED, tsv_line(t, r), k);
             bad++;
             continue;
         }
         char commit[16];
         if (full && !git_past_value(p, version, v, commit, sizeof commit)) {
-            checklist_add(cl, VERDICT_FAIL, "superseded pins", "%s:%d: %s %.16s… is no past version of %s in the history (made up?); tables naming it are not traceable",
+            checklist_add(cl, VERDICT_FAIL, "superseded pins",
+                          "%s:%d: %s %.16s… is no past version of %s in the history (made up?); tables naming it are "
+                          "not traceable",
                           PATHS_PINS_SUPERSEDED, tsv_line(t, r), k, v, p);
             bad++;
         }
@@ -476,8 +553,9 @@ void audit_superseded_real(checklist *cl)
     tsv_free(t);
     if (!bad)
         checklist_add(cl, VERDICT_PASS, "superseded pins", "%zu superseded pins%s", n,
-                      full ? ", each a real past version of its file in the history"
-                      : git ? " (this history lacks the preregistration commit of " PATHS_GATES_PREREG ": each rests on the pin of " PATHS_PINS_SUPERSEDED " in " PATHS_PINS ")"
+                      full  ? ", each a real past version of its file in the history"
+                      : git ? " (this history lacks the preregistration commit of " PATHS_GATES_PREREG
+                              ": each rests on the pin of " PATHS_PINS_SUPERSEDED " in " PATHS_PINS ")"
                             : " (no .git: each rests on the pin of " PATHS_PINS_SUPERSEDED " in " PATHS_PINS ")");
 }
 
@@ -488,7 +566,10 @@ static int header_value(FILE *f, const char *key, char *out, size_t n)
     char line[2048];
     size_t kl = strlen(key);
     while (fgets(line, sizeof line, f) && line[0] == '#')
-        if (!strncmp(line + 2, key, kl) && line[2 + kl] == ':') { snprintf(out, n, "%.*s", (int)strcspn(line + 4 + kl, "\n"), line + 4 + kl); return 1; }
+        if (!strncmp(line + 2, key, kl) && line[2 + kl] == ':') {
+            snprintf(out, n, "%.*s", (int)strcspn(line + 4 + kl, "\n"), line + 4 + kl);
+            return 1;
+        }
     return 0;
 }
 
@@ -541,25 +622,44 @@ void audit_prereg_anchor(checklist *cl, const char *brought, char *line, size_t 
         return;
     }
     if (citation_gates_hash(pub))
-        checklist_add(cl, VERDICT_FAIL, "preregistration", "%s publishes no sha256 of the preregistered gates (an identifier 'value: sha256:<hex>'); every gated claim affected", PATHS_CITATION);
+        checklist_add(cl, VERDICT_FAIL, "preregistration",
+                      "%s publishes no sha256 of the preregistered gates (an identifier 'value: sha256:<hex>'); every "
+                      "gated claim affected",
+                      PATHS_CITATION);
     else if (strcmp(pub, now))
-        checklist_add(cl, VERDICT_FAIL, "preregistration", "%s publishes the gates' sha256 %.16s..., but %s hashes to %.16s...; every gated claim affected", PATHS_CITATION, pub, PATHS_GATES_DIR, now);
-    else checklist_add(cl, VERDICT_PASS, "preregistration", "%s publishes the sha256 of %s (%.16s...)", PATHS_CITATION, PATHS_GATES_DIR, now);
+        checklist_add(cl, VERDICT_FAIL, "preregistration",
+                      "%s publishes the gates' sha256 %.16s..., but %s hashes to %.16s...; every gated claim affected",
+                      PATHS_CITATION, pub, PATHS_GATES_DIR, now);
+    else
+        checklist_add(cl, VERDICT_PASS, "preregistration", "%s publishes the sha256 of %s (%.16s...)", PATHS_CITATION,
+                      PATHS_GATES_DIR, now);
     if (brought && brought[0]) {
         if (strcmp(brought, now)) {
-            checklist_add(cl, VERDICT_FAIL, "preregistration", "%s hashes to %s, not to the preregistration hash you brought (PREREG=%s): a preregistered threshold changed; every gated claim affected",
+            checklist_add(cl, VERDICT_FAIL, "preregistration",
+                          "%s hashes to %s, not to the preregistration hash you brought (PREREG=%s): a preregistered "
+                          "threshold changed; every gated claim affected",
                           PATHS_GATES_DIR, now, brought);
-            snprintf(line, n, "preregistration: %s DIFFER from the hash you brought (PREREG=%.16s...)", PATHS_GATES_DIR, brought);
+            snprintf(line, n, "preregistration: %s DIFFER from the hash you brought (PREREG=%.16s...)", PATHS_GATES_DIR,
+                     brought);
         } else {
-            checklist_add(cl, VERDICT_PASS, "preregistration", "%s equals the preregistration hash you brought (PREREG=%.16s...)", PATHS_GATES_DIR, brought);
-            snprintf(line, n, "preregistration: checked against the hash you brought (PREREG=%.16s...): the gates are the preregistered ones", brought);
+            checklist_add(cl, VERDICT_PASS, "preregistration",
+                          "%s equals the preregistration hash you brought (PREREG=%.16s...)", PATHS_GATES_DIR, brought);
+            snprintf(line, n,
+                     "preregistration: checked against the hash you brought (PREREG=%.16s...): the gates are the "
+                     "preregistered ones",
+                     brought);
         }
         return;
     }
     const int state = audit_prereg_state(base, sizeof base);
-    snprintf(line, n, "preregistration: self-attested (%s; an author who rewrites the gates, their pinned hashes and the history "
-                      "passes this): bring the gates' sha256 from a copy you trust (CITATION.cff, the write-up's first page) as make verify PREREG=<sha256>",
-             state == PREREG_ANCESTOR ? "the gates equal their content at the pinned preregistration commit, an ancestor of HEAD"
-             : state == PREREG_NO_GIT ? "no .git: the gates equal their pinned hashes"
-                                      : "the gates equal their pinned hashes; this history lacks the pinned preregistration commit");
+    snprintf(
+        line, n,
+        "preregistration: self-attested (%s; an author who rewrites the gates, their pinned hashes and the history "
+        "passes this): bring the gates' sha256 from a copy you trust (CITATION.cff, the write-up's first page) as make "
+        "verify PREREG=<sha256>",
+        state == PREREG_ANCESTOR
+            ? "the gates equal their content at the pinned preregistration commit, an ancestor of HEAD"
+        : state == PREREG_NO_GIT
+            ? "no .git: the gates equal their pinned hashes"
+            : "the gates equal their pinned hashes; this history lacks the pinned preregistration commit");
 }

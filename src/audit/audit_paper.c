@@ -16,7 +16,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-static const char *const generated[] = {PATHS_NUMBERS, PATHS_CONSTANTS_TEX, PATHS_COMPARISON, PATHS_READINGS_TEX, PATHS_SENS_TEX, PATHS_INTERVALS_OUT, PATHS_SUMMARY_TEX, NULL};
+static const char *const generated[] = {PATHS_NUMBERS,  PATHS_CONSTANTS_TEX, PATHS_COMPARISON,  PATHS_READINGS_TEX,
+                                        PATHS_SENS_TEX, PATHS_INTERVALS_OUT, PATHS_SUMMARY_TEX, NULL};
 
 const char *paper_generated(size_t i)
 {
@@ -105,7 +106,11 @@ static int first_diff(const char *a, const char *b, char *lb, size_t n, int *mis
         char *ra = fa ? fgets(la, sizeof la, fa) : NULL, *rb = fgets(bb, sizeof bb, fb);
         lineno++;
         if (!ra && !rb) break;
-        if (!ra || !rb || strcmp(la, bb)) { diff = lineno; if (rb) snprintf(lb, n, "%.*s", (int)strcspn(bb, "\n"), bb); break; }
+        if (!ra || !rb || strcmp(la, bb)) {
+            diff = lineno;
+            if (rb) snprintf(lb, n, "%.*s", (int)strcspn(bb, "\n"), bb);
+            break;
+        }
     }
     if (fa) fclose(fa);
     if (fb) fclose(fb);
@@ -141,20 +146,25 @@ void audit_generated(const claims *c, const claim_result *res, checklist *cl, in
         struct stat sb;
         if (stat(fresh, &sb) != 0) {
             if (stat(generated[i], &sb) == 0)
-                checklist_add(cl, VERDICT_FAIL, item, "%s exists but nothing generates it (%s absent)", generated[i], PATHS_READINGS_SUMMARY);
+                checklist_add(cl, VERDICT_FAIL, item, "%s exists but nothing generates it (%s absent)", generated[i],
+                              PATHS_READINGS_SUMMARY);
             continue;
         }
         int missing, d = first_diff(fresh, generated[i], lb, sizeof lb, &missing);
-        if (missing) checklist_add(cl, VERDICT_FAIL, item, "%s missing (generate it with crownshy numbers)", generated[i]);
+        if (missing)
+            checklist_add(cl, VERDICT_FAIL, item, "%s missing (generate it with crownshy numbers)", generated[i]);
         else if (d) {
             /* name the claim on the differing line when there is one */
             char claim[80] = "";
             for (size_t r = 0; r < c->n && !claim[0]; r++) {
                 char pat[96];
                 snprintf(pat, sizeof pat, "{%s}", c->rows[r].macro);
-                if (strstr(lb, pat) || strstr(lb, c->rows[r].macro)) snprintf(claim, sizeof claim, "; claim: %s", c->rows[r].macro);
+                if (strstr(lb, pat) || strstr(lb, c->rows[r].macro))
+                    snprintf(claim, sizeof claim, "; claim: %s", c->rows[r].macro);
             }
-            checklist_add(cl, VERDICT_FAIL, item, "%s:%d differs from a fresh generation ('%.200s'): edited by hand or stale%s", generated[i], d, lb, claim);
+            checklist_add(cl, VERDICT_FAIL, item,
+                          "%s:%d differs from a fresh generation ('%.200s'): edited by hand or stale%s", generated[i],
+                          d, lb, claim);
         } else checklist_add(cl, VERDICT_PASS, item, "%s equals a fresh generation from frozen/", generated[i]);
     }
     rmdir_fresh(dir);

@@ -34,6 +34,7 @@ void audit_paper_text(const claims *c, const claim_result *res, checklist *cl);
 /* One hand-written file: FAIL items for unregistered, defined or hand-typed
  * claims (vals/who: the nv measured values and their macros) and exemption
  * comments; returns how many, adds claim-macro uses to *used. */
-size_t paper_scan_file(const char *path, const claims *c, const double *vals, const char *const *who, size_t nv, checklist *cl, size_t *used);
+size_t paper_scan_file(const char *path, const claims *c, const double *vals, const char *const *who, size_t nv,
+                       checklist *cl, size_t *used);
 
 #endif

@@ -26,7 +26,9 @@
  * Wasserstein-1 distance (W1), instruction sets, a hash's name and the
  * simulation's two versions. A whole word
  * must equal one of them (trailing punctuation aside). */
-static const char *const render_names[] = {"E0", "E1", "E2", "E3", "E4", "E5", "E6", "E7", "E8", "E9", "W1", "Wasserstein-1", "AVX2", "AVX-512", "SHA-256", "teacher-1", "teacher-2", NULL};
+static const char *const render_names[] = {"E0",   "E1",      "E2",      "E3",        "E4",        "E5",
+                                           "E6",   "E7",      "E8",      "E9",        "W1",        "Wasserstein-1",
+                                           "AVX2", "AVX-512", "SHA-256", "teacher-1", "teacher-2", NULL};
 
 /* The words a verdict prints as (\verdict's output, the gate files' and
  * make verify's), in any case; the rendered text holds none: a verdict prints
@@ -85,8 +87,11 @@ size_t render_scan_text(const char *text, const char *what, checklist *cl)
         const char *l0 = b, *l1 = s;
         while (l0 > text && l0[-1] != '\n' && l0[-1] != '\f') l0--;
         while (*l1 && *l1 != '\n' && *l1 != '\f') l1++;
-        checklist_add(cl, VERDICT_FAIL, "paper render", "%s renders %s '%s' on page %d of the hidden render: '%.*s' (a generated value, verdict or design constant prints through its macro; nothing else of the text may)",
-                      what, digit ? "the number" : "the verdict word", w, page, (int)(l1 - l0 > 160 ? 160 : l1 - l0), l0);
+        checklist_add(cl, VERDICT_FAIL, "paper render",
+                      "%s renders %s '%s' on page %d of the hidden render: '%.*s' (a generated value, verdict or "
+                      "design constant prints through its macro; nothing else of the text may)",
+                      what, digit ? "the number" : "the verdict word", w, page, (int)(l1 - l0 > 160 ? 160 : l1 - l0),
+                      l0);
         bad++;
     }
     return bad;
@@ -119,7 +124,8 @@ static void render_error(const char *log, char *out, size_t n)
     if (e) {
         char *l = strstr(e, "\nl.");
         int el = (int)strcspn(e + 1, "\n"), ll = l ? (int)strcspn(l + 1, "\n") : 0;
-        snprintf(out, n, "%.*s%s%.*s (%s)", el > 200 ? 200 : el, e + 1, l ? " at " : "", ll > 120 ? 120 : ll, l ? l + 1 : "", log);
+        snprintf(out, n, "%.*s%s%.*s (%s)", el > 200 ? 200 : el, e + 1, l ? " at " : "", ll > 120 ? 120 : ll,
+                 l ? l + 1 : "", log);
     }
     free(text);
 }
@@ -146,13 +152,18 @@ void audit_render(const claims *c, const claim_result *res, checklist *cl)
         afile a;
         if (!(st = afile_open(&a, p))) { fprintf(a.f, "\\hiddenvalue{}\n"); st = afile_commit(&a); }
     }
-    if (st) { checklist_add(cl, VERDICT_FAIL, "paper render", "cannot write the hidden generated files: %s", cs_errmsg()); return; }
+    if (st) {
+        checklist_add(cl, VERDICT_FAIL, "paper render", "cannot write the hidden generated files: %s", cs_errmsg());
+        return;
+    }
     /* TEXINPUTS: the hidden files, then paper/'s hand-written ones; no shell;
      * a job name of its own, so the real build's main.aux (its resolved
      * references) is not read: references print as ?? */
     char cmd[4096];
     snprintf(cmd, sizeof cmd,
-             "cd '%s' && TEXINPUTS='.:%s/" PATHS_PAPER_DIR ":' openout_any=p pdflatex -no-shell-escape -interaction=nonstopmode -halt-on-error -jobname=hidden '%s/" PATHS_MAIN_TEX "' > render.out 2>&1"
+             "cd '%s' && TEXINPUTS='.:%s/" PATHS_PAPER_DIR
+             ":' openout_any=p pdflatex -no-shell-escape -interaction=nonstopmode -halt-on-error -jobname=hidden "
+             "'%s/" PATHS_MAIN_TEX "' > render.out 2>&1"
              " && pdftotext -enc UTF-8 hidden.pdf hidden.txt 2>> render.out",
              dir, root, root);
     int rc = system(cmd);
@@ -162,7 +173,8 @@ void audit_render(const claims *c, const claim_result *res, checklist *cl)
         char why[2000];
         snprintf(p, sizeof p, "%s/hidden.log", dir);
         render_error(p, why, sizeof why);
-        checklist_add(cl, VERDICT_FAIL, "paper render", PATHS_MAIN_TEX " does not render with its generated values hidden: %s", why);
+        checklist_add(cl, VERDICT_FAIL, "paper render",
+                      PATHS_MAIN_TEX " does not render with its generated values hidden: %s", why);
         return;
     }
     size_t bad = render_scan_text(text, PATHS_MAIN_TEX, cl);
@@ -170,6 +182,9 @@ void audit_render(const claims *c, const claim_result *res, checklist *cl)
     for (const char *s = text; *s; s++) pages += *s == '\f';
     free(text);
     if (!bad && cl->n >= before)
-        checklist_add(cl, VERDICT_PASS, "paper render", PATHS_MAIN_TEX " rendered by pdflatex with every generated value hidden (%d pages): no digit outside the names of the experiments, W1, AVX2, AVX-512, SHA-256 and the simulation versions, and no verdict word",
+        checklist_add(cl, VERDICT_PASS, "paper render",
+                      PATHS_MAIN_TEX
+                      " rendered by pdflatex with every generated value hidden (%d pages): no digit outside the names "
+                      "of the experiments, W1, AVX2, AVX-512, SHA-256 and the simulation versions, and no verdict word",
                       pages);
 }

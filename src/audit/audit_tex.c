@@ -16,7 +16,41 @@
 
 /* ---- the hand-written text ---- */
 /* LaTeX's own capitalised commands: not claim macros. */
-static const char *latex_upper[] = {"LaTeX", "TeX", "Large", "LARGE", "Huge", "HUGE", "Roman", "Alph", "Ref", "S", "P", "L", "O", "AA", "AE", "OE", "Delta", "Gamma", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Upsilon", "Phi", "Psi", "Omega", "Bigl", "Bigr", "Big", "Biggl", "Biggr", "bibliographystyle", "IfFileExists", NULL};
+static const char *latex_upper[] = {"LaTeX",
+                                    "TeX",
+                                    "Large",
+                                    "LARGE",
+                                    "Huge",
+                                    "HUGE",
+                                    "Roman",
+                                    "Alph",
+                                    "Ref",
+                                    "S",
+                                    "P",
+                                    "L",
+                                    "O",
+                                    "AA",
+                                    "AE",
+                                    "OE",
+                                    "Delta",
+                                    "Gamma",
+                                    "Theta",
+                                    "Lambda",
+                                    "Xi",
+                                    "Pi",
+                                    "Sigma",
+                                    "Upsilon",
+                                    "Phi",
+                                    "Psi",
+                                    "Omega",
+                                    "Bigl",
+                                    "Bigr",
+                                    "Big",
+                                    "Biggl",
+                                    "Biggr",
+                                    "bibliographystyle",
+                                    "IfFileExists",
+                                    NULL};
 
 static int audit_latex_upper(const char *name)
 {
@@ -26,9 +60,24 @@ static int audit_latex_upper(const char *name)
 
 static int is_defining(const char *cmd)
 {
-    static const char *defs[] = {"newcommand", "renewcommand", "providecommand", "def", "gdef", "edef", "xdef", "let",
-                                 "DeclareRobustCommand", "NewDocumentCommand", "RenewDocumentCommand", "ProvideDocumentCommand",
-                                 "DeclareDocumentCommand", "NewExpandableDocumentCommand", "newrobustcmd", "renewrobustcmd", "csdef", NULL};
+    static const char *defs[] = {"newcommand",
+                                 "renewcommand",
+                                 "providecommand",
+                                 "def",
+                                 "gdef",
+                                 "edef",
+                                 "xdef",
+                                 "let",
+                                 "DeclareRobustCommand",
+                                 "NewDocumentCommand",
+                                 "RenewDocumentCommand",
+                                 "ProvideDocumentCommand",
+                                 "DeclareDocumentCommand",
+                                 "NewExpandableDocumentCommand",
+                                 "newrobustcmd",
+                                 "renewrobustcmd",
+                                 "csdef",
+                                 NULL};
     for (int i = 0; defs[i]; i++) if (!strcmp(defs[i], cmd)) return 1;
     return 0;
 }
@@ -41,8 +90,19 @@ static int exemption_comment(const char *comment)
     size_t i = 0;
     for (; comment[i] && i < sizeof low - 1; i++) low[i] = (char)tolower((unsigned char)comment[i]);
     low[i] = '\0';
-    static const char *words[] = {"exempt", "nocheck", "no-check", "no check", "audit-ignore", "audit: ignore", "audit:ignore",
-                                  "verify-ignore", "verify: skip", "skip-audit", "audit-off", "lint-ignore", NULL};
+    static const char *words[] = {"exempt",
+                                  "nocheck",
+                                  "no-check",
+                                  "no check",
+                                  "audit-ignore",
+                                  "audit: ignore",
+                                  "audit:ignore",
+                                  "verify-ignore",
+                                  "verify: skip",
+                                  "skip-audit",
+                                  "audit-off",
+                                  "lint-ignore",
+                                  NULL};
     for (int k = 0; words[k]; k++) if (strstr(low, words[k])) return 1;
     return 0;
 }
@@ -188,7 +248,8 @@ static void tex_use(tex_scan *t, size_t pos, const char *name)
 
 static int is_namedef(const char *cmd)
 {
-    static const char *d[] = {"@namedef", "csdef", "csgdef", "csedef", "csxdef", "cslet", "csletcs", "NewCommandCopy", NULL};
+    static const char *d[] = {"@namedef", "csdef",   "csgdef",         "csedef", "csxdef",
+                              "cslet",    "csletcs", "NewCommandCopy", NULL};
     for (int i = 0; d[i]; i++) if (!strcmp(d[i], cmd)) return 1;
     return 0;
 }
@@ -207,7 +268,11 @@ static size_t tex_definition(tex_scan *t, const char *definer, size_t i)
         if (s[i] != '\\') break;
         char cs[80];
         size_t j = tex_cs(s, i, cs, sizeof cs);
-        if (!strcmp(cs, "expandafter") || !strcmp(cs, "global") || !strcmp(cs, "long") || !strcmp(cs, "protected") || !strcmp(cs, "outer") || !strcmp(cs, "noexpand")) { i = j; continue; }
+        if (!strcmp(cs, "expandafter") || !strcmp(cs, "global") || !strcmp(cs, "long") || !strcmp(cs, "protected") ||
+            !strcmp(cs, "outer") || !strcmp(cs, "noexpand")) {
+            i = j;
+            continue;
+        }
         if (!strcmp(cs, "csname")) { i = tex_csname(s, j, name, sizeof name); break; }
         snprintf(name, sizeof name, "%s", cs);
         i = j;
@@ -215,24 +280,30 @@ static size_t tex_definition(tex_scan *t, const char *definer, size_t i)
     }
     if (!name[0] && is_namedef(definer) && s[i] == '{') {
         size_t e = tex_group(s, i, '{', '}'), k = 0;
-        for (size_t j = i + 1; j + 1 < e; j++) if (isalpha((unsigned char)s[j]) && k + 1 < sizeof name) name[k++] = s[j];
+        for (size_t j = i + 1; j + 1 < e; j++)
+            if (isalpha((unsigned char)s[j]) && k + 1 < sizeof name) name[k++] = s[j];
         name[k] = '\0';
         i = e;
     }
     const claim_row *row = name[0] ? claim_or_gate(t->c, name) : NULL;
-    if (row) tex_fail(t, start, "paper macro redefined", "\\%s defines the claim macro \\%s in the text (only numbers.tex defines it)", definer, name);
+    if (row)
+        tex_fail(t, start, "paper macro redefined",
+                 "\\%s defines the claim macro \\%s in the text (only numbers.tex defines it)", definer, name);
     /* the body: after [n][default] and a \def parameter text, one group */
     size_t b = skip_space(s, i);
     if (s[b] == '}') b = skip_space(s, b + 1); /* \newcommand{\name}: its closing brace */
     while (s[b] == '[') b = skip_space(s, tex_group(s, b, '[', ']'));
-    while (s[b] && s[b] != '{' && s[b] != '\\' && (s[b] == '#' || isdigit((unsigned char)s[b]) || isspace((unsigned char)s[b]))) b++;
+    while (s[b] && s[b] != '{' && s[b] != '\\' &&
+           (s[b] == '#' || isdigit((unsigned char)s[b]) || isspace((unsigned char)s[b])))
+        b++;
     if (s[b] != '{' || strcmp(definer, "let") == 0) return i;
     size_t e = tex_group(s, b, '{', '}');
     if (e > t->body_end) t->body_end = e;
     if (t->collect && name[0] && t->nverd < 64) {
         char body[4096];
         snprintf(body, sizeof body, "%.*s", (int)(e - b), s + b);
-        if ((strstr(body, "{PASS}") || strstr(body, "{FAIL}")) && !is_verdict_cmd(t, name)) snprintf(t->verdicts[t->nverd++], 64, "%s", name);
+        if ((strstr(body, "{PASS}") || strstr(body, "{FAIL}")) && !is_verdict_cmd(t, name))
+            snprintf(t->verdicts[t->nverd++], 64, "%s", name);
     }
     return b + 1; /* the body is read on: its uses and numbers count too */
 }
@@ -240,11 +311,47 @@ static size_t tex_definition(tex_scan *t, const char *definer, size_t i)
 /* Commands whose next argument is a name, a file or a key, not text. */
 static int names_arg(const char *cmd)
 {
-    static const char *a[] = {"label", "ref", "eqref", "pageref", "autoref", "cref", "Cref", "cite", "citep", "citet", "nocite", "includegraphics",
-                              "input", "include", "InputIfFileExists", "IfFileExists", "subfile", "usepackage", "RequirePackage", "documentclass",
-                              "begin", "end", "url", "href", "fig", "bibliography", "bibliographystyle", "includeonly", "hypersetup", "definecolor",
-                              "textcolor", "color", "colorbox", "newenvironment", "renewenvironment", "setcounter", "addtocounter", "pagestyle",
-                              "thispagestyle", "texttt", NULL};
+    static const char *a[] = {"label",
+                              "ref",
+                              "eqref",
+                              "pageref",
+                              "autoref",
+                              "cref",
+                              "Cref",
+                              "cite",
+                              "citep",
+                              "citet",
+                              "nocite",
+                              "includegraphics",
+                              "input",
+                              "include",
+                              "InputIfFileExists",
+                              "IfFileExists",
+                              "subfile",
+                              "usepackage",
+                              "RequirePackage",
+                              "documentclass",
+                              "begin",
+                              "end",
+                              "url",
+                              "href",
+                              "fig",
+                              "bibliography",
+                              "bibliographystyle",
+                              "includeonly",
+                              "hypersetup",
+                              "definecolor",
+                              "textcolor",
+                              "color",
+                              "colorbox",
+                              "newenvironment",
+                              "renewenvironment",
+                              "setcounter",
+                              "addtocounter",
+                              "pagestyle",
+                              "thispagestyle",
+                              "texttt",
+                              NULL};
     for (int i = 0; a[i]; i++) if (!strcmp(a[i], cmd)) return 1;
     return 0;
 }
@@ -254,7 +361,8 @@ static int names_arg(const char *cmd)
 static void tex_pull(tex_scan *t, size_t pos, const char *cmd, const char *arg)
 {
     int pkg = !strcmp(cmd, "usepackage") || !strcmp(cmd, "RequirePackage"), cls = !strcmp(cmd, "documentclass");
-    int file = !strcmp(cmd, "input") || !strcmp(cmd, "include") || !strcmp(cmd, "InputIfFileExists") || !strcmp(cmd, "subfile");
+    int file = !strcmp(cmd, "input") || !strcmp(cmd, "include") || !strcmp(cmd, "InputIfFileExists") ||
+               !strcmp(cmd, "subfile");
     if (!pkg && !cls && !file) return;
     char list[512];
     snprintf(list, sizeof list, "%s", arg);
@@ -263,7 +371,9 @@ static void tex_pull(tex_scan *t, size_t pos, const char *cmd, const char *arg)
         nm[strcspn(nm, " \t\n")] = '\0';
         if (!nm[0]) continue;
         if (nm[0] == '/' || strstr(nm, "..")) {
-            if (file) tex_fail(t, pos, "paper text", "\\%s pulls in %s, outside paper/: the text is only what paper/ holds", cmd, nm);
+            if (file)
+                tex_fail(t, pos, "paper text", "\\%s pulls in %s, outside paper/: the text is only what paper/ holds",
+                         cmd, nm);
             continue;
         }
         char p[600];
@@ -297,18 +407,41 @@ static void tex_verdict_arg(tex_scan *t, size_t pos, const char *cmd, size_t i)
     while (n && isspace((unsigned char)a[n - 1])) a[--n] = '\0';
     if (a[0] == '#' && pos < t->body_end) return;
     const claim_row *row = a[0] == '\\' ? claim_or_gate(t->c, a + 1) : NULL;
-    if (row && n > 5 && !strcmp(a + n - 4, "Gate") && strcmp(row->gate, "-") && strspn(a + 1, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz") == n - 1) return;
-    tex_fail(t, pos, "paper verdicts", "\\%s{%s}: a verdict command takes a generated gate macro (\\<Claim>Gate from numbers.tex) only", cmd, a);
+    if (row && n > 5 && !strcmp(a + n - 4, "Gate") && strcmp(row->gate, "-") &&
+        strspn(a + 1, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz") == n - 1)
+        return;
+    tex_fail(t, pos, "paper verdicts",
+             "\\%s{%s}: a verdict command takes a generated gate macro (\\<Claim>Gate from numbers.tex) only", cmd, a);
 }
 
 static int is_unit(const char *s)
 {
-    static const char *u[] = {"pt", "em", "ex", "cm", "mm", "in", "bp", "pc", "dd", "cc", "sp", "mu", "fil", "\\linewidth", "\\textwidth", "\\columnwidth",
-                              "\\hsize", "\\textheight", "\\baselineskip", "\\paperwidth", NULL};
+    static const char *u[] = {"pt",
+                              "em",
+                              "ex",
+                              "cm",
+                              "mm",
+                              "in",
+                              "bp",
+                              "pc",
+                              "dd",
+                              "cc",
+                              "sp",
+                              "mu",
+                              "fil",
+                              "\\linewidth",
+                              "\\textwidth",
+                              "\\columnwidth",
+                              "\\hsize",
+                              "\\textheight",
+                              "\\baselineskip",
+                              "\\paperwidth",
+                              NULL};
     while (*s == ' ') s++;
     for (int i = 0; u[i]; i++) {
         size_t n = strlen(u[i]);
-        if (!strncmp(s, u[i], n) && (u[i][0] == '\\' || !isalpha((unsigned char)s[n]) || !strcmp(u[i], "fil"))) return 1;
+        if (!strncmp(s, u[i], n) && (u[i][0] == '\\' || !isalpha((unsigned char)s[n]) || !strcmp(u[i], "fil")))
+            return 1;
     }
     return 0;
 }
@@ -330,11 +463,15 @@ static void tex_number(tex_scan *t, size_t i, size_t e)
         for (size_t q = 0; q < t->nv; q++)
             if (rounds_to(x, dec, sig, neg, t->vals[q])) {
                 char m[300];
-                snprintf(m, sizeof m, "'%s' typed by hand rounds the measured value %.6g; use \\%s; claim: %s", tok, t->vals[q], t->who[q], t->who[q]);
+                snprintf(m, sizeof m, "'%s' typed by hand rounds the measured value %.6g; use \\%s; claim: %s", tok,
+                         t->vals[q], t->who[q], t->who[q]);
                 tex_fail(t, i, "hand-typed numbers", "%s%s", m, "");
                 return;
             }
-    tex_fail(t, i, "hand-typed numbers", "'%s' is typed in the text: a measured value prints through its macro of numbers.tex, a design constant through its macro of constants.tex (" PATHS_DESIGN_NUMBERS ")%s", tok, "");
+    tex_fail(t, i, "hand-typed numbers",
+             "'%s' is typed in the text: a measured value prints through its macro of numbers.tex, a design constant "
+             "through its macro of constants.tex (" PATHS_DESIGN_NUMBERS ")%s",
+             tok, "");
 }
 
 /* Comments blanked (an exemption request is itself a failure); returns the copy. */
@@ -351,7 +488,9 @@ static char *tex_strip(tex_scan *t, const char *raw, size_t n)
         char com[4096];
         snprintf(com, sizeof com, "%.*s", (int)(e - i - 1), s + i + 1);
         if (exemption_comment(com) && !t->collect) {
-            checklist_add(t->cl, VERDICT_FAIL, "paper self-exemption", "%s:%d: comment '%.80s' asks for an exemption from the audit: none is honoured; remove it", t->path, tex_line(raw, i), com);
+            checklist_add(t->cl, VERDICT_FAIL, "paper self-exemption",
+                          "%s:%d: comment '%.80s' asks for an exemption from the audit: none is honoured; remove it",
+                          t->path, tex_line(raw, i), com);
             t->bad++;
         }
         memset(s + i, ' ', e - i);
@@ -366,8 +505,12 @@ static char *tex_strip(tex_scan *t, const char *raw, size_t n)
 static void tex_control(tex_scan *t, size_t pos, const char *cs)
 {
     if (!strcmp(cs, "ifpass") || !strcmp(cs, "ifsame")) return;
-    if (!strncmp(cs, "if", 2) || !strncmp(cs, "If", 2) || !strcmp(cs, "unless") || !strcmp(cs, "else") || !strcmp(cs, "fi") || !strcmp(cs, "or"))
-        tex_fail(t, pos, "paper text", "\\%s: the text branches only through \\ifpass or \\ifsame (generated), whose both sides the audit's render shows%s", cs, "");
+    if (!strncmp(cs, "if", 2) || !strncmp(cs, "If", 2) || !strcmp(cs, "unless") || !strcmp(cs, "else") ||
+        !strcmp(cs, "fi") || !strcmp(cs, "or"))
+        tex_fail(t, pos, "paper text",
+                 "\\%s: the text branches only through \\ifpass or \\ifsame (generated), whose both sides the audit's "
+                 "render shows%s",
+                 cs, "");
 }
 
 static void tex_scan_text(tex_scan *t)
@@ -377,7 +520,9 @@ static void tex_scan_text(tex_scan *t)
         if (s[i] == '\\') {
             char cs[80];
             size_t j = tex_cs(s, i, cs, sizeof cs), at = i;
-            if (!strcmp(cs, "catcode")) tex_fail(t, at, "paper text", "\\%s changes how TeX reads the characters that follow: not allowed in the text%s", cs, "");
+            if (!strcmp(cs, "catcode"))
+                tex_fail(t, at, "paper text",
+                         "\\%s changes how TeX reads the characters that follow: not allowed in the text%s", cs, "");
             if (!strcmp(cs, "csname")) {
                 char nm[80];
                 j = tex_csname(s, j, nm, sizeof nm);
@@ -386,7 +531,10 @@ static void tex_scan_text(tex_scan *t)
                 continue;
             }
             if (is_defining(cs) || is_namedef(cs)) {
-                tex_fail(t, at, "paper text", "\\%s: the text defines no command of its own (its helpers, \\verdict \\ifpass \\ifsame \\bandpos \\fig, are generated in numbers.tex)%s", cs, "");
+                tex_fail(t, at, "paper text",
+                         "\\%s: the text defines no command of its own (its helpers, \\verdict \\ifpass \\ifsame "
+                         "\\bandpos \\fig, are generated in numbers.tex)%s",
+                         cs, "");
                 i = tex_definition(t, cs, j);
                 continue;
             }
@@ -401,15 +549,23 @@ static void tex_scan_text(tex_scan *t)
                     snprintf(arg, sizeof arg, "%.*s", (int)(e > k + 2 ? e - k - 2 : 0), s + k + 1);
                     tex_pull(t, at, cs, arg);
                     /* a name argument holds no text, but a macro in it is still used */
-                    for (size_t q = k; q < e; q++) if (s[q] == '\\') { char u[80]; q = tex_cs(s, q, u, sizeof u) - 1; if (u[0] && isalpha((unsigned char)u[0])) tex_use(t, q, u); }
+                    for (size_t q = k; q < e; q++)
+                        if (s[q] == '\\') {
+                            char u[80];
+                            q = tex_cs(s, q, u, sizeof u) - 1;
+                            if (u[0] && isalpha((unsigned char)u[0])) tex_use(t, q, u);
+                        }
                     j = e;
                 }
             } else if (isalpha((unsigned char)cs[0])) tex_use(t, at, cs);
             i = j;
             continue;
         }
-        if ((!strncmp(s + i, "PASS", 4) || !strncmp(s + i, "FAIL", 4)) && (i == 0 || !isalnum((unsigned char)s[i - 1])) && !isalnum((unsigned char)s[i + 4])) {
-            if (i >= t->body_end) tex_fail(t, i, "paper verdicts", "'%.4s' typed in the text: a verdict comes from a generated gate macro only%s", s + i, "");
+        if ((!strncmp(s + i, "PASS", 4) || !strncmp(s + i, "FAIL", 4)) &&
+            (i == 0 || !isalnum((unsigned char)s[i - 1])) && !isalnum((unsigned char)s[i + 4])) {
+            if (i >= t->body_end)
+                tex_fail(t, i, "paper verdicts",
+                         "'%.4s' typed in the text: a verdict comes from a generated gate macro only%s", s + i, "");
             i += 4;
             continue;
         }
@@ -418,8 +574,9 @@ static void tex_scan_text(tex_scan *t)
             while (isdigit((unsigned char)s[e])) e++;
             if (s[e] == '.' && isdigit((unsigned char)s[e + 1])) { e++; while (isdigit((unsigned char)s[e])) e++; }
             char p = i ? s[i - 1] : ' ';
-            int ident = isalnum((unsigned char)p) || p == '_' || p == '#' || p == '!' || p == '.' || s[e] == '!' || isalpha((unsigned char)s[e]) ||
-                        (p == '-' && i >= 2 && isalnum((unsigned char)s[i - 2])) || is_unit(s + e);
+            int ident = isalnum((unsigned char)p) || p == '_' || p == '#' || p == '!' || p == '.' || s[e] == '!' ||
+                        isalpha((unsigned char)s[e]) || (p == '-' && i >= 2 && isalnum((unsigned char)s[i - 2])) ||
+                        is_unit(s + e);
             if (!ident) tex_number(t, i, e);
             i = e;
             continue;
@@ -431,7 +588,13 @@ static void tex_scan_text(tex_scan *t)
 static size_t tex_scan_path(tex_scan *t, const char *path)
 {
     FILE *f = fopen(path, "rb");
-    if (!f) { if (!t->collect) { checklist_add(t->cl, VERDICT_FAIL, "paper text", "%s: cannot read", path); t->bad++; } return 1; }
+    if (!f) {
+        if (!t->collect) {
+            checklist_add(t->cl, VERDICT_FAIL, "paper text", "%s: cannot read", path);
+            t->bad++;
+        }
+        return 1;
+    }
     size_t cap = 1 << 16, n = 0;
     char *raw = malloc(cap);
     for (size_t k; raw && (k = fread(raw + n, 1, cap - n - 1, f)) > 0;) {
@@ -451,7 +614,8 @@ static size_t tex_scan_path(tex_scan *t, const char *path)
     return t->bad - before;
 }
 
-size_t paper_scan_file(const char *path, const claims *c, const double *vals, const char *const *who, size_t nv, checklist *cl, size_t *used)
+size_t paper_scan_file(const char *path, const claims *c, const double *vals, const char *const *who, size_t nv,
+                       checklist *cl, size_t *used)
 {
     static char verdicts[64][64];
     paths_list pulled = {0};
@@ -476,10 +640,15 @@ void audit_paper_text(const claims *c, const claim_result *res, checklist *cl)
     const char **who = calloc(2 * (c->n ? c->n : 1), sizeof *who);
     size_t nv = 0, before = cl->n;
     for (size_t r = 0; vals && who && r < c->n; r++) {
-        if (strcmp(c->rows[r].kind, "measured") && strcmp(c->rows[r].kind, "needs-data") && strcmp(c->rows[r].kind, "probe") && !claims_kind_beside(c->rows[r].kind)) continue;
+        if (strcmp(c->rows[r].kind, "measured") && strcmp(c->rows[r].kind, "needs-data") &&
+            strcmp(c->rows[r].kind, "probe") && !claims_kind_beside(c->rows[r].kind))
+            continue;
         char *end;
         double ref = strtod(c->rows[r].reference, &end);
-        if (res[r].status == VERDICT_PASS && isfinite(res[r].value)) { vals[nv] = res[r].value; who[nv++] = c->rows[r].macro; }
+        if (res[r].status == VERDICT_PASS && isfinite(res[r].value)) {
+            vals[nv] = res[r].value;
+            who[nv++] = c->rows[r].macro;
+        }
         if (end != c->rows[r].reference && !*end && isfinite(ref)) { vals[nv] = ref; who[nv++] = c->rows[r].macro; }
     }
     size_t nd = audit_design_consts(cl, &design);
@@ -503,7 +672,11 @@ void audit_paper_text(const claims *c, const claim_result *res, checklist *cl)
     int bad = 0;
     for (size_t i = before; i < cl->n; i++) bad |= cl->items[i].v == VERDICT_FAIL;
     if (!bad)
-        checklist_add(cl, VERDICT_PASS, "paper text", "%zu hand-written paper files read as TeX reads them (every file pulled in): %zu claim-macro uses, all registered; no command defined, no branch but the generated ones; %zu verdict commands, each with a generated gate macro; no number typed (each a macro of numbers.tex or one of %zu design constants of constants.tex); no exemption comment",
+        checklist_add(cl, VERDICT_PASS, "paper text",
+                      "%zu hand-written paper files read as TeX reads them (every file pulled in): %zu claim-macro "
+                      "uses, all registered; no command defined, no branch but the generated ones; %zu verdict "
+                      "commands, each with a generated gate macro; no number typed (each a macro of numbers.tex or one "
+                      "of %zu design constants of constants.tex); no exemption comment",
                       scanned, used, t.nverd, nd);
     paths_list_free(&files);
 }

@@ -14,8 +14,17 @@
 #include <unistd.h>
 
 /* The Debian packages whose versions decide a PNG's bytes beside the data. */
-static const char *const RENDER_DEBS[] = {"gnuplot-nox", "libcairo2", "libpango-1.0-0", "libpangocairo-1.0-0", "libfreetype6",
-                                          "libfontconfig1", "libpixman-1-0", "libpng16-16", "zlib1g", "fonts-dejavu-core", NULL};
+static const char *const RENDER_DEBS[] = {"gnuplot-nox",
+                                          "libcairo2",
+                                          "libpango-1.0-0",
+                                          "libpangocairo-1.0-0",
+                                          "libfreetype6",
+                                          "libfontconfig1",
+                                          "libpixman-1-0",
+                                          "libpng16-16",
+                                          "zlib1g",
+                                          "fonts-dejavu-core",
+                                          NULL};
 
 /* The SHA-256 of everything cmd prints. */
 static void output_sha(const char *cmd, char hex[65])
@@ -38,7 +47,12 @@ cs_status figcheck_renderer(char *buf, size_t n)
 {
     size_t o = 0;
     char line[512], cmd[256];
-#define ADD(...) do { int w_ = snprintf(buf + o, n - o, __VA_ARGS__); if (w_ < 0 || (size_t)w_ >= n - o) return cs_err(CS_EINPUT, "figcheck: renderer text too long"); o += (size_t)w_; } while (0)
+#define ADD(...)                                                                                                       \
+    do {                                                                                                               \
+        int w_ = snprintf(buf + o, n - o, __VA_ARGS__);                                                                \
+        if (w_ < 0 || (size_t)w_ >= n - o) return cs_err(CS_EINPUT, "figcheck: renderer text too long");               \
+        o += (size_t)w_;                                                                                               \
+    } while (0)
     audit_run_line("gnuplot --version 2>/dev/null", line, sizeof line);
     ADD("gnuplot\t%s\n", line[0] ? line : "absent");
     for (size_t i = 0; RENDER_DEBS[i]; i++) {
@@ -90,7 +104,8 @@ cs_status figcheck_renderer_compare(const char *pinned_path, const char *now, in
             if (!value_of(pinned, key, was, sizeof was)) snprintf(was, sizeof was, "(not pinned)");
             if (strcmp(was, here)) {
                 differ = 1;
-                if (o < n) o += (size_t)snprintf(diff + o, n - o, "%s%s: pinned %s, here %s", o ? "; " : "", key, was, here);
+                if (o < n)
+                    o += (size_t)snprintf(diff + o, n - o, "%s%s: pinned %s, here %s", o ? "; " : "", key, was, here);
             }
         }
         l += ll + (e != NULL);
@@ -140,7 +155,8 @@ cs_status figcheck_pinned_sha(const char *list, const char *stem, char hex[65], 
     return CS_OK;
 }
 
-void figcheck_table_cmd(const char *script, const char *scratch, const char *tabfile, const char *log, char *cmd, size_t n)
+void figcheck_table_cmd(const char *script, const char *scratch, const char *tabfile, const char *log, char *cmd,
+                        size_t n)
 {
     snprintf(cmd, n, "gnuplot -e \"outdir='%s'; set table '%s'\" '%s' > '%s' 2>&1", scratch, tabfile, script, log);
 }
@@ -151,12 +167,18 @@ cs_status figcheck_write(const char *renderer_path, const char *renderer, const 
     afile a;
     cs_status st = afile_open(&a, renderer_path);
     if (st) return st;
-    if (fprintf(a.f, "# what: the renderer the committed PNGs were drawn with (src/audit/figcheck.h); verify compares the raster only where it is the same\n"
-                     "# written by: crownshy figures\n%s", renderer) < 0) a.err = 1;
+    if (fprintf(a.f,
+                "# what: the renderer the committed PNGs were drawn with (src/audit/figcheck.h); verify compares the "
+                "raster only where it is the same\n"
+                "# written by: crownshy figures\n%s",
+                renderer) < 0)
+        a.err = 1;
     if ((st = afile_commit(&a))) return st;
     if ((st = afile_open(&a, plotted_path))) return st;
-    if (fprintf(a.f, "# what: SHA-256 of each figure's plotted data (gnuplot `set table`, comment and blank lines left out; src/audit/figcheck.h)\n"
-                     "# written by: crownshy figures; verify compares it on any renderer\n") < 0) a.err = 1;
+    if (fprintf(a.f, "# what: SHA-256 of each figure's plotted data (gnuplot `set table`, comment and blank lines left "
+                     "out; src/audit/figcheck.h)\n"
+                     "# written by: crownshy figures; verify compares it on any renderer\n") < 0)
+        a.err = 1;
     for (size_t i = 0; i < nfig; i++) if (fprintf(a.f, "%s  %s\n", hexes[i], stems[i]) < 0) a.err = 1;
     return afile_commit(&a);
 }
@@ -234,7 +256,8 @@ void figcheck_launch(void)
     FILE *f = fopen(jobs, "w");
     for (size_t i = 0; f && i < gps.n; i++) {
         const char *base = gps.p[i] + strlen(PATHS_FIGURES_DIR) + 1;
-        fprintf(f, "gnuplot -e \"outdir='%s'\" '%s' > '%s/%s.log' 2>&1; echo $? > '%s/%s.rc'\n", outdir, gps.p[i], outdir, base, outdir, base);
+        fprintf(f, "gnuplot -e \"outdir='%s'\" '%s' > '%s/%s.log' 2>&1; echo $? > '%s/%s.rc'\n", outdir, gps.p[i],
+                outdir, base, outdir, base);
         char tcmd[1400];
         table_cmd(gps.p[i], outdir, tcmd, sizeof tcmd);
         fprintf(f, "%s; echo $? > '%s/%s.tab.rc'\n", tcmd, outdir, base);
@@ -273,7 +296,8 @@ void figcheck_wait(void)
 /* Read a figure script's "# data: path" lines (its registered inputs: a
  * missing one is a failure), the stem of the PNG it writes, and the claims
  * the inputs feed. */
-static void script_inputs(const char *script, const claims *c, char *stem, size_t sn, char *feeds, size_t fn, char *missing, size_t mn)
+static void script_inputs(const char *script, const claims *c, char *stem, size_t sn, char *feeds, size_t fn,
+                          char *missing, size_t mn)
 {
     FILE *f = fopen(script, "r");
     char line[1024];
@@ -319,7 +343,8 @@ static int plotted_sha(const char *script, const char *outdir, char hex[65])
 typedef struct { const char *outdir; int install, gp, rsame; const claims *c; } fig_run;
 
 /* Install the redraw of one figure (PNG, and its PDF when drawn). */
-static void figure_install(checklist *cl, const char *item, const char *script, const char *outdir, const char *stem, const char *png)
+static void figure_install(checklist *cl, const char *item, const char *script, const char *outdir, const char *stem,
+                           const char *png)
 {
     char drawn[300], pdf[300], pdfdst[300];
     snprintf(drawn, sizeof drawn, "%s/%s.png", outdir, stem);
@@ -334,19 +359,32 @@ static void figure_install(checklist *cl, const char *item, const char *script, 
 
 /* Compare the redraw of one figure with the committed PNG (only under the
  * pinned renderer). */
-static void figure_compare(checklist *cl, const char *item, const char *script, const fig_run *r, const char *stem, const char *png,
-                           const char *feeds)
+static void figure_compare(checklist *cl, const char *item, const char *script, const fig_run *r, const char *stem,
+                           const char *png, const char *feeds)
 {
     const char *base = script + strlen(PATHS_FIGURES_DIR) + 1;
     char drawn[300];
     snprintf(drawn, sizeof drawn, "%s/%s.png", r->outdir, stem);
     struct stat sb;
     int d = !r->rsame ? (stat(drawn, &sb) != 0 ? -1 : 2) : same_bytes(drawn, png);
-    if (d == 2) checklist_add(cl, VERDICT_PASS, item, "the data %s plots equal %s; %s not compared (renderer differs)", script, PATHS_FIG_PLOTTED, png);
-    else if (d == 0) checklist_add(cl, VERDICT_PASS, item, "%s redrawn by %s into %s: byte-identical, and the data it plots equal %s", png, script, r->outdir, PATHS_FIG_PLOTTED);
-    else if (d == -1) checklist_add(cl, VERDICT_FAIL, item, "%s drew no %s (see %s/%s.log); claims: %s", script, drawn, r->outdir, base, feeds);
-    else if (d == -2) checklist_add(cl, VERDICT_FAIL, item, "%s is missing (the committed figure; make figures draws it); claims: %s", png, feeds);
-    else checklist_add(cl, VERDICT_FAIL, item, "%s differs from its redraw by %s from frozen/ (%s): the figure or its script was changed; claims: %s", png, script, drawn, feeds);
+    if (d == 2)
+        checklist_add(cl, VERDICT_PASS, item, "the data %s plots equal %s; %s not compared (renderer differs)", script,
+                      PATHS_FIG_PLOTTED, png);
+    else if (d == 0)
+        checklist_add(cl, VERDICT_PASS, item,
+                      "%s redrawn by %s into %s: byte-identical, and the data it plots equal %s", png, script,
+                      r->outdir, PATHS_FIG_PLOTTED);
+    else if (d == -1)
+        checklist_add(cl, VERDICT_FAIL, item, "%s drew no %s (see %s/%s.log); claims: %s", script, drawn, r->outdir,
+                      base, feeds);
+    else if (d == -2)
+        checklist_add(cl, VERDICT_FAIL, item, "%s is missing (the committed figure; make figures draws it); claims: %s",
+                      png, feeds);
+    else
+        checklist_add(
+            cl, VERDICT_FAIL, item,
+            "%s differs from its redraw by %s from frozen/ (%s): the figure or its script was changed; claims: %s", png,
+            script, drawn, feeds);
 }
 
 /* One figure: its inputs, its redraw, the data it plots (into hex: 0), then
@@ -360,25 +398,39 @@ static int figure_one(checklist *cl, const char *script, const fig_run *r, char 
     snprintf(item, sizeof item, "figure %.90s", stem);
     script_inputs(script, r->c, stem, sizeof stem, feeds, sizeof feeds, missing, sizeof missing);
     snprintf(png, sizeof png, "%s/%s.png", PATHS_FIGURES_DIR, stem);
-    if (missing[0]) { checklist_add(cl, VERDICT_FAIL, item, "%s needs %s, which is missing (a registered input); claims: %s", script, missing, feeds); return -1; }
+    if (missing[0]) {
+        checklist_add(cl, VERDICT_FAIL, item, "%s needs %s, which is missing (a registered input); claims: %s", script,
+                      missing, feeds);
+        return -1;
+    }
     if (!r->gp) { checklist_add(cl, VERDICT_FAIL, item, "gnuplot not installed (make deps)"); return -1; }
     char cmd[1400];
     snprintf(cmd, sizeof cmd, "gnuplot -e \"outdir='%s'\" '%s' > %s/%s.log 2>&1", r->outdir, script, r->outdir, base);
     int rc = launched_status(r->outdir, base);
     if (rc < 0) rc = system(cmd);
-    if (rc != 0) { checklist_add(cl, VERDICT_FAIL, item, "gnuplot %s failed (see %s/%s.log); claims: %s", script, r->outdir, base, feeds); return -1; }
+    if (rc != 0) {
+        checklist_add(cl, VERDICT_FAIL, item, "gnuplot %s failed (see %s/%s.log); claims: %s", script, r->outdir, base,
+                      feeds);
+        return -1;
+    }
     /* what the figure plots, apart from how it is drawn */
     if (plotted_sha(script, r->outdir, hex)) {
-        checklist_add(cl, VERDICT_FAIL, item, "gnuplot could not write the data %s plots (see %s/%s.tab.log); claims: %s", script, r->outdir, base, feeds);
+        checklist_add(cl, VERDICT_FAIL, item,
+                      "gnuplot could not write the data %s plots (see %s/%s.tab.log); claims: %s", script, r->outdir,
+                      base, feeds);
         return -1;
     }
     if (r->install) { figure_install(cl, item, script, r->outdir, stem, png); return 0; }
     char want[65];
     int found = 0;
     figcheck_pinned_sha(PATHS_FIG_PLOTTED, fig, want, &found);
-    if (!found) checklist_add(cl, VERDICT_FAIL, item, "%s has no line for %s (make figures writes it); claims: %s", PATHS_FIG_PLOTTED, fig, feeds);
+    if (!found)
+        checklist_add(cl, VERDICT_FAIL, item, "%s has no line for %s (make figures writes it); claims: %s",
+                      PATHS_FIG_PLOTTED, fig, feeds);
     else if (strcmp(want, hex))
-        checklist_add(cl, VERDICT_FAIL, item, "the data %s plots (sha256 %.16s) differ from %s (%.16s): the script or an input it reads was changed; claims: %s",
+        checklist_add(cl, VERDICT_FAIL, item,
+                      "the data %s plots (sha256 %.16s) differ from %s (%.16s): the script or an input it reads was "
+                      "changed; claims: %s",
                       script, hex, PATHS_FIG_PLOTTED, want, feeds);
     else figure_compare(cl, item, script, r, stem, png, feeds);
     return 0;
@@ -393,8 +445,14 @@ static int renderer_check(checklist *cl, int install, char *buf, size_t n, int *
         return -1;
     }
     if (install) return 0;
-    if (*same) checklist_add(cl, VERDICT_PASS, "figures renderer", "the renderer of %s: rasters compared byte for byte", PATHS_FIG_RENDERER);
-    else checklist_add(cl, VERDICT_PASS, "figures renderer", "renderer differs: %s; rasters not compared, each figure's plotted data compared with %s (not an inconsistency of the results)", rdiff, PATHS_FIG_PLOTTED);
+    if (*same)
+        checklist_add(cl, VERDICT_PASS, "figures renderer", "the renderer of %s: rasters compared byte for byte",
+                      PATHS_FIG_RENDERER);
+    else
+        checklist_add(cl, VERDICT_PASS, "figures renderer",
+                      "renderer differs: %s; rasters not compared, each figure's plotted data compared with %s (not an "
+                      "inconsistency of the results)",
+                      rdiff, PATHS_FIG_PLOTTED);
     return 0;
 }
 
@@ -402,7 +460,10 @@ void figcheck_verify(checklist *cl, int install, const claims *c)
 {
     figcheck_wait();
     paths_list gps;
-    if (paths_list_files(PATHS_FIGURES_DIR, ".gp", 0, &gps)) { checklist_add(cl, VERDICT_FAIL, "figures", "%s", cs_errmsg()); return; }
+    if (paths_list_files(PATHS_FIGURES_DIR, ".gp", 0, &gps)) {
+        checklist_add(cl, VERDICT_FAIL, "figures", "%s", cs_errmsg());
+        return;
+    }
     /* every figure is drawn into build/ first: verify compares the redraw
      * with the committed PNG and never writes into figures/; `crownshy
      * figures` installs a redraw only when its script succeeded */
@@ -427,9 +488,12 @@ void figcheck_verify(checklist *cl, int install, const claims *c)
         if (install && !tabfail) {
             if (figcheck_write(PATHS_FIG_RENDERER, renderer, PATHS_FIG_PLOTTED, figp, (const char (*)[65])hexes, ntab))
                 checklist_add(cl, VERDICT_FAIL, "figures", "%s", cs_errmsg());
-            else checklist_add(cl, VERDICT_PASS, "figures", "wrote %s (%zu figures) and %s", PATHS_FIG_PLOTTED, ntab, PATHS_FIG_RENDERER);
+            else
+                checklist_add(cl, VERDICT_PASS, "figures", "wrote %s (%zu figures) and %s", PATHS_FIG_PLOTTED, ntab,
+                              PATHS_FIG_RENDERER);
         } else if (install)
-            checklist_add(cl, VERDICT_FAIL, "figures", "%s and %s left as they were: %zu script(s) failed", PATHS_FIG_PLOTTED, PATHS_FIG_RENDERER, tabfail);
+            checklist_add(cl, VERDICT_FAIL, "figures", "%s and %s left as they were: %zu script(s) failed",
+                          PATHS_FIG_PLOTTED, PATHS_FIG_RENDERER, tabfail);
     }
     free(hexes); free(figs); free(figp);
     paths_list_free(&gps);

@@ -34,7 +34,8 @@ cs_status figcheck_table_sha(const char *tabfile, char hex[65]);
 cs_status figcheck_pinned_sha(const char *list, const char *stem, char hex[65], int *found);
 /* The shell command that writes script's plotted data into tabfile (drawing
  * nothing wanted: the terminal output goes into scratch). */
-void figcheck_table_cmd(const char *script, const char *scratch, const char *tabfile, const char *log, char *cmd, size_t n);
+void figcheck_table_cmd(const char *script, const char *scratch, const char *tabfile, const char *log, char *cmd,
+                        size_t n);
 /* Write the pinned files atomically: the renderer text, and one line per
  * figure from stems[i], hexes[i] (nfig entries). */
 cs_status figcheck_write(const char *renderer_path, const char *renderer, const char *plotted_path,

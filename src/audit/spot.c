@@ -91,7 +91,11 @@ void spot_launch(unsigned long seed)
     char dir[300], arm[8];
     unsigned s;
     for (size_t i = 0; i < l.n; i++) g.units += (size_t)unit_of(l.p[i], dir, sizeof dir, &s, arm);
-    if (!g.units) { paths_list_free(&l); snprintf(g.why, sizeof g.why, "no frozen generator unit (weights with samples and run table)"); return; }
+    if (!g.units) {
+        paths_list_free(&l);
+        snprintf(g.why, sizeof g.why, "no frozen generator unit (weights with samples and run table)");
+        return;
+    }
     gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
     if (!r) { paths_list_free(&l); snprintf(g.why, sizeof g.why, "out of memory"); return; }
     gsl_rng_set(r, g.pick);
@@ -108,7 +112,10 @@ void spot_launch(unsigned long seed)
     if (!ok) return;
     snprintf(g.outdir, sizeof g.outdir, "build/spot.%ld", (long)getpid());
     snprintf(g.out, sizeof g.out, "%s/slice.tsv", g.outdir);
-    if (mkdir(g.outdir, 0777) && errno != EEXIST) { snprintf(g.why, sizeof g.why, "%s: cannot create: %s", g.outdir, strerror(errno)); return; }
+    if (mkdir(g.outdir, 0777) && errno != EEXIST) {
+        snprintf(g.why, sizeof g.why, "%s: cannot create: %s", g.outdir, strerror(errno));
+        return;
+    }
     char w[400], sd[32], sseed[16], log[160], sp[16];
     snprintf(sp, sizeof sp, "%d", SPOT_PATCHES);
     snprintf(w, sizeof w, "%s/weights_s%02u_%s.ckpt", g.dir, g.seed, g.arm);
@@ -121,8 +128,8 @@ void spot_launch(unsigned long seed)
         FILE *lf = freopen(log, "w", stderr);
         if (lf && !freopen("/dev/null", "w", stdout)) _exit(126);
         setenv("OPENBLAS_NUM_THREADS", "1", 1);
-        execl("/proc/self/exe", "crownshy", "main-redraw", "--weights", w, "--seed", sseed, "--arm", g.arm, "--volume", g.volume,
-              "--spacing", sd, "--probe", g.probe, "--patches", sp, "--out", g.out, (char *)NULL);
+        execl("/proc/self/exe", "crownshy", "main-redraw", "--weights", w, "--seed", sseed, "--arm", g.arm, "--volume",
+              g.volume, "--spacing", sd, "--probe", g.probe, "--patches", sp, "--out", g.out, (char *)NULL);
         _exit(127);
     }
     if (pid < 0) snprintf(g.why, sizeof g.why, "fork: %s", strerror(errno));
@@ -174,7 +181,8 @@ void spot_check(checklist *cl, const claims *c)
         int ws;
         while (waitpid(g_pid, &ws, 0) < 0 && errno == EINTR) {}
         g_pid = -1;
-        if (!WIFEXITED(ws) || WEXITSTATUS(ws) != 0) snprintf(g.why, sizeof g.why, "crownshy main-redraw failed (see %s/slice.log)", g.outdir);
+        if (!WIFEXITED(ws) || WEXITSTATUS(ws) != 0)
+            snprintf(g.why, sizeof g.why, "crownshy main-redraw failed (see %s/slice.log)", g.outdir);
     }
     char item[64];
     snprintf(item, sizeof item, "spot check SEED=%lu", g.pick);
@@ -185,12 +193,15 @@ void spot_check(checklist *cl, const claims *c)
     size_t n, at;
     const double p1 = 1.0 / (double)g.units;
     if (compare(fz, g.out, &n, &at))
-        checklist_add(cl, VERDICT_FAIL, item, "%s, spacing %g, probe %s: the redraw from its weights differs at slice row %zu (%s); claims: %s",
+        checklist_add(cl, VERDICT_FAIL, item,
+                      "%s, spacing %g, probe %s: the redraw from its weights differs at slice row %zu (%s); claims: %s",
                       fz, g.d, g.probe, at, g.out, feeds);
     else {
-        checklist_add(cl, VERDICT_PASS, item, "%s, spacing %g, probe %s (volume %s): %zu rows redrawn from its weights, bit-identical; "
-                      "a unit fabricated whole is caught by one verify with probability 1/%zu = %.3f, by 100 verifies %.2f",
-                      fz, g.d, g.probe, g.volume, n, g.units, p1, 1.0 - pow(1.0 - p1, 100));
+        checklist_add(
+            cl, VERDICT_PASS, item,
+            "%s, spacing %g, probe %s (volume %s): %zu rows redrawn from its weights, bit-identical; "
+            "a unit fabricated whole is caught by one verify with probability 1/%zu = %.3f, by 100 verifies %.2f",
+            fz, g.d, g.probe, g.volume, n, g.units, p1, 1.0 - pow(1.0 - p1, 100));
         char cmd[96];
         snprintf(cmd, sizeof cmd, "rm -rf '%s'", g.outdir);
         if (system(cmd) != 0) { /* a leftover folder under build/ is harmless */ }

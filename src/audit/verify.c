@@ -42,7 +42,8 @@ verdict verify_consistent(const claim_row *row, const claim_result *res, const n
         return VERDICT_FAIL;
     }
     if (strcmp(have, want)) {
-        snprintf(msg, n, "%s: paper/numbers.tex:%d says '%s' but %s gives '%s'", row->macro, line, have, res->where, want);
+        snprintf(msg, n, "%s: paper/numbers.tex:%d says '%s' but %s gives '%s'", row->macro, line, have, res->where,
+                 want);
         return VERDICT_FAIL;
     }
     if (strcmp(row->gate, "-")) {
@@ -50,8 +51,8 @@ verdict verify_consistent(const claim_row *row, const claim_result *res, const n
         snprintf(gname, sizeof gname, "%sGate", row->macro);
         const char *gv = numbers_get(nt, gname, &line);
         if (!gv || strcmp(gv, verdict_name(res->gate))) {
-            snprintf(msg, n, "%s: paper/numbers.tex:%d states gate %s as '%s' but %s judges it %s (%s)", row->macro, line,
-                     row->gate, gv ? gv : "(missing)", row->source, verdict_name(res->gate), res->gate_detail);
+            snprintf(msg, n, "%s: paper/numbers.tex:%d states gate %s as '%s' but %s judges it %s (%s)", row->macro,
+                     line, row->gate, gv ? gv : "(missing)", row->source, verdict_name(res->gate), res->gate_detail);
             return VERDICT_FAIL;
         }
     }
@@ -67,7 +68,8 @@ verdict verify_claim(const claim_row *row, const claim_result *res, const number
 {
     verdict v = verify_consistent(row, res, nt, msg, n);
     if (v != VERDICT_FAIL && strcmp(row->gate, "-") && res->gate == VERDICT_FAIL) {
-        snprintf(msg, n, "%s = %s fails its preregistered gate %s: %s (%s)", row->macro, res->text, row->gate, res->gate_detail, row->source);
+        snprintf(msg, n, "%s = %s fails its preregistered gate %s: %s (%s)", row->macro, res->text, row->gate,
+                 res->gate_detail, row->source);
         return VERDICT_FAIL;
     }
     return v;
@@ -90,7 +92,10 @@ cs_status verify_preflight(void)
     char d[64];
     snprintf(d, sizeof d, "build/preflight.%ld", (long)getpid());
     if ((mkdir("build", 0777) && errno != EEXIST) || mkdir(d, 0777))
-        return cs_err(CS_EIO, "build/: cannot create %s (%s): the fresh generation and the figure redraws need a writable build/ (an environment error)", d, strerror(errno));
+        return cs_err(CS_EIO,
+                      "build/: cannot create %s (%s): the fresh generation and the figure redraws need a writable "
+                      "build/ (an environment error)",
+                      d, strerror(errno));
     /* a file written and synced: a file-size limit or a full disk shows here,
      * not later as a generated file that "differs" */
     char f[96], block[65536];
@@ -99,11 +104,19 @@ cs_status verify_preflight(void)
     FILE *fp = fopen(f, "wb");
     int ok = fp && fwrite(block, 1, sizeof block, fp) == sizeof block;
     int err = errno;
-    if (fp) { ok = fflush(fp) == 0 && ok; err = ok ? 0 : errno; ok = fsync(fileno(fp)) == 0 && ok; if (fclose(fp)) ok = 0; }
+    if (fp) {
+        ok = fflush(fp) == 0 && ok;
+        err = ok ? 0 : errno;
+        ok = fsync(fileno(fp)) == 0 && ok;
+        if (fclose(fp)) ok = 0;
+    }
     unlink(f);
     rmdir(d);
-    if (!ok) return cs_err(CS_EIO, "build/: cannot write a file of %zu bytes into %s (%s): the fresh generation and the redraws need a writable build/ (an environment error)",
-                           sizeof block, d, strerror(err ? err : EIO));
+    if (!ok)
+        return cs_err(CS_EIO,
+                      "build/: cannot write a file of %zu bytes into %s (%s): the fresh generation and the redraws "
+                      "need a writable build/ (an environment error)",
+                      sizeof block, d, strerror(err ? err : EIO));
     return CS_OK;
 }
 
@@ -124,13 +137,25 @@ cs_status verify_external_inputs(const claims *c, const claim_result *res, const
 {
     size_t bad = 0;
     for (size_t i = 0; i < c->n; i++)
-        if (external_input_failed(&c->rows[i], &res[i])) { fprintf(stderr, "crownshy %s: %s: %s\n", who, c->rows[i].macro, res[i].why); bad++; }
-    return bad ? cs_err(CS_EINPUT, "%zu claim(s) cannot be computed from the input given (FIELD_TABLE, CHM): a bad input, not an inconsistency of the package", bad) : CS_OK;
+        if (external_input_failed(&c->rows[i], &res[i])) {
+            fprintf(stderr, "crownshy %s: %s: %s\n", who, c->rows[i].macro, res[i].why);
+            bad++;
+        }
+    return bad ? cs_err(CS_EINPUT,
+                        "%zu claim(s) cannot be computed from the input given (FIELD_TABLE, CHM): a bad input, not an "
+                        "inconsistency of the package",
+                        bad)
+               : CS_OK;
 }
 
 /* What the gated claims say about the reference paper, tallied by print_claims. */
 /* ext*: [0] the extension's claims, [1] the variants' (claims_kind_beside) */
-typedef struct { size_t rep, notrep, gpend; char notrep_list[1024]; size_t ext[2][3]; char ext_fail[2][512], ext_src[2][512]; } gate_tally;
+typedef struct {
+    size_t rep, notrep, gpend;
+    char notrep_list[1024];
+    size_t ext[2][3];
+    char ext_fail[2][512], ext_src[2][512];
+} gate_tally;
 
 /* An extension claim's gate (design.md §8): tallied apart from the reference
  * paper's, with the frozen tables it rests on. */
@@ -176,10 +201,12 @@ static void print_claims(const claims *c, const claim_result *res, const numbers
         const int ext = gated && claims_is_beside(&c->rows[i]);
         /* a table made by a superseded reading: its numbers are that reading's
          * until re-run; never counted as reproduced (nor as not reproduced) */
-        if (v != VERDICT_FAIL && !strncmp(c->rows[i].source, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1) && audit_table_superseded(c->rows[i].source)) {
+        if (v != VERDICT_FAIL && !strncmp(c->rows[i].source, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1) &&
+            audit_table_superseded(c->rows[i].source)) {
             v = VERDICT_PENDING;
             label = "PENDING";
-            snprintf(msg, sizeof msg, "%s was made by a superseded reading (%s): pending until its unit is re-run", c->rows[i].source, PATHS_PINS_SUPERSEDED);
+            snprintf(msg, sizeof msg, "%s was made by a superseded reading (%s): pending until its unit is re-run",
+                     c->rows[i].source, PATHS_PINS_SUPERSEDED);
             if (gated) t->gpend++;
             gated = 0;
         }
@@ -187,7 +214,9 @@ static void print_claims(const claims *c, const claim_result *res, const numbers
             tally_extension(&c->rows[i], &res[i], v, t);
             if (v != VERDICT_FAIL && res[i].gate == VERDICT_FAIL) {
                 label = "NOTMET";
-                snprintf(msg, sizeof msg, "%s = %s: this reading beside the verdict does not meet the threshold of %s: %s (%s); numbers.tex states FAIL",
+                snprintf(msg, sizeof msg,
+                         "%s = %s: this reading beside the verdict does not meet the threshold of %s: %s (%s); "
+                         "numbers.tex states FAIL",
                          c->rows[i].macro, res[i].text, c->rows[i].gate, res[i].gate_detail, c->rows[i].source);
             }
         } else if (gated && v != VERDICT_FAIL) {
@@ -198,8 +227,10 @@ static void print_claims(const claims *c, const claim_result *res, const numbers
                 snprintf(t->notrep_list + l, sizeof t->notrep_list - l, "%s%s", l ? ", " : "", c->rows[i].macro);
                 /* consistent: the write-up states this very verdict */
                 label = "NOTREP";
-                snprintf(msg, sizeof msg, "%s = %s does not reproduce: fails its preregistered gate %s: %s (%s); numbers.tex states FAIL",
-                         c->rows[i].macro, res[i].text, c->rows[i].gate, res[i].gate_detail, c->rows[i].source);
+                snprintf(
+                    msg, sizeof msg,
+                    "%s = %s does not reproduce: fails its preregistered gate %s: %s (%s); numbers.tex states FAIL",
+                    c->rows[i].macro, res[i].text, c->rows[i].gate, res[i].gate_detail, c->rows[i].source);
             } else t->gpend++;
         }
         const char *val = res[i].status == VERDICT_PASS ? res[i].text : "-";
@@ -213,18 +244,24 @@ static void print_claims(const claims *c, const claim_result *res, const numbers
             agree_result ag;
             agree_judge(at, &c->rows[i], &res[i], &ci[i], &ag);
             snprintf(dist, sizeof dist, " [paper %s: %+.1f %%%s%.160s; %s%s%.120s]", c->rows[i].reference, 100.0 * rel,
-                     ar.kind == ATTRIB_EXPLAINED ? "; reached by " : ar.kind == ATTRIB_UNEXPLAINED ? "; unexplained"
-                     : ar.kind == ATTRIB_UNTESTED ? "; unexplained, not varied" : "", ar.kind == ATTRIB_EXPLAINED ? ar.by : "",
-                     agree_name(ag.kind), ag.by[0] ? ": " : "", ag.by);
+                     ar.kind == ATTRIB_EXPLAINED     ? "; reached by "
+                     : ar.kind == ATTRIB_UNEXPLAINED ? "; unexplained"
+                     : ar.kind == ATTRIB_UNTESTED    ? "; unexplained, not varied"
+                                                     : "",
+                     ar.kind == ATTRIB_EXPLAINED ? ar.by : "", agree_name(ag.kind), ag.by[0] ? ": " : "", ag.by);
         }
-        const char *iv = !strcmp(c->rows[i].kind, "measured") || claims_kind_beside(c->rows[i].kind) ? (ci[i].has ? ci[i].text : "none") : "-";
-        printf("  %-7s %-19s %-12s %-22s %-10s %-8s %s%s\n", label, c->rows[i].macro, val, iv, c->rows[i].kind, g, msg, dist);
+        const char *iv = !strcmp(c->rows[i].kind, "measured") || claims_kind_beside(c->rows[i].kind)
+                             ? (ci[i].has ? ci[i].text : "none")
+                             : "-";
+        printf("  %-7s %-19s %-12s %-22s %-10s %-8s %s%s\n", label, c->rows[i].macro, val, iv, c->rows[i].kind, g, msg,
+               dist);
         count[v]++;
     }
 }
 
 /* The summary's pending count, distance to the paper and agreement lines. */
-static void print_distance(const attrib_data *at, const claims *c, const claim_result *res, const claim_interval *ci, size_t pending)
+static void print_distance(const attrib_data *at, const claims *c, const claim_result *res, const claim_interval *ci,
+                           size_t pending)
 {
     attrib_counts ak;
     attrib_count(at, c, res, &ak);
@@ -233,7 +270,9 @@ static void print_distance(const attrib_data *at, const claims *c, const claim_r
     char aline[600], gline[800];
     attrib_line(&ak, 0, aline, sizeof aline);
     agree_line(&gk, 0, gline, sizeof gline);
-    printf("\n%zu pending (input data missing on this machine, or a reading's units not yet frozen: reason above; never counted as passed)\n", pending);
+    printf("\n%zu pending (input data missing on this machine, or a reading's units not yet frozen: reason above; "
+           "never counted as passed)\n",
+           pending);
     printf("%s (distance, not a verdict)\n", aline);
     printf("%s\n", gline);
 }
@@ -244,13 +283,19 @@ static void print_distance(const attrib_data *at, const claims *c, const claim_r
 static cs_status print_verdict(const size_t count[3], size_t strict_notrep)
 {
     if (cs_nomem_count()) {
-        printf("environment: out of memory %zu time(s) during the checks: the package was not checked (an environment error, not an inconsistency)\n", cs_nomem_count());
-        return cs_err(CS_ENOMEM, "out of memory during the checks (%zu time(s)): an environment error", cs_nomem_count());
+        printf("environment: out of memory %zu time(s) during the checks: the package was not checked (an environment "
+               "error, not an inconsistency)\n",
+               cs_nomem_count());
+        return cs_err(CS_ENOMEM, "out of memory during the checks (%zu time(s)): an environment error",
+                      cs_nomem_count());
     }
     if (count[VERDICT_FAIL])
-        printf("package: INCONSISTENT: %zu check(s) failed: a number, verdict, table, figure or sentence does not follow from frozen/ and the pinned code\n", count[VERDICT_FAIL]);
+        printf("package: INCONSISTENT: %zu check(s) failed: a number, verdict, table, figure or sentence does not "
+               "follow from frozen/ and the pinned code\n",
+               count[VERDICT_FAIL]);
     else
-        printf("package: consistent: every number, verdict, table, figure and sentence follows from frozen/ and the pinned code\n");
+        printf("package: consistent: every number, verdict, table, figure and sentence follows from frozen/ and the "
+               "pinned code\n");
     if (strict_notrep) printf("--strict: %zu preregistered gate(s) not reproduced\n", strict_notrep);
     printf("%zu passed, %zu failed\n", count[VERDICT_PASS], count[VERDICT_FAIL] + strict_notrep);
     return count[VERDICT_FAIL] || strict_notrep ? CS_EFAIL : CS_OK;
@@ -272,7 +317,8 @@ cs_status verify_run(const verify_opts *o)
      * is no inconsistency of the results: the run stops as an environment error */
     for (size_t i = 0; i < c.n && !st; i++)
         if (res[i].status == VERDICT_FAIL && (res[i].err == CS_ENOMEM || res[i].err == CS_EIO))
-            st = cs_err(res[i].err, "%s could not be computed (%s): an environment error, not an inconsistency", c.rows[i].macro, res[i].why);
+            st = cs_err(res[i].err, "%s could not be computed (%s): an environment error, not an inconsistency",
+                        c.rows[i].macro, res[i].why);
     if (st) { figcheck_wait(); free(res); claims_free(&c); return st; }
     numbers_tex nt;
     int have_nt = numbers_read(PATHS_NUMBERS, &nt) == CS_OK;
@@ -285,12 +331,15 @@ cs_status verify_run(const verify_opts *o)
     audit_run(&c, res, &cl);
     audit_docs(&c, res, &cl);
     audit_prereg_anchor(&cl, o->prereg, prereg_line, sizeof prereg_line);
-    printf("== audit (pins, frozen hashes and provenance, aggregates, registry and gate map, generated and written paper)\n");
+    printf("== audit (pins, frozen hashes and provenance, aggregates, registry and gate map, generated and written "
+           "paper)\n");
     checklist_print(&cl, count);
     checklist_free(&cl);
 
-    printf("\n== claims (recomputed from frozen/ and compared with paper/numbers.tex; a failing gate is a finding: NOTREP)\n");
-    printf("  %-7s %-19s %-12s %-22s %-10s %-8s %s\n", "status", "macro", "value", "95 % interval", "kind", "gate", "source / reason");
+    printf("\n== claims (recomputed from frozen/ and compared with paper/numbers.tex; a failing gate is a finding: "
+           "NOTREP)\n");
+    printf("  %-7s %-19s %-12s %-22s %-10s %-8s %s\n", "status", "macro", "value", "95 % interval", "kind", "gate",
+           "source / reason");
     if (!have_nt) { printf("  FAIL    paper/numbers.tex unreadable: %s\n", nterr); count[VERDICT_FAIL]++; }
     gate_tally gt = {0};
     /* the attribution of each difference (attrib.h), from the frozen summaries */
@@ -309,7 +358,8 @@ cs_status verify_run(const verify_opts *o)
         checklist fl = {0};
         figcheck_verify(&fl, 0, &c);
         spot_check(&fl, &c);
-        printf("\n== redraws (a random slice of one generator unit from its weights; every figure by gnuplot into build/)\n");
+        printf("\n== redraws (a random slice of one generator unit from its weights; every figure by gnuplot into "
+               "build/)\n");
         if (!fl.n) printf("  (no figure scripts yet)\n");
         checklist_print(&fl, count);
         checklist_free(&fl);
@@ -322,12 +372,14 @@ cs_status verify_run(const verify_opts *o)
     attrib_free(&at);
     printf("reference paper's gated claims: %zu reproduced, %zu not reproduced%s%s%s, %zu pending\n", rep, notrep,
            notrep ? " (" : "", notrep_list, notrep ? ")" : "", gpend);
-    static const char *const beside[2] = {"extension claims (a generator reading added after the first verdict, design.md §8",
-                                          "variant claims (the paper reading under one unstated training choice, at the gate's seeds, design.md §8"};
+    static const char *const beside[2] = {
+        "extension claims (a generator reading added after the first verdict, design.md §8",
+        "variant claims (the paper reading under one unstated training choice, at the gate's seeds, design.md §8"};
     for (int b = 0; b < 2; b++)
         if (gt.ext[b][0] + gt.ext[b][1] + gt.ext[b][2])
-            printf("%s; same thresholds, %s): %zu meet, %zu do not%s%s%s, %zu pending; tables: %s\n", beside[b], PATHS_GATE_MAP_EXT, gt.ext[b][0],
-                   gt.ext[b][1], gt.ext[b][1] ? " (" : "", gt.ext_fail[b], gt.ext[b][1] ? ")" : "", gt.ext[b][2], gt.ext_src[b]);
+            printf("%s; same thresholds, %s): %zu meet, %zu do not%s%s%s, %zu pending; tables: %s\n", beside[b],
+                   PATHS_GATE_MAP_EXT, gt.ext[b][0], gt.ext[b][1], gt.ext[b][1] ? " (" : "", gt.ext_fail[b],
+                   gt.ext[b][1] ? ")" : "", gt.ext[b][2], gt.ext_src[b]);
     printf("%s\n", prereg_line);
     st = print_verdict(count, o->strict ? notrep : 0);
     if (have_nt) numbers_free(&nt);
@@ -351,20 +403,22 @@ cs_status verify_trace(const char *macro)
     if (numbers_read(PATHS_NUMBERS, &nt) == CS_OK) have = numbers_get(&nt, row->macro, &line);
     printf("macro        \\%s\n", row->macro);
     printf("kind         %s\n", row->kind);
-    printf("value        %s%s%s\n", r.status == VERDICT_PASS ? r.text : verdict_name(r.status), r.status == VERDICT_PASS ? "" : ": ", r.status == VERDICT_PASS ? "" : r.why);
+    printf("value        %s%s%s\n", r.status == VERDICT_PASS ? r.text : verdict_name(r.status),
+           r.status == VERDICT_PASS ? "" : ": ", r.status == VERDICT_PASS ? "" : r.why);
     printf("numbers.tex  %s (paper/numbers.tex:%d)\n", have ? have : "(absent)", line);
     printf("source       %s\n", r.where);
     char fpath[512];
     int fline = 0;
-    if (claims_function_file(row->function, fpath, sizeof fpath, &fline)) printf("function     %s (%s)\n", row->function, cs_errmsg());
+    if (claims_function_file(row->function, fpath, sizeof fpath, &fline))
+        printf("function     %s (%s)\n", row->function, cs_errmsg());
     else printf("function     %s (%s:%d)\n", row->function, fpath, fline);
     char params[256];
     claim_params_format(&row->param, params, sizeof params);
     printf("params       %s\n", params);
     const study_experiment *ex = study_of_path(row->source);
     if (ex) printf("experiment   %s (%s): %s; run by %s\n", ex->name, ex->code, ex->what, ex->source);
-    printf("gate         %s%s%s%s\n", row->gate, strcmp(row->gate, "-") ? " -> " : "", strcmp(row->gate, "-") ? verdict_name(r.gate) : "",
-           r.gate_detail[0] ? "" : "");
+    printf("gate         %s%s%s%s\n", row->gate, strcmp(row->gate, "-") ? " -> " : "",
+           strcmp(row->gate, "-") ? verdict_name(r.gate) : "", r.gate_detail[0] ? "" : "");
     if (r.gate_detail[0]) printf("gate detail  %s\n", r.gate_detail);
     printf("test         %s (alone: make test-claim MACRO=%s)\n", row->test, row->macro);
     printf("section      %s of the reference paper (reference value %s)\n", row->section, row->reference);

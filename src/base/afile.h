@@ -1,10 +1,9 @@
 /* afile: atomic file writes (design.md §11), and the one whole-file reader. A file is written as
- * "<path>.tmp.<pid>.<n>" (unique, so concurrent writers never collide) and renamed over <path> only on commit, after flush and fsync, so a killed
- * run never leaves a half-written result that later counts as done; a run
- * terminated by a signal the CLI asked afile to watch removes its live temp
- * files too (a SIGKILL cannot be caught: its temp files stay, never counted
- * as done, named by their pid). Used by
- * the TSV writer, numbers.tex / comparison.tex and audit/frozen.sha256. */
+ * "<path>.tmp.<pid>.<n>" (unique, so concurrent writers never collide) and renamed over <path> only on commit, after
+ * flush and fsync, so a killed run never leaves a half-written result that later counts as done; a run terminated by a
+ * signal the CLI asked afile to watch removes its live temp files too (a SIGKILL cannot be caught: its temp files stay,
+ * never counted as done, named by their pid). Used by the TSV writer, numbers.tex / comparison.tex and
+ * audit/frozen.sha256. */
 #ifndef AFILE_H
 #define AFILE_H
 #include "cs.h"

@@ -15,7 +15,8 @@ static cs_status level_ok(double level)
 static cs_status quantile_pair(const double *v, size_t n, double level, double *lo, double *hi)
 {
     for (size_t i = 0; i < n; i++)
-        if (!isfinite(v[i])) return cs_err(CS_EINPUT, "interval: value %zu of %zu is not finite (%.17g)", i + 1, n, v[i]);
+        if (!isfinite(v[i]))
+            return cs_err(CS_EINPUT, "interval: value %zu of %zu is not finite (%.17g)", i + 1, n, v[i]);
     cs_status st = stats_quantile(v, n, (1.0 - level) / 2.0, lo);
     if (!st) st = stats_quantile(v, n, (1.0 + level) / 2.0, hi);
     return st;

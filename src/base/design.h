@@ -10,7 +10,8 @@
 #define DESIGN_PC_OTHER_B_SPACING_M 4.0
 /* E5/E6 field stands (design.md §7 E5, layout 4m-on-36m): lattice d = 4 m on the
  * figure footprint L = 36 m (9 x 9 stems, ~25 interior trees; the paper: 731
- * trees in 28 stands). Layout 5m-on-60m (a reading, design.md §7 E0): d = 5 m, L = 12 d = 60 m (64 interior trees per stand). */
+ * trees in 28 stands). Layout 5m-on-60m (a reading, design.md §7 E0): d = 5 m, L = 12 d = 60 m (64 interior trees per
+ * stand). */
 #define DESIGN_FIELD_SPACING_M 4.0
 #define DESIGN_FIELD_L_M 36.0
 #define DESIGN_FIELD_SPACING_WIDE_M 5.0

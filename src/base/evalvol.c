@@ -12,7 +12,9 @@ cs_status evalvol_of_eval(const char *eval, const char **name)
     const long n = b && b < t ? strtol(b, NULL, 10) : -1;
     if (n == EVALVOL_SMALL_EVAL_STANDS) *name = EVALVOL_SMALL;
     else if (n == EVALVOL_LARGE_EVAL_STANDS) *name = EVALVOL_LARGE;
-    else return cs_err(CS_EINPUT, "evaluation line '%.80s': states neither volume's teacher stands per spacing (%d or %d)",
-                       eval ? eval : "(none)", EVALVOL_SMALL_EVAL_STANDS, EVALVOL_LARGE_EVAL_STANDS);
+    else
+        return cs_err(CS_EINPUT,
+                      "evaluation line '%.80s': states neither volume's teacher stands per spacing (%d or %d)",
+                      eval ? eval : "(none)", EVALVOL_SMALL_EVAL_STANDS, EVALVOL_LARGE_EVAL_STANDS);
     return CS_OK;
 }

@@ -33,7 +33,11 @@ cs_status gate_load(const char *path, gate **out)
     FILE *f = fopen(path, "r");
     if (!f) return cs_err(CS_EINPUT, "%s: cannot open gate file: %s", path, strerror(errno));
     gate *g = calloc(1, sizeof *g);
-    if (!g || !(g->path = strdup(path))) { fclose(f); gate_free(g); return cs_err(CS_ENOMEM, "%s: out of memory", path); }
+    if (!g || !(g->path = strdup(path))) {
+        fclose(f);
+        gate_free(g);
+        return cs_err(CS_ENOMEM, "%s: out of memory", path);
+    }
     char line[4096];
     int lineno = 0;
     cs_status st = CS_OK;
@@ -41,7 +45,8 @@ cs_status gate_load(const char *path, gate **out)
         lineno++;
         size_t len = strlen(line);
         if (len == 0 || line[len - 1] != '\n') {
-            st = cs_err(CS_EINPUT, "%s:%d: truncated line (no newline or longer than %zu bytes)", path, lineno, sizeof line - 2);
+            st = cs_err(CS_EINPUT, "%s:%d: truncated line (no newline or longer than %zu bytes)", path, lineno,
+                        sizeof line - 2);
             break;
         }
         char *hash = strchr(line, '#');
@@ -61,7 +66,8 @@ cs_status gate_load(const char *path, gate **out)
             errno = 0;
             double v = strtod(tok, &end);
             if (end == tok || *end || errno == ERANGE || !isfinite(v) || e.n >= 64) {
-                st = cs_err(CS_EINPUT, "%s:%d: field '%s': value %zu not a number: '%s'", path, lineno, key, e.n + 1, tok);
+                st = cs_err(CS_EINPUT, "%s:%d: field '%s': value %zu not a number: '%s'", path, lineno, key, e.n + 1,
+                            tok);
                 break;
             }
             e.v[e.n++] = v;
@@ -97,7 +103,9 @@ cs_status gate_value(const gate *g, const char *key, size_t idx, double *out)
 {
     const gate_entry *e = find(g, key);
     if (!e) return cs_err(CS_EINPUT, "%s: field '%s': missing from gate file", g->path, key);
-    if (idx >= e->n) return cs_err(CS_EINPUT, "%s:%d: field '%s': value %zu missing (has %zu)", g->path, e->line, key, idx + 1, e->n);
+    if (idx >= e->n)
+        return cs_err(CS_EINPUT, "%s:%d: field '%s': value %zu missing (has %zu)", g->path, e->line, key, idx + 1,
+                      e->n);
     *out = e->v[idx];
     return CS_OK;
 }

@@ -37,7 +37,9 @@ static void choice_words(const opt_spec *o, char *words, size_t wn, char *aliase
     for (const char *const *c = o->choices; c && *c; c++) {
         const char *eq = strchr(*c, '=');
         if (!eq) w += (size_t)snprintf(words + w, w < wn ? wn - w : 0, "%s%s", w ? "|" : "", *c);
-        else a += (size_t)snprintf(aliases + a, a < an ? an - a : 0, "%s%.*s = %s", a ? ", " : "", (int)(eq - *c), *c, eq + 1);
+        else
+            a += (size_t)snprintf(aliases + a, a < an ? an - a : 0, "%s%.*s = %s", a ? ", " : "", (int)(eq - *c), *c,
+                                  eq + 1);
     }
 }
 
@@ -54,7 +56,8 @@ void opts_help(const opts_cmd *c)
         const opt_spec *o = &c->opts[i];
         char lhs[160], words[128], aliases[128];
         choice_words(o, words, sizeof words, aliases, sizeof aliases);
-        snprintf(lhs, sizeof lhs, "--%s%s%s", o->name, o->type == OPT_FLAG ? "" : " ", o->type == OPT_CHOICE ? words : metavar(o->type));
+        snprintf(lhs, sizeof lhs, "--%s%s%s", o->name, o->type == OPT_FLAG ? "" : " ",
+                 o->type == OPT_CHOICE ? words : metavar(o->type));
         printf("  %-24s %s", lhs, o->help ? o->help : "");
         if (o->type == OPT_LONG) printf(" [%.0f..%.0f]", o->min, o->max);
         else if (o->type == OPT_DOUBLE) printf(" [%g..%g]", o->min, o->max);
@@ -63,7 +66,8 @@ void opts_help(const opts_cmd *c)
         fputc('\n', stdout);
     }
     printf("  %-24s %s\n", "-h, --help", "print this help");
-    printf("\nexit codes: 0 ok, 1 a check failed, 2 usage error, 3 bad or missing input, 4 environment (I/O, memory)\n");
+    printf(
+        "\nexit codes: 0 ok, 1 a check failed, 2 usage error, 3 bad or missing input, 4 environment (I/O, memory)\n");
 }
 
 /* Strict number parsing: whole string, finite, in range. 0 or OPTS_USAGE. */
@@ -112,7 +116,8 @@ static int scan(const opts_cmd *c, int argc, char **argv, char **pos, int *npos_
     struct option lo[OPTS_MAX + 2];
     size_t n = c->nopts < OPTS_MAX ? c->nopts : OPTS_MAX;
     for (size_t i = 0; i < n; i++)
-        lo[i] = (struct option){c->opts[i].name, c->opts[i].type == OPT_FLAG ? no_argument : required_argument, NULL, (int)(256 + i)};
+        lo[i] = (struct option){c->opts[i].name, c->opts[i].type == OPT_FLAG ? no_argument : required_argument, NULL,
+                                (int)(256 + i)};
     lo[n] = (struct option){"help", no_argument, NULL, 'h'};
     lo[n + 1] = (struct option){NULL, 0, NULL, 0};
     /* the scan is global state in the C library: reset it (0 = full reinit in glibc) */

@@ -2,7 +2,8 @@
 #include "probekind.h"
 #include <string.h>
 
-static const char *const NAMES[PROBEKIND_N] = {"none", "self", "rot15", "rot45", "rot90", "nnswap", "dejitter", "sizes"};
+static const char *const NAMES[PROBEKIND_N] = {"none",  "self",   "rot15",    "rot45",
+                                               "rot90", "nnswap", "dejitter", "sizes"};
 
 const char *probekind_name(probekind k) { return k >= 0 && k < PROBEKIND_N ? NAMES[k] : "?"; }
 

@@ -35,7 +35,10 @@ void prov_begin(prov *p, const char *experiment, int argc, char **argv)
 
 static cs_status header_define(const char *name, char *out, size_t n);
 cs_status prov_teacher_version(char *out, size_t n) { return header_define("TEACHER_VERSION", out, n); }
-cs_status prov_teacher_version_one_sided(char *out, size_t n) { return header_define("TEACHER_VERSION_ONE_SIDED", out, n); }
+cs_status prov_teacher_version_one_sided(char *out, size_t n)
+{
+    return header_define("TEACHER_VERSION_ONE_SIDED", out, n);
+}
 
 static cs_status header_define(const char *name, char *out, size_t n)
 {
@@ -137,8 +140,14 @@ cs_status prov_write(tsv_writer *w, prov *p)
     char th[65] = "absent", eh[65] = "absent", gh[65];
     cs_status st;
     FILE *f;
-    if ((f = fopen(PATHS_TEACHER_SRC, "rb"))) { fclose(f); if ((st = prov_sha256_file(PATHS_TEACHER_SRC, th))) return st; }
-    if ((f = fopen(PATHS_ESTIMATOR_SRC, "rb"))) { fclose(f); if ((st = prov_sha256_file(PATHS_ESTIMATOR_SRC, eh))) return st; }
+    if ((f = fopen(PATHS_TEACHER_SRC, "rb"))) {
+        fclose(f);
+        if ((st = prov_sha256_file(PATHS_TEACHER_SRC, th))) return st;
+    }
+    if ((f = fopen(PATHS_ESTIMATOR_SRC, "rb"))) {
+        fclose(f);
+        if ((st = prov_sha256_file(PATHS_ESTIMATOR_SRC, eh))) return st;
+    }
     if ((st = prov_gates_sha256(PATHS_GATES_DIR, gh))) return st;
     char commit[160];
     git_commit(commit, sizeof commit);

@@ -32,7 +32,10 @@ cs_status stats_wilcoxon_exact(const double *x, const double *y, size_t n,
     }
     if (n_used) *n_used = m;
     if (m == 0) { free(d); *p = 1.0; if (tplus) *tplus = 0.0; return CS_OK; }
-    if (m > 60) { free(d); return cs_err(CS_EINPUT, "wilcoxon: %zu non-zero pairs, exact enumeration limited to 60", m); }
+    if (m > 60) {
+        free(d);
+        return cs_err(CS_EINPUT, "wilcoxon: %zu non-zero pairs, exact enumeration limited to 60", m);
+    }
     qsort(d, m, sizeof *d, cmp_absd);
     /* doubled average ranks: tie group occupying ranks i+1..j gets (i+1+j) */
     int *rank2 = malloc(m * sizeof *rank2);

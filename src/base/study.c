@@ -3,7 +3,8 @@
 #include <string.h>
 
 static const study_experiment STUDY[] = {
-#define EXPERIMENT(name, code, source, gate, claims, figure, deep, what) {#name, code, source, gate, claims, figure, deep, what},
+#define EXPERIMENT(name, code, source, gate, claims, figure, deep, what)                                               \
+    {#name, code, source, gate, claims, figure, deep, what},
 #include "manifest.h"
 };
 #define NSTUDY (sizeof STUDY / sizeof STUDY[0])

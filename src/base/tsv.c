@@ -88,14 +88,16 @@ static cs_status parse_line(tsv *t, char *line, int lineno, size_t nlines, size_
         if (!t->cols) return cs_err(CS_ENOMEM, "%s: out of memory", path);
         t->ncols = split_tabs(line, t->cols, nc);
         for (size_t c = 0; c < t->ncols; c++)
-            if (!t->cols[c][0]) return cs_err(CS_EINPUT, "%s:%d: header column %zu has an empty name", path, lineno, c + 1);
+            if (!t->cols[c][0])
+                return cs_err(CS_EINPUT, "%s:%d: header column %zu has an empty name", path, lineno, c + 1);
         t->cells = calloc(nlines * t->ncols + 1, sizeof *t->cells);
         if (!t->cells) return cs_err(CS_ENOMEM, "%s: out of memory", path);
         return CS_OK;
     }
     size_t n = split_tabs(line, t->cells + *row * t->ncols, t->ncols);
     if (n < t->ncols)
-        return cs_err(CS_EINPUT, "%s:%d: field '%s' missing (truncated line: %zu of %zu fields)", path, lineno, t->cols[n], n, t->ncols);
+        return cs_err(CS_EINPUT, "%s:%d: field '%s' missing (truncated line: %zu of %zu fields)", path, lineno,
+                      t->cols[n], n, t->ncols);
     if (n > t->ncols) return cs_err(CS_EINPUT, "%s:%d: %zu fields, header has %zu", path, lineno, n, t->ncols);
     t->lines[(*row)++] = lineno;
     return CS_OK;
@@ -171,7 +173,8 @@ const char *tsv_str(const tsv *t, size_t row, const char *col)
 static cs_status cell(const tsv *t, size_t row, const char *col, const char **s)
 {
     if (row >= t->nrows)
-        return cs_err(CS_EINPUT, "%s: field '%s': row %zu requested, file has %zu rows", t->path, col, row + 1, t->nrows);
+        return cs_err(CS_EINPUT, "%s: field '%s': row %zu requested, file has %zu rows", t->path, col, row + 1,
+                      t->nrows);
     *s = tsv_str(t, row, col);
     if (!*s) return cs_err(CS_EINPUT, "%s:%d: field '%s': no such column", t->path, t->lines[row], col);
     return CS_OK;
@@ -198,8 +201,14 @@ static cs_status parse_double(const tsv *t, size_t row, const char *col, double 
     return CS_OK;
 }
 
-cs_status tsv_double(const tsv *t, size_t row, const char *col, double *out) { return parse_double(t, row, col, out, 0); }
-cs_status tsv_double_nf(const tsv *t, size_t row, const char *col, double *out) { return parse_double(t, row, col, out, 1); }
+cs_status tsv_double(const tsv *t, size_t row, const char *col, double *out)
+{
+    return parse_double(t, row, col, out, 0);
+}
+cs_status tsv_double_nf(const tsv *t, size_t row, const char *col, double *out)
+{
+    return parse_double(t, row, col, out, 1);
+}
 
 cs_status tsv_long(const tsv *t, size_t row, const char *col, long *out)
 {

@@ -48,7 +48,8 @@ cs_status claim_aniso_lattice_counts(const claim_row *row, claim_result *res)
     cs_status st = claim_param_need(row, PARAM_COLUMN);
     if (st) return st;
     const char *col = row->param.column;
-    if (strcmp(col, "aniso_trees") && strcmp(col, "stands")) return claim_param_bad(row, "column", "aniso_trees or stands");
+    if (strcmp(col, "aniso_trees") && strcmp(col, "stands"))
+        return claim_param_bad(row, "column", "aniso_trees or stands");
     if ((st = coupled_row(row->source, &t, &r))) return st;
     long v;
     st = tsv_long(t, r, col, &v);
@@ -83,7 +84,8 @@ cs_status claim_jitter_heldout(const claim_row *row, claim_result *res)
     if (st) return st;
     const char *col = row->param.column;
     const int stands = !strcmp(col, "stands");
-    if (!stands && strcmp(col, "aniso_median") && strcmp(col, "elong_median")) return claim_param_bad(row, "column", "aniso_median, elong_median or stands");
+    if (!stands && strcmp(col, "aniso_median") && strcmp(col, "elong_median"))
+        return claim_param_bad(row, "column", "aniso_median, elong_median or stands");
     if ((st = coupled_row(row->source, &t, &r))) return st;
     int line = tsv_line(t, r);
     if (stands) {
@@ -109,7 +111,8 @@ cs_status claim_jitter_heldout(const claim_row *row, claim_result *res)
 }
 
 /* Buildable levels (trees > 0) and their median anisotropy, in file order. */
-static cs_status family_curve(const char *path, double *lv, double *an, size_t max, size_t *n, size_t *unbuildable, int *last_line)
+static cs_status family_curve(const char *path, double *lv, double *an, size_t max, size_t *n, size_t *unbuildable,
+                              int *last_line)
 {
     tsv *t;
     fs_trees tr;
@@ -144,7 +147,10 @@ cs_status claim_aniso_rho(const claim_row *row, claim_result *res)
     int last = 0;
     cs_status st = family_curve(row->source, lv, an, 32, &n, &unb, &last);
     if (st) return st;
-    if (n < 2) { claim_pending(res, "%s: only %zu buildable level(s), rho undefined (%zu unbuildable)", row->source, n, unb); return CS_OK; }
+    if (n < 2) {
+        claim_pending(res, "%s: only %zu buildable level(s), rho undefined (%zu unbuildable)", row->source, n, unb);
+        return CS_OK;
+    }
     if ((st = stats_spearman(lv, an, n, &rho))) return st;
     res->value = rho;
     fs_fraction_text(rho, res->text, sizeof res->text);
@@ -164,7 +170,8 @@ cs_status claim_aniso_hardcore_overshoot(const claim_row *row, claim_result *res
     if (n == 0) { claim_pending(res, "%s: no buildable hard-core level", row->source); return CS_OK; }
     size_t k = 0;
     for (size_t i = 1; i < n; i++) if (lv[i] > lv[k]) k = i;
-    snprintf(res->where, sizeof res->where, "%s (aniso_median at c = %.2f, the tightest buildable level)", row->source, lv[k]);
+    snprintf(res->where, sizeof res->where, "%s (aniso_median at c = %.2f, the tightest buildable level)", row->source,
+             lv[k]);
     claim_set_value(row, res, an[k]);
     return CS_OK;
 }

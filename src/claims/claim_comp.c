@@ -17,7 +17,8 @@
  * table's source), column <stat>_q50 as the value (stat=median); stat=range
  * gives its 5-95 % range "<q05> to <q95>" (text, in fmt) instead. `arms`
  * lists the arms the function computes. */
-static cs_status dist_value(const claim_row *row, claim_result *res, const char *probe, const char *arms, const char *stat, const char *fmt)
+static cs_status dist_value(const claim_row *row, claim_result *res, const char *probe, const char *arms,
+                            const char *stat, const char *fmt)
 {
     const claim_params *p = &row->param;
     cs_status st = claim_param_need(row, PARAM_ARM | PARAM_STAT);
@@ -38,11 +39,11 @@ static cs_status dist_value(const claim_row *row, claim_result *res, const char 
     snprintf(c95, sizeof c95, "%s_q95", stat);
     double q05, q50, q95, n;
     if (r < 0) st = cs_err(CS_EINPUT, "%s: no row with probe = %s and source = %s", row->source, probe, source);
-    else if (!(st = tsv_double(t, (size_t)r, c05, &q05)) && !(st = tsv_double(t, (size_t)r, c50, &q50)) && !(st = tsv_double(t, (size_t)r, c95, &q95)) &&
-             !(st = tsv_double(t, (size_t)r, "patches", &n))) {
+    else if (!(st = tsv_double(t, (size_t)r, c05, &q05)) && !(st = tsv_double(t, (size_t)r, c50, &q50)) &&
+             !(st = tsv_double(t, (size_t)r, c95, &q95)) && !(st = tsv_double(t, (size_t)r, "patches", &n))) {
         int range = p->stat == STAT_RANGE;
-        snprintf(res->where, sizeof res->where, "%s:%d (%s, %s: %s over %.0f patches)", row->source, tsv_line(t, (size_t)r), probe, source,
-                 range ? "5 % and 95 % quantiles" : "median", n);
+        snprintf(res->where, sizeof res->where, "%s:%d (%s, %s: %s over %.0f patches)", row->source,
+                 tsv_line(t, (size_t)r), probe, source, range ? "5 % and 95 % quantiles" : "median", n);
         if (range) {
             char a[32], b[32];
             snprintf(a, sizeof a, fmt, q05);
@@ -87,7 +88,8 @@ cs_status claim_comp_no_overlap(const claim_row *row, claim_result *res)
     double f;
     if (r < 0) st = cs_err(CS_EINPUT, "%s: no row with probe = comparison and source = joint", row->source);
     else if (!(st = tsv_double(t, (size_t)r, "no_overlap_fraction", &f))) {
-        snprintf(res->where, sizeof res->where, "%s:%d (comparison, joint: no_overlap_fraction)", row->source, tsv_line(t, (size_t)r));
+        snprintf(res->where, sizeof res->where, "%s:%d (comparison, joint: no_overlap_fraction)", row->source,
+                 tsv_line(t, (size_t)r));
         claim_set_value(row, res, 100.0 * f);
     }
     tsv_free(t);
@@ -109,14 +111,16 @@ typedef struct { double ncols, nrows, cell; int line; } chm_header;
 
 static cs_status chm_header_read(FILE *f, const char *path, chm_header *h, char *first, size_t fn, int *lineno)
 {
-    static const char *keys[] = {"ncols", "nrows", "xllcorner", "yllcorner", "cellsize", "nodata_value", "xllcenter", "yllcenter"};
+    static const char *keys[] = {"ncols",    "nrows",        "xllcorner", "yllcorner",
+                                 "cellsize", "nodata_value", "xllcenter", "yllcenter"};
     double val[8];
     int seen[8] = {0};
     char line[4096];
     first[0] = '\0';
     while (fgets(line, sizeof line, f)) {
         (*lineno)++;
-        if (!strchr(line, '\n') && !feof(f)) return cs_err(CS_EINPUT, "%s:%d: line too long for a header", path, *lineno);
+        if (!strchr(line, '\n') && !feof(f))
+            return cs_err(CS_EINPUT, "%s:%d: line too long for a header", path, *lineno);
         char key[64], vs[128], extra[8];
         int nt = sscanf(line, "%63s %127s %7s", key, vs, extra);
         if (nt <= 0) continue;
@@ -127,15 +131,24 @@ static cs_status chm_header_read(FILE *f, const char *path, chm_header *h, char 
         while (k < 8 && strcmp(keys[k], key)) k++;
         if (k == 8) return cs_err(CS_EINPUT, "%s:%d: field '%s': not an ESRI ASCII header field", path, *lineno, key);
         if (seen[k]) return cs_err(CS_EINPUT, "%s:%d: field '%s': given twice", path, *lineno, key);
-        if (nt != 2 || !chm_number(vs, &val[k])) return cs_err(CS_EINPUT, "%s:%d: field '%s': '%s' is not one finite number", path, *lineno, key, nt >= 2 ? vs : "");
+        if (nt != 2 || !chm_number(vs, &val[k]))
+            return cs_err(CS_EINPUT, "%s:%d: field '%s': '%s' is not one finite number", path, *lineno, key,
+                          nt >= 2 ? vs : "");
         seen[k] = *lineno;
     }
     if (seen[2] && seen[6]) return cs_err(CS_EINPUT, "%s:%d: field 'xllcenter': xllcorner given too", path, seen[6]);
     if (seen[3] && seen[7]) return cs_err(CS_EINPUT, "%s:%d: field 'yllcenter': yllcorner given too", path, seen[7]);
-    const char *miss = !seen[0] ? "ncols" : !seen[1] ? "nrows" : !(seen[2] || seen[6]) ? "xllcorner" : !(seen[3] || seen[7]) ? "yllcorner" : !seen[4] ? "cellsize" : NULL;
+    const char *miss = !seen[0]                ? "ncols"
+                       : !seen[1]              ? "nrows"
+                       : !(seen[2] || seen[6]) ? "xllcorner"
+                       : !(seen[3] || seen[7]) ? "yllcorner"
+                       : !seen[4]              ? "cellsize"
+                                               : NULL;
     if (miss) return cs_err(CS_EINPUT, "%s: field '%s': missing from the ESRI ASCII header", path, miss);
     for (int k = 0; k < 2; k++)
-        if (val[k] < 1 || val[k] > 1e6 || val[k] != floor(val[k])) return cs_err(CS_EINPUT, "%s:%d: field '%s': %g is not a whole number of cells in 1..1000000", path, seen[k], keys[k], val[k]);
+        if (val[k] < 1 || val[k] > 1e6 || val[k] != floor(val[k]))
+            return cs_err(CS_EINPUT, "%s:%d: field '%s': %g is not a whole number of cells in 1..1000000", path,
+                          seen[k], keys[k], val[k]);
     if (val[4] <= 0) return cs_err(CS_EINPUT, "%s:%d: field 'cellsize': %g is not positive", path, seen[4], val[4]);
     h->ncols = val[0];
     h->nrows = val[1];
@@ -154,19 +167,26 @@ static cs_status chm_data_check(FILE *f, const char *path, const chm_header *h, 
     while (have || fgets(line, sizeof line, f)) {
         if (!have) lineno++;
         have = 0;
-        if (!strchr(line, '\n') && !feof(f)) return cs_err(CS_EINPUT, "%s:%d: line longer than %zu bytes", path, lineno, sizeof line);
+        if (!strchr(line, '\n') && !feof(f))
+            return cs_err(CS_EINPUT, "%s:%d: line longer than %zu bytes", path, lineno, sizeof line);
         long cols = 0;
         for (char *save = NULL, *tok = strtok_r(line, " \t\r\n", &save); tok; tok = strtok_r(NULL, " \t\r\n", &save)) {
             double v;
             cols++;
-            if (!chm_number(tok, &v)) return cs_err(CS_EINPUT, "%s:%d: field 'column %ld': '%s' is not a finite number", path, lineno, cols, tok);
+            if (!chm_number(tok, &v))
+                return cs_err(CS_EINPUT, "%s:%d: field 'column %ld': '%s' is not a finite number", path, lineno, cols,
+                              tok);
         }
         if (!cols) continue;
-        if (++rows > (long)h->nrows) return cs_err(CS_EINPUT, "%s:%d: more data rows than nrows = %.0f", path, lineno, h->nrows);
-        if (cols != (long)h->ncols) return cs_err(CS_EINPUT, "%s:%d: field 'ncols': %ld values on the row, the header says %.0f", path, lineno, cols, h->ncols);
+        if (++rows > (long)h->nrows)
+            return cs_err(CS_EINPUT, "%s:%d: more data rows than nrows = %.0f", path, lineno, h->nrows);
+        if (cols != (long)h->ncols)
+            return cs_err(CS_EINPUT, "%s:%d: field 'ncols': %ld values on the row, the header says %.0f", path, lineno,
+                          cols, h->ncols);
     }
     if (rows != (long)h->nrows)
-        return cs_err(CS_EINPUT, "%s: field 'nrows': %ld data rows after the header (line %d), the header says %.0f", path, rows, h->line, h->nrows);
+        return cs_err(CS_EINPUT, "%s: field 'nrows': %ld data rows after the header (line %d), the header says %.0f",
+                      path, rows, h->line, h->nrows);
     return CS_OK;
 }
 
@@ -178,7 +198,8 @@ cs_status claim_chm_span(const claim_row *row, claim_result *res)
 {
     const char *path = getenv("CHM");
     if (!path || !path[0]) {
-        claim_pending(res, "lidar canopy height model (Swinfield et al. 2020, doi:10.5281/zenodo.4020697) not on this machine: set CHM=path to an ESRI ASCII grid");
+        claim_pending(res, "lidar canopy height model (Swinfield et al. 2020, doi:10.5281/zenodo.4020697) not on this "
+                           "machine: set CHM=path to an ESRI ASCII grid");
         return CS_OK;
     }
     cs_status st = paths_input_file(path);
@@ -193,7 +214,8 @@ cs_status claim_chm_span(const claim_row *row, claim_result *res)
     fclose(f);
     if (st) return st;
     double side = (h.ncols < h.nrows ? h.ncols : h.nrows) * h.cell;
-    snprintf(res->where, sizeof res->where, "%s (ESRI ASCII grid, %.0f x %.0f cells of %g m)", path, h.ncols, h.nrows, h.cell);
+    snprintf(res->where, sizeof res->where, "%s (ESRI ASCII grid, %.0f x %.0f cells of %g m)", path, h.ncols, h.nrows,
+             h.cell);
     claim_set_value(row, res, side);
     return CS_OK;
 }

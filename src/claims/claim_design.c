@@ -199,6 +199,7 @@ cs_status claim_design_prereg_gates(const claim_row *row, claim_result *res)
     if (st) return st;
     snprintf(res->text, sizeof res->text, "%s", hex);
     res->value = 0;
-    snprintf(res->where, sizeof res->where, PATHS_GATES_DIR "/*.gate (sha256 of the set, as audit/pins.tsv gates_sha256)");
+    snprintf(res->where, sizeof res->where,
+             PATHS_GATES_DIR "/*.gate (sha256 of the set, as audit/pins.tsv gates_sha256)");
     return CS_OK;
 }

@@ -42,10 +42,11 @@ cs_status claim_field_reference(const claim_row *row, claim_result *res)
             gate_free(g);
             if (st) return st;
             if (gv != v)
-                return cs_err(CS_EINPUT, "%s:%d: field 'value': %s = %.17g but gates/%s %s states %.17g", row->source, line,
-                              field_refs[i].quantity, v, field_refs[i].gate_file, field_refs[i].gate_key, gv);
+                return cs_err(CS_EINPUT, "%s:%d: field 'value': %s = %.17g but gates/%s %s states %.17g", row->source,
+                              line, field_refs[i].quantity, v, field_refs[i].gate_file, field_refs[i].gate_key, gv);
         }
-        snprintf(res->where, sizeof res->where, "%s:%d (%s; published figure, not measured here)", row->source, line, field_refs[i].quantity);
+        snprintf(res->where, sizeof res->where, "%s:%d (%s; published figure, not measured here)", row->source, line,
+                 field_refs[i].quantity);
         claim_set_value(row, res, v);
         return CS_OK;
     }
@@ -92,7 +93,8 @@ cs_status claim_field_elong(const claim_row *row, claim_result *res)
     return CS_OK;
 }
 
-static cs_status spread_pending_or_ratio(const claim_row *row, claim_result *res, double sim, int line, const char *what, double *ratio)
+static cs_status spread_pending_or_ratio(const claim_row *row, claim_result *res, double sim, int line,
+                                         const char *what, double *ratio)
 {
     const char *path = field_table_env();
     if (!path) {
@@ -110,8 +112,8 @@ static cs_status spread_pending_or_ratio(const claim_row *row, claim_result *res
     if (st) return st;
     if (!(fs.spread > 0)) return cs_err(CS_EINPUT, "%s: field spread is %.17g (need > 0 for a ratio)", path, fs.spread);
     *ratio = sim / fs.spread;
-    snprintf(res->where, sizeof res->where, "%s:%d (%s spread %.4f m) / %s (field spread %.4f m, %zu trees)", row->source, line,
-             what, sim, path, fs.spread, fs.trees);
+    snprintf(res->where, sizeof res->where, "%s:%d (%s spread %.4f m) / %s (field spread %.4f m, %zu trees)",
+             row->source, line, what, sim, path, fs.spread, fs.trees);
     return CS_OK;
 }
 

@@ -71,7 +71,8 @@ static cs_status load_units(const claim_row *row, const char *dir, mainruns *m, 
         mainruns_pending_text(m, dir, res->why, sizeof res->why);
         res->status = VERDICT_PENDING;
     }
-    snprintf(res->where, sizeof res->where, "%s/run_s*_*.tsv (%d seeds x 2 arms; per seed the mean W1 over the unseen spacings)", dir, m->want);
+    snprintf(res->where, sizeof res->where,
+             "%s/run_s*_*.tsv (%d seeds x 2 arms; per seed the mean W1 over the unseen spacings)", dir, m->want);
     return CS_OK;
 }
 
@@ -115,7 +116,8 @@ static cs_status read_runs(const claim_row *row, const char *path, main_runs *r,
     tsv *t;
     memset(r, 0, sizeof *r);
     char dir[300];
-    if (mainruns_unit_set(path, dir, sizeof dir) || summary_absent(path, dir, sizeof dir)) return read_units(row, dir, r, res);
+    if (mainruns_unit_set(path, dir, sizeof dir) || summary_absent(path, dir, sizeof dir))
+        return read_units(row, dir, r, res);
     cs_status st = tsv_read(path, &t);
     if (st) return st;
     int seen[MAXSEED][NK] = {{0}};
@@ -125,17 +127,31 @@ static cs_status read_runs(const claim_row *row, const char *path, main_runs *r,
         double e;
         if ((st = tsv_long(t, i, "seed", &s)) || (st = tsv_double(t, i, "error", &e))) break;
         const char *arm = tsv_str(t, i, "arm"), *probe = tsv_str(t, i, "probe");
-        if (s < 1 || s > MAXSEED || !arm || !probe) { st = cs_err(CS_EINPUT, "%s:%d: field 'seed': out of range or arm/probe missing", path, tsv_line(t, i)); break; }
+        if (s < 1 || s > MAXSEED || !arm || !probe) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'seed': out of range or arm/probe missing", path, tsv_line(t, i));
+            break;
+        }
         int k = run_kind(arm, probe);
-        if (k < 0) { st = cs_err(CS_EINPUT, "%s:%d: field 'arm'/'probe': unexpected '%s'/'%s'", path, tsv_line(t, i), arm, probe); break; }
-        if (seen[s - 1][k]++) { st = cs_err(CS_EINPUT, "%s:%d: field 'seed': seed %ld %s/%s appears twice", path, tsv_line(t, i), s, arm, probe); break; }
+        if (k < 0) {
+            st =
+                cs_err(CS_EINPUT, "%s:%d: field 'arm'/'probe': unexpected '%s'/'%s'", path, tsv_line(t, i), arm, probe);
+            break;
+        }
+        if (seen[s - 1][k]++) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'seed': seed %ld %s/%s appears twice", path, tsv_line(t, i), s, arm,
+                        probe);
+            break;
+        }
         r->v[k][s - 1] = e;
         r->has[k] = 1;
         if (s > maxs) maxs = (int)s;
     }
     for (int s = 0; s < maxs && !st; s++)
         for (int k = 0; k < NK; k++)
-            if ((k < 3 || r->has[k]) && !seen[s][k]) { st = cs_err(CS_EINPUT, "%s: seed %d lacks its %s row", path, s + 1, kind_name(k)); break; }
+            if ((k < 3 || r->has[k]) && !seen[s][k]) {
+                st = cs_err(CS_EINPUT, "%s: seed %d lacks its %s row", path, s + 1, kind_name(k));
+                break;
+            }
     double want;
     if (!st && !(st = gate_read_value(PATHS_GATE("main"), "seeds", 0, &want)) && maxs != (int)want)
         st = cs_err(CS_EINPUT, "%s: %d seeds, gates/main.gate requires %g", path, maxs, want);
@@ -167,14 +183,16 @@ static double med(const double *x, int n)
 /* source: the row's source (a reading's main/ or extrapolation/ table, whose
  * baselines.tsv is read), or a baselines table itself (a sensitivity run's,
  * design.md §7 E0). */
-cs_status claim_main_baseline_mean(const char *source, const char *col, const char *split, double d_only, double *out, char *where, size_t wn)
+cs_status claim_main_baseline_mean(const char *source, const char *col, const char *split, double d_only, double *out,
+                                   char *where, size_t wn)
 {
     char path[200];
     size_t ls = strlen(source), lb = strlen("baselines.tsv");
     const char *choice = strstr(source, GENSENS_DIR);
     if (ls >= lb && !strcmp(source + ls - lb, "baselines.tsv")) snprintf(path, sizeof path, "%s", source);
     /* a training choice is evaluated on the paper reading's stands: its baselines are that reading's */
-    else if (choice) snprintf(path, sizeof path, "%.*s/paper-reading/main/baselines.tsv", (int)(choice - source), source);
+    else if (choice)
+        snprintf(path, sizeof path, "%.*s/paper-reading/main/baselines.tsv", (int)(choice - source), source);
     else reading_path(source, "baselines.tsv", path, sizeof path);
     tsv *t;
     cs_status st = tsv_read(path, &t);
@@ -277,7 +295,8 @@ cs_status claim_main_geom_ratio(const claim_row *row, claim_result *res)
 cs_status claim_main_noise(const claim_row *row, claim_result *res)
 {
     double v;
-    cs_status st = claim_main_baseline_mean(row->source, "noise_floor_w1", "unseen", 0, &v, res->where, sizeof res->where);
+    cs_status st =
+        claim_main_baseline_mean(row->source, "noise_floor_w1", "unseen", 0, &v, res->where, sizeof res->where);
     if (st) return st;
     claim_set_value(row, res, v);
     return CS_OK;
@@ -286,7 +305,8 @@ cs_status claim_main_noise(const claim_row *row, claim_result *res)
 cs_status claim_main_iso(const claim_row *row, claim_result *res)
 {
     double v;
-    cs_status st = claim_main_baseline_mean(row->source, "direction_blind_w1", "unseen", 0, &v, res->where, sizeof res->where);
+    cs_status st =
+        claim_main_baseline_mean(row->source, "direction_blind_w1", "unseen", 0, &v, res->where, sizeof res->where);
     if (st) return st;
     claim_set_value(row, res, v);
     /* precondition: m_J <= 0.5 x direction-blind error (needs the runs) */
@@ -317,7 +337,8 @@ cs_status claim_main_probe(const claim_row *row, claim_result *res)
     cs_status st = claim_param_need(row, PARAM_PROBE | PARAM_STAT);
     if (!st) st = claim_param_seed_column(row, &k);
     if (st) return st;
-    if (row->param.stat != STAT_MEDIAN && row->param.stat != STAT_RATIO) return claim_param_bad(row, "stat", "median or ratio");
+    if (row->param.stat != STAT_MEDIAN && row->param.stat != STAT_RATIO)
+        return claim_param_bad(row, "stat", "median or ratio");
     const int ratio_of = row->param.stat == STAT_RATIO ? k % 2 : -1;
     main_runs r;
     if ((st = read_runs(row, row->source, &r, res))) return st;
@@ -364,7 +385,8 @@ cs_status claim_main_meta(const claim_row *row, claim_result *res)
     cs_status st = claim_param_need(row, PARAM_QUANTITY);
     if (st) return st;
     const int params = !strcmp(row->param.quantity, "params");
-    if (!params && strcmp(row->param.quantity, "steps_per_s")) return claim_param_bad(row, "quantity", "params or steps_per_s");
+    if (!params && strcmp(row->param.quantity, "steps_per_s"))
+        return claim_param_bad(row, "quantity", "params or steps_per_s");
     runs_dir(row->source, dir, sizeof dir);
     int want;
     if ((st = claim_param_seeds(row, &want))) return st;
@@ -384,13 +406,22 @@ cs_status claim_main_meta(const claim_row *row, claim_result *res)
             tsv_free(t);
             if (st) return st;
         }
-    if (!units) { claim_pending(res, "%s: no unit of the reading frozen yet (%d seeds x 2 arms to run)", dir, want); return CS_OK; }
-    if (!nv) {
-        claim_pending(res, "%s: none of its %zu frozen units recorded a training speed (a '# train_time:' line): they were trained before the speed was written, "
-                      "and re-evaluated from their weights since", dir, units);
+    if (!units) {
+        claim_pending(res, "%s: no unit of the reading frozen yet (%d seeds x 2 arms to run)", dir, want);
         return CS_OK;
     }
-    snprintf(res->where, sizeof res->where, params ? "%s/run_s01_joint.tsv (# model: params)" : "%s/run_s*_*.tsv (# train_time: steps_per_s, median over %zu units)", dir, nv);
+    if (!nv) {
+        claim_pending(res,
+                      "%s: none of its %zu frozen units recorded a training speed (a '# train_time:' line): they were "
+                      "trained before the speed was written, "
+                      "and re-evaluated from their weights since",
+                      dir, units);
+        return CS_OK;
+    }
+    snprintf(res->where, sizeof res->where,
+             params ? "%s/run_s01_joint.tsv (# model: params)"
+                    : "%s/run_s*_*.tsv (# train_time: steps_per_s, median over %zu units)",
+             dir, nv);
     claim_set_value(row, res, med(v, (int)nv));
     return CS_OK;
 }
@@ -410,8 +441,10 @@ cs_status claim_main_sofar(const claim_row *row, claim_result *res)
     const char *what = row->param.quantity;
     size_t q = 0;
     while (q < sizeof known / sizeof *known && strcmp(known[q], what)) q++;
-    if (q == sizeof known / sizeof *known) return claim_param_bad(row, "quantity", "seeds, joint, indep, rel, geom_ratio, rot_ratio or iso_ratio");
-    if (!mainruns_unit_set(row->source, dir, sizeof dir)) return cs_err(CS_EINPUT, "%s: claim_main_sofar reads a unit set <dir>/run_s*_*.tsv", row->source);
+    if (q == sizeof known / sizeof *known)
+        return claim_param_bad(row, "quantity", "seeds, joint, indep, rel, geom_ratio, rot_ratio or iso_ratio");
+    if (!mainruns_unit_set(row->source, dir, sizeof dir))
+        return cs_err(CS_EINPUT, "%s: claim_main_sofar reads a unit set <dir>/run_s*_*.tsv", row->source);
     static mainruns m;
     int want;
     st = claim_param_seeds(row, &want);
@@ -420,7 +453,13 @@ cs_status claim_main_sofar(const claim_row *row, claim_result *res)
     double j[MAXSEED], i[MAXSEED], sh[MAXSEED], ro[MAXSEED];
     int n = 0;
     for (int s = 0; s < want; s++)
-        if (m.seed_ok[s]) { j[n] = m.err[0][0][s]; i[n] = m.err[1][0][s]; sh[n] = m.err[0][1][s]; ro[n] = m.err[0][2][s]; n++; }
+        if (m.seed_ok[s]) {
+            j[n] = m.err[0][0][s];
+            i[n] = m.err[1][0][s];
+            sh[n] = m.err[0][1][s];
+            ro[n] = m.err[0][2][s];
+            n++;
+        }
     snprintf(res->where, sizeof res->where, "%s/run_s*_*.tsv (%d of %d seeds frozen, both arms)", dir, n, want);
     /* a count of frozen units, not a measured quantity: text, so the typed
      * spacings of the write-up (4.0, 5.0, 6.0 m) are never read as rounding it */
@@ -470,18 +509,31 @@ static cs_status read_extrap(const claim_row *row, const char *path, extrap_runs
     for (size_t i = 0; i < tsv_nrows(t) && !st; i++) {
         long s;
         double d, w1;
-        if ((st = tsv_long(t, i, "seed", &s)) || (st = tsv_double(t, i, "spacing", &d)) || (st = tsv_double(t, i, "w1", &w1))) break;
+        if ((st = tsv_long(t, i, "seed", &s)) || (st = tsv_double(t, i, "spacing", &d)) ||
+            (st = tsv_double(t, i, "w1", &w1)))
+            break;
         const char *arm = tsv_str(t, i, "arm");
         int k = 0;
         while (k < e->n && fabs(e->d[k] - d) > 1e-9) k++;
-        if (k == e->n) { if (e->n == 4) { st = cs_err(CS_EINPUT, "%s:%d: more than 4 spacings", path, tsv_line(t, i)); break; } e->d[e->n++] = d; }
-        if (s < 1 || s > MAXSEED || !arm) { st = cs_err(CS_EINPUT, "%s:%d: field 'seed' or 'arm' invalid", path, tsv_line(t, i)); break; }
+        if (k == e->n) {
+            if (e->n == 4) {
+                st = cs_err(CS_EINPUT, "%s:%d: more than 4 spacings", path, tsv_line(t, i));
+                break;
+            }
+            e->d[e->n++] = d;
+        }
+        if (s < 1 || s > MAXSEED || !arm) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'seed' or 'arm' invalid", path, tsv_line(t, i));
+            break;
+        }
         if (!strcmp(arm, "joint")) e->joint[k][e->nj[k]++] = w1;
         else if (!strcmp(arm, "indep")) e->indep[k][e->ni[k]++] = w1;
         else { st = cs_err(CS_EINPUT, "%s:%d: field 'arm': '%s'", path, tsv_line(t, i), arm); break; }
     }
     for (int k = 0; k < e->n && !st; k++)
-        if (e->nj[k] != e->ni[k] || e->nj[k] < 1) st = cs_err(CS_EINPUT, "%s: spacing %.1f has %d joint and %d indep runs", path, e->d[k], e->nj[k], e->ni[k]);
+        if (e->nj[k] != e->ni[k] || e->nj[k] < 1)
+            st =
+                cs_err(CS_EINPUT, "%s: spacing %.1f has %d joint and %d indep runs", path, e->d[k], e->nj[k], e->ni[k]);
     snprintf(res->where, sizeof res->where, "%s", path);
     tsv_free(t);
     return st;
@@ -520,7 +572,8 @@ cs_status claim_extrap_rel(const claim_row *row, claim_result *res)
     }
     if (res->gate == VERDICT_PASS && !(mj < blind)) res->gate = VERDICT_FAIL;
     size_t l = strlen(res->gate_detail);
-    snprintf(res->gate_detail + l, sizeof res->gate_detail - l, "; joint %.4g %s direction-blind %.4g at %.1f m", mj, mj < blind ? "<" : ">=", blind, want);
+    snprintf(res->gate_detail + l, sizeof res->gate_detail - l, "; joint %.4g %s direction-blind %.4g at %.1f m", mj,
+             mj < blind ? "<" : ">=", blind, want);
     return CS_OK;
 }
 

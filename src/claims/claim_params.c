@@ -12,15 +12,18 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const ARM_NAMES[] = {"", "joint", "indep", "teacher", "coupled", "uncoupled", "both_on", "coupling_off", "abrasion_off"};
+static const char *const ARM_NAMES[] = {"",          "joint",   "indep",        "teacher",     "coupled",
+                                        "uncoupled", "both_on", "coupling_off", "abrasion_off"};
 static const char *const PROBE_NAMES[] = {"", "shuffled", "rotated"};
 static const char *const BOUND_NAMES[] = {"", "lo", "hi"};
 static const char *const STAT_NAMES[] = {"", "median", "range", "ratio"};
 static const char *const STAND_NAMES[] = {"", "shown", "other_a", "other_b"};
 #define NNAMES(a) (sizeof a / sizeof *a)
 /* an enum field is written as the int of its name's index */
-_Static_assert(sizeof(param_arm) == sizeof(int) && sizeof(param_probe) == sizeof(int) && sizeof(param_bound) == sizeof(int) &&
-               sizeof(param_stat) == sizeof(int) && sizeof(param_stand) == sizeof(int), "param enums are ints");
+_Static_assert(sizeof(param_arm) == sizeof(int) && sizeof(param_probe) == sizeof(int) &&
+                   sizeof(param_bound) == sizeof(int) && sizeof(param_stat) == sizeof(int) &&
+                   sizeof(param_stand) == sizeof(int),
+               "param enums are ints");
 
 const char *param_arm_name(param_arm a) { return (size_t)a < NNAMES(ARM_NAMES) ? ARM_NAMES[a] : ""; }
 const char *param_probe_name(param_probe p) { return (size_t)p < NNAMES(PROBE_NAMES) ? PROBE_NAMES[p] : ""; }
@@ -99,7 +102,9 @@ static cs_status parse_pair(char *pair, const char *path, int line, claim_params
     size_t k = 0;
     while (k < NKEYS && strcmp(KEYS[k].key, key)) k++;
     char list[160];
-    if (k == NKEYS) return cs_err(CS_EINPUT, "%s:%d: field 'params': unknown key '%s' (%s)", path, line, key, key_names((1u << NKEYS) - 1, list, sizeof list));
+    if (k == NKEYS)
+        return cs_err(CS_EINPUT, "%s:%d: field 'params': unknown key '%s' (%s)", path, line, key,
+                      key_names((1u << NKEYS) - 1, list, sizeof list));
     if (p->set & (1u << k)) return cs_err(CS_EINPUT, "%s:%d: field 'params': key '%s' given twice", path, line, key);
     p->set |= 1u << k;
     char *field = (char *)p + KEYS[k].off;
@@ -112,14 +117,16 @@ static cs_status parse_pair(char *pair, const char *path, int line, claim_params
                 return CS_OK;
             }
         list[0] = '\0';
-        for (size_t i = 1; i < KEYS[k].nnames; i++) snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i > 1 ? ", " : "", KEYS[k].names[i]);
+        for (size_t i = 1; i < KEYS[k].nnames; i++)
+            snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i > 1 ? ", " : "", KEYS[k].names[i]);
         return cs_err(CS_EINPUT, "%s:%d: field 'params': %s='%s' is not one of %s", path, line, key, v, list);
     }
     if (KEYS[k].type == K_NUMBER) {
         char *end;
         double d = strtod(v, &end);
         memcpy(field, &d, sizeof d);
-        if (end == v || *end || !isfinite(d)) return cs_err(CS_EINPUT, "%s:%d: field 'params': %s='%s' is not one finite number", path, line, key, v);
+        if (end == v || *end || !isfinite(d))
+            return cs_err(CS_EINPUT, "%s:%d: field 'params': %s='%s' is not one finite number", path, line, key, v);
         return CS_OK;
     }
     if (!word_ok(v, KEYS[k].type == K_MACRO) || strlen(v) >= KEYS[k].size)
@@ -141,7 +148,8 @@ cs_status claim_params_parse(const char *text, const char *path, int line, claim
     /* an empty pair (";;", a leading or trailing ';') is malformed too */
     if (buf[0] == ';' || buf[strlen(buf) - 1] == ';' || strstr(buf, ";;"))
         return cs_err(CS_EINPUT, "%s:%d: field 'params': '%s' has an empty pair", path, line, text);
-    for (char *pair = strtok_r(buf, ";", &save); pair && !st; pair = strtok_r(NULL, ";", &save)) st = parse_pair(pair, path, line, p);
+    for (char *pair = strtok_r(buf, ";", &save); pair && !st; pair = strtok_r(NULL, ";", &save))
+        st = parse_pair(pair, path, line, p);
     return st;
 }
 
@@ -150,19 +158,22 @@ cs_status claim_param_need(const claim_row *row, unsigned keys)
     unsigned miss = keys & ~row->param.set;
     if (!miss) return CS_OK;
     char list[160];
-    return cs_err(CS_EINPUT, "%s:%d: field 'params': %s (%s) needs %s", PATHS_CLAIMS, row->line, row->macro, row->function, key_names(miss, list, sizeof list));
+    return cs_err(CS_EINPUT, "%s:%d: field 'params': %s (%s) needs %s", PATHS_CLAIMS, row->line, row->macro,
+                  row->function, key_names(miss, list, sizeof list));
 }
 
 cs_status claim_param_bad(const claim_row *row, const char *key, const char *allowed)
 {
-    return cs_err(CS_EINPUT, "%s:%d: field 'params': %s (%s) computes %s=%s only", PATHS_CLAIMS, row->line, row->macro, row->function, key, allowed);
+    return cs_err(CS_EINPUT, "%s:%d: field 'params': %s (%s) computes %s=%s only", PATHS_CLAIMS, row->line, row->macro,
+                  row->function, key, allowed);
 }
 
 cs_status claim_param_seed_column(const claim_row *row, int *k)
 {
     cs_status st = claim_param_need(row, PARAM_ARM);
     if (st) return st;
-    if (row->param.arm != ARM_JOINT && row->param.arm != ARM_INDEP) return claim_param_bad(row, "arm", "joint or indep");
+    if (row->param.arm != ARM_JOINT && row->param.arm != ARM_INDEP)
+        return claim_param_bad(row, "arm", "joint or indep");
     *k = 2 * (int)row->param.probe + (row->param.arm == ARM_INDEP);
     return CS_OK;
 }
@@ -172,7 +183,9 @@ cs_status claim_param_stand_spacing(const claim_row *row, double *d)
     cs_status st = claim_param_need(row, PARAM_STAND);
     if (st) return st;
     const param_stand s = row->param.stand;
-    *d = s == STAND_OTHER_A ? DESIGN_PC_OTHER_A_SPACING_M : s == STAND_OTHER_B ? DESIGN_PC_OTHER_B_SPACING_M : DESIGN_PC_SPACING_M;
+    *d = s == STAND_OTHER_A   ? DESIGN_PC_OTHER_A_SPACING_M
+         : s == STAND_OTHER_B ? DESIGN_PC_OTHER_B_SPACING_M
+                              : DESIGN_PC_SPACING_M;
     return CS_OK;
 }
 
@@ -180,8 +193,11 @@ cs_status claim_param_seeds(const claim_row *row, int *want)
 {
     if (!(row->param.set & PARAM_SEEDS)) return mainruns_gate_seeds(want);
     const double s = row->param.seeds;
-    if (strcmp(row->gate, "-")) return cs_err(CS_EINPUT, "%s:%d: field 'params': %s is gated: its seeds are the gate's, not seeds=%g", PATHS_CLAIMS, row->line, row->macro, s);
-    if (!(s >= 1 && s <= MAINRUNS_MAXSEED && s == (int)s)) return claim_param_bad(row, "seeds", "a whole number of seeds, 1..64");
+    if (strcmp(row->gate, "-"))
+        return cs_err(CS_EINPUT, "%s:%d: field 'params': %s is gated: its seeds are the gate's, not seeds=%g",
+                      PATHS_CLAIMS, row->line, row->macro, s);
+    if (!(s >= 1 && s <= MAINRUNS_MAXSEED && s == (int)s))
+        return claim_param_bad(row, "seeds", "a whole number of seeds, 1..64");
     *want = (int)s;
     return CS_OK;
 }

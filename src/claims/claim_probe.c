@@ -32,7 +32,10 @@ static cs_status probe_mean(const char *path, probekind k, double *out)
     for (size_t i = 0; i < tsv_nrows(t) && !st; i++) {
         const char *p = tsv_str(t, i, "probe");
         probekind q;
-        if (!p || probekind_parse(p, &q)) { st = cs_err(CS_EINPUT, "%s:%d: field 'probe': missing or unknown", path, tsv_line(t, i)); break; }
+        if (!p || probekind_parse(p, &q)) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'probe': missing or unknown", path, tsv_line(t, i));
+            break;
+        }
         if (q != k) continue;
         double w;
         if ((st = tsv_double(t, i, "w1", &w))) break;
@@ -50,7 +53,8 @@ static cs_status ratio_over(const claim_row *row, claim_result *res, probekind k
 {
     const char *star = strstr(row->source, "_s*_");
     if (!star) return cs_err(CS_EINPUT, "%s: the source must be a unit set <dir>/probes_s*_<arm>.tsv", row->source);
-    if (want < 1 || want > MAINRUNS_MAXSEED) return cs_err(CS_EUSAGE, "%s: %d seeds (1..%d)", row->source, want, MAINRUNS_MAXSEED);
+    if (want < 1 || want > MAINRUNS_MAXSEED)
+        return cs_err(CS_EUSAGE, "%s: %d seeds (1..%d)", row->source, want, MAINRUNS_MAXSEED);
     double pr[MAINRUNS_MAXSEED], un[MAINRUNS_MAXSEED];
     char missing[256] = "";
     int nmiss = 0;
@@ -68,12 +72,14 @@ static cs_status ratio_over(const claim_row *row, claim_result *res, probekind k
     if (st) return st;
     if (nmiss) {
         res->status = VERDICT_PENDING;
-        snprintf(res->why, sizeof res->why, "%s: %d of %d seeds frozen; missing%s", row->source, want - nmiss, want, missing);
+        snprintf(res->why, sizeof res->why, "%s: %d of %d seeds frozen; missing%s", row->source, want - nmiss, want,
+                 missing);
         return CS_OK;
     }
     double mp, mu;
     if ((st = stats_median(pr, (size_t)want, &mp)) || (st = stats_median(un, (size_t)want, &mu))) return st;
-    snprintf(res->where, sizeof res->where, "%.300s (%d seeds; median %s error over median unprobed error)", row->source, want, probekind_name(k));
+    snprintf(res->where, sizeof res->where, "%.300s (%d seeds; median %s error over median unprobed error)",
+             row->source, want, probekind_name(k));
     claim_set_value(row, res, mp / mu);
     return CS_OK;
 }
@@ -92,22 +98,53 @@ static cs_status teacher_level(const claim_row *row, claim_result *res, probekin
     double v;
     cs_status st = probe_mean(row->source, k, &v);
     if (st) return st;
-    snprintf(res->where, sizeof res->where, "%.300s (%s, mean over the unseen spacings)", row->source, probekind_name(k));
+    snprintf(res->where, sizeof res->where, "%.300s (%s, mean over the unseen spacings)", row->source,
+             probekind_name(k));
     claim_set_value(row, res, v);
     return CS_OK;
 }
 
 cs_status claim_probe_self(const claim_row *row, claim_result *res) { return reading_ratio(row, res, PROBEKIND_SELF); }
-cs_status claim_probe_rot15(const claim_row *row, claim_result *res) { return reading_ratio(row, res, PROBEKIND_ROT15); }
-cs_status claim_probe_rot45(const claim_row *row, claim_result *res) { return reading_ratio(row, res, PROBEKIND_ROT45); }
-cs_status claim_probe_rot90(const claim_row *row, claim_result *res) { return reading_ratio(row, res, PROBEKIND_ROT90); }
-cs_status claim_probe_nnswap(const claim_row *row, claim_result *res) { return reading_ratio(row, res, PROBEKIND_NNSWAP); }
-cs_status claim_probe_dejitter(const claim_row *row, claim_result *res) { return reading_ratio(row, res, PROBEKIND_DEJITTER); }
-cs_status claim_probe_sizes(const claim_row *row, claim_result *res) { return reading_ratio(row, res, PROBEKIND_SIZES); }
-cs_status claim_probe_teacher_rot15(const claim_row *row, claim_result *res) { return teacher_level(row, res, PROBEKIND_ROT15); }
-cs_status claim_probe_teacher_rot45(const claim_row *row, claim_result *res) { return teacher_level(row, res, PROBEKIND_ROT45); }
-cs_status claim_probe_teacher_rot90(const claim_row *row, claim_result *res) { return teacher_level(row, res, PROBEKIND_ROT90); }
-cs_status claim_probe_teacher_nnswap(const claim_row *row, claim_result *res) { return teacher_level(row, res, PROBEKIND_NNSWAP); }
+cs_status claim_probe_rot15(const claim_row *row, claim_result *res)
+{
+    return reading_ratio(row, res, PROBEKIND_ROT15);
+}
+cs_status claim_probe_rot45(const claim_row *row, claim_result *res)
+{
+    return reading_ratio(row, res, PROBEKIND_ROT45);
+}
+cs_status claim_probe_rot90(const claim_row *row, claim_result *res)
+{
+    return reading_ratio(row, res, PROBEKIND_ROT90);
+}
+cs_status claim_probe_nnswap(const claim_row *row, claim_result *res)
+{
+    return reading_ratio(row, res, PROBEKIND_NNSWAP);
+}
+cs_status claim_probe_dejitter(const claim_row *row, claim_result *res)
+{
+    return reading_ratio(row, res, PROBEKIND_DEJITTER);
+}
+cs_status claim_probe_sizes(const claim_row *row, claim_result *res)
+{
+    return reading_ratio(row, res, PROBEKIND_SIZES);
+}
+cs_status claim_probe_teacher_rot15(const claim_row *row, claim_result *res)
+{
+    return teacher_level(row, res, PROBEKIND_ROT15);
+}
+cs_status claim_probe_teacher_rot45(const claim_row *row, claim_result *res)
+{
+    return teacher_level(row, res, PROBEKIND_ROT45);
+}
+cs_status claim_probe_teacher_rot90(const claim_row *row, claim_result *res)
+{
+    return teacher_level(row, res, PROBEKIND_ROT90);
+}
+cs_status claim_probe_teacher_nnswap(const claim_row *row, claim_result *res)
+{
+    return teacher_level(row, res, PROBEKIND_NNSWAP);
+}
 
 /* ---- the summary table (generator-probes-summary) ---- */
 
@@ -123,15 +160,19 @@ cs_status claim_probe_summary_write(const char *root, const char *out, int seeds
     snprintf(pv.seeds, sizeof pv.seeds, "those of each probe table under %.200s/generator-probes/", root);
     pv.worst_overlap_m = -1;
     if ((st = prov_write(w, &pv))) { tsv_writer_abort(w); return st; }
-    tsv_writer_meta(w, "what", "per reading, arm and probe: the median over seeds 1-%d of the mean W1 over the unseen spacings under the probe, over the same without it "
-                    "(the Probe* claims, design.md §8.4); 1 = the reading does not use what the probe removes", seeds);
+    tsv_writer_meta(w, "what",
+                    "per reading, arm and probe: the median over seeds 1-%d of the mean W1 over the unseen spacings "
+                    "under the probe, over the same without it "
+                    "(the Probe* claims, design.md §8.4); 1 = the reading does not use what the probe removes",
+                    seeds);
     tsv_writer_columns(w, "reading\tarm\tprobe\tratio");
     for (size_t r = 0; r < sizeof SUM_READINGS / sizeof *SUM_READINGS && !st; r++)
         for (int a = 0; a < 2 && !st; a++)
             for (int k = PROBEKIND_SELF; k < PROBEKIND_N && !st; k++) {
                 claim_row row;
                 memset(&row, 0, sizeof row);
-                snprintf(row.source, sizeof row.source, "%.150s/generator-probes/%s/probes_s*_%s.tsv", root, SUM_READINGS[r], a ? "indep" : "joint");
+                snprintf(row.source, sizeof row.source, "%.150s/generator-probes/%s/probes_s*_%s.tsv", root,
+                         SUM_READINGS[r], a ? "indep" : "joint");
                 snprintf(row.format, sizeof row.format, "%%.17g");
                 claim_result res;
                 memset(&res, 0, sizeof res);

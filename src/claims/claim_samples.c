@@ -75,11 +75,15 @@ static cs_status check_run(const char *run, const char *smp, char *msg, size_t m
             snprintf(msg, mn, "%s", cs_errmsg());
             break;
         }
-        if ((st = pick(s, smp, d, probe, "generated", &g)) || (st = pick(s, smp, d, "none", "teacher", &te))) { snprintf(msg, mn, "%s", cs_errmsg()); break; }
+        if ((st = pick(s, smp, d, probe, "generated", &g)) || (st = pick(s, smp, d, "none", "teacher", &te))) {
+            snprintf(msg, mn, "%s", cs_errmsg());
+            break;
+        }
         char where[2400];
         snprintf(where, sizeof where, "%s:%d (%.1f m, %s) from %s", run, tsv_line(t, i), d, probe, smp);
         if ((long)g.n != ng || (long)te.n != nt) {
-            snprintf(msg, mn, "%s: %zu generated and %zu teacher samples, the table says %ld and %ld", where, g.n, te.n, ng, nt);
+            snprintf(msg, mn, "%s: %zu generated and %zu teacher samples, the table says %ld and %ld", where, g.n, te.n,
+                     ng, nt);
             st = cs_err(CS_EINVARIANT, "%s", msg);
             break;
         }
@@ -108,11 +112,18 @@ static cs_status check_baselines(const char *tab, const char *smp, char *msg, si
             (st = pick(s, smp, d, "none", "teacher", &te))) { snprintf(msg, mn, "%s", cs_errmsg()); break; }
         for (int q = 0; q < 3 && !st; q++) {
             snprintf(where, sizeof where, "%s:%d (%.1f m, %s) from %s", tab, tsv_line(t, i), d, col[q], smp);
-            if ((st = tsv_double(t, i, col[q], &w1)) || (st = pick(s, smp, d, probe[q], which[q], &a))) { snprintf(msg, mn, "%s", cs_errmsg()); break; }
+            if ((st = tsv_double(t, i, col[q], &w1)) || (st = pick(s, smp, d, probe[q], which[q], &a))) {
+                snprintf(msg, mn, "%s", cs_errmsg());
+                break;
+            }
             if (!(st = same_w1(where, &a, &te, w1, msg, mn))) (*nchecked)++;
         }
         if (st) break;
-        if (half < 1 || (size_t)half >= te.n) { snprintf(msg, mn, "%s:%d: field 'n_half': %ld outside 1..%zu", tab, tsv_line(t, i), half, te.n - 1); st = cs_err(CS_EINPUT, "%s", msg); break; }
+        if (half < 1 || (size_t)half >= te.n) {
+            snprintf(msg, mn, "%s:%d: field 'n_half': %ld outside 1..%zu", tab, tsv_line(t, i), half, te.n - 1);
+            st = cs_err(CS_EINPUT, "%s", msg);
+            break;
+        }
         snprintf(where, sizeof where, "%s:%d (%.1f m, noise_floor_w1) from %s", tab, tsv_line(t, i), d, smp);
         vec h1 = {te.v, (size_t)half, 0}, h2 = {te.v + half, te.n - (size_t)half, 0};
         if ((st = tsv_double(t, i, "noise_floor_w1", &w1))) { snprintf(msg, mn, "%s", cs_errmsg()); break; }

@@ -23,7 +23,8 @@ static cs_status paper_value(const claims *c, const char *macro, double *v)
     char *end;
     if (!r) return cs_err(CS_EINPUT, "%s: no claim %s", PATHS_CLAIMS, macro);
     *v = strtod(r->reference, &end);
-    if (end == r->reference) return cs_err(CS_EINPUT, "%s:%d: field 'reference': %s is not a number", PATHS_CLAIMS, r->line, macro);
+    if (end == r->reference)
+        return cs_err(CS_EINPUT, "%s:%d: field 'reference': %s is not a number", PATHS_CLAIMS, r->line, macro);
     return CS_OK;
 }
 
@@ -47,7 +48,9 @@ cs_status claim_sens_gap(const claim_row *row, claim_result *res)
         st = gate_read_value(PATHS_GATE("mechanism"), "dieback_train", 0, &bt);
         for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
             double b, d, k1;
-            if ((st = tsv_double(t, r, "beta", &b)) || (st = tsv_double(t, r, "spacing_m", &d)) || (st = tsv_double(t, r, "k1_m", &k1))) break;
+            if ((st = tsv_double(t, r, "beta", &b)) || (st = tsv_double(t, r, "spacing_m", &d)) ||
+                (st = tsv_double(t, r, "k1_m", &k1)))
+                break;
             if (b != bt) continue;
             double g = k1 / (b * d);
             if (g < lo) lo = g;
@@ -63,8 +66,9 @@ cs_status claim_sens_gap(const claim_row *row, claim_result *res)
         if (!st) st = tsv_double(t, (size_t)r, "beta", &b);
         if (!st && !field) st = tsv_double(t, (size_t)r, "spacing_m", &d);
         if (!st) v = g / (b * d);
-        if (!st) snprintf(res->where, sizeof res->where, "%s:%d (%s / (beta x %g m))", row->source, tsv_line(t, (size_t)r),
-                          field ? "tree_mean_median" : "k1_m", d);
+        if (!st)
+            snprintf(res->where, sizeof res->where, "%s:%d (%s / (beta x %g m))", row->source, tsv_line(t, (size_t)r),
+                     field ? "tree_mean_median" : "k1_m", d);
     }
     tsv_free(t);
     if (st) return st;
@@ -100,7 +104,9 @@ cs_status claim_sens_paper(const claim_row *row, claim_result *res)
     else if (!strcmp(q, "field_spacing")) v = tgt / (bf * mech);
     else if (!strcmp(q, "step")) v = miss / steps;
     else return claim_param_bad(row, "quantity", "gap_mech, gap_field, field_spacing or step");
-    snprintf(res->where, sizeof res->where, "%s reference column (MechOn %g, CalibDiebackTrain %g, CalibTarget %g, CalibDieback %g, IrredMiss %g, IrredSteps %g), ablation spacing %g m, field spacing %g m",
+    snprintf(res->where, sizeof res->where,
+             "%s reference column (MechOn %g, CalibDiebackTrain %g, CalibTarget %g, CalibDieback %g, IrredMiss %g, "
+             "IrredSteps %g), ablation spacing %g m, field spacing %g m",
              PATHS_CLAIMS, on, bt, tgt, bf, miss, steps, dab, DESIGN_FIELD_SPACING_M);
     claim_set_value(row, res, v);
     return CS_OK;
@@ -162,10 +168,12 @@ cs_status claim_sens_table(const claim_row *row, claim_result *res)
     double lo, hi;
     int n;
     /* spans "under every unstated choice" leave out the die-back readings' units */
-    if ((st = table_pick(row->source, p->of, readings ? "reading" : "choice", unit, p->set & PARAM_X ? p->x : NAN, unit ? NULL : "dieback", &lo, &hi, &n)))
+    if ((st = table_pick(row->source, p->of, readings ? "reading" : "choice", unit, p->set & PARAM_X ? p->x : NAN,
+                         unit ? NULL : "dieback", &lo, &hi, &n)))
         return st;
     const int high = p->bound == BOUND_HI;
-    snprintf(res->where, sizeof res->where, "%s (%s of %s%s%s over %d row(s))", row->source, high ? "highest" : "lowest", p->of, unit ? " under " : "",
+    snprintf(res->where, sizeof res->where, "%s (%s of %s%s%s over %d row(s))", row->source,
+             high ? "highest" : "lowest", p->of, unit ? " under " : "",
              unit ? unit : ", every unit but the die-back readings'", n);
     claim_set_value(row, res, high ? hi : lo);
     return CS_OK;

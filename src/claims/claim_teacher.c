@@ -1,9 +1,9 @@
 /* claim_teacher: computing functions for the teacher claims — E1 mechanism
  * (paper §3.2; gates/mechanism.gate), E2 irreducibility (§3.3;
  * gates/irreducibility.gate), the hero figure (E9) and the point-cloud figure
- * (E8) — from the frozen tables written by src/exp/exp_mechanism.c, exp_irreducibility.c and exp_stands.c. Row verdicts are
- * recomputed from the clearances and the gate thresholds, never read from a
- * stored pass column. */
+ * (E8) — from the frozen tables written by src/exp/exp_mechanism.c,
+ * exp_irreducibility.c and exp_stands.c. Row verdicts are recomputed from the
+ * clearances and the gate thresholds, never read from a stored pass column. */
 #include "claims.h"
 #include "paths.h"
 #include "stats.h"
@@ -89,8 +89,10 @@ cs_status claim_mech_ablation_k(const claim_row *row, claim_result *res)
     if (st) return st;
     const param_arm a = row->param.arm;
     const char *col = row->param.column;
-    if (a != ARM_BOTH_ON && a != ARM_COUPLING_OFF && a != ARM_ABRASION_OFF) return claim_param_bad(row, "arm", "both_on, coupling_off or abrasion_off");
-    if (strcmp(col, "k1_m") && strcmp(col, "k2_m") && strcmp(col, "k3_m")) return claim_param_bad(row, "column", "k1_m, k2_m or k3_m");
+    if (a != ARM_BOTH_ON && a != ARM_COUPLING_OFF && a != ARM_ABRASION_OFF)
+        return claim_param_bad(row, "arm", "both_on, coupling_off or abrasion_off");
+    if (strcmp(col, "k1_m") && strcmp(col, "k2_m") && strcmp(col, "k3_m"))
+        return claim_param_bad(row, "column", "k1_m, k2_m or k3_m");
     return mech_figure_and_lattice(row, res, param_arm_name(a), col, a == ARM_BOTH_ON ? GATE_GE : GATE_LT);
 }
 
@@ -136,7 +138,8 @@ cs_status claim_mech_overlap(const claim_row *row, claim_result *res)
     }
     tsv_free(t);
     if (st) return st;
-    snprintf(res->where, sizeof res->where, "%s (coupled arms; figure stand and lattice ablation) and %s (worst_overlap_m)", row->source, sweep);
+    snprintf(res->where, sizeof res->where,
+             "%s (coupled arms; figure stand and lattice ablation) and %s (worst_overlap_m)", row->source, sweep);
     claim_set_value(row, res, worst);
     claim_judge(row, res, GATE_LE, worst);
     return CS_OK;
@@ -146,7 +149,8 @@ cs_status claim_mech_overlap(const claim_row *row, claim_result *res)
 static cs_status sweep_row_pass(const tsv *t, size_t r, int *pass)
 {
     double k[3], cover, kmin[3], cmin;
-    const char *kc[3] = {"k1_m", "k2_m", "k3_m"}, *gk[3] = {"clearance_k1_min_m", "clearance_k2_min_m", "clearance_k3_min_m"};
+    const char *kc[3] = {"k1_m", "k2_m", "k3_m"},
+               *gk[3] = {"clearance_k1_min_m", "clearance_k2_min_m", "clearance_k3_min_m"};
     cs_status st = CS_OK;
     for (int i = 0; i < 3 && !st; i++) {
         st = tsv_double(t, r, kc[i], &k[i]);
@@ -169,7 +173,8 @@ cs_status claim_mech_hits(const claim_row *row, claim_result *res)
         int p;
         if (!(st = sweep_row_pass(t, r, &p))) hits += p;
     }
-    snprintf(res->where, sizeof res->where, "%s (%zu rows, verdicts recomputed from gates/mechanism.gate)", row->source, tsv_nrows(t));
+    snprintf(res->where, sizeof res->where, "%s (%zu rows, verdicts recomputed from gates/mechanism.gate)", row->source,
+             tsv_nrows(t));
     tsv_free(t);
     if (st) return st;
     claim_set_value(row, res, hits);
@@ -200,7 +205,8 @@ cs_status claim_mech_train_row(const claim_row *row, claim_result *res, double b
     if (!(st = claim_gate_load("mechanism.gate", &g))) { nsp = gate_count(g, "spacings_m"); gate_free(g); }
     if (st) return st;
     res->gate = rows == (int)nsp && passed == rows ? VERDICT_PASS : VERDICT_FAIL;
-    snprintf(res->gate_detail, sizeof res->gate_detail, "beta %.2f row passes at %d of %d spacings (%s)", beta, passed, (int)nsp, sweep);
+    snprintf(res->gate_detail, sizeof res->gate_detail, "beta %.2f row passes at %d of %d spacings (%s)", beta, passed,
+             (int)nsp, sweep);
     (void)row;
     return CS_OK;
 }
@@ -221,7 +227,8 @@ cs_status claim_irred_resp_lo(const claim_row *row, claim_result *res)
     size_t want = 0;
     gate *g;
     if (!st && !(st = claim_gate_load("irreducibility.gate", &g))) { want = gate_count(g, "spacings_m"); gate_free(g); }
-    if (!st && n != want) st = cs_err(CS_EINPUT, "%s: %zu spacings, gates/irreducibility.gate lists %zu", row->source, n, want);
+    if (!st && n != want)
+        st = cs_err(CS_EINPUT, "%s: %zu spacings, gates/irreducibility.gate lists %zu", row->source, n, want);
     snprintf(res->where, sizeof res->where, "%s (min response_fraction over %zu spacings)", row->source, n);
     tsv_free(t);
     if (st) return st;
@@ -292,8 +299,14 @@ static cs_status refine_pooled(const claim_row *row, claim_result *res, const ch
     return st;
 }
 
-cs_status claim_irred_resp_shrink(const claim_row *row, claim_result *res) { return refine_pooled(row, res, "magnitude_ratio", 1); }
-cs_status claim_irred_step_shrink(const claim_row *row, claim_result *res) { return refine_pooled(row, res, "step_ratio", 0); }
+cs_status claim_irred_resp_shrink(const claim_row *row, claim_result *res)
+{
+    return refine_pooled(row, res, "magnitude_ratio", 1);
+}
+cs_status claim_irred_step_shrink(const claim_row *row, claim_result *res)
+{
+    return refine_pooled(row, res, "step_ratio", 0);
+}
 
 static cs_status reduction_pooled(const claim_row *row, claim_result *res, const char *col, int judge)
 {
@@ -311,7 +324,10 @@ static cs_status reduction_pooled(const claim_row *row, claim_result *res, const
     return st;
 }
 
-cs_status claim_irred_steps(const claim_row *row, claim_result *res) { return reduction_pooled(row, res, "miss_steps", 1); }
+cs_status claim_irred_steps(const claim_row *row, claim_result *res)
+{
+    return reduction_pooled(row, res, "miss_steps", 1);
+}
 cs_status claim_irred_miss(const claim_row *row, claim_result *res) { return reduction_pooled(row, res, "miss_m", 0); }
 
 /* ---- figures: hero (E9) and point cloud (E8) ---- */
@@ -383,7 +399,8 @@ cs_status claim_pc_clearance(const claim_row *row, claim_result *res)
     tsv *t;
     cs_status st = claim_param_need(row, PARAM_ARM);
     if (st) return st;
-    if (row->param.arm != ARM_COUPLED && row->param.arm != ARM_UNCOUPLED) return claim_param_bad(row, "arm", "coupled or uncoupled");
+    if (row->param.arm != ARM_COUPLED && row->param.arm != ARM_UNCOUPLED)
+        return claim_param_bad(row, "arm", "coupled or uncoupled");
     char col[32];
     snprintf(col, sizeof col, "k1_%s_m", param_arm_name(row->param.arm));
     if ((st = tsv_read(row->source, &t))) return st;

@@ -56,7 +56,8 @@ static cs_status copy_field(const tsv *t, size_t r, const char *col, char *dst, 
     const char *s = tsv_str(t, r, col);
     if (!s) return cs_err(CS_EINPUT, "%s: field '%s': no such column", tsv_path(t), col);
     if (!s[0] || strlen(s) >= n)
-        return cs_err(CS_EINPUT, "%s:%d: field '%s': %s", tsv_path(t), tsv_line(t, r), col, s[0] ? "too long" : "empty");
+        return cs_err(CS_EINPUT, "%s:%d: field '%s': %s", tsv_path(t), tsv_line(t, r), col,
+                      s[0] ? "too long" : "empty");
     strcpy(dst, s);
     return CS_OK;
 }
@@ -84,21 +85,28 @@ cs_status claims_load(const char *path, claims *out)
         if ((st = copy_field(t, r, "format", w->format, sizeof w->format))) break;
         if ((st = copy_field(t, r, "reference", w->reference, sizeof w->reference))) break;
         char params[512];
-        if ((st = copy_field(t, r, "params", params, sizeof params)) || (st = claim_params_parse(params, path, w->line, &w->param))) break;
+        if ((st = copy_field(t, r, "params", params, sizeof params)) ||
+            (st = claim_params_parse(params, path, w->line, &w->param)))
+            break;
         for (size_t k = 0; w->macro[k]; k++)
             if (!((w->macro[k] >= 'A' && w->macro[k] <= 'Z') || (w->macro[k] >= 'a' && w->macro[k] <= 'z'))) {
-                st = cs_err(CS_EINPUT, "%s:%d: field 'macro': '%s' is not a LaTeX macro name (letters only)", path, w->line, w->macro);
+                st = cs_err(CS_EINPUT, "%s:%d: field 'macro': '%s' is not a LaTeX macro name (letters only)", path,
+                            w->line, w->macro);
                 break;
             }
         if (st) break;
-        if (strcmp(w->kind, "measured") && strcmp(w->kind, "design") && strcmp(w->kind, "field") && strcmp(w->kind, "needs-data") &&
-            strcmp(w->kind, "probe") && !claims_kind_beside(w->kind)) {
-            st = cs_err(CS_EINPUT, "%s:%d: field 'kind': unknown kind '%s' (measured, design, field, needs-data, probe, extension, variant)", path, w->line, w->kind);
+        if (strcmp(w->kind, "measured") && strcmp(w->kind, "design") && strcmp(w->kind, "field") &&
+            strcmp(w->kind, "needs-data") && strcmp(w->kind, "probe") && !claims_kind_beside(w->kind)) {
+            st = cs_err(CS_EINPUT,
+                        "%s:%d: field 'kind': unknown kind '%s' (measured, design, field, needs-data, probe, "
+                        "extension, variant)",
+                        path, w->line, w->kind);
             break;
         }
         /* probe: measured like a claim, added after the first verdict, never gated */
         if (!strcmp(w->kind, "probe") && strcmp(w->gate, "-")) {
-            st = cs_err(CS_EINPUT, "%s:%d: field 'gate': a probe row is never gated ('-'), not '%s'", path, w->line, w->gate);
+            st = cs_err(CS_EINPUT, "%s:%d: field 'gate': a probe row is never gated ('-'), not '%s'", path, w->line,
+                        w->gate);
             break;
         }
         if (!gate_ref_ok(w->gate)) {
@@ -107,7 +115,8 @@ cs_status claims_load(const char *path, claims *out)
         }
         strcpy(w->gate_reg, w->gate);
         if (strcmp(w->format, "text") && (w->format[0] != '%' || strchr(w->format + 1, '%'))) {
-            st = cs_err(CS_EINPUT, "%s:%d: field 'format': '%s' is not one printf conversion or 'text'", path, w->line, w->format);
+            st = cs_err(CS_EINPUT, "%s:%d: field 'format': '%s' is not one printf conversion or 'text'", path, w->line,
+                        w->format);
             break;
         }
         for (size_t q = 0; q < r; q++)
@@ -124,12 +133,16 @@ cs_status claims_load(const char *path, claims *out)
         size_t q = 0;
         while (q < n && strcmp(rows[q].macro, w->param.of)) q++;
         if (q == n || q == r)
-            st = cs_err(CS_EINPUT, "%s:%d: field 'params': of=%s names %s", path, w->line, w->param.of, q == r ? "the row itself" : "no row of the registry");
+            st = cs_err(CS_EINPUT, "%s:%d: field 'params': of=%s names %s", path, w->line, w->param.of,
+                        q == r ? "the row itself" : "no row of the registry");
     }
     if (st) { free(rows); return st; }
     out->rows = rows;
     out->n = n;
-    if (!strcmp(path, PATHS_CLAIMS) && (st = claims_apply_gate_maps(out, PATHS_GATE_MAP, PATHS_GATE_MAP_EXT))) { claims_free(out); return st; }
+    if (!strcmp(path, PATHS_CLAIMS) && (st = claims_apply_gate_maps(out, PATHS_GATE_MAP, PATHS_GATE_MAP_EXT))) {
+        claims_free(out);
+        return st;
+    }
     return CS_OK;
 }
 
@@ -145,8 +158,9 @@ int claims_is_beside(const claim_row *row)
 
 int claims_awaited_source(const char *source)
 {
-    static const char *dirs[] = {PATHS_FROZEN_DIR "/paper-reading/", PATHS_FROZEN_DIR "/extension-pair/main/", PATHS_FROZEN_DIR "/extension-pair/extrapolation/",
-                                 PATHS_FROZEN_DIR "/model-readings/", PATHS_FROZEN_DIR "/generator-probes/"};
+    static const char *dirs[] = {PATHS_FROZEN_DIR "/paper-reading/", PATHS_FROZEN_DIR "/extension-pair/main/",
+                                 PATHS_FROZEN_DIR "/extension-pair/extrapolation/", PATHS_FROZEN_DIR "/model-readings/",
+                                 PATHS_FROZEN_DIR "/generator-probes/"};
     size_t l = strlen(source), k = strlen("/run_s*_*.tsv");
     if (l > k && !strcmp(source + l - k, "/run_s*_*.tsv")) return 1;
     for (size_t i = 0; i < sizeof dirs / sizeof *dirs; i++)
@@ -166,17 +180,25 @@ static cs_status apply_map(claims *c, const char *map_path, int ext, int reset)
         tsv_free(t);
         return st;
     }
-    for (size_t i = 0; i < c->n && reset; i++) { strcpy(c->rows[i].gate, "-"); c->rows[i].gate_map_line = 0; c->rows[i].gate_map_ext = 0; }
+    for (size_t i = 0; i < c->n && reset; i++) {
+        strcpy(c->rows[i].gate, "-");
+        c->rows[i].gate_map_line = 0;
+        c->rows[i].gate_map_ext = 0;
+    }
     for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
         const char *m = tsv_str(t, r, "macro"), *g = tsv_str(t, r, "gate");
         int line = tsv_line(t, r);
         claim_row *row = NULL;
         for (size_t i = 0; i < c->n && !row; i++) if (!strcmp(c->rows[i].macro, m)) row = &c->rows[i];
-        if (!row) st = cs_err(CS_EINPUT, "%s:%d: field 'macro': '%s' is not a claim of the registry", map_path, line, m);
-        else if (row->gate_map_line) st = cs_err(CS_EINPUT, "%s:%d: field 'macro': %s is mapped twice (line %d)", map_path, line, m, row->gate_map_line);
+        if (!row)
+            st = cs_err(CS_EINPUT, "%s:%d: field 'macro': '%s' is not a claim of the registry", map_path, line, m);
+        else if (row->gate_map_line)
+            st = cs_err(CS_EINPUT, "%s:%d: field 'macro': %s is mapped twice (line %d)", map_path, line, m,
+                        row->gate_map_line);
         else if (ext >= 0 && claims_is_beside(row) != ext)
             st = cs_err(CS_EINPUT, "%s:%d: field 'macro': %s is of kind %s: %s", map_path, line, m, row->kind,
-                        ext ? "this map judges the extension claims only" : "an extension claim is judged through " PATHS_GATE_MAP_EXT);
+                        ext ? "this map judges the extension claims only"
+                            : "an extension claim is judged through " PATHS_GATE_MAP_EXT);
         else if (!strcmp(g, "-") || !gate_ref_ok(g) || strlen(g) >= sizeof row->gate)
             st = cs_err(CS_EINPUT, "%s:%d: field 'gate': '%s' is not 'file.gate:key'", map_path, line, g);
         else { strcpy(row->gate, g); row->gate_map_line = line; row->gate_map_ext = ext > 0; }
@@ -281,8 +303,10 @@ void claims_eval(const claim_row *row, claim_result *res)
          * a reading's table not frozen yet is pending with its unit named */
         if (!strstr(row->source, "*")) {
             const study_experiment *ex = study_of_path(row->source);
-            claim_pending(res, "%s: not frozen yet (a unit of the generator readings, design.md §8, still to run: make %s, then make freeze)", row->source,
-                          ex ? ex->name : "reproduce");
+            claim_pending(res,
+                          "%s: not frozen yet (a unit of the generator readings, design.md §8, still to run: make %s, "
+                          "then make freeze)",
+                          row->source, ex ? ex->name : "reproduce");
             return;
         }
     } else if (!strncmp(row->source, "frozen/", 7)) {
@@ -291,7 +315,9 @@ void claims_eval(const claim_row *row, claim_result *res)
             /* a registered file is never optional: deleting it (and
              * re-sealing) must not turn a verdict into PENDING */
             res->status = VERDICT_FAIL;
-            snprintf(res->why, sizeof res->why, "%s: registered frozen file missing (the registry names it; run the experiment and make freeze)", row->source);
+            snprintf(res->why, sizeof res->why,
+                     "%s: registered frozen file missing (the registry names it; run the experiment and make freeze)",
+                     row->source);
             return;
         }
         if (!S_ISREG(sb.st_mode)) {
@@ -311,7 +337,8 @@ void claims_eval(const claim_row *row, claim_result *res)
     if (res->status == VERDICT_PASS && strcmp(row->format, "text") && !isfinite(res->value)) {
         /* never print inf or nan into numbers.tex: an input out of range */
         res->status = VERDICT_FAIL;
-        snprintf(res->why, sizeof res->why, "%.400s: the computed value is not finite (%g): an input out of range", res->where, res->value);
+        snprintf(res->why, sizeof res->why, "%.400s: the computed value is not finite (%g): an input out of range",
+                 res->where, res->value);
         return;
     }
     if (res->status == VERDICT_PASS && !res->text[0])
@@ -333,13 +360,16 @@ void claims_expected_text(const claim_row *row, const claim_result *res, char *b
 static void write_helpers(FILE *f, int hide)
 {
     if (!hide) {
-        fprintf(f, "\\providecommand{\\pending}[1]{\\textbf{[pending]}}\n"
-                   "\\newcommand\\verdict[1]{\\ifthenelse{\\equal{#1}{PASS}}{\\textcolor{green!45!black}{pass}}{\\ifthenelse{\\equal{#1}{FAIL}}{\\textcolor{red!70!black}{\\textbf{fail}}}{\\textit{pending}}}}\n"
-                   "\\newcommand\\ifpass[3]{\\ifthenelse{\\equal{#1}{PASS}}{#2}{#3}}\n"
-                   "\\newcommand\\ifsame[4]{\\ifthenelse{\\equal{#1}{#2}}{#3}{#4}}\n"
-                   "\\newcommand\\bandpos[3]{\\ifdim#1pt<#2pt below\\else\\ifdim#1pt>#3pt above\\else inside\\fi\\fi}\n"
-                   "\\newcommand\\fig[2]{\\IfFileExists{../figures/#1.pdf}{\\includegraphics[width=#2,height=0.78\\textheight,keepaspectratio]{../figures/#1.pdf}}"
-                   "{\\fbox{\\parbox{#2}{\\centering figure \\texttt{#1} not drawn yet: its frozen data are pending}}}}\n");
+        fprintf(
+            f, "\\providecommand{\\pending}[1]{\\textbf{[pending]}}\n"
+               "\\newcommand\\verdict[1]{\\ifthenelse{\\equal{#1}{PASS}}{\\textcolor{green!45!black}{pass}}{"
+               "\\ifthenelse{\\equal{#1}{FAIL}}{\\textcolor{red!70!black}{\\textbf{fail}}}{\\textit{pending}}}}\n"
+               "\\newcommand\\ifpass[3]{\\ifthenelse{\\equal{#1}{PASS}}{#2}{#3}}\n"
+               "\\newcommand\\ifsame[4]{\\ifthenelse{\\equal{#1}{#2}}{#3}{#4}}\n"
+               "\\newcommand\\bandpos[3]{\\ifdim#1pt<#2pt below\\else\\ifdim#1pt>#3pt above\\else inside\\fi\\fi}\n"
+               "\\newcommand\\fig[2]{\\IfFileExists{../figures/"
+               "#1.pdf}{\\includegraphics[width=#2,height=0.78\\textheight,keepaspectratio]{../figures/#1.pdf}}"
+               "{\\fbox{\\parbox{#2}{\\centering figure \\texttt{#1} not drawn yet: its frozen data are pending}}}}\n");
         return;
     }
     fprintf(f, "\\newcommand\\hiddenvalue{\\mbox{" CLAIMS_HIDDEN_WORD "}}\n"
@@ -350,8 +380,9 @@ static void write_helpers(FILE *f, int hide)
                "\\newcommand\\bandpos[3]{\\hiddenvalue}\n"
                "\\newcommand\\fig[2]{\\hiddenvalue}\n"
                "\\pagenumbering{gobble}\n");
-    static const char *counters[] = {"section", "subsection", "subsubsection", "paragraph", "table", "figure", "equation",
-                                     "footnote", "enumi", "enumii", "enumiii", "enumiv", NULL};
+    static const char *counters[] = {"section",  "subsection", "subsubsection", "paragraph", "table",   "figure",
+                                     "equation", "footnote",   "enumi",         "enumii",    "enumiii", "enumiv",
+                                     NULL};
     for (int i = 0; counters[i]; i++) fprintf(f, "\\renewcommand\\the%s{\\hiddenvalue}\n", counters[i]);
 }
 
@@ -372,7 +403,8 @@ cs_status claims_write_numbers(const char *path, const claims *c, const claim_re
         else claims_expected_text(&c->rows[i], &res[i], v, sizeof v);
         fprintf(f, "\\newcommand{\\%s}{%s}\n", c->rows[i].macro, v);
         if (strcmp(c->rows[i].gate, "-"))
-            fprintf(f, "\\newcommand{\\%sGate}{%s}\n", c->rows[i].macro, hide ? "\\hiddenvalue{}" : verdict_name(res[i].gate));
+            fprintf(f, "\\newcommand{\\%sGate}{%s}\n", c->rows[i].macro,
+                    hide ? "\\hiddenvalue{}" : verdict_name(res[i].gate));
     }
     return afile_commit(&a);
 }
@@ -392,7 +424,11 @@ cs_status numbers_read(const char *path, numbers_tex *out)
     out->name = malloc(cap * sizeof *out->name);
     out->value = malloc(cap * sizeof *out->value);
     out->line = malloc(cap * sizeof *out->line);
-    if (!out->name || !out->value || !out->line) { fclose(f); numbers_free(out); return cs_err(CS_ENOMEM, "out of memory"); }
+    if (!out->name || !out->value || !out->line) {
+        fclose(f);
+        numbers_free(out);
+        return cs_err(CS_ENOMEM, "out of memory");
+    }
     char buf[1024];
     int lineno = 0;
     cs_status st = CS_OK;
@@ -409,9 +445,15 @@ cs_status numbers_read(const char *path, numbers_tex *out)
             if (*e == '{') depth++;
             else if (*e == '}') depth--;
         }
-        if (depth != 0) { st = cs_err(CS_EINPUT, "%s:%d: field '%s': unbalanced braces (truncated?)", path, lineno, name); break; }
+        if (depth != 0) {
+            st = cs_err(CS_EINPUT, "%s:%d: field '%s': unbalanced braces (truncated?)", path, lineno, name);
+            break;
+        }
         e[-1] = '\0';
-        if (strlen(name) >= 80 || strlen(v) >= 192) { st = cs_err(CS_EINPUT, "%s:%d: field '%s': too long", path, lineno, name); break; }
+        if (strlen(name) >= 80 || strlen(v) >= 192) {
+            st = cs_err(CS_EINPUT, "%s:%d: field '%s': too long", path, lineno, name);
+            break;
+        }
         if (out->n == cap) { st = cs_err(CS_EINPUT, "%s: more than %zu macros", path, cap); break; }
         strcpy(out->name[out->n], name);
         strcpy(out->value[out->n], v);

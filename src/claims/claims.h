@@ -17,16 +17,28 @@
  * is a name only: nothing is chosen by its spelling. `set` holds a PARAM_*
  * bit per key the row gives; a function missing a key it needs fails naming
  * the row's line (claim_param_need). */
-typedef enum { ARM_NONE, ARM_JOINT, ARM_INDEP, ARM_TEACHER, ARM_COUPLED, ARM_UNCOUPLED, ARM_BOTH_ON, ARM_COUPLING_OFF, ARM_ABRASION_OFF } param_arm;
+typedef enum {
+    ARM_NONE,
+    ARM_JOINT,
+    ARM_INDEP,
+    ARM_TEACHER,
+    ARM_COUPLED,
+    ARM_UNCOUPLED,
+    ARM_BOTH_ON,
+    ARM_COUPLING_OFF,
+    ARM_ABRASION_OFF
+} param_arm;
 typedef enum { PROBE_NONE, PROBE_SHUFFLED, PROBE_ROTATED } param_probe;
 typedef enum { BOUND_NONE, BOUND_LO, BOUND_HI } param_bound;
 typedef enum { STAT_NONE, STAT_MEDIAN, STAT_RANGE, STAT_RATIO } param_stat;
 typedef enum { STAND_NONE, STAND_SHOWN, STAND_OTHER_A, STAND_OTHER_B } param_stand;
 enum {
-    PARAM_ARM = 1u << 0,      /* arm=joint|indep|teacher|coupled|uncoupled|both_on|coupling_off|abrasion_off: the arm (or source) whose rows are read */
-    PARAM_PROBE = 1u << 1,    /* probe=shuffled|rotated: the probe applied to the arm */
-    PARAM_BOUND = 1u << 2,    /* bound=lo|hi: the lower or upper end (of a span, or of two spacings) */
-    PARAM_STAT = 1u << 3,     /* stat=median|range|ratio: the median, its 5-95 % range, or the probe's median over the arm's own */
+    PARAM_ARM = 1u << 0,   /* arm=joint|indep|teacher|coupled|uncoupled|both_on|coupling_off|abrasion_off: the arm (or
+                              source) whose rows are read */
+    PARAM_PROBE = 1u << 1, /* probe=shuffled|rotated: the probe applied to the arm */
+    PARAM_BOUND = 1u << 2, /* bound=lo|hi: the lower or upper end (of a span, or of two spacings) */
+    PARAM_STAT =
+        1u << 3, /* stat=median|range|ratio: the median, its 5-95 % range, or the probe's median over the arm's own */
     PARAM_COLUMN = 1u << 4,   /* column=NAME: the table column read */
     PARAM_QUANTITY = 1u << 5, /* quantity=NAME: which of a function's named quantities */
     PARAM_STAND = 1u << 6,    /* stand=shown|other_a|other_b: the point-cloud stand (its spacing is the design's) */
@@ -35,7 +47,8 @@ enum {
     PARAM_X = 1u << 9,        /* x=NUMBER: that choice's value */
     PARAM_SCALE = 1u << 10,   /* scale=NUMBER: the value is shown times this (100 for a percent) */
     PARAM_SPACING = 1u << 11, /* spacing=NUMBER: the stand spacing read, metres */
-    PARAM_SEEDS = 1u << 12,   /* seeds=N: the seeds read of a unit set (1..N); absent: the preregistered seeds of gates/main.gate */
+    PARAM_SEEDS =
+        1u << 12, /* seeds=N: the seeds read of a unit set (1..N); absent: the preregistered seeds of gates/main.gate */
 };
 typedef struct {
     unsigned set;
@@ -147,7 +160,8 @@ void claims_eval(const claim_row *row, claim_result *res);
  * of a reading's baselines: source is the table itself (…/baselines.tsv) or a
  * reading's main/ or extrapolation/ table, whose main/baselines.tsv is read
  * (claim_main.c). `where` (may be NULL) names the table and column. */
-cs_status claim_main_baseline_mean(const char *source, const char *col, const char *split, double d_only, double *out, char *where, size_t wn);
+cs_status claim_main_baseline_mean(const char *source, const char *col, const char *split, double d_only, double *out,
+                                   char *where, size_t wn);
 
 /* Helpers for computing functions. */
 void claim_set_value(const claim_row *row, claim_result *res, double v);

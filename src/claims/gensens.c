@@ -43,7 +43,8 @@ static cs_status over_blind(const claim_row *row, claim_result *res, int a)
     snprintf(set, sizeof set, "%.300s/run_s*_*.tsv", dir);
     if ((st = claim_main_baseline_mean(set, "direction_blind_w1", "unseen", 0, &blind, base, sizeof base))) return st;
     if ((st = stats_median(m.err[a][0], (size_t)m.want, &med))) return st;
-    snprintf(res->where, sizeof res->where, "%.200s/run_s*_*.tsv (%d seeds, %s arm) over %.200s", dir, m.want, a ? "indep" : "joint", base);
+    snprintf(res->where, sizeof res->where, "%.200s/run_s*_*.tsv (%d seeds, %s arm) over %.200s", dir, m.want,
+             a ? "indep" : "joint", base);
     if (arm_only) {
         size_t l = strlen(res->where);
         snprintf(res->where + l, sizeof res->where - l, "; that arm whole, the other still running");

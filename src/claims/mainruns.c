@@ -23,7 +23,8 @@ cs_status mainruns_gate_seeds(int *want)
     double w;
     cs_status st = gate_read_value(PATHS_GATE("main"), "seeds", 0, &w);
     if (st) return st;
-    if (!(w >= 1 && w <= MAINRUNS_MAXSEED)) return cs_err(CS_EINPUT, "%s: field 'seeds': %g outside 1..%d", PATHS_GATE("main"), w, MAINRUNS_MAXSEED);
+    if (!(w >= 1 && w <= MAINRUNS_MAXSEED))
+        return cs_err(CS_EINPUT, "%s: field 'seeds': %g outside 1..%d", PATHS_GATE("main"), w, MAINRUNS_MAXSEED);
     *want = (int)w;
     return CS_OK;
 }
@@ -47,21 +48,33 @@ static cs_status read_unit(const char *path, mainruns *m, int a, int s)
         if ((st = tsv_double(t, i, "w1", &w1)) || (st = tsv_double(t, i, "spacing", &d))) break;
         const char *split = tsv_str(t, i, "split"), *probe = tsv_str(t, i, "probe");
         int q = probe ? probe_index(probe) : -1;
-        if (!split || q < 0) { st = cs_err(CS_EINPUT, "%s:%d: field 'split'/'probe': missing or unknown", path, tsv_line(t, i)); break; }
+        if (!split || q < 0) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'split'/'probe': missing or unknown", path, tsv_line(t, i));
+            break;
+        }
         if (!strcmp(split, "unseen")) { sum[q] += w1; cnt[q]++; continue; }
-        if (strcmp(split, "extrap")) { st = cs_err(CS_EINPUT, "%s:%d: field 'split': '%s' (unseen or extrap)", path, tsv_line(t, i), split); break; }
+        if (strcmp(split, "extrap")) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'split': '%s' (unseen or extrap)", path, tsv_line(t, i), split);
+            break;
+        }
         if (q) continue;
         int k = 0;
         while (k < m->nex && m->exd[k] != d) k++;
         if (k == m->nex) {
-            if (m->nex == MAINRUNS_MAXSP) { st = cs_err(CS_EINPUT, "%s:%d: more than %d extrapolation spacings", path, tsv_line(t, i), MAINRUNS_MAXSP); break; }
+            if (m->nex == MAINRUNS_MAXSP) {
+                st = cs_err(CS_EINPUT, "%s:%d: more than %d extrapolation spacings", path, tsv_line(t, i),
+                            MAINRUNS_MAXSP);
+                break;
+            }
             m->exd[m->nex++] = d;
         }
         m->ex[a][k][s - 1] = w1;
     }
     if (!st && !cnt[0]) st = cs_err(CS_EINPUT, "%s: no unseen-spacing rows", path);
     for (int q = 1; q < 3 && !st; q++)
-        if (cnt[q] && cnt[q] != cnt[0]) st = cs_err(CS_EINPUT, "%s: the %s probe misses some unseen spacing", path, q == 1 ? "shuffled" : "rotated");
+        if (cnt[q] && cnt[q] != cnt[0])
+            st =
+                cs_err(CS_EINPUT, "%s: the %s probe misses some unseen spacing", path, q == 1 ? "shuffled" : "rotated");
     for (int q = 0; q < 3 && !st; q++)
         if (cnt[q]) { m->err[a][q][s - 1] = sum[q] / cnt[q]; m->has[a][q]++; }
     tsv_free(t);
@@ -72,7 +85,10 @@ static void add_missing(mainruns *m, int s, const char *arm)
 {
     size_t l = strlen(m->missing);
     m->nmissing++;
-    if (l + 24 >= sizeof m->missing) { if (!strstr(m->missing, "...")) snprintf(m->missing + l, sizeof m->missing - l, " ..."); return; }
+    if (l + 24 >= sizeof m->missing) {
+        if (!strstr(m->missing, "...")) snprintf(m->missing + l, sizeof m->missing - l, " ...");
+        return;
+    }
     snprintf(m->missing + l, sizeof m->missing - l, "%ss%02d_%s", l ? " " : "", s, arm);
 }
 
@@ -80,7 +96,8 @@ cs_status mainruns_load(const char *dir, int want, mainruns *m)
 {
     static const char *arms[2] = {"joint", "indep"};
     memset(m, 0, sizeof *m);
-    if (want < 1 || want > MAINRUNS_MAXSEED) return cs_err(CS_EINPUT, "%s: %d seeds asked (1..%d)", dir, want, MAINRUNS_MAXSEED);
+    if (want < 1 || want > MAINRUNS_MAXSEED)
+        return cs_err(CS_EINPUT, "%s: %d seeds asked (1..%d)", dir, want, MAINRUNS_MAXSEED);
     m->want = want;
     for (int a = 0; a < 2; a++)
         for (int k = 0; k < MAINRUNS_MAXSP; k++)
@@ -101,17 +118,22 @@ cs_status mainruns_load(const char *dir, int want, mainruns *m)
     for (int a = 0; a < 2; a++)
         for (int q = 0; q < 3; q++)
             if (m->has[a][q] && m->has[a][q] != want)
-                return cs_err(CS_EINPUT, "%s: %d of %d seeds have the %s %s rows", dir, m->has[a][q], want, arms[a], q == 1 ? "shuffled" : q == 2 ? "rotated" : "generated");
-    if (m->has[0][1] != want) return cs_err(CS_EINPUT, "%s: the joint runs lack the shuffled probe (preregistered)", dir);
+                return cs_err(CS_EINPUT, "%s: %d of %d seeds have the %s %s rows", dir, m->has[a][q], want, arms[a],
+                              q == 1   ? "shuffled"
+                              : q == 2 ? "rotated"
+                                       : "generated");
+    if (m->has[0][1] != want)
+        return cs_err(CS_EINPUT, "%s: the joint runs lack the shuffled probe (preregistered)", dir);
     for (int k = 0; k < m->nex; k++)
         for (int a = 0; a < 2; a++)
             for (int s = 0; s < want; s++)
-                if (isnan(m->ex[a][k][s])) return cs_err(CS_EINPUT, "%s: seed %d %s has no W1 at %.1f m", dir, s + 1, arms[a], m->exd[k]);
+                if (isnan(m->ex[a][k][s]))
+                    return cs_err(CS_EINPUT, "%s: seed %d %s has no W1 at %.1f m", dir, s + 1, arms[a], m->exd[k]);
     return CS_OK;
 }
 
 void mainruns_pending_text(const mainruns *m, const char *dir, char *buf, size_t n)
 {
-    snprintf(buf, n, "%s: %d of %d seeds frozen (both arms); the claim waits for every unit; missing %d: %s", dir, m->complete, m->want,
-             m->nmissing, m->missing);
+    snprintf(buf, n, "%s: %d of %d seeds frozen (both arms); the claim waits for every unit; missing %d: %s", dir,
+             m->complete, m->want, m->nmissing, m->missing);
 }

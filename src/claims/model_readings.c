@@ -43,15 +43,23 @@ static cs_status read_main(const char *path, double e[2][3][MAXSEED], int has[2]
         if ((st = tsv_long(t, i, "seed", &s)) || (st = tsv_double(t, i, "error", &v))) break;
         const char *arm = tsv_str(t, i, "arm"), *probe = tsv_str(t, i, "probe");
         int a = arm && !strcmp(arm, "joint") ? 0 : arm && !strcmp(arm, "indep") ? 1 : -1;
-        int q = probe && !strcmp(probe, "generated") ? 0 : probe && !strcmp(probe, "shuffled") ? 1 : probe && !strcmp(probe, "rotated") ? 2 : -1;
-        if (a < 0 || q < 0 || s < 1 || s > MAXSEED) { st = cs_err(CS_EINPUT, "%s:%d: field 'seed'/'arm'/'probe' invalid", path, tsv_line(t, i)); break; }
+        int q = probe && !strcmp(probe, "generated")  ? 0
+                : probe && !strcmp(probe, "shuffled") ? 1
+                : probe && !strcmp(probe, "rotated")  ? 2
+                                                      : -1;
+        if (a < 0 || q < 0 || s < 1 || s > MAXSEED) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'seed'/'arm'/'probe' invalid", path, tsv_line(t, i));
+            break;
+        }
         e[a][q][s - 1] = v;
         has[a][q]++;
         if (s > *ns) *ns = (int)s;
     }
     for (int a = 0; a < 2 && !st; a++)
         for (int q = 0; q < 3 && !st; q++)
-            if (has[a][q] && has[a][q] != *ns) st = cs_err(CS_EINPUT, "%s: %d of %d seeds have the %s %s rows", path, has[a][q], *ns, a ? "indep" : "joint", q ? (q == 1 ? "shuffled" : "rotated") : "generated");
+            if (has[a][q] && has[a][q] != *ns)
+                st = cs_err(CS_EINPUT, "%s: %d of %d seeds have the %s %s rows", path, has[a][q], *ns,
+                            a ? "indep" : "joint", q ? (q == 1 ? "shuffled" : "rotated") : "generated");
     if (!st && (!has[0][0] || !has[1][0])) st = cs_err(CS_EINPUT, "%s: both arms' generated rows are required", path);
     tsv_free(t);
     return st;
@@ -77,7 +85,10 @@ static cs_status extrap_rel(const char *path, double *lo, double *hi)
     tsv_free(t);
     if (st) return st;
     double r[2];
-    for (int k = 0; k < 2; k++) { double mj = med(v[k][0], n[k][0]), mi = med(v[k][1], n[k][1]); r[k] = (mi - mj) / mi; }
+    for (int k = 0; k < 2; k++) {
+        double mj = med(v[k][0], n[k][0]), mi = med(v[k][1], n[k][1]);
+        r[k] = (mi - mj) / mi;
+    }
     const int low = d[0] < d[1] ? 0 : 1;
     *lo = r[low];
     *hi = r[1 - low];
@@ -172,8 +183,11 @@ cs_status model_readings_write(const char *path, const char *root, const model_r
     if (st) return st;
     if ((st = prov_write(w, &pv))) { tsv_writer_abort(w); return st; }
     tsv_writer_meta(w, "root", "%s", root);
-    tsv_writer_meta(w, "what", "the generator readings (src/claims/model_readings.h): role gated = the reading the preregistered gates judge (the reference paper's method), "
-                    "extension = added after the first verdict, descriptive = an intermediate reading; errors W1 (m), medians over seeds; ratios median probe error / median error");
+    tsv_writer_meta(w, "what",
+                    "the generator readings (src/claims/model_readings.h): role gated = the reading the preregistered "
+                    "gates judge (the reference paper's method), "
+                    "extension = added after the first verdict, descriptive = an intermediate reading; errors W1 (m), "
+                    "medians over seeds; ratios median probe error / median error");
     /* A training speed is the machine's, not a result: it goes to the
      * provenance lines, so a rerun's data rows equal the frozen ones. */
     for (size_t i = 0; i < n; i++) {
@@ -181,13 +195,16 @@ cs_status model_readings_write(const char *path, const char *root, const model_r
         snprintf(key, sizeof key, "steps_per_s_%s", rows[i].reading);
         tsv_writer_meta(w, key, "%.4g (median over its units' training, wall clock)", rows[i].steps_per_s);
     }
-    tsv_writer_columns(w, "reading\trole\tdir\tseeds\tcoupled_seeds\tparams\tjoint\tindep\tdirection_blind\trel_improvement\twilcoxon_p\t"
-                          "shuffle_ratio_joint\tshuffle_ratio_indep\trotation_ratio_joint\textrap_low_rel\textrap_high_rel");
+    tsv_writer_columns(
+        w,
+        "reading\trole\tdir\tseeds\tcoupled_seeds\tparams\tjoint\tindep\tdirection_blind\trel_improvement\twilcoxon_p\t"
+        "shuffle_ratio_joint\tshuffle_ratio_indep\trotation_ratio_joint\textrap_low_rel\textrap_high_rel");
     for (size_t i = 0; i < n; i++) {
         const model_readings_row *r = &rows[i];
         tsv_writer_str(w, r->reading); tsv_writer_str(w, r->role); tsv_writer_str(w, r->dir);
         tsv_writer_long(w, r->seeds); tsv_writer_long(w, r->coupled); tsv_writer_long(w, r->params);
-        const double v[] = {r->joint, r->indep, r->blind, r->rel, r->p, r->shuf_joint, r->shuf_indep, r->rot_joint, r->ex_lo, r->ex_hi};
+        const double v[] = {r->joint,      r->indep,      r->blind,     r->rel,   r->p,
+                            r->shuf_joint, r->shuf_indep, r->rot_joint, r->ex_lo, r->ex_hi};
         for (size_t k = 0; k < sizeof v / sizeof *v; k++) tsv_writer_dbl(w, v[k]);
         tsv_writer_endrow(w);
     }
@@ -201,20 +218,36 @@ cs_status model_readings_check(const char *path, const model_readings_row *rows,
     tsv *t;
     cs_status st = tsv_read(path, &t);
     if (st) return st;
-    if (tsv_nrows(t) != n) st = cs_err(CS_EINPUT, "%s: %zu rows, the run tables give %zu readings", path, tsv_nrows(t), n);
-    static const char *col[] = {"seeds", "coupled_seeds", "params", "joint", "indep", "direction_blind", "rel_improvement", "wilcoxon_p",
-                                "shuffle_ratio_joint", "shuffle_ratio_indep", "rotation_ratio_joint", "extrap_low_rel", "extrap_high_rel"};
+    if (tsv_nrows(t) != n)
+        st = cs_err(CS_EINPUT, "%s: %zu rows, the run tables give %zu readings", path, tsv_nrows(t), n);
+    static const char *col[] = {"seeds",
+                                "coupled_seeds",
+                                "params",
+                                "joint",
+                                "indep",
+                                "direction_blind",
+                                "rel_improvement",
+                                "wilcoxon_p",
+                                "shuffle_ratio_joint",
+                                "shuffle_ratio_indep",
+                                "rotation_ratio_joint",
+                                "extrap_low_rel",
+                                "extrap_high_rel"};
     for (size_t i = 0; i < n && !st; i++) {
         const model_readings_row *r = &rows[i];
         const char *name = tsv_str(t, i, "reading");
-        if (!name || strcmp(name, r->reading)) { st = cs_err(CS_EINPUT, "%s:%d: field 'reading': expected %s", path, tsv_line(t, i), r->reading); break; }
+        if (!name || strcmp(name, r->reading)) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'reading': expected %s", path, tsv_line(t, i), r->reading);
+            break;
+        }
         const double want[] = {r->seeds, r->coupled, (double)r->params, r->joint, r->indep, r->blind, r->rel, r->p,
                                r->shuf_joint, r->shuf_indep, r->rot_joint, r->ex_lo, r->ex_hi};
         for (size_t c = 0; c < sizeof col / sizeof *col && !st; c++) {
             double v;
             if ((st = tsv_double_nf(t, i, col[c], &v))) break;
             if (!same_cell(v, want[c]))
-                st = cs_err(CS_EINPUT, "%s:%d: field '%s': says %.17g but the run tables give %.17g (reading %s)", path, tsv_line(t, i), col[c], v, want[c], r->reading);
+                st = cs_err(CS_EINPUT, "%s:%d: field '%s': says %.17g but the run tables give %.17g (reading %s)", path,
+                            tsv_line(t, i), col[c], v, want[c], r->reading);
         }
     }
     tsv_free(t);

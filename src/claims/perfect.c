@@ -58,13 +58,21 @@ static cs_status perfect_load(const claim_row *row, claim_result *res, perfect_d
         if (strcmp(q, PERFECT_LEVEL)) continue;
         double v;
         if ((st = tsv_double(t, i, "value", &v))) break;
-        if (!isfinite(v) || v <= 0) { st = cs_err(CS_EINPUT, "%s:%d: field 'value': %g is not a level", row->source, tsv_line(t, i), v); break; }
-        if (d->n == PERFECT_MAXUNITS) { st = cs_err(CS_EINPUT, "%s: more than %d units", row->source, PERFECT_MAXUNITS); break; }
+        if (!isfinite(v) || v <= 0) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'value': %g is not a level", row->source, tsv_line(t, i), v);
+            break;
+        }
+        if (d->n == PERFECT_MAXUNITS) {
+            st = cs_err(CS_EINPUT, "%s: more than %d units", row->source, PERFECT_MAXUNITS);
+            break;
+        }
         d->level[d->n++] = v;
     }
     tsv_free(t);
     if (!st && !d->n) st = cs_err(CS_EINPUT, "%s: no %s rows", row->source, PERFECT_LEVEL);
-    if (!st) snprintf(res->where, sizeof res->where, "%.300s (%s, %d teachers); paper values from %s", row->source, PERFECT_LEVEL, d->n, PATHS_CLAIMS);
+    if (!st)
+        snprintf(res->where, sizeof res->where, "%.300s (%s, %d teachers); paper values from %s", row->source,
+                 PERFECT_LEVEL, d->n, PATHS_CLAIMS);
     return st;
 }
 
@@ -103,7 +111,19 @@ static double n_teachers(const perfect_data *d) { return (double)d->n; }
 
 cs_status claim_perfect_shuf_lo(const claim_row *row, claim_result *res) { return perfect_claim(row, res, shuf_lo); }
 cs_status claim_perfect_shuf_hi(const claim_row *row, claim_result *res) { return perfect_claim(row, res, shuf_hi); }
-cs_status claim_perfect_shuf_needed(const claim_row *row, claim_result *res) { return perfect_claim(row, res, shuf_needed); }
-cs_status claim_perfect_bound_max(const claim_row *row, claim_result *res) { return perfect_claim(row, res, bound_max); }
-cs_status claim_perfect_reaching(const claim_row *row, claim_result *res) { return perfect_claim(row, res, n_reaching); }
-cs_status claim_perfect_teachers(const claim_row *row, claim_result *res) { return perfect_claim(row, res, n_teachers); }
+cs_status claim_perfect_shuf_needed(const claim_row *row, claim_result *res)
+{
+    return perfect_claim(row, res, shuf_needed);
+}
+cs_status claim_perfect_bound_max(const claim_row *row, claim_result *res)
+{
+    return perfect_claim(row, res, bound_max);
+}
+cs_status claim_perfect_reaching(const claim_row *row, claim_result *res)
+{
+    return perfect_claim(row, res, n_reaching);
+}
+cs_status claim_perfect_teachers(const claim_row *row, claim_result *res)
+{
+    return perfect_claim(row, res, n_teachers);
+}

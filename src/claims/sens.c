@@ -14,13 +14,40 @@
  * the E3 reference levels from the teacher alone. Counts fixed by
  * construction (hero and point-cloud stems, spacings) are left out. */
 static const char *const QUANT[] = {
-    "MechCoupOff", "MechCoupOffKTwo", "MechCoupOffKThree", "MechAbrOff", "MechOn", "MechOnKTwo", "MechOnKThree",
-    "MechCoverOn", "MechHits",
-    "IrredRespLo", "IrredRespHi", "IrredRespShrink", "IrredMiss", "IrredSteps", "IrredTrainRespLo", "IrredTrainSteps",
+    "MechCoupOff",
+    "MechCoupOffKTwo",
+    "MechCoupOffKThree",
+    "MechAbrOff",
+    "MechOn",
+    "MechOnKTwo",
+    "MechOnKThree",
+    "MechCoverOn",
+    "MechHits",
+    "IrredRespLo",
+    "IrredRespHi",
+    "IrredRespShrink",
+    "IrredMiss",
+    "IrredSteps",
+    "IrredTrainRespLo",
+    "IrredTrainSteps",
     "IrredTrainShrink",
-    "CalibDieback", "Elong", "AnisoLattice", "AnisoTrees", "JitterStar", "JitterAniso", "JitterElong", "HardcoreOvershoot",
-    "PcCoupled", "PcUncoupled", "PcContacted", "PcOtherAContacted", "PcOtherBContacted",
-    "MainIso", "MainNoise", "MainShufTeach", "MainRotTeach",
+    "CalibDieback",
+    "Elong",
+    "AnisoLattice",
+    "AnisoTrees",
+    "JitterStar",
+    "JitterAniso",
+    "JitterElong",
+    "HardcoreOvershoot",
+    "PcCoupled",
+    "PcUncoupled",
+    "PcContacted",
+    "PcOtherAContacted",
+    "PcOtherBContacted",
+    "MainIso",
+    "MainNoise",
+    "MainShufTeach",
+    "MainRotTeach",
 };
 #define NQ (sizeof QUANT / sizeof QUANT[0])
 
@@ -47,7 +74,8 @@ static int unit_failed(const char *dir, const char *folder, const char *rel, cha
     for (size_t r = 0; r < tsv_nrows(t) && !found; r++) {
         const char *tab = tsv_str(t, r, "table"), *f = tsv_str(t, r, "folder"), *note = tsv_str(t, r, "note");
         if (!tab || !f || strcmp(f, "failed")) continue;
-        int same = !strcmp(tab, rel) || (!strncmp(tab, "mechanism/figure_", 17) && !strncmp(rel, "mechanism/figure_", 17));
+        int same =
+            !strcmp(tab, rel) || (!strncmp(tab, "mechanism/figure_", 17) && !strncmp(rel, "mechanism/figure_", 17));
         if (same) { snprintf(why, n, "%s", note ? note : "failed"); found = 1; }
     }
     tsv_free(t);
@@ -55,7 +83,8 @@ static int unit_failed(const char *dir, const char *folder, const char *rel, cha
 }
 
 /* Quantity q in the unit of choice c at value x (c NULL: the centre run). */
-static cs_status one(const claims *cl, const char *dir, const unstated_choice *c, double x, const char *q, sens_row *out)
+static cs_status one(const claims *cl, const char *dir, const unstated_choice *c, double x, const char *q,
+                     sens_row *out)
 {
     memset(out, 0, sizeof *out);
     snprintf(out->quantity, sizeof out->quantity, "%s", q);
@@ -127,13 +156,19 @@ cs_status sens_write(const char *path, const char *dir, const sens_row *rows, si
     snprintf(p.seeds, sizeof p.seeds, "those of each unit's tables under %s/<unit>/", dir);
     p.worst_overlap_m = -1;
     if ((st = prov_write(w, &p))) { tsv_writer_abort(w); return st; }
-    tsv_writer_meta(w, "what", "E0 sensitivity (design.md §7 E0): each quantity in the centre run (the design's choices) and with one unstated choice at each of its values, everything else pinned; recomputed from the units' tables by the registry's computing functions; paper = audit/claims.tsv reference; rel_diff = (value - paper) / |paper|; source relative to the sensitivity folder (a table the choice cannot change is the centre's)");
+    tsv_writer_meta(
+        w, "what",
+        "E0 sensitivity (design.md §7 E0): each quantity in the centre run (the design's choices) and with one "
+        "unstated choice at each of its values, everything else pinned; recomputed from the units' tables by the "
+        "registry's computing functions; paper = audit/claims.tsv reference; rel_diff = (value - paper) / |paper|; "
+        "source relative to the sensitivity folder (a table the choice cannot change is the centre's)");
     size_t nc;
     const unstated_choice *ch = unstated_list(&nc);
     for (size_t i = 0; i < nc; i++)
     {
         char vals[96] = "";
-        for (int k = 0; k < ch[i].nvalues; k++) snprintf(vals + strlen(vals), sizeof vals - strlen(vals), " %g", ch[i].values[k]);
+        for (int k = 0; k < ch[i].nvalues; k++)
+            snprintf(vals + strlen(vals), sizeof vals - strlen(vals), " %g", ch[i].values[k]);
         tsv_writer_meta(w, ch[i].name, "ours %g; values%s: %s", ch[i].ours, vals, ch[i].what);
     }
     tsv_writer_columns(w, COLS);
@@ -157,12 +192,14 @@ cs_status sens_check(const char *path, const sens_row *rows, size_t n)
     tsv *t;
     cs_status st = tsv_read(path, &t);
     if (st) return st;
-    if (tsv_nrows(t) != n) st = cs_err(CS_EINPUT, "%s: %zu rows, the sensitivity units give %zu", path, tsv_nrows(t), n);
+    if (tsv_nrows(t) != n)
+        st = cs_err(CS_EINPUT, "%s: %zu rows, the sensitivity units give %zu", path, tsv_nrows(t), n);
     static const char *col[4] = {"x", "value", "paper", "rel_diff"};
     for (size_t i = 0; i < n && !st; i++) {
         const char *q = tsv_str(t, i, "quantity"), *c = tsv_str(t, i, "choice");
         if (!q || !c || strcmp(q, rows[i].quantity) || strcmp(c, rows[i].choice)) {
-            st = cs_err(CS_EINPUT, "%s:%d: field 'quantity'/'choice': expected %s %s", path, tsv_line(t, i), rows[i].quantity, rows[i].choice);
+            st = cs_err(CS_EINPUT, "%s:%d: field 'quantity'/'choice': expected %s %s", path, tsv_line(t, i),
+                        rows[i].quantity, rows[i].choice);
             break;
         }
         double want[4] = {rows[i].x, rows[i].value, rows[i].paper, rows[i].rel_diff};
@@ -215,14 +252,18 @@ cs_status sens_write_tex(const char *path, const sens_row *rows, size_t n)
     size_t nc, per = sens_units_per_quantity();
     const unstated_choice *ch = unstated_list(&nc);
     fprintf(f, "%% generated by `crownshy numbers` from frozen/sensitivity/ (src/claims/sens.c): never edit by hand.\n"
-               "%% Per quantity: the reference paper's value, our centre run, and per unstated choice the span of its values.\n"
+               "%% Per quantity: the reference paper's value, our centre run, and per unstated choice the span of its "
+               "values.\n"
                "\\begin{tabular}{lrr");
     for (size_t i = 0; i < nc; i++) fprintf(f, "c");
     fprintf(f, "}\n\\toprule\nquantity & paper & ours");
     for (size_t i = 0; i < nc; i++) {
         char name[64];
         size_t o = 0;
-        for (const char *p = ch[i].name; *p && o + 2 < sizeof name; p++) { if (*p == '_') name[o++] = '\\'; name[o++] = *p; }
+        for (const char *p = ch[i].name; *p && o + 2 < sizeof name; p++) {
+            if (*p == '_') name[o++] = '\\';
+            name[o++] = *p;
+        }
         name[o] = '\0';
         fprintf(f, " & \\texttt{%s}", name);
     }

@@ -23,8 +23,13 @@ typedef enum { G_REVIEW, G_STUDY, G_MAINTAIN } cmd_group;
 typedef struct { const char *name; cmd_fn fn; cmd_group group; const char *help; } cli_cmd;
 
 const char *const CLI_ARMS[] = {"joint", "indep", "independent=indep", NULL};
-const char *const CLI_TEACHERS[] = {TEACHER_VERSION, TEACHER_VERSION_ONE_SIDED, TEACHER_VERSION "-arc", TEACHER_VERSION "-target",
-                                     TEACHER_VERSION_ONE_SIDED "-arc", TEACHER_VERSION_ONE_SIDED "-target", NULL};
+const char *const CLI_TEACHERS[] = {TEACHER_VERSION,
+                                    TEACHER_VERSION_ONE_SIDED,
+                                    TEACHER_VERSION "-arc",
+                                    TEACHER_VERSION "-target",
+                                    TEACHER_VERSION_ONE_SIDED "-arc",
+                                    TEACHER_VERSION_ONE_SIDED "-target",
+                                    NULL};
 const char *const CLI_LAYOUTS[] = {"4m-on-36m", "5m-on-60m", NULL};
 
 int cli_fail(const char *cmd, cs_status st)
@@ -67,7 +72,8 @@ static void usage(FILE *f)
 {
     static const char *const groups[] = {
         "reviewing the package (start with `crownshy verify`, or `make verify`)",
-        "running the study (one command per make unit; `make reproduce` runs them all, `make <experiment>` one experiment)",
+        "running the study (one command per make unit; `make reproduce` runs them all, `make <experiment>` one "
+        "experiment)",
         "maintaining the package",
     };
     fprintf(f, "usage: crownshy <command> [options]   (crownshy <command> --help)\n");
@@ -76,7 +82,9 @@ static void usage(FILE *f)
         for (size_t i = 0; i < NCMDS; i++)
             if (cli_cmds[i].group == (cmd_group)g) fprintf(f, "  %-27s %s\n", cli_cmds[i].name, cli_cmds[i].help);
     }
-    fprintf(f, "\nexit codes: 0 ok, 1 a check failed, 2 usage error, 3 bad or missing input, 4 environment (I/O, memory)\n");
+    fprintf(
+        f,
+        "\nexit codes: 0 ok, 1 a check failed, 2 usage error, 3 bad or missing input, 4 environment (I/O, memory)\n");
 }
 
 int cli_main(int argc, char **argv)

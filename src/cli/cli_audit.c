@@ -24,10 +24,14 @@ int cli_cmd_verify(int argc, char **argv)
 {
     verify_opts o = {0};
     long spot_seed = 0;
-    const opt_spec spec[] = {{"no-figures", OPT_FLAG, &o.no_figures, 0, 0, "skip the redraws (the figures and the spot check)"},
-                             {"strict", OPT_FLAG, &o.strict, 0, 0, "also fail when a preregistered gate fails (a finding)"},
-                             {"seed", OPT_LONG, &spot_seed, 1, 4294967295.0, "the spot check's pick (default: from the clock; printed, to repeat it)"},
-                             {"prereg", OPT_STR, &o.prereg, 0, 0, "the gates' sha256 from a copy you trust (CITATION.cff, the write-up's first page); without it the preregistration is self-attested"}};
+    const opt_spec spec[] = {
+        {"no-figures", OPT_FLAG, &o.no_figures, 0, 0, "skip the redraws (the figures and the spot check)"},
+        {"strict", OPT_FLAG, &o.strict, 0, 0, "also fail when a preregistered gate fails (a finding)"},
+        {"seed", OPT_LONG, &spot_seed, 1, 4294967295.0,
+         "the spot check's pick (default: from the clock; printed, to repeat it)"},
+        {"prereg", OPT_STR, &o.prereg, 0, 0,
+         "the gates' sha256 from a copy you trust (CITATION.cff, the write-up's first page); without it the "
+         "preregistration is self-attested"}};
     const opts_cmd oc = {"verify", "[--no-figures] [--strict] [--seed N] [--prereg SHA256]",
                         "Audit pins, frozen hashes, provenance and aggregates, recompute every claim of\n"
                         "audit/claims.tsv from frozen/, compare with the generated paper files, check the\n"
@@ -54,12 +58,20 @@ int cli_cmd_verify(int argc, char **argv)
 int cli_cmd_numbers(int argc, char **argv)
 {
     int check = 0;
-    const opt_spec spec[] = {{"check", OPT_FLAG, &check, 0, 0, "only compare the three files with a fresh generation (write nothing)"}};
-    const opts_cmd oc = {"numbers", "[--check]", "Regenerate paper/numbers.tex, paper/comparison.tex and paper/readings.tex from frozen/:\n"
-                        "all three are generated into build/ first and moved into paper/ only when every claim\n"
-                        "was computed (exit 3 naming the claim and its input otherwise, writing nothing); then the\n"
-                        "generated regions (<!--Macro-->value<!--/-->, <!-- findings -->) of README.md and the *.md pages.\n"
-                        "--check: compare the three with a fresh generation (exit 1 naming the first differing line).", spec, 1, 0, 0};
+    const opt_spec spec[] = {
+        {"check", OPT_FLAG, &check, 0, 0, "only compare the three files with a fresh generation (write nothing)"}};
+    const opts_cmd oc = {
+        "numbers",
+        "[--check]",
+        "Regenerate paper/numbers.tex, paper/comparison.tex and paper/readings.tex from frozen/:\n"
+        "all three are generated into build/ first and moved into paper/ only when every claim\n"
+        "was computed (exit 3 naming the claim and its input otherwise, writing nothing); then the\n"
+        "generated regions (<!--Macro-->value<!--/-->, <!-- findings -->) of README.md and the *.md pages.\n"
+        "--check: compare the three with a fresh generation (exit 1 naming the first differing line).",
+        spec,
+        1,
+        0,
+        0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     claims c;
@@ -83,9 +95,14 @@ int cli_cmd_numbers(int argc, char **argv)
      * CHM, a damaged frozen table): say so and write nothing into paper/ */
     size_t nbad = 0;
     for (size_t i = 0; i < c.n; i++)
-        if (res[i].status == VERDICT_FAIL) { fprintf(stderr, "crownshy numbers: %s: %s\n", c.rows[i].macro, res[i].why); nbad++; }
+        if (res[i].status == VERDICT_FAIL) {
+            fprintf(stderr, "crownshy numbers: %s: %s\n", c.rows[i].macro, res[i].why);
+            nbad++;
+        }
     if (nbad) {
-        fprintf(stderr, "crownshy numbers: %zu claim(s) cannot be computed from their input; nothing written into %s/\n", nbad, PATHS_PAPER_DIR);
+        fprintf(stderr,
+                "crownshy numbers: %zu claim(s) cannot be computed from their input; nothing written into %s/\n", nbad,
+                PATHS_PAPER_DIR);
         free(res);
         claims_free(&c);
         return 3;
@@ -103,8 +120,11 @@ int cli_cmd_numbers(int argc, char **argv)
         struct stat sb;
         snprintf(p, sizeof p, "%s/%s", dir, strrchr(paper_generated(i), '/') + 1);
         if (stat(p, &sb) != 0) continue;
-        if (!st && rename(p, paper_generated(i)) != 0) st = cs_err(CS_EIO, "%s: cannot move to %s", p, paper_generated(i));
-        else if (!st) snprintf(wrote + strlen(wrote), sizeof wrote - strlen(wrote), "%s%s", wrote[0] ? ", " : "", paper_generated(i));
+        if (!st && rename(p, paper_generated(i)) != 0)
+            st = cs_err(CS_EIO, "%s: cannot move to %s", p, paper_generated(i));
+        else if (!st)
+            snprintf(wrote + strlen(wrote), sizeof wrote - strlen(wrote), "%s%s", wrote[0] ? ", " : "",
+                     paper_generated(i));
         unlink(p);
     }
     rmdir(dir);
@@ -112,7 +132,8 @@ int cli_cmd_numbers(int argc, char **argv)
     for (size_t i = 0; i < c.n; i++) pend += res[i].status != VERDICT_PASS;
     if (!st) printf("wrote %s: %zu claims (%zu pending)\n", wrote, c.n, pend);
     size_t pages = 0; /* the generated regions of the documentation pages */
-    if (!st && !(st = docs_refresh(&c, res, &pages)) && pages) printf("refreshed the generated regions of %zu documentation page(s)\n", pages);
+    if (!st && !(st = docs_refresh(&c, res, &pages)) && pages)
+        printf("refreshed the generated regions of %zu documentation page(s)\n", pages);
     free(res);
     claims_free(&c);
     return st ? cli_fail("numbers", st) : 0;
@@ -120,8 +141,14 @@ int cli_cmd_numbers(int argc, char **argv)
 
 int cli_cmd_audit(int argc, char **argv)
 {
-    const opts_cmd oc = {"audit", "", "Check pins (estimator hash, teacher version and hash, gate hashes), frozen-file hashes,\n"
-                  "frozen provenance vs pins, the claim registry, numbers.tex and the paper text.", NULL, 0, 0, 0};
+    const opts_cmd oc = {"audit",
+                         "",
+                         "Check pins (estimator hash, teacher version and hash, gate hashes), frozen-file hashes,\n"
+                         "frozen provenance vs pins, the claim registry, numbers.tex and the paper text.",
+                         NULL,
+                         0,
+                         0,
+                         0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     claims c;
@@ -142,7 +169,8 @@ int cli_cmd_audit(int argc, char **argv)
 
 int cli_cmd_trace(int argc, char **argv)
 {
-    const opts_cmd oc = {"trace", "MACRO", "Print a claim's value, frozen file, function, gate and test.", NULL, 0, 1, 1};
+    const opts_cmd oc = {"trace", "MACRO", "Print a claim's value, frozen file, function, gate and test.", NULL, 0,
+                         1,       1};
     char *pos[argc > 0 ? argc : 1];
     int r = opts_parse(&oc, argc, argv, pos, NULL);
     if (r) return opts_exit_code(r);
@@ -152,8 +180,14 @@ int cli_cmd_trace(int argc, char **argv)
 
 int cli_cmd_pin(int argc, char **argv)
 {
-    const opts_cmd oc = {"pin", "", "Rewrite audit/pins.tsv from the current estimator, teacher and gates. Deliberate:\n"
-                  "afterwards frozen/ must be regenerated (make reproduce freeze) or the audit fails.", NULL, 0, 0, 0};
+    const opts_cmd oc = {"pin",
+                         "",
+                         "Rewrite audit/pins.tsv from the current estimator, teacher and gates. Deliberate:\n"
+                         "afterwards frozen/ must be regenerated (make reproduce freeze) or the audit fails.",
+                         NULL,
+                         0,
+                         0,
+                         0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     cs_status st = audit_pin();
@@ -164,7 +198,8 @@ int cli_cmd_pin(int argc, char **argv)
 
 int cli_cmd_hash_frozen(int argc, char **argv)
 {
-    const opts_cmd oc = {"hash-frozen", "", "Rewrite audit/frozen.sha256 from frozen/ (part of make freeze).", NULL, 0, 0, 0};
+    const opts_cmd oc = {
+        "hash-frozen", "", "Rewrite audit/frozen.sha256 from frozen/ (part of make freeze).", NULL, 0, 0, 0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     cs_status st = audit_hash_frozen();
@@ -184,12 +219,20 @@ int cli_cmd_gates(int argc, char **argv)
     if (r) return opts_exit_code(r);
     paths_list files;
     if (npos == 0) {
-        if (paths_list_files(PATHS_GATES_DIR, ".gate", 0, &files)) return cli_fail("gates", cs_err(CS_ENOMEM, "out of memory"));
-        if (!files.n) { fprintf(stderr, "crownshy gates: %s/: no .gate files\n", PATHS_GATES_DIR); paths_list_free(&files); return 3; }
+        if (paths_list_files(PATHS_GATES_DIR, ".gate", 0, &files))
+            return cli_fail("gates", cs_err(CS_ENOMEM, "out of memory"));
+        if (!files.n) {
+            fprintf(stderr, "crownshy gates: %s/: no .gate files\n", PATHS_GATES_DIR);
+            paths_list_free(&files);
+            return 3;
+        }
     } else {
         memset(&files, 0, sizeof files);
         for (int i = 0; i < npos; i++)
-            if (paths_list_add(&files, pos[i])) { paths_list_free(&files); return cli_fail("gates", cs_err(CS_ENOMEM, "out of memory")); }
+            if (paths_list_add(&files, pos[i])) {
+                paths_list_free(&files);
+                return cli_fail("gates", cs_err(CS_ENOMEM, "out of memory"));
+            }
     }
     int rc = 0;
     for (size_t i = 0; i < files.n; i++) {
@@ -233,9 +276,15 @@ int cli_cmd_check_tsv(int argc, char **argv)
 
 int cli_cmd_figures(int argc, char **argv)
 {
-    const opts_cmd oc = {"figures", "", "Redraw every figure (figures/ *.gp, gnuplot) from frozen/ into build/, and install a\n"
-                  "redraw into figures/ only when its script succeeded (verify only compares). Exit 1 if a\n"
-                  "script fails or its data are missing.", NULL, 0, 0, 0};
+    const opts_cmd oc = {"figures",
+                         "",
+                         "Redraw every figure (figures/ *.gp, gnuplot) from frozen/ into build/, and install a\n"
+                         "redraw into figures/ only when its script succeeded (verify only compares). Exit 1 if a\n"
+                         "script fails or its data are missing.",
+                         NULL,
+                         0,
+                         0,
+                         0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     claims c;
@@ -252,10 +301,16 @@ int cli_cmd_figures(int argc, char **argv)
 
 int cli_cmd_report(int argc, char **argv)
 {
-    const opts_cmd oc = {"report", "", "Print the reproduction summary (the table that opens the write-up, paper/summary.tex):\n"
-                         "every measured claim with a paper value or a gate, ours with its 95 % interval over the\n"
-                         "independent replicate unit, the gate verdict and the agreement class (colour only on a terminal).",
-                         NULL, 0, 0, 0};
+    const opts_cmd oc = {
+        "report",
+        "",
+        "Print the reproduction summary (the table that opens the write-up, paper/summary.tex):\n"
+        "every measured claim with a paper value or a gate, ours with its 95 % interval over the\n"
+        "independent replicate unit, the gate verdict and the agreement class (colour only on a terminal).",
+        NULL,
+        0,
+        0,
+        0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     claims c;
@@ -264,7 +319,8 @@ int cli_cmd_report(int argc, char **argv)
     if (st) return cli_fail("report", st);
     const claim_interval *ci;
     attrib_data at = {0};
-    if (!(st = agree_intervals_cached(&c, res, &ci)) && !(st = attrib_load(PATHS_READINGS_SUMMARY, PATHS_SENS_SUMMARY, &at))) {
+    if (!(st = agree_intervals_cached(&c, res, &ci)) &&
+        !(st = attrib_load(PATHS_READINGS_SUMMARY, PATHS_SENS_SUMMARY, &at))) {
         attrib_bind(&at, &c, res, ci);
         agree_print_report(stdout, &c, res, ci, &at, isatty(STDOUT_FILENO));
         attrib_free(&at);

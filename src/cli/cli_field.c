@@ -9,7 +9,11 @@
 #include <stdio.h>
 
 #define OPT_OUT(o) {"out", OPT_STR, &(o).out, 0, 0, "output table", .required = 1}
-#define OPT_CAL(o) {"calibration", OPT_STR, &(o).calibration, 0, 0, "E5 calibration table DIR/calibration.tsv, gives beta_field", .required = 1}
+#define OPT_CAL(o)                                                                                                     \
+    {                                                                                                                  \
+        "calibration", OPT_STR, &(o).calibration, 0, 0, "E5 calibration table DIR/calibration.tsv, gives beta_field",  \
+            .required = 1                                                                                              \
+    }
 #define OPT_STANDS(o, help) {"stands", OPT_LONG, &(o).stands_opt, 1, 10000, help}
 #define OPT_READING(o) CLI_OPT_TEACHER((o).teacher), CLI_OPT_LAYOUT((o).layout), CLI_OPT_VARY((o).vary)
 
@@ -21,7 +25,10 @@ static int field_parse(const opts_cmd *c, int argc, char **argv, exp_field_opts 
     o->stands = (unsigned)o->stands_opt;
     o->argc = argc;
     o->argv = argv;
-    if (exp_reading_parse(o->teacher, o->layout, &o->rd) || exp_reading_vary(o->vary, &o->rd)) { opts_usage_error(c->cmd, "%s", cs_errmsg()); return OPTS_USAGE; }
+    if (exp_reading_parse(o->teacher, o->layout, &o->rd) || exp_reading_vary(o->vary, &o->rd)) {
+        opts_usage_error(c->cmd, "%s", cs_errmsg());
+        return OPTS_USAGE;
+    }
     return OPTS_OK;
 }
 
@@ -29,12 +36,17 @@ int cli_field_calibrate(int argc, char **argv)
 {
     exp_field_opts o = {0};
     const opt_spec spec[] = {OPT_OUT(o), OPT_READING(o)};
-    const opts_cmd oc = {"field-calibrate", "--out DIR/calibration.tsv",
-                         "E5 calibration (design.md §7): grow the calibration stands (gates/field.gate calibration_seeds)\n"
-                         "at every beta of dieback_grid, record the median tree-mean clearance per beta, and print\n"
-                         "beta_field (interpolated to calibration_target_m, rounded to the grid). Also writes\n"
-                         "DIR/calibration_trees.tsv.",
-                         spec, sizeof spec / sizeof *spec, 0, 0};
+    const opts_cmd oc = {
+        "field-calibrate",
+        "--out DIR/calibration.tsv",
+        "E5 calibration (design.md §7): grow the calibration stands (gates/field.gate calibration_seeds)\n"
+        "at every beta of dieback_grid, record the median tree-mean clearance per beta, and print\n"
+        "beta_field (interpolated to calibration_target_m, rounded to the grid). Also writes\n"
+        "DIR/calibration_trees.tsv.",
+        spec,
+        sizeof spec / sizeof *spec,
+        0,
+        0};
     int r = field_parse(&oc, argc, argv, &o);
     if (r) return opts_exit_code(r);
     cs_status st = exp_field_calibrate(&o);
@@ -45,11 +57,16 @@ int cli_field_heldout(int argc, char **argv)
 {
     exp_field_opts o = {.stands_opt = 28};
     const opt_spec spec[] = {OPT_CAL(o), OPT_OUT(o), OPT_STANDS(o, "stands (default 28)"), OPT_READING(o)};
-    const opts_cmd oc = {"field-heldout", "--calibration DIR/calibration.tsv --out DIR/heldout.tsv [--stands N]",
-                         "E5 held-out (design.md §7): N stands (default 28) on seeds disjoint from the calibration, grown at\n"
-                         "beta_field coupled and as the uncoupled twin: tree-mean median, spread, elongation, anisotropy.\n"
-                         "The spread ratios need the raw field table (FIELD_TABLE=path); without it they are pending.",
-                         spec, sizeof spec / sizeof *spec, 0, 0};
+    const opts_cmd oc = {
+        "field-heldout",
+        "--calibration DIR/calibration.tsv --out DIR/heldout.tsv [--stands N]",
+        "E5 held-out (design.md §7): N stands (default 28) on seeds disjoint from the calibration, grown at\n"
+        "beta_field coupled and as the uncoupled twin: tree-mean median, spread, elongation, anisotropy.\n"
+        "The spread ratios need the raw field table (FIELD_TABLE=path); without it they are pending.",
+        spec,
+        sizeof spec / sizeof *spec,
+        0,
+        0};
     int r = field_parse(&oc, argc, argv, &o);
     if (r) return opts_exit_code(r);
     cs_status st = exp_field_heldout(&o);
@@ -76,10 +93,15 @@ int cli_anisotropy_lattice(int argc, char **argv)
 {
     exp_field_opts o = {.stands_opt = 28};
     const opt_spec spec[] = {OPT_CAL(o), OPT_OUT(o), OPT_STANDS(o, "stands (default 28)"), OPT_READING(o)};
-    const opts_cmd oc = {"anisotropy-lattice", "--calibration DIR/calibration.tsv --out DIR/lattice.tsv [--stands N]",
-                         "E6 (design.md §7): anisotropy on the controlled lattice (field layout, canonical jitter) at beta_field,\n"
-                         "N stands (default 28).",
-                         spec, sizeof spec / sizeof *spec, 0, 0};
+    const opts_cmd oc = {
+        "anisotropy-lattice",
+        "--calibration DIR/calibration.tsv --out DIR/lattice.tsv [--stands N]",
+        "E6 (design.md §7): anisotropy on the controlled lattice (field layout, canonical jitter) at beta_field,\n"
+        "N stands (default 28).",
+        spec,
+        sizeof spec / sizeof *spec,
+        0,
+        0};
     int r = field_parse(&oc, argc, argv, &o);
     if (r) return opts_exit_code(r);
     cs_status st = exp_anisotropy_lattice(&o);
@@ -113,20 +135,24 @@ int cli_anisotropy_heldout(int argc, char **argv)
         OPT_STANDS(o, "stands (default 28)"),
         OPT_READING(o),
     };
-    const opts_cmd oc = {"anisotropy-heldout",
-                         "--calibration DIR/calibration.tsv --jitter-calibration DIR/jitter_calibration.tsv\n"
-                         "                              --out DIR/heldout.tsv [--stands N]",
-                         "E6 held-out (design.md §7): N stands (default 28) at jitter a* on seeds disjoint from the sweep,\n"
-                         "teacher at beta_field: anisotropy, elongation, spread; every stand must build.",
-                         spec, sizeof spec / sizeof *spec, 0, 0};
+    const opts_cmd oc = {
+        "anisotropy-heldout",
+        "--calibration DIR/calibration.tsv --jitter-calibration DIR/jitter_calibration.tsv\n"
+        "                              --out DIR/heldout.tsv [--stands N]",
+        "E6 held-out (design.md §7): N stands (default 28) at jitter a* on seeds disjoint from the sweep,\n"
+        "teacher at beta_field: anisotropy, elongation, spread; every stand must build.",
+        spec,
+        sizeof spec / sizeof *spec,
+        0,
+        0};
     int r = field_parse(&oc, argc, argv, &o);
     if (r) return opts_exit_code(r);
     cs_status st = exp_anisotropy_heldout(&o);
     return st ? cli_fail("anisotropy-heldout", st) : 0;
 }
 
-static int aniso_family(const char *cmd, const char *synopsis, const char *about, cs_status (*run)(const exp_field_opts *),
-                        int argc, char **argv)
+static int aniso_family(const char *cmd, const char *synopsis, const char *about,
+                        cs_status (*run)(const exp_field_opts *), int argc, char **argv)
 {
     exp_field_opts o = {.stands_opt = 12};
     const opt_spec spec[] = {OPT_CAL(o), OPT_OUT(o), OPT_STANDS(o, "stands per level (default 12)"), OPT_READING(o)};
@@ -139,11 +165,12 @@ static int aniso_family(const char *cmd, const char *synopsis, const char *about
 
 int cli_anisotropy_hardcore(int argc, char **argv)
 {
-    return aniso_family("anisotropy-hardcore", "--calibration DIR/calibration.tsv --out DIR/hardcore.tsv [--stands N]",
-                        "E6 hard-core family (design.md §7): stems by random sequential addition with minimum distance c d,\n"
-                        "c in anisotropy.gate hardcore_levels, N stands per level (default 12), teacher at beta_field.\n"
-                        "A level whose stands cannot be built is recorded (stands_failed, trees 0), not a crash.",
-                        exp_anisotropy_hardcore, argc, argv);
+    return aniso_family(
+        "anisotropy-hardcore", "--calibration DIR/calibration.tsv --out DIR/hardcore.tsv [--stands N]",
+        "E6 hard-core family (design.md §7): stems by random sequential addition with minimum distance c d,\n"
+        "c in anisotropy.gate hardcore_levels, N stands per level (default 12), teacher at beta_field.\n"
+        "A level whose stands cannot be built is recorded (stands_failed, trees 0), not a crash.",
+        exp_anisotropy_hardcore, argc, argv);
 }
 
 int cli_anisotropy_jitter(int argc, char **argv)

@@ -96,7 +96,8 @@ int cli_main_eval(int argc, char **argv)
         {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume, named by its teacher stands per spacing (src/exp/mainrun.h; default " EVALVOL_SMALL ")", .choices = VOLUMES},
         {"reading", OPT_CHOICE, &a.reading, 0, 0, "the reading the weights must be (default: any)", .choices = READINGS},
     };
-    const opts_cmd c = {"main-eval", "--weights FILE --trained TABLE --seed S --arm joint|indep --out FILE.tsv [options]",
+    const opts_cmd c = {"main-eval",
+                        "--weights FILE --trained TABLE --seed S --arm joint|indep --out FILE.tsv [options]",
                         "Evaluate one E3/E4 unit from its weights, without training: the run table and samples of\n"
                         "main-run at the chosen volume (at the volume main-run used: the data rows of its table, bit for bit).",
                         spec, sizeof spec / sizeof *spec, 0, 0};
@@ -122,7 +123,9 @@ int cli_main_redraw(int argc, char **argv)
         {"probe", OPT_CHOICE, &a.only_probe, 0, 0, "draw this probe alone (default every one)", .choices = PROBES},
         {"patches", OPT_LONG, &a.only_patches, 1, 1e6, "draw only the first N generated patches of each spacing and probe (default the plan's)"},
     };
-    const opts_cmd c = {"main-redraw", "--weights FILE --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] [--volume 16-stands|96-stands] [--spacing D] [--probe P] [--patches N]",
+    const opts_cmd c = {"main-redraw",
+                        "--weights FILE --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] "
+                        "[--volume 16-stands|96-stands] [--spacing D] [--probe P] [--patches N]",
                         "Draw the clearance samples of one E3/E4 unit again from its weights, without training:\n"
                         "the data rows of FILE.tsv equal those of the unit's samples_s<seed>_<arm>.tsv bit for bit.\n"
                         "With --spacing and --probe only that slice is drawn (the spacing's teacher rows and the\n"
@@ -147,7 +150,8 @@ int cli_main_baselines(int argc, char **argv)
         {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume, named by its teacher stands per spacing (src/exp/mainrun.h; default " EVALVOL_SMALL ")", .choices = VOLUMES},
         {"stand-rows", OPT_FLAG, &a.stand_rows, 0, 0, "also write baselines_stands.tsv beside FILE: the patches of each evaluation stand"},
     };
-    const opts_cmd c = {"main-baselines", "--out FILE.tsv [--scale full|smoke] [--volume 16-stands|96-stands] [--samples FILE.tsv]",
+    const opts_cmd c = {"main-baselines",
+                        "--out FILE.tsv [--scale full|smoke] [--volume 16-stands|96-stands] [--samples FILE.tsv]",
                         "Direction-blind baseline (every crown replaced by its circular mean), split-half noise floor\n"
                         "of the teacher, and the teacher's own crowns under the shuffled-geometry and rotation probes\n"
                         "(added after the first verdict), as W1 of focal nearest-neighbour clearances per eval spacing.",
@@ -218,8 +222,8 @@ int cli_model_readings_summary(int argc, char **argv)
     if (!st) st = afile_mkdir_parents(out);
     if (!st) st = model_readings_write(out, dir, rows, n, argc, argv);
     for (size_t i = 0; !st && i < n; i++)
-        printf("%-13s %-11s seeds %2d  joint %.4f  indep %.4f  rel %.1f %%  p %.5f  shuffle x%.2f\n", rows[i].reading, rows[i].role,
-               rows[i].seeds, rows[i].joint, rows[i].indep, 100 * rows[i].rel, rows[i].p, rows[i].shuf_joint);
+        printf("%-13s %-11s seeds %2d  joint %.4f  indep %.4f  rel %.1f %%  p %.5f  shuffle x%.2f\n",
+               rows[i].reading, rows[i].role, rows[i].seeds, rows[i].joint, rows[i].indep, 100 * rows[i].rel, rows[i].p, rows[i].shuf_joint);
     return st ? cli_fail("model-readings-summary", st) : 0;
 }
 
@@ -257,7 +261,8 @@ int cli_generator_probes_run(int argc, char **argv)
         {"samples", OPT_STR, &a.samples, 0, 0, "also write the clearances behind every W1 to FILE.tsv (default none)"},
         {"out", OPT_STR, &a.out, 0, 0, "the probe table FILE.tsv", .required = 1},
     };
-    const opts_cmd c = {"generator-probes-run", "--weights FILE --seed S --arm joint|indep --out FILE.tsv [options] | --perfect --out FILE.tsv",
+    const opts_cmd c = {"generator-probes-run",
+                        "--weights FILE --seed S --arm joint|indep --out FILE.tsv [options] | --perfect --out FILE.tsv",
                         "What a generator uses (design.md §8.4): one unit's frozen weights sampled at the unseen spacings\n"
                         "with attention masked to the tree itself, the patch turned by 15, 45 and 90 degrees, the nearest\n"
                         "neighbour's position exchanged with the 2nd-4th, positions snapped to the ideal lattice and the\n"

@@ -36,7 +36,8 @@ static cs_status toy_data(patch_set **out, long nstands, double d, unsigned long
 int cli_cmd_train(int argc, char **argv)
 {
     const char *arm = "joint", *ckpt = NULL;
-    long steps = 2000, batch = 64, width = 64, depth = 3, heads = 4, mlp = 256, seed = 1, stands = 8, every = 200, pair = 0;
+    long steps = 2000, batch = 64, width = 64, depth = 3, heads = 4, mlp = 256, seed = 1, stands = 8, every = 200,
+         pair = 0;
     double lr = 2e-3, d = 4.5;
     const opt_spec o[] = {
         {"arm", OPT_CHOICE, &arm, 0, 0, "joint (attention across the patch) or indep (each token alone; default joint)", .choices = CLI_ARMS},
@@ -54,14 +55,25 @@ int cli_cmd_train(int argc, char **argv)
         {"ckpt", OPT_STR, &ckpt, 0, 0, "checkpoint file; resumed from when it exists (default none)"},
         {"ckpt-every", OPT_LONG, &every, 0, 1e9, "steps between checkpoints (default 200)"},
     };
-    const opts_cmd c = {"train", "[options]", "Train the flow-matching generator on toy stands (lattice stands with circular\n"
+    const opts_cmd c = {"train",
+                        "[options]",
+                        "Train the flow-matching generator on toy stands (lattice stands with circular\n"
                         "crowns of a toy teacher, patch.h): a check of the trainer and its checkpoints. The\n"
-                        "study's training runs are the E3/E4 units (main-run).", o, sizeof o / sizeof *o, 0, 0};
+                        "study's training runs are the E3/E4 units (main-run).",
+                        o,
+                        sizeof o / sizeof *o,
+                        0,
+                        0};
     int rc = opts_parse(&c, argc, argv, NULL, NULL);
     if (rc) return opts_exit_code(rc);
     int joint = !strcmp(arm, "joint");
     model_cfg cfg = model_cfg_reference(PATCH_NCOND);
-    cfg.C = (int)width; cfg.L = (int)depth; cfg.H = (int)heads; cfg.F = (int)mlp; cfg.joint = joint; cfg.pair = (int)pair;
+    cfg.C = (int)width;
+    cfg.L = (int)depth;
+    cfg.H = (int)heads;
+    cfg.F = (int)mlp;
+    cfg.joint = joint;
+    cfg.pair = (int)pair;
     cs_status st = model_cfg_check(&cfg);
     if (st) { opts_usage_error("train", "%s", cs_errmsg()); return 2; }
     patch_set *ps;
@@ -72,11 +84,13 @@ int cli_cmd_train(int argc, char **argv)
         int nchk = ps->n < 16 ? ps->n : 16;
         double *rr = malloc(sizeof(double) * nchk * PATCH_T * PATCH_P), diff = 0;
         if (!rr) { patch_set_free(ps); return cli_fail("train", cs_err(CS_ENOMEM, "out of memory")); }
-        for (int k = 0; k < nchk; k++) patch_set_radii(ps, k, ps->x1 + (size_t)k * PATCH_T * PATCH_P, rr + (size_t)k * PATCH_T * PATCH_P);
+        for (int k = 0; k < nchk; k++)
+            patch_set_radii(ps, k, ps->x1 + (size_t)k * PATCH_T * PATCH_P, rr + (size_t)k * PATCH_T * PATCH_P);
         st = patch_clearance_check(est_clearance, ps->px, ps->py, rr, nchk, &diff);
         free(rr);
         if (st) { patch_set_free(ps); return cli_fail("train", st); }
-        fprintf(stderr, "clearance check: batched vs canonical estimator on %d patches, max |diff| %.2g m\n", nchk, diff);
+        fprintf(stderr, "clearance check: batched vs canonical estimator on %d patches, max |diff| %.2g m\n", nchk,
+                diff);
     }
     train_opts opt = train_opts_default();
     opt.steps = steps; opt.batch = (int)batch; opt.lr = lr;
@@ -110,8 +124,14 @@ int cli_cmd_sample(int argc, char **argv)
         {"seed", OPT_LONG, &seed, 0, 4294967295.0, "noise seed (default 1)"},
         {"spacing", OPT_DOUBLE, &d, 0.1, 100, "toy stand spacing in m (default 4.5)"},
     };
-    const opts_cmd c = {"sample", "--ckpt FILE [options]", "Generate crowns with a trained checkpoint and compare their focal clearances with the toy teacher's.",
-                        o, sizeof o / sizeof *o, 0, 0};
+    const opts_cmd c = {
+        "sample",
+        "--ckpt FILE [options]",
+        "Generate crowns with a trained checkpoint and compare their focal clearances with the toy teacher's.",
+        o,
+        sizeof o / sizeof *o,
+        0,
+        0};
     int rc = opts_parse(&c, argc, argv, NULL, NULL);
     if (rc) return opts_exit_code(rc);
     if (!ckpt) { opts_usage_error("sample", "--ckpt is required"); return 2; }
@@ -121,14 +141,20 @@ int cli_cmd_sample(int argc, char **argv)
     if (st) return cli_fail("sample", st);
     patch_set *ps;
     /* held-out toy stands: seeds far from any training seed */
-    if ((st = toy_data(&ps, (n + 63) / 64, d, 900000 + (unsigned long)seed, scale))) { model_free(m); return cli_fail("sample", st); }
+    if ((st = toy_data(&ps, (n + 63) / 64, d, 900000 + (unsigned long)seed, scale))) {
+        model_free(m);
+        return cli_fail("sample", st);
+    }
     const size_t TP = PATCH_T * PATCH_P;
     float *x = malloc(sizeof(float) * n * TP);
     double *rg = malloc(sizeof(double) * n * TP), *rt = malloc(sizeof(double) * n * TP);
     double *gg = malloc(sizeof(double) * n * 3), *gt = malloc(sizeof(double) * n * 3);
     gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
     if (!x || !rg || !rt || !gg || !gt || !g) st = cs_err(CS_ENOMEM, "out of memory");
-    if (!st) { gsl_rng_set(g, (unsigned long)seed); st = model_sample(m, g, (int)n, ps->feat, ps->cond, (int)steps, x); }
+    if (!st) {
+        gsl_rng_set(g, (unsigned long)seed);
+        st = model_sample(m, g, (int)n, ps->feat, ps->cond, (int)steps, x);
+    }
     if (!st) {
         for (long k = 0; k < n; k++) {
             patch_set_radii(ps, (int)k, x + k * TP, rg + k * TP);
@@ -145,7 +171,8 @@ int cli_cmd_sample(int argc, char **argv)
                 printf("%ld\t%d\t%.6f\t%.6f\n", k, j + 1, gt[k * 3 + j], gg[k * 3 + j]);
                 e += fabs(gt[k * 3 + j] - gg[k * 3 + j]);
             }
-        fprintf(stderr, "sample: %ld patches, %ld Euler steps, mean |clearance error| %.4f m\n", n, steps, e / (3.0 * n));
+        fprintf(stderr, "sample: %ld patches, %ld Euler steps, mean |clearance error| %.4f m\n", n, steps,
+                e / (3.0 * n));
     }
     free(x); free(rg); free(rt); free(gg); free(gt);
     if (g) gsl_rng_free(g);
@@ -179,7 +206,8 @@ static int goal(const char *what, double value, double min, const char *fmt)
 /* E3+E4 as run by the manifest's units (src/base/manifest.h): seeds x (joint, independent) pair-model
  * units, each training epochs x steps per epoch and sampling every eval
  * spacing under three probes; two units at a time on the 2-core machine. */
-static cs_status projection(const speed_result *r, double *wall_min, double *unit_j, double *unit_i, long *steps, int *nunits)
+static cs_status projection(const speed_result *r, double *wall_min, double *unit_j, double *unit_i, long *steps,
+                            int *nunits)
 {
     mainrun_plan pl;
     mainset_design ds;
@@ -207,7 +235,10 @@ static int bench_path(gemm_isa isa, const model_cfg *cfg, long batch, long round
     cs_status st = speed_run(cfg, (int)batch, (int)rounds, (int)steps, &r);
     if (st) return cli_fail("bench-model", st);
     printf("path\t%s\n", gemm_isa_name());
-    print_stat(isa == GEMM_AVX512 ? "fma_peak_gflops_512bit" : isa == GEMM_AVX2 ? "fma_peak_gflops_256bit" : "fma_peak_gflops_scalar", r.peak, "%.1f");
+    print_stat(isa == GEMM_AVX512 ? "fma_peak_gflops_512bit"
+               : isa == GEMM_AVX2 ? "fma_peak_gflops_256bit"
+                                  : "fma_peak_gflops_scalar",
+               r.peak, "%.1f");
     if (isa == GEMM_AVX512) print_stat("fma_peak_gflops_256bit", r.peak256, "%.1f");
     for (int i = 0; i < SPEED_NITEMS; i++) {
         char k[64];
@@ -224,16 +255,21 @@ static int bench_path(gemm_isa isa, const model_cfg *cfg, long batch, long round
     /* one goal per figure, each against this path's peak measured beside it;
      * sgemm is printed as a yardstick and judges nothing (which kernel
      * OpenBLAS picks on a given core is its choice, not ours) */
-    int ok = goal("own product, fraction of this path's FMA peak", r.item[SPEED_PRODUCT].frac.med, SPEED_GOAL_PRODUCT, "%.3f");
-    ok &= goal("pair model training, fraction of this path's FMA peak", r.item[SPEED_PAIR].frac.med, SPEED_GOAL_TRAIN, "%.3f");
-    ok &= goal("plain model training, fraction of this path's FMA peak", r.item[SPEED_PLAIN].frac.med, SPEED_GOAL_TRAIN, "%.3f");
+    int ok = goal("own product, fraction of this path's FMA peak", r.item[SPEED_PRODUCT].frac.med, SPEED_GOAL_PRODUCT,
+                  "%.3f");
+    ok &= goal("pair model training, fraction of this path's FMA peak", r.item[SPEED_PAIR].frac.med, SPEED_GOAL_TRAIN,
+               "%.3f");
+    ok &= goal("plain model training, fraction of this path's FMA peak", r.item[SPEED_PLAIN].frac.med, SPEED_GOAL_TRAIN,
+               "%.3f");
     double wall, uj, ui;
     long nsteps;
     int nunits;
     if ((st = projection(&r, &wall, &uj, &ui, &nsteps, &nunits))) return cli_fail("bench-model", st);
     /* these rates x these counts: the whole study's cost is study_cost.sh's */
-    printf("projected E3+E4 on this path: %d pair-model units (%ld training steps + evaluation each; joint %.0f s, independent %.0f s), "
-           "two at a time: %.1f min (budget 60 min; CPU time, the teacher's part of a unit left out)\n", nunits, nsteps, uj, ui, wall);
+    printf("projected E3+E4 on this path: %d pair-model units (%ld training steps + evaluation each; joint %.0f s, "
+           "independent %.0f s), "
+           "two at a time: %.1f min (budget 60 min; CPU time, the teacher's part of a unit left out)\n",
+           nunits, nsteps, uj, ui, wall);
     printf("pair_unit_s\tjoint %.17g\tindep %.17g\n", uj, ui);
     *failed += !ok;
     return 0;
@@ -264,15 +300,22 @@ int cli_cmd_bench_model(int argc, char **argv)
     } else {
         gemm_isa want = !strcmp(path, "avx512") ? GEMM_AVX512 : !strcmp(path, "avx2") ? GEMM_AVX2
                       : !strcmp(path, "scalar") ? GEMM_SCALAR : GEMM_AUTO;
-        if (want == GEMM_AUTO) { opts_usage_error("bench-model", "--path: must be all, avx512, avx2 or scalar, not '%s'", path); return 2; }
-        if (!gemm_isa_available(want)) { opts_usage_error("bench-model", "--path %s: this CPU does not have it", path); return 2; }
+        if (want == GEMM_AUTO) {
+            opts_usage_error("bench-model", "--path: must be all, avx512, avx2 or scalar, not '%s'", path);
+            return 2;
+        }
+        if (!gemm_isa_available(want)) {
+            opts_usage_error("bench-model", "--path %s: this CPU does not have it", path);
+            return 2;
+        }
         list[n++] = want;
     }
     model_cfg cfg = model_cfg_reference(PATCH_NCOND);
     const char *thr = getenv("OPENBLAS_NUM_THREADS");
-    printf("model bench: %d blocks, width %d, %d heads, MLP %d, batch %ld x %d tokens, OPENBLAS_NUM_THREADS=%s;\n"
-           "median [min, max] of %ld rounds; each rate as a fraction of the FMA peak measured just before and after it\n",
-           cfg.L, cfg.C, cfg.H, cfg.F, batch, cfg.T, thr ? thr : "(unset)", repeats);
+    printf(
+        "model bench: %d blocks, width %d, %d heads, MLP %d, batch %ld x %d tokens, OPENBLAS_NUM_THREADS=%s;\n"
+        "median [min, max] of %ld rounds; each rate as a fraction of the FMA peak measured just before and after it\n",
+        cfg.L, cfg.C, cfg.H, cfg.F, batch, cfg.T, thr ? thr : "(unset)", repeats);
     int failed = 0;
     for (int k = 0; k < n; k++) {
         rc = bench_path(list[k], &cfg, batch, repeats, steps, &failed);

@@ -25,7 +25,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-typedef struct { const char *family; char arm[16]; double d, stems, trees, k[3], cover, overlap, contact_pct; unsigned stand; } rep_row;
+typedef struct {
+    const char *family;
+    char arm[16];
+    double d, stems, trees, k[3], cover, overlap, contact_pct;
+    unsigned stand;
+} rep_row;
 
 #define ROWS_PER_STAND 11 /* 3 E1 arms, 3 x 2 E8 stands, 2 E9 spacings */
 
@@ -51,7 +56,8 @@ static cs_status stand_rows(const exp_opts *o, unsigned k, double btrain, rep_ro
     size_t n = 0;
     cs_status st = exp_mechanism_figure_stand(o, k, fa);
     for (int a = 0; a < 3 && !st; a++) {
-        put(&out[n++], "mechanism", fa[a].arm, fa[a].d, k, NAN, (double)fa[a].trees, fa[a].k, fa[a].cover, fa[a].overlap, NAN);
+        put(&out[n++], "mechanism", fa[a].arm, fa[a].d, k, NAN, (double)fa[a].trees, fa[a].k, fa[a].cover,
+            fa[a].overlap, NAN);
         if (a > 0 && fa[a].overlap > *worst) *worst = fa[a].overlap; /* arm 0 is uncoupled */
     }
     static const double pcd[3] = {5.0, 4.0, 3.0};
@@ -59,13 +65,16 @@ static cs_status stand_rows(const exp_opts *o, unsigned k, double btrain, rep_ro
         exp_pc_row pr;
         if ((st = exp_pointcloud_stand(o, pcd[i], btrain, k, &pr, worst))) break;
         double kc[3] = {pr.k1_c, NAN, NAN}, ku[3] = {pr.k1_u, NAN, NAN};
-        put(&out[n++], "pointcloud", "coupled", pcd[i], k, (double)pr.stems, (double)pr.trees, kc, NAN, pr.ovl_c, 100.0 * pr.contact);
-        put(&out[n++], "pointcloud", "uncoupled", pcd[i], k, (double)pr.stems, (double)pr.trees, ku, NAN, pr.ovl_u, NAN);
+        put(&out[n++], "pointcloud", "coupled", pcd[i], k, (double)pr.stems, (double)pr.trees, kc, NAN, pr.ovl_c,
+            100.0 * pr.contact);
+        put(&out[n++], "pointcloud", "uncoupled", pcd[i], k, (double)pr.stems, (double)pr.trees, ku, NAN, pr.ovl_u,
+            NAN);
     }
     static const double hd[2] = {3.0, 6.5};
     for (int i = 0; i < 2 && !st; i++) {
         size_t m;
-        if (!(st = exp_hero_stems(o, hd[i], k, &m))) put(&out[n++], "hero", "beta_train", hd[i], k, (double)m, NAN, NULL, NAN, NAN, NAN);
+        if (!(st = exp_hero_stems(o, hd[i], k, &m)))
+            put(&out[n++], "hero", "beta_train", hd[i], k, (double)m, NAN, NULL, NAN, NAN, NAN);
     }
     return st;
 }
@@ -96,21 +105,29 @@ static cs_status replicates_run(const exp_opts *o)
     rep_row *rows = calloc(nr, sizeof *rows);
     if (!rows) return cs_err(CS_ENOMEM, "replicates: out of memory");
     double worst = 0.0;
-    for (int k = 0; k < o->stands && !st; k++) st = stand_rows(o, (unsigned)k, btrain, rows + (size_t)k * ROWS_PER_STAND, &worst);
+    for (int k = 0; k < o->stands && !st; k++)
+        st = stand_rows(o, (unsigned)k, btrain, rows + (size_t)k * ROWS_PER_STAND, &worst);
     tsv_writer *w = NULL;
     char path[512];
     if (!st) st = unit_out_open(o, "replicates", "figure_stands.tsv", &w, path, sizeof path);
     if (!st) {
         pv.worst_overlap_m = worst;
-        snprintf(pv.seeds, sizeof pv.seeds, "seed_derive(fig/mechanism|fig/pointcloud|fig/hero, d, k, stems|crowns), k = 0..%d (k = 0: the figure's stand)", o->stands - 1);
+        snprintf(pv.seeds, sizeof pv.seeds,
+                 "seed_derive(fig/mechanism|fig/pointcloud|fig/hero, d, k, stems|crowns), k = 0..%d (k = 0: the "
+                 "figure's stand)",
+                 o->stands - 1);
         st = prov_write(w, &pv);
         if (st) tsv_writer_abort(w);
     }
     if (!st) {
         unit_out_meta(w, o);
-        tsv_writer_meta(w, "what", "replicate stands of the one-stand figure numbers (design.md §6.1): E1 figure stand arms, E8 point-cloud stands, E9 hero stems");
-        tsv_writer_meta(w, "dieback", "%.17g (gates/mechanism.gate dieback_train; the E1 arms: the ablation's)", btrain);
-        tsv_writer_columns(w, "family\tarm\tspacing_m\tstand\tstems\ttrees\tk1_m\tk2_m\tk3_m\tcover\toverlap_m\tcontact_pct");
+        tsv_writer_meta(w, "what",
+                        "replicate stands of the one-stand figure numbers (design.md §6.1): E1 figure stand arms, E8 "
+                        "point-cloud stands, E9 hero stems");
+        tsv_writer_meta(w, "dieback", "%.17g (gates/mechanism.gate dieback_train; the E1 arms: the ablation's)",
+                        btrain);
+        tsv_writer_columns(
+            w, "family\tarm\tspacing_m\tstand\tstems\ttrees\tk1_m\tk2_m\tk3_m\tcover\toverlap_m\tcontact_pct");
         for (size_t i = 0; i < nr; i++) write_row(w, &rows[i]);
         st = unit_out_finish(w, &pv, path);
     }
@@ -127,10 +144,15 @@ int cli_replicates_run(int argc, char **argv)
         CLI_OPT_TEACHER(teacher),
         {"stands", OPT_LONG, &stands, 1, 10000, "stands per family, k = 0..N-1 (default 100)"},
     };
-    const opts_cmd c = {"replicates-run", "[options]",
-                        "Replicate stands of the one-stand figure numbers (E1 figure stand, E8 point-cloud stands, E9 hero stems):\n"
-                        "stands k = 0..N-1 of each figure family (k = 0: the figure's own) -> DIR/replicates/figure_stands.tsv",
-                        spec, sizeof spec / sizeof spec[0], 0, 0};
+    const opts_cmd c = {
+        "replicates-run",
+        "[options]",
+        "Replicate stands of the one-stand figure numbers (E1 figure stand, E8 point-cloud stands, E9 hero stems):\n"
+        "stands k = 0..N-1 of each figure family (k = 0: the figure's own) -> DIR/replicates/figure_stands.tsv",
+        spec,
+        sizeof spec / sizeof spec[0],
+        0,
+        0};
     int r = opts_parse(&c, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     exp_opts o = {.out = out, .stands = (int)stands, .beta = NAN, .tag = "train", .argc = argc, .argv = argv};

@@ -34,27 +34,53 @@ static int teacher_unit_run(const teacher_unit *u, int argc, char **argv)
     int rows = 0;
     opt_spec spec[7];
     size_t n = 0;
-    spec[n++] = (opt_spec){"out", OPT_STR, &out, 0, 0, "results root; the unit writes DIR/<experiment>/<file>.tsv (default build/results)"};
+    spec[n++] =
+        (opt_spec){"out", OPT_STR, &out,
+                   0,     0,       "results root; the unit writes DIR/<experiment>/<file>.tsv (default build/results)"};
     spec[n++] = (opt_spec)CLI_OPT_TEACHER(teacher);
     spec[n++] = (opt_spec)CLI_OPT_VARY(vary);
-    if (u->takes & U_STANDS) spec[n++] = (opt_spec){"stands", OPT_LONG, &stands, 1, 10000, "stands per cell (default 8)"};
+    if (u->takes & U_STANDS)
+        spec[n++] = (opt_spec){"stands", OPT_LONG, &stands, 1, 10000, "stands per cell (default 8)"};
     if (u->takes & U_BETA)
-        spec[n++] = (opt_spec){"beta", OPT_DOUBLE, &beta, 0, 0.999,
-                               u->irred ? "die-back (default: the gate's dieback_train)" : "beta_field: adds its row (default: no beta_field row)"};
-    if (u->takes & U_TAG) spec[n++] = (opt_spec){"tag", OPT_STR, &tag, 0, 0, "output tag: train or field (default train; field needs --beta)"};
+        spec[n++] = (opt_spec){"beta",
+                               OPT_DOUBLE,
+                               &beta,
+                               0,
+                               0.999,
+                               u->irred ? "die-back (default: the gate's dieback_train)"
+                                        : "beta_field: adds its row (default: no beta_field row)"};
+    if (u->takes & U_TAG)
+        spec[n++] =
+            (opt_spec){"tag", OPT_STR, &tag, 0, 0, "output tag: train or field (default train; field needs --beta)"};
     if (u->takes & U_ROWS)
-        spec[n++] = (opt_spec){"stand-rows", OPT_FLAG, &rows, 0, 0, "also write the per-stand rows the pooled table is made of (<table>_stands/_sectors/_trees.tsv)"};
+        spec[n++] = (opt_spec){
+            "stand-rows",
+            OPT_FLAG,
+            &rows,
+            0,
+            0,
+            "also write the per-stand rows the pooled table is made of (<table>_stands/_sectors/_trees.tsv)"};
     const opts_cmd c = {u->cmd, "[options]", u->about, spec, n, 0, 0};
     int r = opts_parse(&c, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
-    if (strcmp(tag, "train") && strcmp(tag, "field")) { opts_usage_error(u->cmd, "--tag: must be train or field, not '%s'", tag); return 2; }
-    exp_opts o = {.out = out, .stands = (int)stands, .beta = beta, .tag = tag, .stand_rows = rows, .argc = argc, .argv = argv};
-    if (exp_reading_parse(teacher, NULL, &o.rd) || exp_reading_vary(vary, &o.rd)) { opts_usage_error(u->cmd, "%s", cs_errmsg()); return 2; }
+    if (strcmp(tag, "train") && strcmp(tag, "field")) {
+        opts_usage_error(u->cmd, "--tag: must be train or field, not '%s'", tag);
+        return 2;
+    }
+    exp_opts o = {
+        .out = out, .stands = (int)stands, .beta = beta, .tag = tag, .stand_rows = rows, .argc = argc, .argv = argv};
+    if (exp_reading_parse(teacher, NULL, &o.rd) || exp_reading_vary(vary, &o.rd)) {
+        opts_usage_error(u->cmd, "%s", cs_errmsg());
+        return 2;
+    }
     cs_status st = CS_OK;
     if (u->irred) {
         double b = beta;
         if (isnan(b)) {
-            if (!strcmp(tag, "field")) { opts_usage_error(u->cmd, "--tag field needs --beta (the calibrated field die-back)"); return 2; }
+            if (!strcmp(tag, "field")) {
+                opts_usage_error(u->cmd, "--tag field needs --beta (the calibrated field die-back)");
+                return 2;
+            }
             st = gate_read_value(PATHS_GATE("mechanism"), "dieback_train", 0, &b);
         }
         if (!st) st = u->irred(&o, b);
@@ -64,70 +90,88 @@ static int teacher_unit_run(const teacher_unit *u, int argc, char **argv)
 
 int cli_mechanism_sweep(int argc, char **argv)
 {
-    static const teacher_unit u = {"mechanism-sweep", "E1: 16 rows beta x d on the controlled lattice -> DIR/mechanism/sweep.tsv (and sweep_trees.tsv)",
-                                   U_STANDS | U_ROWS, exp_mechanism_sweep, NULL};
+    static const teacher_unit u = {
+        "mechanism-sweep",
+        "E1: 16 rows beta x d on the controlled lattice -> DIR/mechanism/sweep.tsv (and sweep_trees.tsv)",
+        U_STANDS | U_ROWS, exp_mechanism_sweep, NULL};
     return teacher_unit_run(&u, argc, argv);
 }
 
 int cli_mechanism_ablation(int argc, char **argv)
 {
-    static const teacher_unit u = {"mechanism-ablation", "E1: coupling off / abrasion off / both on at 3.5 m -> DIR/mechanism/ablation.tsv",
+    static const teacher_unit u = {"mechanism-ablation",
+                                   "E1: coupling off / abrasion off / both on at 3.5 m -> DIR/mechanism/ablation.tsv",
                                    U_STANDS, exp_mechanism_ablation, NULL};
     return teacher_unit_run(&u, argc, argv);
 }
 
 int cli_mechanism_figure(int argc, char **argv)
 {
-    static const teacher_unit u = {"mechanism-figure",
-                                   "E1: crowns of the three mechanism panels (hard-core, 3.5 m, L = 36 m) and their statistics\n"
-                                   "-> DIR/mechanism/figure_crowns.tsv, figure_stats.tsv, figure_poly_*.tsv",
-                                   0, exp_mechanism_figure, NULL};
+    static const teacher_unit u = {
+        "mechanism-figure",
+        "E1: crowns of the three mechanism panels (hard-core, 3.5 m, L = 36 m) and their statistics\n"
+        "-> DIR/mechanism/figure_crowns.tsv, figure_stats.tsv, figure_poly_*.tsv",
+        0, exp_mechanism_figure, NULL};
     return teacher_unit_run(&u, argc, argv);
 }
 
 int cli_irreducibility_perturb(int argc, char **argv)
 {
-    static const teacher_unit u = {"irreducibility-perturb", "E2: one tree 30% taller, 5 spacings -> DIR/irreducibility/perturb_<tag>.tsv (and _stands.tsv)",
-                                   U_STANDS | U_BETA | U_TAG | U_ROWS, NULL, exp_irreducibility_perturb};
+    static const teacher_unit u = {
+        "irreducibility-perturb",
+        "E2: one tree 30% taller, 5 spacings -> DIR/irreducibility/perturb_<tag>.tsv (and _stands.tsv)",
+        U_STANDS | U_BETA | U_TAG | U_ROWS, NULL, exp_irreducibility_perturb};
     return teacher_unit_run(&u, argc, argv);
 }
 
 int cli_irreducibility_refine(int argc, char **argv)
 {
-    static const teacher_unit u = {"irreducibility-refine", "E2: N in {48,96,192,384} -> DIR/irreducibility/refine_<tag>.tsv (and _sectors.tsv)",
+    static const teacher_unit u = {"irreducibility-refine",
+                                   "E2: N in {48,96,192,384} -> DIR/irreducibility/refine_<tag>.tsv (and _sectors.tsv)",
                                    U_STANDS | U_BETA | U_TAG | U_ROWS, NULL, exp_irreducibility_refine};
     return teacher_unit_run(&u, argc, argv);
 }
 
 int cli_irreducibility_reduction(int argc, char **argv)
 {
-    static const teacher_unit u = {"irreducibility-reduction", "E2: best-fit Voronoi reduction -> DIR/irreducibility/reduction_<tag>.tsv (and _sectors.tsv)",
-                                   U_STANDS | U_BETA | U_TAG | U_ROWS, NULL, exp_irreducibility_reduction};
+    static const teacher_unit u = {
+        "irreducibility-reduction",
+        "E2: best-fit Voronoi reduction -> DIR/irreducibility/reduction_<tag>.tsv (and _sectors.tsv)",
+        U_STANDS | U_BETA | U_TAG | U_ROWS, NULL, exp_irreducibility_reduction};
     return teacher_unit_run(&u, argc, argv);
 }
 
 int cli_hero_figure(int argc, char **argv)
 {
-    static const teacher_unit u = {"hero-figure", "E9: crowns of the hero figure (hard-core, L = 36 m, d = 3.0..6.5) -> DIR/hero/",
+    static const teacher_unit u = {"hero-figure",
+                                   "E9: crowns of the hero figure (hard-core, L = 36 m, d = 3.0..6.5) -> DIR/hero/",
                                    U_BETA, exp_hero_figure, NULL};
     return teacher_unit_run(&u, argc, argv);
 }
 
 int cli_pointcloud_figure(int argc, char **argv)
 {
-    static const teacher_unit u = {"pointcloud-figure", "E8: point-cloud stands (5/4/3 m and uncoupled) -> DIR/pointcloud/ and pointcloud/stats.tsv",
-                                   0, exp_pointcloud_figure, NULL};
+    static const teacher_unit u = {
+        "pointcloud-figure",
+        "E8: point-cloud stands (5/4/3 m and uncoupled) -> DIR/pointcloud/ and pointcloud/stats.tsv", 0,
+        exp_pointcloud_figure, NULL};
     return teacher_unit_run(&u, argc, argv);
 }
 
 int cli_cmd_bench_teacher(int argc, char **argv)
 {
     long reps = 11;
-    const opt_spec spec[] = {{"reps", OPT_LONG, &reps, 1, 10000, "stands timed at N = 48 (a third of them, at least 3, at N = 384; default 11)"}};
-    const opts_cmd c = {"bench-teacher", "[--reps N]",
-                        "Teacher CPU ms per 144-tree controlled-lattice stand (d = 3.5 m, beta 0.06) at N = 48 and N = 384,\n"
-                        "median [fastest, slowest] over stands each timed alone (design.md §10).",
-                        spec, 1, 0, 0};
+    const opt_spec spec[] = {{"reps", OPT_LONG, &reps, 1, 10000,
+                              "stands timed at N = 48 (a third of them, at least 3, at N = 384; default 11)"}};
+    const opts_cmd c = {
+        "bench-teacher",
+        "[--reps N]",
+        "Teacher CPU ms per 144-tree controlled-lattice stand (d = 3.5 m, beta 0.06) at N = 48 and N = 384,\n"
+        "median [fastest, slowest] over stands each timed alone (design.md §10).",
+        spec,
+        1,
+        0,
+        0};
     int r = opts_parse(&c, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     const int levels[2] = {48, 384};

@@ -14,7 +14,8 @@
 
 int cli_sensitivity_run(int argc, char **argv)
 {
-    exp_sensitivity_args x = {.stands = 4, .field_stands = 28, .sweep_stands = 12, .run = cli_main, .argc = argc, .argv = argv};
+    exp_sensitivity_args x = {
+        .stands = 4, .field_stands = 28, .sweep_stands = 12, .run = cli_main, .argc = argc, .argv = argv};
     const opt_spec spec[] = {
         {"unit", OPT_STR, &x.unit, 0, 0, "the unit: centre, or <choice>_<value> with a value of the list below", .required = 1},
         {"out", OPT_STR, &x.out, 0, 0, "the unit's folder, e.g. build/results/sensitivity/crown_R_3", .required = 1},
@@ -23,17 +24,21 @@ int cli_sensitivity_run(int argc, char **argv)
         {"sweep-stands", OPT_LONG, &x.sweep_stands, 1, 10000, "E6 stands per sweep level (default 12)"},
     };
     char about[2048];
-    size_t off = (size_t)snprintf(about, sizeof about, "One E0 sensitivity unit (design.md §7 E0): the cheap teacher experiments with one unstated\n"
-                                  "choice changed (every other pinned), into DIR; resumable (tables present are kept). Units:\n"
-                                  "  centre         every choice ours\n");
+    size_t off =
+        (size_t)snprintf(about, sizeof about,
+                         "One E0 sensitivity unit (design.md §7 E0): the cheap teacher experiments with one unstated\n"
+                         "choice changed (every other pinned), into DIR; resumable (tables present are kept). Units:\n"
+                         "  centre         every choice ours\n");
     size_t nc;
     const unstated_choice *cl = unstated_list(&nc);
     for (size_t i = 0; i < nc && off < sizeof about; i++) {
         off += (size_t)snprintf(about + off, sizeof about - off, "  %s_<v>, ours %g, v in", cl[i].name, cl[i].ours);
-        for (int k = 0; k < cl[i].nvalues && off < sizeof about; k++) off += (size_t)snprintf(about + off, sizeof about - off, " %g", cl[i].values[k]);
+        for (int k = 0; k < cl[i].nvalues && off < sizeof about; k++)
+            off += (size_t)snprintf(about + off, sizeof about - off, " %g", cl[i].values[k]);
         if (off < sizeof about) off += (size_t)snprintf(about + off, sizeof about - off, ": %s\n", cl[i].what);
     }
-    const opts_cmd oc = {"sensitivity-run", "--unit UNIT --out DIR [--stands N]", about, spec, sizeof spec / sizeof *spec, 0, 0};
+    const opts_cmd oc = {
+        "sensitivity-run", "--unit UNIT --out DIR [--stands N]", about, spec, sizeof spec / sizeof *spec, 0, 0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     cs_status st = exp_sensitivity_run(&x);

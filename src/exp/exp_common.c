@@ -68,8 +68,8 @@ cs_status exp_reading_parse(const char *teacher, const char *layout, exp_reading
         if (suffix && !strcmp(suffix, "-arc")) r->dieback = TEACHER_DIEBACK_NEIGHBOURS;
         else if (suffix && !strcmp(suffix, "-target")) r->dieback = TEACHER_DIEBACK_TARGET;
         else if (!suffix || *suffix)
-            return cs_err(CS_EINPUT, "--teacher: must be %s or %s, optionally with -arc or -target, not '%s'", TEACHER_VERSION,
-                          TEACHER_VERSION_ONE_SIDED, teacher);
+            return cs_err(CS_EINPUT, "--teacher: must be %s or %s, optionally with -arc or -target, not '%s'",
+                          TEACHER_VERSION, TEACHER_VERSION_ONE_SIDED, teacher);
     }
     if (layout && !strcmp(layout, exp_layout_name(EXP_LAYOUT_5M_ON_60M))) r->layout = EXP_LAYOUT_5M_ON_60M;
     else if (layout && strcmp(layout, exp_layout_name(EXP_LAYOUT_4M_ON_36M)))
@@ -86,7 +86,8 @@ static cs_status variant_set(exp_variant *v, const char *name, double x)
     else if (!strcmp(name, "height_sd")) v->crowns.h_sd = x;
     else if (!strcmp(name, "lobing")) v->crowns.a_max = x;
     else if (!strcmp(name, "growth_N")) {
-        if (x != floor(x) || x < 4 || x > 4096) return cs_err(CS_EINPUT, "--vary growth_N: a whole number in [4, 4096], not %g", x);
+        if (x != floor(x) || x < 4 || x > 4096)
+            return cs_err(CS_EINPUT, "--vary growth_N: a whole number in [4, 4096], not %g", x);
         v->nres = (int)x;
     } else if (!strcmp(name, "start")) v->start_frac = x;
     else if (!strcmp(name, "fig_hardcore")) v->fig_c = x;
@@ -94,7 +95,9 @@ static cs_status variant_set(exp_variant *v, const char *name, double x)
     else if (!strcmp(name, "field_L")) v->field_L = x;
     else if (!strcmp(name, "dieback")) {
         if (x != 1.0 && x != 2.0 && x != 3.0)
-            return cs_err(CS_EINPUT, "--vary dieback: 1 (the contact arc), 2 (beta of the target length) or 3 (one-sided), not %g", x);
+            return cs_err(CS_EINPUT,
+                          "--vary dieback: 1 (the contact arc), 2 (beta of the target length) or 3 (one-sided), not %g",
+                          x);
         v->dieback = (int)x;
     } else return cs_err(CS_EINPUT, "--vary: no unstated choice '%s'", name);
     return CS_OK;
@@ -109,7 +112,8 @@ cs_status exp_reading_vary(const char *vary, exp_reading *r)
         return cs_err(CS_EINPUT, "--vary: expected NAME=VALUE, not '%s'", vary);
     snprintf(name, sizeof name, "%.*s", (int)(eq - vary), vary);
     double x = strtod(eq + 1, &end);
-    if (end == eq + 1 || *end || !isfinite(x) || x <= 0.0) return cs_err(CS_EINPUT, "--vary %s: value must be a positive number, not '%s'", name, eq + 1);
+    if (end == eq + 1 || *end || !isfinite(x) || x <= 0.0)
+        return cs_err(CS_EINPUT, "--vary %s: value must be a positive number, not '%s'", name, eq + 1);
     const unstated_choice *c = unstated_find(name);
     if (!c) return cs_err(CS_EINPUT, "--vary: no unstated choice '%s' (unstated.h)", name);
     if (r->layout == EXP_LAYOUT_5M_ON_60M && c->scope == UNSTATED_FIELD)
@@ -146,7 +150,9 @@ int exp_nres(const exp_reading *r) { return r && r->varied ? r->var.nres : 48; }
 
 void exp_variant_meta(tsv_writer *w, const exp_reading *r)
 {
-    if (r && r->varied) tsv_writer_meta(w, "sensitivity", "%s = %.17g (design.md §7 E0; every other choice the design's)", r->var.name, r->var.value);
+    if (r && r->varied)
+        tsv_writer_meta(w, "sensitivity", "%s = %.17g (design.md §7 E0; every other choice the design's)", r->var.name,
+                        r->var.value);
 }
 
 void exp_prov_begin(prov *p, const char *experiment, const exp_reading *r, int argc, char **argv)
@@ -186,7 +192,10 @@ cs_status exp_field_grow_append(const stand *sd, const exp_reading *rd, double b
         double g[4];
         est_cardinal_gaps(v.x, v.y, r, v.n, i, g);
         for (int c = 0; c < 4; c++)
-            if (!isfinite(g[c])) st = cs_err(CS_ENUMERIC, "exp_field: interior tree %zu of stand %u has no neighbour in cardinal cone %d", i, index, c);
+            if (!isfinite(g[c]))
+                st =
+                    cs_err(CS_ENUMERIC, "exp_field: interior tree %zu of stand %u has no neighbour in cardinal cone %d",
+                           i, index, c);
         if (!st) st = fs_trees_push(acc, coupled, level, index, (unsigned)i, g, est_elongation(r + i * CROWN_NSEC),
                                           est_elongation_cardinal(r + i * CROWN_NSEC));
     }

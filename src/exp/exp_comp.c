@@ -48,7 +48,9 @@ static cs_status patch_stats(const double *x, const double *y, const double *r, 
         if (st) return st;
         flag[i] = 0;
         for (int j = 0; j < PATCH_T && !flag[i]; j++)
-            if (j != i && est_clearance(x[i], y[i], r + (size_t)i * CROWN_NSEC, x[j], y[j], r + (size_t)j * CROWN_NSEC) < 0) flag[i] = 1;
+            if (j != i &&
+                est_clearance(x[i], y[i], r + (size_t)i * CROWN_NSEC, x[j], y[j], r + (size_t)j * CROWN_NSEC) < 0)
+                flag[i] = 1;
         *overlap += flag[i];
     }
     return stats_median(g, PATCH_T, med);
@@ -79,9 +81,12 @@ static cs_status comp_models_load(const char *cj, const char *ci, comp_models *m
     if (!st) st = gate_read_value(PATHS_GATE("anisotropy"), "canonical_jitter", 0, &m->jitter);
     if (!st) st = train_load_model(cj, &m->mj, 64, &m->sj);
     if (!st) st = train_load_model(ci, &m->mi, 64, &si);
-    if (!st && (!m->mj->cfg.joint || m->mi->cfg.joint)) st = cs_err(CS_EINPUT, "%s must be a joint-arm and %s an independent-arm checkpoint", cj, ci);
+    if (!st && (!m->mj->cfg.joint || m->mi->cfg.joint))
+        st = cs_err(CS_EINPUT, "%s must be a joint-arm and %s an independent-arm checkpoint", cj, ci);
     if (!st && m->sj != si) st = cs_err(CS_EINPUT, "%s and %s were trained with different deviation scales", cj, ci);
-    if (!st && m->mj->cfg.pair != m->mi->cfg.pair) st = cs_err(CS_EINPUT, "%s and %s are different models (pair %d vs %d)", cj, ci, m->mj->cfg.pair, m->mi->cfg.pair);
+    if (!st && m->mj->cfg.pair != m->mi->cfg.pair)
+        st = cs_err(CS_EINPUT, "%s and %s are different models (pair %d vs %d)", cj, ci, m->mj->cfg.pair,
+                    m->mi->cfg.pair);
     if (st) comp_models_free(m);
     return st;
 }
@@ -89,7 +94,11 @@ static cs_status comp_models_load(const char *cj, const char *ci, comp_models *m
 /* The comparison patch: its trees' positions and heights, the crowns of the
  * teacher, the joint and the independent model (rg: [3][PATCH_T][PATCH_P]),
  * and per source the median clearance, the overlap count and which trees overlap. */
-typedef struct { double px[PATCH_T], py[PATCH_T], ph[PATCH_T], med[3]; int ovl[3], flag[3][PATCH_T]; double *rg; } comp_patch;
+typedef struct {
+    double px[PATCH_T], py[PATCH_T], ph[PATCH_T], med[3];
+    int ovl[3], flag[3][PATCH_T];
+    double *rg;
+} comp_patch;
 
 static cs_status comp_patch_draw(const comp_models *m, double d, comp_patch *cp)
 {
@@ -120,7 +129,8 @@ static cs_status comp_patch_draw(const comp_models *m, double d, comp_patch *cp)
         st = gen_radii(m->mj, ps, 64, seed_derive("comparison", d, 0, "joint"), cp->rg + PATCH_T * PATCH_P);
     }
     if (!st) st = gen_radii(m->mi, ps, 64, seed_derive("comparison", d, 0, "indep"), cp->rg + 2 * PATCH_T * PATCH_P);
-    for (int a = 0; a < 3 && !st; a++) st = patch_stats(cp->px, cp->py, cp->rg + (size_t)a * PATCH_T * PATCH_P, &cp->med[a], &cp->ovl[a], cp->flag[a]);
+    for (int a = 0; a < 3 && !st; a++)
+        st = patch_stats(cp->px, cp->py, cp->rg + (size_t)a * PATCH_T * PATCH_P, &cp->med[a], &cp->ovl[a], cp->flag[a]);
     free(rt);
     if (ps) patch_set_free(ps);
     if (sd) stand_free(sd);
@@ -160,7 +170,8 @@ static cs_status comp_dart(const comp_models *m, double d, double dmed[2], int *
         if (!rr || !gt_ || !gg) st = cs_err(CS_ENOMEM, "out of memory");
     }
     if (!st) {
-        for (int k = 0; k < *ndart; k++) patch_set_radii(dp, k, dp->x1 + (size_t)k * PATCH_T * PATCH_P, rr + (size_t)k * PATCH_T * PATCH_P);
+        for (int k = 0; k < *ndart; k++)
+            patch_set_radii(dp, k, dp->x1 + (size_t)k * PATCH_T * PATCH_P, rr + (size_t)k * PATCH_T * PATCH_P);
         st = patch_focal_clearances(dp->px, dp->py, rr, *ndart, 1, gt_);
     }
     if (!st) st = gen_radii(m->mj, dp, 64, seed_derive("comparison-dart", d, 0, "joint"), rr);
@@ -177,7 +188,10 @@ static cs_status comp_table(tsv_writer *w, int file, double d, const comp_patch 
 {
     static const char *src[3] = {"teacher", "joint", "indep"};
     if (file == 0) {
-        tsv_writer_meta(w, "statistic", "median over the %d patch trees of the clearance toward the nearest patch tree; overlap = trees with a negative clearance toward any patch tree", PATCH_T);
+        tsv_writer_meta(w, "statistic",
+                        "median over the %d patch trees of the clearance toward the nearest patch tree; overlap = "
+                        "trees with a negative clearance toward any patch tree",
+                        PATCH_T);
         tsv_writer_columns(w, "source\tspacing_m\ttrees\tmedian_nn_clearance_m\toverlapping");
         for (int a = 0; a < 3; a++) {
             tsv_writer_str(w, src[a]); tsv_writer_dbl(w, d); tsv_writer_long(w, PATCH_T);
@@ -187,7 +201,10 @@ static cs_status comp_table(tsv_writer *w, int file, double d, const comp_patch 
         return CS_OK;
     }
     if (file == 1) {
-        tsv_writer_meta(w, "what", "crown outlines for the teaser panels b-d; positions relative to the focal stem; %d rows per tree per source", FIGDATA_ROWS);
+        tsv_writer_meta(w, "what",
+                        "crown outlines for the teaser panels b-d; positions relative to the focal stem; %d rows per "
+                        "tree per source",
+                        FIGDATA_ROWS);
         double X[3 * PATCH_T], Y[3 * PATCH_T], H[3 * PATCH_T];
         int fl[3 * PATCH_T];
         for (int a = 0; a < 3; a++)
@@ -199,7 +216,8 @@ static cs_status comp_table(tsv_writer *w, int file, double d, const comp_patch 
         tsv_writer_meta(w, "layout", "teacher at x offset 0, joint at 40 m, independent at 80 m");
         return figdata_write_polygons(w, 3 * PATCH_T, X, Y, H, cp->rg, fl, "overlapping");
     }
-    tsv_writer_meta(w, "stems", "hard-core Poisson c = %.2f at %.1f m, %d stands, every interior stem a focal tree", COMP_HARDCORE_C, d, COMP_DART_STANDS);
+    tsv_writer_meta(w, "stems", "hard-core Poisson c = %.2f at %.1f m, %d stands, every interior stem a focal tree",
+                    COMP_HARDCORE_C, d, COMP_DART_STANDS);
     tsv_writer_columns(w, "source\tspacing_m\tpatches\tmedian_focal_nn_clearance_m");
     for (int a = 0; a < 2; a++) {
         tsv_writer_str(w, src[a]); tsv_writer_dbl(w, d); tsv_writer_long(w, ndart); tsv_writer_dbl(w, dmed[a]);
@@ -223,7 +241,9 @@ cs_status exp_comp_run(const exp_comp_args *a)
     st = comp_patch_draw(&m, d, &cp);
     if (!st) st = comp_dart(&m, d, dmed, &ndart);
     char path[1024];
-    snprintf(pv.seeds, sizeof pv.seeds, "patch seed_derive(comparison, 5.0, 0, stems|crowns); probe seed_derive(comparison-dart, 5.0, 0..%d, ·); models: E3 seed 1",
+    snprintf(pv.seeds, sizeof pv.seeds,
+             "patch seed_derive(comparison, 5.0, 0, stems|crowns); probe seed_derive(comparison-dart, 5.0, 0..%d, ·); "
+             "models: E3 seed 1",
              COMP_DART_STANDS - 1);
     for (int file = 0; file < 3 && !st; file++) {
         static const char *names[3] = {"patch.tsv", "patch_crowns.tsv", "dart_probe.tsv"};
@@ -231,8 +251,8 @@ cs_status exp_comp_run(const exp_comp_args *a)
         tsv_writer *w;
         if ((st = tsv_writer_open(&w, path))) break;
         if ((st = prov_write(w, &pv))) { tsv_writer_abort(w); break; }
-        tsv_writer_meta(w, "models", "joint %s, independent %s (E3 seed 1; %s)", cj, ci,
-                        m.mj->cfg.pair ? "pair-aware model, design.md §8.1" : "model without pair terms, design.md §8");
+        const char *kind = m.mj->cfg.pair ? "pair-aware model, design.md §8.1" : "model without pair terms, design.md §8";
+        tsv_writer_meta(w, "models", "joint %s, independent %s (E3 seed 1; %s)", cj, ci, kind);
         st = comp_table(w, file, d, &cp, dmed, ndart);
         if (st) tsv_writer_abort(w);
         else st = tsv_writer_commit(w);

@@ -38,15 +38,17 @@ static cs_status patch_stats(const double *x, const double *y, const double *r, 
         if (st) return st;
         int hit = 0;
         for (int j = 0; j < PATCH_T && !hit; j++)
-            if (j != i && est_clearance(x[i], y[i], r + (size_t)i * CROWN_NSEC, x[j], y[j], r + (size_t)j * CROWN_NSEC) < 0) hit = 1;
+            if (j != i &&
+                est_clearance(x[i], y[i], r + (size_t)i * CROWN_NSEC, x[j], y[j], r + (size_t)j * CROWN_NSEC) < 0)
+                hit = 1;
         *overlap += hit;
     }
     return stats_median(g, PATCH_T, med);
 }
 
 /* The central-stem patch of stand k of `key` (lattice or hard-core) into ps. */
-static cs_status add_patch(const char *key, const stems_type *kind, double shape, double d, double beta, unsigned k, patch_set *ps,
-                           double *h /* [PATCH_T] heights of the patch trees, or NULL */)
+static cs_status add_patch(const char *key, const stems_type *kind, double shape, double d, double beta, unsigned k,
+                           patch_set *ps, double *h /* [PATCH_T] heights of the patch trees, or NULL */)
 {
     stand *sd;
     cs_status st = stand_alloc(&sd, kind, d, 12.0 * d, shape, key, k);
@@ -101,8 +103,8 @@ static cs_status measure(const patch_set *ps, model *const *m, int nm, const cha
 /* The figure patch's crowns for the teaser panels: every source side by side
  * (source s shifted by 40 m in x), each tree flagged when its crown runs into
  * another patch tree's (as patch_stats counts them). r: every source's radii. */
-static cs_status write_figure(const char *dir, prov *pv, const char *cj, const char *ci, const patch_set *ps, const double *r,
-                              const double *h, int fig)
+static cs_status write_figure(const char *dir, prov *pv, const char *cj, const char *ci, const patch_set *ps,
+                              const double *r, const double *h, int fig)
 {
     const size_t tp = (size_t)PATCH_T * PATCH_P;
     const int n = ps->n;
@@ -115,8 +117,12 @@ static cs_status write_figure(const char *dir, prov *pv, const char *cj, const c
         for (int i = 0; i < PATCH_T; i++) {
             int hit = 0;
             for (int j = 0; j < PATCH_T && !hit; j++)
-                if (j != i && est_clearance(px[i], py[i], rs + (size_t)i * CROWN_NSEC, px[j], py[j], rs + (size_t)j * CROWN_NSEC) < 0) hit = 1;
-            X[s * PATCH_T + i] = px[i] + 40.0 * s; Y[s * PATCH_T + i] = py[i]; H[s * PATCH_T + i] = h[(size_t)fig * PATCH_T + i];
+                if (j != i && est_clearance(px[i], py[i], rs + (size_t)i * CROWN_NSEC, px[j], py[j],
+                                            rs + (size_t)j * CROWN_NSEC) < 0)
+                    hit = 1;
+            X[s * PATCH_T + i] = px[i] + 40.0 * s;
+            Y[s * PATCH_T + i] = py[i];
+            H[s * PATCH_T + i] = h[(size_t)fig * PATCH_T + i];
             fl[s * PATCH_T + i] = hit;
         }
     }
@@ -127,9 +133,17 @@ static cs_status write_figure(const char *dir, prov *pv, const char *cj, const c
     if (st) return st;
     if ((st = prov_write(w, pv))) { tsv_writer_abort(w); return st; }
     tsv_writer_meta(w, "models", "joint %s, independent %s", cj, ci);
-    tsv_writer_meta(w, "figure_patch", "%d: the rule fixed before the run, the lower median of the joint arm's per-patch medians (rank floor((N - 1) / 2), ties by patch index)", fig);
-    tsv_writer_meta(w, "what", "crown outlines of the figure patch (probe comparison) for the teaser panels; positions relative to the focal stem; %d rows per tree per source", FIGDATA_ROWS);
-    tsv_writer_meta(w, "layout", "teacher at x offset 0, joint at 40 m, independent at 80 m; tree = source x %d + patch tree", PATCH_T);
+    tsv_writer_meta(w, "figure_patch",
+                    "%d: the rule fixed before the run, the lower median of the joint arm's per-patch medians (rank "
+                    "floor((N - 1) / 2), ties by patch index)",
+                    fig);
+    tsv_writer_meta(w, "what",
+                    "crown outlines of the figure patch (probe comparison) for the teaser panels; positions relative "
+                    "to the focal stem; %d rows per tree per source",
+                    FIGDATA_ROWS);
+    tsv_writer_meta(w, "layout",
+                    "teacher at x offset 0, joint at 40 m, independent at 80 m; tree = source x %d + patch tree",
+                    PATCH_T);
     st = figdata_write_polygons(w, CD_NSRC * PATCH_T, X, Y, H, R, fl, "overlapping");
     if (st) { tsv_writer_abort(w); return st; }
     return tsv_writer_commit(w);
@@ -160,7 +174,8 @@ static int figure_patch(const double *x, int n)
     if (!idx) return 0;
     for (int k = 0; k < n; k++) idx[k] = k;
     for (int a = 1; a < n; a++) /* insertion sort by (value, index) */
-        for (int b = a; b > 0 && (x[idx[b]] < x[idx[b - 1]] || (x[idx[b]] == x[idx[b - 1]] && idx[b] < idx[b - 1])); b--) {
+        for (int b = a; b > 0 && (x[idx[b]] < x[idx[b - 1]] || (x[idx[b]] == x[idx[b - 1]] && idx[b] < idx[b - 1]));
+             b--) {
             int t = idx[b]; idx[b] = idx[b - 1]; idx[b - 1] = t;
         }
     pick = idx[(n - 1) / 2];
@@ -179,7 +194,11 @@ static cs_status write_tables(const char *dir, prov *pv, const char *cj, const c
     if (!st && (st = prov_write(w, pv))) { tsv_writer_abort(w); return st; }
     if (st) return st;
     tsv_writer_meta(w, "models", "joint %s, independent %s", cj, ci);
-    tsv_writer_meta(w, "what", "per patch and source: median over the %d patch trees of the clearance toward the nearest patch tree (m), trees with a negative clearance toward any patch tree; probe comparison = lattice patches at 5.0 m, dart = hard-core stems c = %.2f", PATCH_T, CD_HARDCORE_C);
+    tsv_writer_meta(w, "what",
+                    "per patch and source: median over the %d patch trees of the clearance toward the nearest patch "
+                    "tree (m), trees with a negative clearance toward any patch tree; probe comparison = lattice "
+                    "patches at 5.0 m, dart = hard-core stems c = %.2f",
+                    PATCH_T, CD_HARDCORE_C);
     tsv_writer_columns(w, "probe\tpatch\tsource\tmedian_nn_clearance_m\toverlapping");
     for (int pr = 0; pr < 2; pr++)
         for (int s = 0; s < (pr ? 2 : CD_NSRC); s++)
@@ -194,14 +213,22 @@ static cs_status write_tables(const char *dir, prov *pv, const char *cj, const c
     if ((st = tsv_writer_open(&w, path))) return st;
     if ((st = prov_write(w, pv))) { tsv_writer_abort(w); return st; }
     tsv_writer_meta(w, "models", "joint %s, independent %s", cj, ci);
-    tsv_writer_meta(w, "what", "per probe and source over the patches of dist_patches.tsv: 5 %%, 50 %% and 95 %% quantiles of the per-patch median NN clearance and of the overlapping count, and the fraction of patches with no overlapping crown");
-    tsv_writer_meta(w, "figure_patch", "%d: the rule fixed before the run, the lower median of the joint arm's per-patch medians (rank floor((N - 1) / 2), ties by patch index)", fig);
-    tsv_writer_columns(w, "probe\tsource\tpatches\tmedian_nn_q05\tmedian_nn_q50\tmedian_nn_q95\toverlapping_q05\toverlapping_q50\toverlapping_q95\tno_overlap_fraction");
+    tsv_writer_meta(
+        w, "what",
+        "per probe and source over the patches of dist_patches.tsv: 5 %%, 50 %% and 95 %% quantiles of the per-patch "
+        "median NN clearance and of the overlapping count, and the fraction of patches with no overlapping crown");
+    tsv_writer_meta(w, "figure_patch",
+                    "%d: the rule fixed before the run, the lower median of the joint arm's per-patch medians (rank "
+                    "floor((N - 1) / 2), ties by patch index)",
+                    fig);
+    tsv_writer_columns(w, "probe\tsource\tpatches\tmedian_nn_q05\tmedian_nn_q50\tmedian_nn_q95\toverlapping_"
+                          "q05\toverlapping_q50\toverlapping_q95\tno_overlap_fraction");
     for (int pr = 0; pr < 2 && !st; pr++)
         for (int s = 0; s < (pr ? 2 : CD_NSRC) && !st; s++) {
             const int m = pr ? nd : n;
             double q[3], oq[3], z = 0;
-            st = summarise(pr ? dmed + (size_t)s * nd : med + (size_t)s * n, pr ? dovl + (size_t)s * nd : ovl + (size_t)s * n, m, q, oq, &z);
+            st = summarise(pr ? dmed + (size_t)s * nd : med + (size_t)s * n,
+                           pr ? dovl + (size_t)s * nd : ovl + (size_t)s * n, m, q, oq, &z);
             if (st) break;
             tsv_writer_str(w, pr ? "dart" : "comparison"); tsv_writer_str(w, CD_SRC[s]); tsv_writer_long(w, m);
             for (int i = 0; i < 3; i++) tsv_writer_dbl(w, q[i]);
@@ -226,7 +253,8 @@ cs_status exp_compdist_run(const exp_compdist_args *a)
     if (!st) st = gate_read_value(PATHS_GATE("anisotropy"), "canonical_jitter", 0, &jitter);
     if (!st) st = train_load_model(cj, &m[0], 64, &sj);
     if (!st) st = train_load_model(ci, &m[1], 64, &si);
-    if (!st && (!m[0]->cfg.joint || m[1]->cfg.joint)) st = cs_err(CS_EINPUT, "%s must be a joint-arm and %s an independent-arm model", cj, ci);
+    if (!st && (!m[0]->cfg.joint || m[1]->cfg.joint))
+        st = cs_err(CS_EINPUT, "%s must be a joint-arm and %s an independent-arm model", cj, ci);
     if (!st && (sj != si || model_cfg_reading(&m[0]->cfg) != model_cfg_reading(&m[1]->cfg)))
         st = cs_err(CS_EINPUT, "%s and %s are not the two arms of one reading and seed", cj, ci);
     const double d = DESIGN_GENCOMP_SPACING_M;
@@ -235,7 +263,8 @@ cs_status exp_compdist_run(const exp_compdist_args *a)
     double *med = malloc((size_t)CD_NSRC * n * sizeof *med), *dmed = malloc((size_t)2 * n * sizeof *dmed);
     int *ovl = malloc((size_t)CD_NSRC * n * sizeof *ovl), *dovl = malloc((size_t)2 * n * sizeof *dovl);
     if (!st && (!med || !dmed || !ovl || !dovl)) st = cs_err(CS_ENOMEM, "out of memory");
-    double *keep = malloc((size_t)CD_NSRC * n * PATCH_T * PATCH_P * sizeof *keep), *hts = malloc((size_t)n * PATCH_T * sizeof *hts);
+    double *keep = malloc((size_t)CD_NSRC * n * PATCH_T * PATCH_P * sizeof *keep),
+           *hts = malloc((size_t)n * PATCH_T * sizeof *hts);
     if (!st && (!keep || !hts)) st = cs_err(CS_ENOMEM, "out of memory");
     if (!st) st = patch_set_alloc(&ps, n);
     if (!st) st = patch_set_alloc(&dp, n);
@@ -247,7 +276,10 @@ cs_status exp_compdist_run(const exp_compdist_args *a)
     if (!st) st = patch_set_standardise(dp, sj);
     if (!st) st = measure(ps, m, 2, "comparison-dist", d, med, ovl, keep);
     if (!st) st = measure(dp, m, 1, "comparison-dist-dart", d, dmed, dovl, NULL);
-    snprintf(pv.seeds, sizeof pv.seeds, "patches seed_derive(comparison-dist[-dart], 5.0, 0..%d, stems|crowns); sampling seed_derive(comparison-dist[-dart], 5.0, 0, joint|indep)", n - 1);
+    snprintf(pv.seeds, sizeof pv.seeds,
+             "patches seed_derive(comparison-dist[-dart], 5.0, 0..%d, stems|crowns); sampling "
+             "seed_derive(comparison-dist[-dart], 5.0, 0, joint|indep)",
+             n - 1);
     pv.worst_overlap_m = -1;
     const int fig = st ? 0 : figure_patch(med + (size_t)CD_JOINT * n, n);
     if (!st) st = write_tables(dir, &pv, cj, ci, n, n, med, ovl, dmed, dovl, fig);

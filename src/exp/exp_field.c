@@ -65,8 +65,12 @@ cs_status exp_field_summary(const char *table)
 static void meta_calibration(tsv_writer *w, void *ctx)
 {
     (void)ctx;
-    tsv_writer_meta(w, "what", "E5 calibration: median over interior trees (pooled over the calibration stands) of the tree-mean cardinal clearance, per die-back beta; lattice (layout in the layout line)");
-    tsv_writer_meta(w, "rule", "beta_field = linear interpolation of the curve to gates/field.gate calibration_target_m, rounded to the grid step (fs_beta_field)");
+    tsv_writer_meta(w, "what",
+                    "E5 calibration: median over interior trees (pooled over the calibration stands) of the tree-mean "
+                    "cardinal clearance, per die-back beta; lattice (layout in the layout line)");
+    tsv_writer_meta(w, "rule",
+                    "beta_field = linear interpolation of the curve to gates/field.gate calibration_target_m, rounded "
+                    "to the grid step (fs_beta_field)");
 }
 
 cs_status exp_field_calibrate(const exp_field_opts *args)
@@ -90,11 +94,20 @@ cs_status exp_field_calibrate(const exp_field_opts *args)
     double worst = 0;
     for (size_t k = 0; k < nb && !st; k++) {
         double beta = fs_round_step(lo + (double)k * step, step);
-        jobs[k] = (fieldrun_job){.seed_exp = "field/calibration", .kind = stems_lattice, .shape = a, .level = beta, .beta = beta, .nstands = (unsigned)seeds, .rd = o.rd};
+        jobs[k] = (fieldrun_job){.seed_exp = "field/calibration",
+                                 .kind = stems_lattice,
+                                 .shape = a,
+                                 .level = beta,
+                                 .beta = beta,
+                                 .nstands = (unsigned)seeds,
+                                 .rd = o.rd};
         st = fieldrun_run(&jobs[k], &acc, &worst);
-        if (!st && (k % 7 == 0 || k + 1 == nb)) fprintf(stderr, "field-calibrate: beta %.2f done (%zu/%zu)\n", beta, k + 1, nb);
+        if (!st && (k % 7 == 0 || k + 1 == nb))
+            fprintf(stderr, "field-calibrate: beta %.2f done (%zu/%zu)\n", beta, k + 1, nb);
     }
-    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/calibration\", %g, s, stems|crowns), s = 0..%u at every beta", exp_field_d(&o.rd), (unsigned)seeds - 1);
+    snprintf(p.seeds, sizeof p.seeds,
+             "seed_derive(\"field/calibration\", %g, s, stems|crowns), s = 0..%u at every beta", exp_field_d(&o.rd),
+             (unsigned)seeds - 1);
     p.worst_overlap_m = worst;
     if (!st) st = fieldrun_write(o.out, &p, &acc, jobs, nb, meta_calibration, NULL);
     fs_trees_free(&acc);
@@ -127,19 +140,31 @@ cs_status exp_field_heldout(const exp_field_opts *args)
     double a;
     cs_status st = fieldrun_canonical_jitter(&a);
     if (st) return st;
-    fieldrun_job j = {.seed_exp = "field/heldout", .kind = stems_lattice, .shape = a, .level = c.value, .beta = c.value, .nstands = o.stands, .twins = 1, .rd = o.rd};
+    fieldrun_job j = {.seed_exp = "field/heldout",
+                      .kind = stems_lattice,
+                      .shape = a,
+                      .level = c.value,
+                      .beta = c.value,
+                      .nstands = o.stands,
+                      .twins = 1,
+                      .rd = o.rd};
     fs_trees acc;
     fs_trees_init(&acc);
     double worst = 0;
     st = fieldrun_run(&j, &acc, &worst);
-    snprintf(p.seeds, sizeof p.seeds, "seed_derive(\"field/heldout\", %g, s, stems|crowns), s = 0..%u; uncoupled twin = same stand", exp_field_d(&o.rd), o.stands - 1);
+    snprintf(p.seeds, sizeof p.seeds,
+             "seed_derive(\"field/heldout\", %g, s, stems|crowns), s = 0..%u; uncoupled twin = same stand",
+             exp_field_d(&o.rd), o.stands - 1);
     p.worst_overlap_m = worst;
-    fieldrun_meta_ctx m = {c.value, a, "E5 held-out: controlled lattice (layout in the layout line), canonical jitter, teacher at beta_field; coupled stands and their uncoupled twins (same stems and crown draws)"};
+    fieldrun_meta_ctx m = {c.value, a,
+                           "E5 held-out: controlled lattice (layout in the layout line), canonical jitter, teacher at "
+                           "beta_field; coupled stands and their uncoupled twins (same stems and crown draws)"};
     if (!st) st = fieldrun_write(o.out, &p, &acc, &j, 1, fieldrun_meta_generic, &m);
     if (!st) {
         fs_summary s;
         if (!fs_group(&acc, 1, c.value, &s))
-            printf("field-heldout: beta_field %.2f, %zu stands, %zu trees: tree-mean median %.4f m, elongation median %.4f, spread %.4f m\n",
+            printf("field-heldout: beta_field %.2f, %zu stands, %zu trees: tree-mean median %.4f m, elongation median "
+                   "%.4f, spread %.4f m\n",
                    c.value, s.stands, s.f.trees, s.f.tree_mean_median, s.elong_median, s.f.spread);
         fieldrun_print_spread_ratios("field-heldout", &acc, c.value, 1);
     }
@@ -176,9 +201,11 @@ cs_status exp_field_diagnose(const exp_field_opts *args)
         stand_free(sd);
     }
     if (st) return st;
-    printf("open-grown targets (%zu crowns): max elongation %.4f; share >= %.2f: %.4f\n", tot, emax, lo, (double)totge / (double)tot);
+    printf("open-grown targets (%zu crowns): max elongation %.4f; share >= %.2f: %.4f\n", tot, emax, lo,
+           (double)totge / (double)tot);
     for (int k = 2; k <= 5; k++)
-        printf("  lobe count k = %d: %zu crowns, share >= %.2f: %.4f\n", k, n[k], lo, n[k] ? (double)ge[k] / (double)n[k] : 0.0);
+        printf("  lobe count k = %d: %zu crowns, share >= %.2f: %.4f\n", k, n[k], lo,
+               n[k] ? (double)ge[k] / (double)n[k] : 0.0);
     /* 2. reach of beta: calibration grid */
     tsv *t;
     fs_trees tr;
@@ -187,24 +214,35 @@ cs_status exp_field_diagnose(const exp_field_opts *args)
     double emx = 0, amn = INFINITY, bea = 0, baa = 0;
     for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
         double b, e, an;
-        if ((st = tsv_double(t, r, "beta", &b)) || (st = tsv_double(t, r, "elong_median", &e)) || (st = tsv_double(t, r, "aniso_median", &an))) break;
+        if ((st = tsv_double(t, r, "beta", &b)) || (st = tsv_double(t, r, "elong_median", &e)) ||
+            (st = tsv_double(t, r, "aniso_median", &an)))
+            break;
         if (e > emx) { emx = e; bea = b; }
         if (an < amn) { amn = an; baa = b; }
     }
     tsv_free(t);
     if (st) return st;
-    printf("calibration grid: largest median elongation %.4f (beta %.2f); smallest median anisotropy %.4f (beta %.2f)\n", emx, bea, amn, baa);
+    printf(
+        "calibration grid: largest median elongation %.4f (beta %.2f); smallest median anisotropy %.4f (beta %.2f)\n",
+        emx, bea, amn, baa);
     /* 3. a perfect lattice at beta_field */
     fs_trees acc;
     fs_trees_init(&acc);
-    fieldrun_job j = {.seed_exp = "field/diagnose", .kind = stems_lattice, .shape = 0.0, .level = 0.0, .beta = c.value, .nstands = o.stands, .rd = o.rd};
+    fieldrun_job j = {.seed_exp = "field/diagnose",
+                      .kind = stems_lattice,
+                      .shape = 0.0,
+                      .level = 0.0,
+                      .beta = c.value,
+                      .nstands = o.stands,
+                      .rd = o.rd};
     double worst = 0;
     st = fieldrun_run(&j, &acc, &worst);
     fs_summary sm;
     if (!st) st = fs_group(&acc, 1, 0.0, &sm);
     fs_trees_free(&acc);
     if (st) return st;
-    printf("perfect lattice (a = 0) at beta_field %.2f, %u stands: median anisotropy %.4f (%zu trees), tree-mean median %.4f m, elongation %.4f\n",
+    printf("perfect lattice (a = 0) at beta_field %.2f, %u stands: median anisotropy %.4f (%zu trees), tree-mean "
+           "median %.4f m, elongation %.4f\n",
            c.value, o.stands, sm.f.aniso_median, sm.f.aniso_trees, sm.f.tree_mean_median, sm.elong_median);
     return CS_OK;
 }

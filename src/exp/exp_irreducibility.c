@@ -49,8 +49,8 @@ typedef struct { size_t judged, responded; double abs_sum, step, dr[MAXJUDGE * N
 
 /* One stand at resolution nres: baseline and perturbed growth, accumulated
  * into acc (and, when own is not NULL, the stand's own numbers into own). */
-static cs_status perturb_stand(const stand *sd, const exp_reading *rd, double beta, int nres, double hfac, double tol, int njudge,
-                               perturb_acc *acc, stand_own *own, double *worst)
+static cs_status perturb_stand(const stand *sd, const exp_reading *rd, double beta, int nres, double hfac, double tol,
+                               int njudge, perturb_acc *acc, stand_own *own, double *worst)
 {
     if (own) memset(own, 0, sizeof *own);
     size_t n = sd->s->n;
@@ -71,7 +71,10 @@ static cs_status perturb_stand(const stand *sd, const exp_reading *rd, double be
         if (!st) st = stand_grow(sd, &p, h2, rb, NULL, worst);
         for (int k = 1; k <= njudge && !st; k++) {
             long j = est_knn(sd->s->x, sd->s->y, n, f, k);
-            if (j < 0) { st = cs_err(CS_EINPUT, "experiments: focal tree has fewer than %d neighbours", njudge); break; }
+            if (j < 0) {
+                st = cs_err(CS_EINPUT, "experiments: focal tree has fewer than %d neighbours", njudge);
+                break;
+            }
             int resp = 0;
             for (int s = 0; s < NS; s++) {
                 double dr = fabs(rb[(size_t)j * NS + s] - ra[(size_t)j * NS + s]);
@@ -104,7 +107,8 @@ static cs_status irred_cfg_load(irred_cfg *c)
     if (!st) c->njudge = (int)v;
     if (!st) st = gate_read_values(PATHS_GATE("irreducibility"), "refine_levels", c->levels, 8, &c->nlev);
     if (!st && (c->njudge < 1 || c->njudge > MAXJUDGE))
-        st = cs_err(CS_EINPUT, "%s: neighbours_judged %d outside 1..%d", PATHS_GATE("irreducibility"), c->njudge, MAXJUDGE);
+        st = cs_err(CS_EINPUT, "%s: neighbours_judged %d outside 1..%d", PATHS_GATE("irreducibility"), c->njudge,
+                    MAXJUDGE);
     return st;
 }
 
@@ -138,7 +142,9 @@ static cs_status irred_open(const exp_opts *o, const char *prefix, const char *r
     st = prov_write(*w, pv);
     if (st) { tsv_writer_abort(*w); return st; }
     irred_meta(*w, o, beta);
-    if (rows[0]) tsv_writer_meta(*w, "rows", "the per-stand rows of %s_%s.tsv, in the order they were pooled (design.md §6.1)", prefix, o->tag);
+    if (rows[0])
+        tsv_writer_meta(*w, "rows", "the per-stand rows of %s_%s.tsv, in the order they were pooled (design.md §6.1)",
+                        prefix, o->tag);
     return CS_OK;
 }
 
@@ -187,7 +193,10 @@ static cs_status write_refine_sectors(const exp_opts *o, double beta, const prov
     const size_t ns = (size_t)o->stands;
     cs_status st = irred_open(o, "refine", "_sectors", beta, &rp, worst, &w, path, sizeof path);
     if (st) return st;
-    tsv_writer_meta(w, "sectors", "|dr| of each sector of each judged neighbour (1..%d by distance to the focal tree); step_m is the stand's growth step", c->njudge);
+    tsv_writer_meta(w, "sectors",
+                    "|dr| of each sector of each judged neighbour (1..%d by distance to the focal tree); step_m is the "
+                    "stand's growth step",
+                    c->njudge);
     tsv_writer_columns(w, "nres\tspacing_m\tstand\tneighbour\tsector\tdr_m\tstep_m");
     for (size_t l = 0; l < c->nlev; l++)
         for (size_t a = 0; a < c->nd; a++)
@@ -298,8 +307,10 @@ cs_status exp_irreducibility_refine(const exp_opts *o, double beta)
     free(own);
     if (!st) st = irred_open(o, "refine", "", beta, &pv, worst, &w, path, sizeof path);
     if (st) return st;
-    tsv_writer_meta(w, "scope", "pooled rows (spacing_m = 0) pool every judged sector of every spacing; gate on pooled");
-    tsv_writer_columns(w, "scope\tspacing_m\tnres\tstands\tjudged\tresponded\tmagnitude_m\tstep_m\tstep_ratio\tmagnitude_ratio");
+    tsv_writer_meta(w, "scope",
+                    "pooled rows (spacing_m = 0) pool every judged sector of every spacing; gate on pooled");
+    tsv_writer_columns(
+        w, "scope\tspacing_m\tnres\tstands\tjudged\tresponded\tmagnitude_m\tstep_m\tstep_ratio\tmagnitude_ratio");
     for (int pooled = 1; pooled >= 0; pooled--)
         for (size_t a = 0; a < (pooled ? 1 : c.nd); a++)
             for (size_t l = 0; l < c.nlev; l++) {
@@ -390,15 +401,18 @@ static cs_status reduction_gather(const exp_opts *o, double beta, const irred_cf
 
 /* irreducibility/reduction_<tag>_sectors.tsv: one row per interior sector
  * (spacing, stand, tree, sector), with the sigma grid it is searched on. */
-static cs_status write_reduction_sectors(const exp_opts *o, double beta, const prov *pv, double worst, const irred_cfg *c,
-                                         const dvec rt[8], const dvec rs[8], const dvec bb[8], const reduction_rows *rows)
+static cs_status write_reduction_sectors(const exp_opts *o, double beta, const prov *pv, double worst,
+                                         const irred_cfg *c, const dvec rt[8], const dvec rs[8], const dvec bb[8],
+                                         const reduction_rows *rows)
 {
     prov rp = *pv;
     tsv_writer *w = NULL;
     char path[512];
     cs_status st = irred_open(o, "reduction", "_sectors", beta, &rp, worst, &w, path, sizeof path);
     if (st) return st;
-    tsv_writer_meta(w, "sectors", "every interior sector: the teacher's radius, the target r* and the territory b (Eq. 4); step_m is the stand's growth step");
+    tsv_writer_meta(w, "sectors",
+                    "every interior sector: the teacher's radius, the target r* and the territory b (Eq. 4); step_m is "
+                    "the stand's growth step");
     tsv_writer_meta(w, "sigma_grid", "sigma_q = (q - %d) / %d m, q = 0..%d", SIG_Q0, SIG_DEN, SIG_N - 1);
     tsv_writer_columns(w, "spacing_m\tstand\ttree\tsector\tr_teacher_m\tr_star_m\tterritory_m\tstep_m");
     for (size_t a = 0; a < c->nd; a++)
@@ -465,8 +479,11 @@ cs_status exp_irreducibility_reduction(const exp_opts *o, double beta)
         double step_mean = steptot / (double)(o->stands * (int)c.nd);
         tsv_writer_meta(w, "reduction", "r = min(r*, b - sigma) at sector centres (Eq. 4); sigma grid %.3f:%.3f:%.3f m",
                         SIG_LO, SIG_STEP, SIG_LO + SIG_STEP * (SIG_N - 1));
-        tsv_writer_meta(w, "scope", "pooled row (spacing_m = 0): one sigma for all spacings; spacing rows use that sigma, own_* their own best");
-        tsv_writer_columns(w, "scope\tspacing_m\tsectors\tsigma_m\tmiss_m\tstep_m\tmiss_steps\town_sigma_m\town_miss_m");
+        tsv_writer_meta(w, "scope",
+                        "pooled row (spacing_m = 0): one sigma for all spacings; spacing rows use that sigma, own_* "
+                        "their own best");
+        tsv_writer_columns(w,
+                           "scope\tspacing_m\tsectors\tsigma_m\tmiss_m\tstep_m\tmiss_steps\town_sigma_m\town_miss_m");
         for (int pooled = 1; pooled >= 0; pooled--)
             for (size_t a = 0; a < (pooled ? 1 : c.nd); a++) {
                 size_t nsec = pooled ? ntot : rt[a].n;
@@ -492,7 +509,13 @@ cs_status exp_irreducibility_reduction(const exp_opts *o, double beta)
     }
     free(miss);
     free(rows.step);
-    for (size_t a = 0; a < 8; a++) { free(rt[a].v); free(rs[a].v); free(bb[a].v); free(rows.stand[a].v); free(rows.tree[a].v); }
+    for (size_t a = 0; a < 8; a++) {
+        free(rt[a].v);
+        free(rs[a].v);
+        free(bb[a].v);
+        free(rows.stand[a].v);
+        free(rows.tree[a].v);
+    }
     return st;
 }
 

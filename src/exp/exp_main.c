@@ -58,14 +58,19 @@ static cs_status unit_check(const char *cmd, const unit_args *a, int need_weight
 {
     if (need_weights && !a->weights) return cs_err(CS_EUSAGE, "%s: --weights is required", cmd);
     if (!a->seed) return cs_err(CS_EUSAGE, "%s: --seed is required", cmd);
-    if (!a->arm || (strcmp(a->arm, "joint") && strcmp(a->arm, "indep"))) return cs_err(CS_EUSAGE, "%s: --arm must be joint or indep", cmd);
+    if (!a->arm || (strcmp(a->arm, "joint") && strcmp(a->arm, "indep")))
+        return cs_err(CS_EUSAGE, "%s: --arm must be joint or indep", cmd);
     if (!a->out) return cs_err(CS_EUSAGE, "%s: --out is required", cmd);
-    if (!a->scale || (strcmp(a->scale, "full") && strcmp(a->scale, "smoke"))) return cs_err(CS_EUSAGE, "%s: --scale must be full or smoke", cmd);
+    if (!a->scale || (strcmp(a->scale, "full") && strcmp(a->scale, "smoke")))
+        return cs_err(CS_EUSAGE, "%s: --scale must be full or smoke", cmd);
     if (a->volume && strcmp(a->volume, EVALVOL_SMALL) && strcmp(a->volume, EVALVOL_LARGE))
-        return cs_err(CS_EUSAGE, "%s: --volume must be " EVALVOL_SMALL " or " EVALVOL_LARGE ", not '%s'", cmd, a->volume);
+        return cs_err(CS_EUSAGE, "%s: --volume must be " EVALVOL_SMALL " or " EVALVOL_LARGE ", not '%s'", cmd,
+                      a->volume);
     model_reading r = MODEL_PAIR;
-    if (a->reading && model_reading_parse(a->reading, &r)) return cs_err(CS_EUSAGE, "%s: --reading: %s", cmd, cs_errmsg());
-    if (a->reading && a->pair >= 0 && (r == MODEL_PAIR) != (a->pair == 1)) return cs_err(CS_EUSAGE, "%s: --pair %d contradicts --reading %s", cmd, a->pair, a->reading);
+    if (a->reading && model_reading_parse(a->reading, &r))
+        return cs_err(CS_EUSAGE, "%s: --reading: %s", cmd, cs_errmsg());
+    if (a->reading && a->pair >= 0 && (r == MODEL_PAIR) != (a->pair == 1))
+        return cs_err(CS_EUSAGE, "%s: --pair %d contradicts --reading %s", cmd, a->pair, a->reading);
     return CS_OK;
 }
 
@@ -122,7 +127,8 @@ static cs_status unit_train(const unit_args *a, const mainset_design *ds, const 
     if (a->ckpt && file_exists(a->ckpt)) {
         if ((st = train_load(t, a->ckpt)))
             return cs_err(st, "%s (delete the checkpoint to restart this run)", cs_errmsg());
-        fprintf(stderr, "main s%u %s %s: resuming at step %ld of %ld\n", seed, a->arm, model_reading_name(reading), t->step, o.steps);
+        fprintf(stderr, "main s%u %s %s: resuming at step %ld of %ld\n", seed, a->arm, model_reading_name(reading),
+                t->step, o.steps);
     }
     const long every = o.steps / 50 > 0 ? o.steps / 50 : 1, from = t->step;
     const double t0 = prov_now();
@@ -143,27 +149,37 @@ static void unit_meta_model(char *buf, size_t n, const model_cfg *c)
 {
     const model_reading r = model_cfg_reading(c);
     if (c->pair || r != MODEL_PLAIN)
-        snprintf(buf, n, "T %d P %d width %d blocks %d heads %d mlp %d joint %d pair %d params %zu%s%s", c->T, c->P, c->C, c->L, c->H,
-                 c->F, c->joint, c->pair, model_nparams(c), r == MODEL_PAIR ? "" : " reading ", r == MODEL_PAIR ? "" : model_reading_name(r));
+        snprintf(buf, n, "T %d P %d width %d blocks %d heads %d mlp %d joint %d pair %d params %zu%s%s", c->T, c->P,
+                 c->C, c->L, c->H, c->F, c->joint, c->pair, model_nparams(c), r == MODEL_PAIR ? "" : " reading ",
+                 r == MODEL_PAIR ? "" : model_reading_name(r));
     else
-        snprintf(buf, n, "T %d P %d width %d blocks %d heads %d mlp %d joint %d params %zu", c->T, c->P, c->C, c->L, c->H, c->F, c->joint, model_nparams(c));
+        snprintf(buf, n, "T %d P %d width %d blocks %d heads %d mlp %d joint %d params %zu", c->T, c->P, c->C, c->L,
+                 c->H, c->F, c->joint, model_nparams(c));
 }
 
 static void unit_meta_training(char *buf, size_t n, const unit_trained *u, const mainrun_plan *pl)
 {
-    snprintf(buf, n, "%d patches (%d stands per training spacing), batch %d, %d epochs = %ld steps, lr %g, final loss %.17g, deviation scale %.17g m",
+    snprintf(buf, n,
+             "%d patches (%d stands per training spacing), batch %d, %d epochs = %ld steps, lr %g, final loss %.17g, "
+             "deviation scale %.17g m",
              u->npatches, pl->train_stands, pl->batch, pl->epochs, u->steps, pl->lr, u->final_loss, u->scale);
 }
 
 static void unit_meta_eval(char *buf, size_t n, const mainrun_plan *pl, const model_cfg *c)
 {
     if (mainrun_volume_small(pl))
-        snprintf(buf, n, "%d teacher stands per spacing, up to %d generated patches, %d Euler steps; probes: shuffled (preregistered gate)%s",
+        snprintf(buf, n,
+                 "%d teacher stands per spacing, up to %d generated patches, %d Euler steps; probes: shuffled "
+                 "(preregistered gate)%s",
                  pl->eval_stands, pl->gen_patches, pl->euler,
-                 c->pair ? ", rotated by (1 + g mod 7) x 45 deg about the focal stem (added after the first verdict)" : "");
+                 c->pair ? ", rotated by (1 + g mod 7) x 45 deg about the focal stem (added after the first verdict)"
+                         : "");
     else
-        snprintf(buf, n, "volume %s: %d teacher stands per spacing, up to %d generated patches, %d Euler steps; probes at the unseen spacings only: "
-                 "shuffled (preregistered gate), rotated by (1 + g mod 7) x 45 deg about the focal stem (added after the first verdict)",
+        snprintf(buf, n,
+                 "volume %s: %d teacher stands per spacing, up to %d generated patches, %d Euler steps; probes at the "
+                 "unseen spacings only: "
+                 "shuffled (preregistered gate), rotated by (1 + g mod 7) x 45 deg about the focal stem (added after "
+                 "the first verdict)",
                  pl->volume, pl->eval_stands, pl->gen_patches, pl->euler);
 }
 
@@ -181,15 +197,25 @@ static cs_status unit_evaluate_write(const unit_args *a, prov *pv, model *m, int
     cs_status st = mainrun_evaluate(m, Bmax, ds, pl, scale, seed, a->arm, rows, &nrows, worst, &maxdiff);
     snprintf(pv->seeds, sizeof pv->seeds, "%s", mainrun_seeds_text(sbuf, sizeof sbuf, seed));
     pv->worst_overlap_m = *worst;
-    if (!st && a->samples && !(st = afile_mkdir_parents(a->samples)) && !(st = mainrun_samples_write(a->samples, pv, seed, a->arm, rows, nrows)))
+    if (!st && a->samples && !(st = afile_mkdir_parents(a->samples)) &&
+        !(st = mainrun_samples_write(a->samples, pv, seed, a->arm, rows, nrows)))
         st = prov_sha256_file(a->samples, ssha);
     unit_meta_eval(ev, sizeof ev, pl, &m->cfg);
     snprintf(ec, sizeof ec, "max |batched - est_clearance| = %.3g m (tolerance %.3g m)", maxdiff, ds->tol);
     meta[nmeta][0] = "eval"; meta[nmeta++][1] = ev;
     meta[nmeta][0] = "estimator_check"; meta[nmeta++][1] = ec;
-    if (a->samples) { snprintf(sl, sizeof sl, "%s sha256 %s", base_name(a->samples), ssha); meta[nmeta][0] = "samples"; meta[nmeta++][1] = sl; }
-    if (a->weights) { snprintf(wl, sizeof wl, "%s sha256 %s (weights format 1, README)", base_name(a->weights), wsha); meta[nmeta][0] = "weights"; meta[nmeta++][1] = wl; }
-    if (!st && !(st = afile_mkdir_parents(a->out))) st = mainrun_table_write(a->out, pv, seed, a->arm, (const char *const (*)[2])meta, nmeta, rows, nrows);
+    if (a->samples) {
+        snprintf(sl, sizeof sl, "%s sha256 %s", base_name(a->samples), ssha);
+        meta[nmeta][0] = "samples";
+        meta[nmeta++][1] = sl;
+    }
+    if (a->weights) {
+        snprintf(wl, sizeof wl, "%s sha256 %s (weights format 1, README)", base_name(a->weights), wsha);
+        meta[nmeta][0] = "weights";
+        meta[nmeta++][1] = wl;
+    }
+    if (!st && !(st = afile_mkdir_parents(a->out)))
+        st = mainrun_table_write(a->out, pv, seed, a->arm, (const char *const(*)[2])meta, nmeta, rows, nrows);
     mainrun_rows_free(rows, nrows);
     return st;
 }
@@ -227,7 +253,9 @@ cs_status exp_main_run(const exp_main_run_args *ap)
         unit_meta_model(mm, sizeof mm, &u.cfg);
         unit_meta_training(tm, sizeof tm, &u, &pl);
         char tt[200];
-        snprintf(tt, sizeof tt, "train_s %.3f steps_per_s %.4g (this invocation; a resumed run counts its last part only)", u.train_s, u.steps_per_s);
+        snprintf(tt, sizeof tt,
+                 "train_s %.3f steps_per_s %.4g (this invocation; a resumed run counts its last part only)", u.train_s,
+                 u.steps_per_s);
         const char *meta[10][2] = {{"scale", pl.scale}, {"model", mm}, {"training", tm}, {"train_time", tt}};
         st = unit_evaluate_write(&a, &pv, t->m, t->B, &ds, &pl, u.scale, meta, 4, u.wsha, &worst);
     }
@@ -268,10 +296,15 @@ cs_status exp_main_train(const exp_main_run_args *ap)
         tsv_writer_meta(w, "scale", "%s", pl.scale);
         tsv_writer_meta(w, "model", "%s", mm);
         tsv_writer_meta(w, "training", "%s", tm);
-        tsv_writer_meta(w, "step_plan", "%d epochs x ceil(%d / %d) = %ld steps; an epoch of the batch order holds %d whole batches, so %.17g passes over the data",
-                        pl.epochs, u.npatches, pl.batch, u.steps, u.npatches / pl.batch, (double)u.steps / (u.npatches / pl.batch));
+        tsv_writer_meta(w, "step_plan",
+                        "%d epochs x ceil(%d / %d) = %ld steps; an epoch of the batch order holds %d whole batches, so "
+                        "%.17g passes over the data",
+                        pl.epochs, u.npatches, pl.batch, u.steps, u.npatches / pl.batch,
+                        (double)u.steps / (u.npatches / pl.batch));
         tsv_writer_meta(w, "weights", "%s sha256 %s (weights format 1, README)", base_name(a.weights), u.wsha);
-        tsv_writer_meta(w, "train_s", "training wall time of this invocation (a resumed run counts its last part only); steps_per_s likewise");
+        tsv_writer_meta(
+            w, "train_s",
+            "training wall time of this invocation (a resumed run counts its last part only); steps_per_s likewise");
         tsv_writer_columns(w, "seed\tarm\treading\tparams\tsteps\tfinal_loss\ttrain_s\tsteps_per_s");
         tsv_writer_long(w, a.seed); tsv_writer_str(w, a.arm); tsv_writer_str(w, model_reading_name(reading));
         tsv_writer_long(w, (long)model_nparams(&u.cfg)); tsv_writer_long(w, u.steps); tsv_writer_dbl(w, u.final_loss);
@@ -291,14 +324,22 @@ static cs_status trained_meta(const char *path, const char *(*meta)[2], int *nme
     tsv *t;
     cs_status st = tsv_read(path, &t);
     if (st) return st;
-    static const char *keys[][2] = {{"model", "model"}, {"training", "training"}, {"teacher_sha256", "trained_teacher_sha256"},
-                                    {"git_commit", "trained_git_commit"}, {"date", "trained_date"}, {"wall_s", "trained_wall_s"}};
+    static const char *keys[][2] = {{"model", "model"},
+                                    {"training", "training"},
+                                    {"teacher_sha256", "trained_teacher_sha256"},
+                                    {"git_commit", "trained_git_commit"},
+                                    {"date", "trained_date"},
+                                    {"wall_s", "trained_wall_s"}};
     for (size_t k = 0; k < sizeof keys / sizeof *keys && !st; k++) {
         /* a re-evaluation's table carries the training run's record as trained_*:
          * that one, never the re-evaluation's own time, commit or date */
         const char *v = strncmp(keys[k][1], "trained_", 8) ? NULL : tsv_meta(t, keys[k][1]);
         if (!v) v = tsv_meta(t, keys[k][0]);
-        if (!v) { st = cs_err(CS_EINPUT, "%s: provenance line '# %s:' missing (need a training or run table)", path, keys[k][0]); break; }
+        if (!v) {
+            st = cs_err(CS_EINPUT, "%s: provenance line '# %s:' missing (need a training or run table)", path,
+                        keys[k][0]);
+            break;
+        }
         snprintf(buf[*nmeta], 512, "%s", v);
         meta[*nmeta][0] = keys[k][1];
         meta[*nmeta][1] = buf[*nmeta];
@@ -308,7 +349,9 @@ static cs_status trained_meta(const char *path, const char *(*meta)[2], int *nme
     char hex[65];
     if (!st) st = prov_sha256_file(path, hex);
     if (!st) {
-        snprintf(buf[*nmeta], 512, "sha256 %s of the table the unit's training run wrote (%s; git history at trained_git_commit)", hex, base_name(path));
+        snprintf(buf[*nmeta], 512,
+                 "sha256 %s of the table the unit's training run wrote (%s; git history at trained_git_commit)", hex,
+                 base_name(path));
         meta[*nmeta][0] = "training_record";
         meta[*nmeta][1] = buf[*nmeta];
         (*nmeta)++;
@@ -321,10 +364,12 @@ static cs_status unit_load(const unit_args *a, const mainrun_plan *pl, model **m
 {
     cs_status st = train_load_model(a->weights, m, pl->batch, scale);
     if (!st && (*m)->cfg.joint != !strcmp(a->arm, "joint"))
-        st = cs_err(CS_EINPUT, "%s: weights of the %s arm, not %s", a->weights, (*m)->cfg.joint ? "joint" : "indep", a->arm);
+        st = cs_err(CS_EINPUT, "%s: weights of the %s arm, not %s", a->weights, (*m)->cfg.joint ? "joint" : "indep",
+                    a->arm);
     model_reading r;
     if (!st && a->reading && !model_reading_parse(a->reading, &r) && model_cfg_reading(&(*m)->cfg) != r)
-        st = cs_err(CS_EINPUT, "%s: weights of the %s reading, not %s", a->weights, model_reading_name(model_cfg_reading(&(*m)->cfg)), a->reading);
+        st = cs_err(CS_EINPUT, "%s: weights of the %s reading, not %s", a->weights,
+                    model_reading_name(model_cfg_reading(&(*m)->cfg)), a->reading);
     return st;
 }
 
@@ -378,10 +423,15 @@ cs_status exp_main_redraw(const exp_main_run_args *ap)
     char sbuf[256];
     const unsigned seed = (unsigned)a.seed;
     int probe = -1;
-    for (int p = 0; a.only_probe && p < MAINSET_NPROBE; p++) if (!strcmp(a.only_probe, mainset_probe_name((mainset_probe)p))) probe = p;
-    if (!st && a.only_probe && probe < 0) st = cs_err(CS_EUSAGE, "main-redraw: --probe %s: not a probe (generated, shuffled, rotated)", a.only_probe);
-    if (!st) st = mainrun_evaluate_slice(m, pl.batch, &ds, &pl, scl, seed, a.arm, a.only_spacing > 0 ? a.only_spacing : NAN, probe, rows, &nrows, &worst, &maxdiff);
-    if (!st && !nrows) st = cs_err(CS_EUSAGE, "main-redraw: --spacing %g: not an evaluation spacing of the plan", a.only_spacing);
+    for (int p = 0; a.only_probe && p < MAINSET_NPROBE; p++)
+        if (!strcmp(a.only_probe, mainset_probe_name((mainset_probe)p))) probe = p;
+    if (!st && a.only_probe && probe < 0)
+        st = cs_err(CS_EUSAGE, "main-redraw: --probe %s: not a probe (generated, shuffled, rotated)", a.only_probe);
+    if (!st)
+        st = mainrun_evaluate_slice(m, pl.batch, &ds, &pl, scl, seed, a.arm, a.only_spacing > 0 ? a.only_spacing : NAN,
+                                    probe, rows, &nrows, &worst, &maxdiff);
+    if (!st && !nrows)
+        st = cs_err(CS_EUSAGE, "main-redraw: --spacing %g: not an evaluation spacing of the plan", a.only_spacing);
     snprintf(pv.seeds, sizeof pv.seeds, "%s", mainrun_seeds_text(sbuf, sizeof sbuf, seed));
     pv.worst_overlap_m = worst;
     if (!st) st = afile_mkdir_parents(a.out);

@@ -43,7 +43,8 @@ typedef struct {
     int pair;                /* -1 unset; 1 the pair reading, 0 the plain one (the form before reading) */
     double only_spacing;     /* main-redraw: 0 every spacing; else that spacing alone */
     const char *only_probe;  /* main-redraw: NULL every probe; else that probe alone (generated, shuffled, rotated) */
-    long only_patches;       /* main-redraw: 0 the plan's generated patches; else the first this many (a prefix of the whole) */
+    long only_patches; /* main-redraw: 0 the plan's generated patches; else the first this many (a prefix of the whole)
+                        */
     int argc;
     char **argv;
 } exp_main_run_args;

@@ -98,7 +98,9 @@ static cs_status run_cell(const exp_opts *o, const char *key, const stems_type *
                 for (int j = 0; j < 3 && !st; j++) st = dvec_push(&rows->k[j], g[j].v[q]);
                 q++;
             }
-            if (!st && rows->tree.n != g[0].n) st = cs_err(CS_EINVARIANT, "experiments: %zu interior trees recorded, %zu pooled", rows->tree.n, g[0].n);
+            if (!st && rows->tree.n != g[0].n)
+                st =
+                    cs_err(CS_EINVARIANT, "experiments: %zu interior trees recorded, %zu pooled", rows->tree.n, g[0].n);
         }
         cov_sum += cov;
         if (w > ovl) ovl = w;
@@ -121,7 +123,9 @@ static cs_status write_sweep_trees(const exp_opts *o, const prov *pv, const doub
     if ((st = prov_write(w, &rp))) { tsv_writer_abort(w); return st; }
     unit_out_meta(w, o);
     tsv_writer_meta(w, "stems", "controlled lattice a = 0.04, L = 12 d");
-    tsv_writer_meta(w, "rows", "the interior trees each row of sweep.tsv pools, in the order it pooled them; stand_cover is their stand's interior cover (design.md §6.1)");
+    tsv_writer_meta(w, "rows",
+                    "the interior trees each row of sweep.tsv pools, in the order it pooled them; stand_cover is their "
+                    "stand's interior cover (design.md §6.1)");
     tsv_writer_columns(w, "beta\tspacing_m\tstand\ttree\tk1_m\tk2_m\tk3_m\tstand_cover");
     for (size_t a = 0; a < nd; a++)
         for (size_t b = 0; b < nb; b++) {
@@ -155,14 +159,19 @@ cs_status exp_mechanism_sweep(const exp_opts *o)
     if (st) return st;
     cell_result *res = calloc(nb * nd, sizeof *res);
     cell_rows *rows = o->stand_rows ? calloc(nb * nd, sizeof *rows) : NULL;
-    if (!res || (o->stand_rows && !rows)) { free(res); free(rows); return cs_err(CS_ENOMEM, "experiments: out of memory"); }
+    if (!res || (o->stand_rows && !rows)) {
+        free(res);
+        free(rows);
+        return cs_err(CS_ENOMEM, "experiments: out of memory");
+    }
     double worst = 0.0;
     for (size_t a = 0; a < nd && !st; a++)
         for (size_t b = 0; b < nb && !st; b++) {
             teacher_params p;
             EXP_TEACHER_PARAMS(&o->rd, &p);
             p.beta = betas[b];
-            st = run_cell(o, "mechanism", stems_lattice, ds[a], 0.04, &p, &res[a * nb + b], rows ? &rows[a * nb + b] : NULL, &worst);
+            st = run_cell(o, "mechanism", stems_lattice, ds[a], 0.04, &p, &res[a * nb + b],
+                          rows ? &rows[a * nb + b] : NULL, &worst);
             if (!st) fprintf(stderr, "mechanism sweep: d=%.1f beta=%.2f k1=%+.3f k2=%+.3f k3=%+.3f cover=%.3f\n",
                              ds[a], betas[b], res[a * nb + b].k[0], res[a * nb + b].k[1],
                              res[a * nb + b].k[2], res[a * nb + b].cover);
@@ -180,7 +189,8 @@ cs_status exp_mechanism_sweep(const exp_opts *o)
     if (st) { tsv_writer_abort(w); free(res); return st; }
     unit_out_meta(w, o);
     tsv_writer_meta(w, "stems", "controlled lattice a = 0.04, L = 12 d");
-    tsv_writer_meta(w, "statistic", "k-th NN clearance: median over interior trees pooled over stands; cover: mean over stands");
+    tsv_writer_meta(w, "statistic",
+                    "k-th NN clearance: median over interior trees pooled over stands; cover: mean over stands");
     tsv_writer_columns(w, "beta\tspacing_m\tstands\ttrees\tk1_m\tk2_m\tk3_m\tcover\tworst_overlap_m\tpass\ttrain_row");
     for (size_t a = 0; a < nd; a++)
         for (size_t b = 0; b < nb; b++) {
@@ -231,7 +241,9 @@ static cs_status write_ablation(const exp_opts *o, prov *pv, const char *file, c
     if (st) { tsv_writer_abort(w); return st; }
     unit_out_meta(w, o);
     tsv_writer_meta(w, "stems", "%s", stems);
-    tsv_writer_meta(w, "statistic", "k-th NN clearance: median over interior trees pooled over stands; cover: mean over stands of the interior-square cover");
+    tsv_writer_meta(w, "statistic",
+                    "k-th NN clearance: median over interior trees pooled over stands; cover: mean over stands of the "
+                    "interior-square cover");
     tsv_writer_meta(w, "overlap", "worst overlap of the final crowns (teacher self-check measure), m");
     tsv_writer_columns(w, "arm\tcoupled\tbeta\tspacing_m\tstands\ttrees\tk1_m\tk2_m\tk3_m\tcover\toverlap_m");
     for (int a = 0; a < 3; a++) {
@@ -283,15 +295,16 @@ cs_status exp_mechanism_ablation(const exp_opts *o)
     pv.worst_overlap_m = worst;
     snprintf(pv.seeds, sizeof pv.seeds, "seed_derive(mechanism,%.1f,k,stems|crowns) k=0..%d (the sweep's stands)",
              d, o->stands - 1);
-    return write_ablation(o, &pv, "ablation.tsv", "controlled lattice a = 0.04, L = 12 d; identical stems and crown draws in all arms",
-                          d, beta, o->stands, res);
+    return write_ablation(o, &pv, "ablation.tsv",
+                          "controlled lattice a = 0.04, L = 12 d; identical stems and crown draws in all arms", d, beta,
+                          o->stands, res);
 }
 
 /* Stand k of the figure stand's family (k = 0: the stand shown) grown in
  * the three ablation arms: *sd, *r (3 x n x NS radii, arm-major) owned by
  * the caller, *worst the worst overlap over the arms, fres the arms' numbers. */
-static cs_status figure_stand_grow(const exp_opts *o, unsigned k, double d, const double beta[3], stand **sd, double **r,
-                                   double *worst, cell_result fres[3])
+static cs_status figure_stand_grow(const exp_opts *o, unsigned k, double d, const double beta[3], stand **sd,
+                                   double **r, double *worst, cell_result fres[3])
 {
     *r = NULL;
     cs_status st = exp_stand_alloc(&o->rd, sd, stems_hardcore, d, EXP_FIG_L, exp_fig_c(&o->rd), "fig/mechanism", k);
@@ -353,7 +366,9 @@ cs_status exp_mechanism_figure(const exp_opts *o)
         sp.worst_overlap_m = worst;
         snprintf(sp.seeds, sizeof sp.seeds, "seed_derive(fig/mechanism,%.1f,0,stems|crowns) (the figure stand)", d);
         char stems[256];
-        snprintf(stems, sizeof stems, "hard-core Poisson c = %.2f, d = %.2f m, L = %.0f m: the one figure stand, identical in all arms", exp_fig_c(&o->rd), d, EXP_FIG_L);
+        snprintf(stems, sizeof stems,
+                 "hard-core Poisson c = %.2f, d = %.2f m, L = %.0f m: the one figure stand, identical in all arms",
+                 exp_fig_c(&o->rd), d, EXP_FIG_L);
         exp_opts o1 = *o;
         o1.stands = 1;
         st = write_ablation(&o1, &sp, "figure_stats.tsv", stems, d, beta, 1, fres);
@@ -368,7 +383,9 @@ cs_status exp_mechanism_figure(const exp_opts *o)
         if (st) tsv_writer_abort(w);
     }
     if (!st) {
-        tsv_writer_meta(w, "stems", "hard-core Poisson c = %.2f, d = %.2f m, L = %.0f m; one stand, identical in all panels", exp_fig_c(&o->rd), d, EXP_FIG_L);
+        tsv_writer_meta(w, "stems",
+                        "hard-core Poisson c = %.2f, d = %.2f m, L = %.0f m; one stand, identical in all panels",
+                        exp_fig_c(&o->rd), d, EXP_FIG_L);
         /* NN clearance on the stand shown (interior trees), for the panel captions. */
         for (int a = 0; a < 3; a++)
             tsv_writer_meta(w, arms[a], "median k1 clearance %.3f m", exp_stand_k1(sd, r + (size_t)a * n * NS));

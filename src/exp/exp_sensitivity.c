@@ -73,7 +73,8 @@ static int exists(const char *path) { struct stat sb; return stat(path, &sb) == 
 /* failed[i]: the reason step i could not be built ("" when it was, or was
  * not run); DIR/unit.tsv records it, and the summary reports the numbers
  * of that table as not computable with the reason. */
-static cs_status write_unit(const sens_ctx *x, const unstated_choice *c, double value, char failed[][300], int argc, char **argv)
+static cs_status write_unit(const sens_ctx *x, const unstated_choice *c, double value, char failed[][300], int argc,
+                            char **argv)
 {
     char path[600];
     snprintf(path, sizeof path, "%s/unit.tsv", x->dir);
@@ -85,15 +86,25 @@ static cs_status write_unit(const sens_ctx *x, const unstated_choice *c, double 
     snprintf(p.seeds, sizeof p.seeds, "those of each table's experiment (the full run's seeds)");
     p.worst_overlap_m = -1;
     if ((st = prov_write(w, &p))) { tsv_writer_abort(w); return st; }
-    tsv_writer_meta(w, "what", "one sensitivity unit (design.md §7 E0): %s; folder = where the variant's table lives (here, or the centre run's: the choice cannot change it)",
+    tsv_writer_meta(w, "what",
+                    "one sensitivity unit (design.md §7 E0): %s; folder = where the variant's table lives (here, or "
+                    "the centre run's: the choice cannot change it)",
                     c ? c->what : "the centre run (every choice the design's)");
     if (c) tsv_writer_meta(w, "choice", "%s = %.17g (ours %.17g)", c->name, value, c->ours);
-    tsv_writer_meta(w, "stands", "E1/E2 %ld per cell (the full run: 8), E5/E6 %ld held-out and %ld per sweep level (as the full run)", x->stands, x->field_stands, x->sweep_stands);
-    tsv_writer_meta(w, "failed", "a table the unit's stands could not be built for (the teacher refuses overlapping starting crowns; an E6 tree with an empty cardinal cone): a finding of that choice, its numbers not computable");
+    tsv_writer_meta(
+        w, "stands",
+        "E1/E2 %ld per cell (the full run: 8), E5/E6 %ld held-out and %ld per sweep level (as the full run)", x->stands,
+        x->field_stands, x->sweep_stands);
+    tsv_writer_meta(
+        w, "failed",
+        "a table the unit's stands could not be built for (the teacher refuses overlapping starting crowns; an E6 tree "
+        "with an empty cardinal cone): a finding of that choice, its numbers not computable");
     tsv_writer_columns(w, "table\tfolder\tnote");
     for (size_t i = 0; i < NSTEPS; i++) {
         tsv_writer_str(w, STEPS[i].target);
-        tsv_writer_str(w, failed[i][0] ? "failed" : !c || unstated_touches(c, STEPS[i].target) ? "here" : UNSTATED_CENTRE);
+        tsv_writer_str(w, failed[i][0]                                 ? "failed"
+                          : !c || unstated_touches(c, STEPS[i].target) ? "here"
+                                                                       : UNSTATED_CENTRE);
         tsv_writer_str(w, failed[i][0] ? failed[i] : "-");
         tsv_writer_endrow(w);
     }
@@ -163,7 +174,8 @@ cs_status exp_sensitivity_run(const exp_sensitivity_args *a)
         if (rc == 3 || rc == 4) {
             snprintf(failed[i], sizeof failed[i], "exit %d: %.260s", rc, cs_errmsg()[0] ? cs_errmsg() : "see the log");
             for (char *q = failed[i]; *q; q++) if (*q == '\t' || *q == '\n') *q = ' ';
-            fprintf(stderr, "crownshy sensitivity-run: step %s not buildable under %s: %s (recorded)\n", STEPS[i].target, a->unit, failed[i]);
+            fprintf(stderr, "crownshy sensitivity-run: step %s not buildable under %s: %s (recorded)\n",
+                    STEPS[i].target, a->unit, failed[i]);
         } else if (rc) return cs_err(rc == 1 ? CS_EFAIL : CS_EUSAGE, "step %s failed (exit %d)", STEPS[i].target, rc);
     }
     return write_unit(&x, c, value, failed, a->argc, a->argv);

@@ -56,12 +56,14 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
         st = prov_write(w, &pv);
     }
     if (!st) {
-        tsv_writer_meta(w, "stems", "hard-core Poisson c = %.2f, L = %.0f m; crown draws shared within a column", exp_fig_c(&o->rd), EXP_FIG_L);
+        tsv_writer_meta(w, "stems", "hard-core Poisson c = %.2f, L = %.0f m; crown draws shared within a column",
+                        exp_fig_c(&o->rd), EXP_FIG_L);
         for (size_t b = 0; b < nrows; b++) tsv_writer_meta(w, rows[b], "dieback %.17g", betas[b]);
         unit_out_crown_columns(w);
         for (size_t a = 0; a < nd; a++)
             for (size_t b = 0; b < nrows + (size_t)with_uncoupled; b++)
-                unit_out_crowns(w, b < nrows ? rows[b] : "uncoupled", ds[a], sds[a], rs[a * (nrows + (size_t)with_uncoupled) + b]);
+                unit_out_crowns(w, b < nrows ? rows[b] : "uncoupled", ds[a], sds[a],
+                                rs[a * (nrows + (size_t)with_uncoupled) + b]);
         for (size_t a = 0; a < nd && !st; a++)
             for (size_t b = 0; b < nrows + (size_t)with_uncoupled && !st; b++) {
                 const double *r = rs[a * (nrows + (size_t)with_uncoupled) + b];
@@ -146,10 +148,12 @@ static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size
     snprintf(pv.seeds, sizeof pv.seeds, "seed_derive(fig/pointcloud,d,0,stems|crowns)");
     st = prov_write(w, &pv);
     if (st) { tsv_writer_abort(w); return st; }
-    tsv_writer_meta(w, "stems", "hard-core Poisson c = %.2f, L = %.0f m, one stand per spacing (the figure's)", exp_fig_c(&o->rd), EXP_FIG_L);
+    tsv_writer_meta(w, "stems", "hard-core Poisson c = %.2f, L = %.0f m, one stand per spacing (the figure's)",
+                    exp_fig_c(&o->rd), EXP_FIG_L);
     tsv_writer_meta(w, "dieback", "%.17g", beta);
     tsv_writer_meta(w, "contact", "interior crowns with a sector frozen on contact during coupled growth");
-    tsv_writer_columns(w, "spacing_m	trees	contact_fraction	overlap_fraction_coupled	overlap_fraction_uncoupled	k1_coupled_m	k1_uncoupled_m");
+    tsv_writer_columns(w, "spacing_m	trees	contact_fraction	overlap_fraction_coupled	"
+                          "overlap_fraction_uncoupled	k1_coupled_m	k1_uncoupled_m");
     for (size_t a = 0; a < nd; a++) {
         tsv_writer_dbl(w, ds[a]);
         tsv_writer_long(w, (long)rows[a].trees);

@@ -39,16 +39,19 @@ cs_status fieldrun_write(const char *out, prov *p, const fs_trees *acc, const fi
     cs_status st = tsv_writer_open(&w, tp);
     if (st) return st;
     if ((st = prov_write(w, p))) { tsv_writer_abort(w); return st; }
-    tsv_writer_meta(w, "what", "one row per interior tree (>= 2 d from the edge): cardinal gaps E N W S (m) and crown elongation, all-axis (elong, design.md §5) and cardinal (elong_card, design.md §5), canonical estimator");
+    tsv_writer_meta(w, "what",
+                    "one row per interior tree (>= 2 d from the edge): cardinal gaps E N W S (m) and crown elongation, "
+                    "all-axis (elong, design.md §5) and cardinal (elong_card, design.md §5), canonical estimator");
     tsv_writer_meta(w, "summary", "%s", out);
     fs_trees_write(w, acc);
     if ((st = tsv_writer_commit(w))) return st;
     if ((st = tsv_writer_open(&w, out))) return st;
     if ((st = prov_write(w, p))) { tsv_writer_abort(w); return st; }
     tsv_writer_meta(w, "trees_table", "%s", tp);
-    if (nj) tsv_writer_meta(w, "layout", "%s: field stands d = %g m on L = %g m (design.md §7 E5%s)", exp_layout_name(jobs[0].rd.layout),
-                            exp_field_d(&jobs[0].rd), exp_field_L(&jobs[0].rd),
-                            jobs[0].rd.layout == EXP_LAYOUT_5M_ON_60M ? "; a reading, design.md §7 E0" : "");
+    if (nj)
+        tsv_writer_meta(w, "layout", "%s: field stands d = %g m on L = %g m (design.md §7 E5%s)",
+                        exp_layout_name(jobs[0].rd.layout), exp_field_d(&jobs[0].rd), exp_field_L(&jobs[0].rd),
+                        jobs[0].rd.layout == EXP_LAYOUT_5M_ON_60M ? "; a reading, design.md §7 E0" : "");
     if (nj) exp_variant_meta(w, &jobs[0].rd);
     if (meta) meta(w, ctx);
     tsv_writer_columns(w, FS_SUMMARY_COLUMNS);
@@ -83,7 +86,8 @@ void fieldrun_print_spread_ratios(const char *cmd, const fs_trees *acc, double l
 {
     const char *path = field_table_env();
     if (!path) {
-        printf("%s: spread ratio PENDING: needs the raw field table (%s=path), not on this machine\n", cmd, FIELD_TABLE_ENV);
+        printf("%s: spread ratio PENDING: needs the raw field table (%s=path), not on this machine\n", cmd,
+               FIELD_TABLE_ENV);
         return;
     }
     field_table ft;
@@ -97,6 +101,7 @@ void fieldrun_print_spread_ratios(const char *cmd, const fs_trees *acc, double l
     for (int arm = 1; arm >= (twins ? 0 : 1); arm--) {
         fs_summary s;
         if (!fs_group(acc, arm, level, &s))
-            printf("%s: %s spread %.4f m / field spread %.4f m = %.3f\n", cmd, arm ? "coupled" : "uncoupled", s.f.spread, fsum.spread, s.f.spread / fsum.spread);
+            printf("%s: %s spread %.4f m / field spread %.4f m = %.3f\n", cmd, arm ? "coupled" : "uncoupled",
+                   s.f.spread, fsum.spread, s.f.spread / fsum.spread);
     }
 }

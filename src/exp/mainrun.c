@@ -98,7 +98,9 @@ cs_status mainrun_evaluate_slice(model *m, int Bmax, const mainset_design *ds, c
             if (first) memcpy(r->teach, e.teach, (size_t)e.ps->n * sizeof *r->teach);
             st = mainset_generate(m, Bmax, &e, pl->gen_patches, pl->euler, seed, r->probe, r->gen, &r->ng);
             if (!st) st = est_w1(r->gen, (size_t)r->ng, e.teach, (size_t)e.ps->n, &r->w1);
-            if (!st) fprintf(stderr, "main s%u %s: d = %.1f %s W1 = %.4f m\n", seed, arm, d, mainset_probe_name(r->probe), r->w1);
+            if (!st)
+                fprintf(stderr, "main s%u %s: d = %.1f %s W1 = %.4f m\n", seed, arm, d, mainset_probe_name(r->probe),
+                        r->w1);
         }
         mainset_eval_free(&e);
     }
@@ -112,7 +114,11 @@ cs_status mainrun_samples_write(const char *path, prov *pv, unsigned seed, const
     cs_status st = tsv_writer_open(&w, path);
     if (st) return st;
     if ((st = prov_write(w, pv))) { tsv_writer_abort(w); return st; }
-    tsv_writer_meta(w, "what", "focal nearest-neighbour clearances (m) behind every W1 of run_s%02u_%s.tsv: W1(spacing, probe) = est_w1(generated values of that spacing and probe, teacher values of that spacing), values in drawing order", seed, arm);
+    tsv_writer_meta(
+        w, "what",
+        "focal nearest-neighbour clearances (m) behind every W1 of run_s%02u_%s.tsv: W1(spacing, probe) = "
+        "est_w1(generated values of that spacing and probe, teacher values of that spacing), values in drawing order",
+        seed, arm);
     tsv_writer_columns(w, "spacing\tsplit\tprobe\twhich\tvalue");
     for (size_t i = 0; i < n; i++) {
         const mainrun_row *r = &rows[i];
@@ -154,7 +160,11 @@ cs_status mainrun_table_write(const char *path, prov *pv, unsigned seed, const c
 
 const char *mainrun_seeds_text(char *buf, size_t n, unsigned seed)
 {
-    snprintf(buf, n, "stands seed_derive(main-train|main-eval, d, k, stems|crowns); model seed_derive(main-model, 0, %u, init|batch|noise); "
-             "sampling seed_derive(main-model[-shuffled|-rotated], d, %u, sample), permutation seed_derive(main-model, d, %u, shuffle)", seed, seed, seed);
+    snprintf(buf, n,
+             "stands seed_derive(main-train|main-eval, d, k, stems|crowns); model seed_derive(main-model, 0, %u, "
+             "init|batch|noise); "
+             "sampling seed_derive(main-model[-shuffled|-rotated], d, %u, sample), permutation seed_derive(main-model, "
+             "d, %u, shuffle)",
+             seed, seed, seed);
     return buf;
 }

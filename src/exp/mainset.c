@@ -21,9 +21,12 @@ cs_status mainset_design_get(mainset_design *d)
     if ((st = gate_read_value(PATHS_GATE("mechanism"), "dieback_train", 0, &d->beta))) return st;
     if ((st = gate_read_value(PATHS_GATE("anisotropy"), "canonical_jitter", 0, &d->jitter))) return st;
     if ((st = gate_read_value(PATHS_GATE("main"), "estimator_agreement_tol_m", 0, &d->tol))) return st;
-    if ((st = gate_read_values(PATHS_GATE("main"), "train_spacings_m", d->train_d, MAINSET_MAXSP, &d->ntrain))) return st;
-    if ((st = gate_read_values(PATHS_GATE("main"), "unseen_spacings_m", d->unseen_d, MAINSET_MAXSP, &d->nunseen))) return st;
-    if ((st = gate_read_values(PATHS_GATE("extrapolation"), "spacings_m", d->extrap_d, MAINSET_MAXSP, &d->nextrap))) return st;
+    if ((st = gate_read_values(PATHS_GATE("main"), "train_spacings_m", d->train_d, MAINSET_MAXSP, &d->ntrain)))
+        return st;
+    if ((st = gate_read_values(PATHS_GATE("main"), "unseen_spacings_m", d->unseen_d, MAINSET_MAXSP, &d->nunseen)))
+        return st;
+    if ((st = gate_read_values(PATHS_GATE("extrapolation"), "spacings_m", d->extrap_d, MAINSET_MAXSP, &d->nextrap)))
+        return st;
     return CS_OK;
 }
 
@@ -126,7 +129,9 @@ cs_status mainset_eval_build(const mainset_design *ds, int nstands, double d, do
             st = patch_clearance_check(est_clearance, e->ps->px, e->ps->py, rbuf, b, &md);
             if (!st && md > *maxdiff) *maxdiff = md;
             if (!st && md > ds->tol)
-                st = cs_err(CS_EINVARIANT, "batched estimator differs from est_clearance by %.3g m > %.3g m at d = %.1f", md, ds->tol, d);
+                st =
+                    cs_err(CS_EINVARIANT, "batched estimator differs from est_clearance by %.3g m > %.3g m at d = %.1f",
+                           md, ds->tol, d);
         }
     }
     free(rbuf);
@@ -142,7 +147,8 @@ cs_status mainset_generate(model *m, int Bmax, const mainset_eval *e, int gen_pa
     float *rot = probe == MAINSET_ROTATED ? malloc((size_t)G * PATCH_T * PATCH_NFEAT * sizeof *rot) : NULL;
     double *al = probe == MAINSET_ROTATED ? malloc((size_t)G * sizeof *al) : NULL;
     gsl_rng *noise = gsl_rng_alloc(gsl_rng_mt19937), *perm = gsl_rng_alloc(gsl_rng_mt19937);
-    cs_status st = r && noise && perm && (probe != MAINSET_ROTATED || (rot && al)) ? CS_OK : cs_err(CS_ENOMEM, "out of memory");
+    cs_status st =
+        r && noise && perm && (probe != MAINSET_ROTATED || (rot && al)) ? CS_OK : cs_err(CS_ENOMEM, "out of memory");
     if (!st) {
         gsl_rng_set(noise, (unsigned long)seed_derive(key[probe], e->d, seed, "sample"));
         gsl_rng_set(perm, (unsigned long)seed_derive("main-model", e->d, seed, "shuffle"));
@@ -182,7 +188,8 @@ cs_status mainset_teacher_probe(const mainset_eval *e, mainset_probe probe, doub
             if (probe == MAINSET_SHUFFLED) {
                 int perm[PATCH_T];
                 patch_shuffle_perm(g, perm);
-                for (int i = 0; i < PATCH_T; i++) memcpy(xo + i * PATCH_P, x1 + perm[i] * PATCH_P, PATCH_P * sizeof *xo);
+                for (int i = 0; i < PATCH_T; i++)
+                    memcpy(xo + i * PATCH_P, x1 + perm[i] * PATCH_P, PATCH_P * sizeof *xo);
             } else {
                 int steps = (int)lround(patch_rotation_angle(k0 + k) / (2 * M_PI / PATCH_P));
                 for (int i = 0; i < PATCH_T; i++) {

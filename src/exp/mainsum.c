@@ -29,14 +29,18 @@ static const char *base_name(const char *p)
 static cs_status samples_baselines_write(const char *samples, prov *pv, size_t nall, const double *dd, const int *uns,
                                          const int *nt, double *const (*smp)[4], char hex[65])
 {
-    static const char *probe[4] = {"none", "shuffled", "rotated", "none"}, *which[4] = {"teacher", "teacher", "teacher", "blind"};
+    static const char *probe[4] = {"none", "shuffled", "rotated", "none"},
+                      *which[4] = {"teacher", "teacher", "teacher", "blind"};
     tsv_writer *w = NULL;
     cs_status st = afile_mkdir_parents(samples);
     if (!st) st = tsv_writer_open(&w, samples);
     if (!st && (st = prov_write(w, pv))) { tsv_writer_abort(w); return st; }
     if (st) return st;
-    tsv_writer_meta(w, "what", "focal nearest-neighbour clearances (m) behind every W1 of baselines.tsv: which = teacher (probe none: the teacher's crowns; "
-                    "shuffled, rotated: the teacher's crowns under the probe) or blind (circular crowns); each W1 = est_w1(values, teacher none values); "
+    tsv_writer_meta(w, "what",
+                    "focal nearest-neighbour clearances (m) behind every W1 of baselines.tsv: which = teacher (probe "
+                    "none: the teacher's crowns; "
+                    "shuffled, rotated: the teacher's crowns under the probe) or blind (circular crowns); each W1 = "
+                    "est_w1(values, teacher none values); "
                     "noise floor = est_w1(first n_half teacher none values, the rest)");
     tsv_writer_columns(w, "spacing\tsplit\tprobe\twhich\tvalue");
     for (size_t si = 0; si < nall; si++)
@@ -51,7 +55,8 @@ static cs_status samples_baselines_write(const char *samples, prov *pv, size_t n
 }
 
 /* baselines_stands.tsv beside the table `out`: the patches of each stand. */
-static cs_status stand_rows_write(const char *out, prov *pv, size_t nall, const double *dd, const int *uns, int nst, int *const *per)
+static cs_status stand_rows_write(const char *out, prov *pv, size_t nall, const double *dd, const int *uns, int nst,
+                                  int *const *per)
 {
     char path[1024];
     const char *slash = strrchr(out, '/');
@@ -61,7 +66,9 @@ static cs_status stand_rows_write(const char *out, prov *pv, size_t nall, const 
     if (!st) st = tsv_writer_open(&w, path);
     if (st) return st;
     if ((st = prov_write(w, pv))) { tsv_writer_abort(w); return st; }
-    tsv_writer_meta(w, "what", "the evaluation stands behind baselines.tsv: per spacing, how many consecutive patches of samples_baselines.tsv each stand gave, "
+    tsv_writer_meta(w, "what",
+                    "the evaluation stands behind baselines.tsv: per spacing, how many consecutive patches of "
+                    "samples_baselines.tsv each stand gave, "
                     "in order (the replicate units of the stand bootstrap, design.md §6.1)");
     tsv_writer_columns(w, "spacing\tsplit\tstand\tpatches");
     for (size_t si = 0; si < nall; si++)
@@ -77,7 +84,8 @@ static cs_status stand_rows_write(const char *out, prov *pv, size_t nall, const 
 
 cs_status mainsum_baselines(const mainsum_baselines_args *a)
 {
-    const char *out = a->out, *scale = a->scale ? a->scale : "full", *samples = a->samples, *volume = a->volume ? a->volume : EVALVOL_SMALL;
+    const char *out = a->out, *scale = a->scale ? a->scale : "full", *samples = a->samples,
+               *volume = a->volume ? a->volume : EVALVOL_SMALL;
     const int argc = a->argc;
     char **argv = a->argv;
     prov pv;
@@ -91,7 +99,12 @@ cs_status mainsum_baselines(const mainsum_baselines_args *a)
     if (!st) st = mainrun_plan_get(scale, &pl);
     if (!st) st = mainrun_plan_volume(&pl, volume);
     if (st) return st;
-    if (rd.varied) { ds.crowns = rd.var.crowns; ds.nres = rd.var.nres; ds.start_frac = rd.var.start_frac; ds.dieback = rd.dieback; }
+    if (rd.varied) {
+        ds.crowns = rd.var.crowns;
+        ds.nres = rd.var.nres;
+        ds.start_frac = rd.var.start_frac;
+        ds.dieback = rd.dieback;
+    }
     double worst = 0.0, maxdiff = 0.0;
     size_t nall = ds.nunseen + ds.nextrap;
     /* per spacing: 0 teacher, 1 teacher shuffled, 2 teacher rotated, 3 direction-blind */
@@ -123,7 +136,10 @@ cs_status mainsum_baselines(const mainsum_baselines_args *a)
         }
         mainset_eval_free(&e);
     }
-    snprintf(pv.seeds, sizeof pv.seeds, "stands seed_derive(main-eval, d, k, stems|crowns), k < %d; teacher permutation seed_derive(main-teacher, d, 0, shuffle)", pl.eval_stands);
+    snprintf(pv.seeds, sizeof pv.seeds,
+             "stands seed_derive(main-eval, d, k, stems|crowns), k < %d; teacher permutation seed_derive(main-teacher, "
+             "d, 0, shuffle)",
+             pl.eval_stands);
     pv.worst_overlap_m = worst;
     char ssha[65] = "";
     tsv_writer *w = NULL;
@@ -135,14 +151,24 @@ cs_status mainsum_baselines(const mainsum_baselines_args *a)
     if (!st) {
         tsv_writer_meta(w, "scale", "%s", pl.scale);
         exp_variant_meta(w, &rd);
-        if (!mainrun_volume_small(&pl)) tsv_writer_meta(w, "volume", "%s: %d teacher stands per spacing", pl.volume, pl.eval_stands);
-        tsv_writer_meta(w, "noise_floor", "W1 between the teacher clearances of the first n_half (first half of the eval stands) and the rest");
-        tsv_writer_meta(w, "direction_blind", "W1 between clearances with every crown replaced by its circular mean and the teacher's (a rotation leaves it unchanged)");
-        tsv_writer_meta(w, "teacher_probes", "added after the first verdict: W1 between the teacher's own crowns under the shuffled-geometry probe "
-                        "(token i given the deviation profile of the stem whose position it was given) or the rotation probe (crowns turned by "
-                        "(1 + g mod 7) x 45 deg), evaluated at the true positions, and the teacher's: the most a perfect generator degrades");
+        if (!mainrun_volume_small(&pl))
+            tsv_writer_meta(w, "volume", "%s: %d teacher stands per spacing", pl.volume, pl.eval_stands);
+        tsv_writer_meta(
+            w, "noise_floor",
+            "W1 between the teacher clearances of the first n_half (first half of the eval stands) and the rest");
+        tsv_writer_meta(w, "direction_blind",
+                        "W1 between clearances with every crown replaced by its circular mean and the teacher's (a "
+                        "rotation leaves it unchanged)");
+        tsv_writer_meta(
+            w, "teacher_probes",
+            "added after the first verdict: W1 between the teacher's own crowns under the shuffled-geometry probe "
+            "(token i given the deviation profile of the stem whose position it was given) or the rotation probe "
+            "(crowns turned by "
+            "(1 + g mod 7) x 45 deg), evaluated at the true positions, and the teacher's: the most a perfect generator "
+            "degrades");
         if (samples) tsv_writer_meta(w, "samples", "%s sha256 %s", base_name(samples), ssha);
-        tsv_writer_columns(w, "spacing\tsplit\tdirection_blind_w1\tnoise_floor_w1\tteacher_shuffled_w1\tteacher_rotated_w1\tn_teacher\tn_half");
+        tsv_writer_columns(w, "spacing\tsplit\tdirection_blind_w1\tnoise_floor_w1\tteacher_shuffled_w1\tteacher_"
+                              "rotated_w1\tn_teacher\tn_half");
         for (size_t si = 0; si < nall; si++) {
             tsv_writer_dbl(w, dd[si]);
             tsv_writer_str(w, uns[si] ? "unseen" : "extrap");
@@ -190,17 +216,30 @@ cs_status mainsum_summary(const mainsum_summary_args *a)
                 double w1, d;
                 if ((st = tsv_double(t, i, "w1", &w1)) || (st = tsv_double(t, i, "spacing", &d))) break;
                 const char *split = tsv_str(t, i, "split"), *probe = tsv_str(t, i, "probe");
-                if (!split || !probe) { st = cs_err(CS_EINPUT, "%s:%d: field 'split'/'probe' missing", p, tsv_line(t, i)); break; }
+                if (!split || !probe) {
+                    st = cs_err(CS_EINPUT, "%s:%d: field 'split'/'probe' missing", p, tsv_line(t, i));
+                    break;
+                }
                 int q = 0;
                 while (q < MAINSET_NPROBE && strcmp(probe, mainset_probe_name((mainset_probe)q))) q++;
-                if (q == MAINSET_NPROBE) { st = cs_err(CS_EINPUT, "%s:%d: field 'probe': unknown '%s'", p, tsv_line(t, i), probe); break; }
-                if (!strcmp(split, "unseen")) { r->probe[q] += w1; r->np[q]++; }
-                else if (!strcmp(split, "extrap") && q == MAINSET_GENERATED && r->nex < MAXSP) { r->ex[r->nex] = w1; r->exd[r->nex] = d; r->nex++; }
+                if (q == MAINSET_NPROBE) {
+                    st = cs_err(CS_EINPUT, "%s:%d: field 'probe': unknown '%s'", p, tsv_line(t, i), probe);
+                    break;
+                }
+                if (!strcmp(split, "unseen")) { r->probe[q] += w1; r->np[q]++;
+                } else if (!strcmp(split, "extrap") && q == MAINSET_GENERATED && r->nex < MAXSP) {
+                    r->ex[r->nex] = w1;
+                    r->exd[r->nex] = d;
+                    r->nex++;
+                }
             }
             if (!st && r->np[0] == 0) st = cs_err(CS_EINPUT, "%s: no unseen-spacing rows", p);
-            if (!st && a == 0 && r->np[MAINSET_SHUFFLED] != r->np[0]) st = cs_err(CS_EINPUT, "%s: joint run lacks the shuffled probe at some unseen spacing", p);
+            if (!st && a == 0 && r->np[MAINSET_SHUFFLED] != r->np[0])
+                st = cs_err(CS_EINPUT, "%s: joint run lacks the shuffled probe at some unseen spacing", p);
             for (int q = 1; q < MAINSET_NPROBE && !st; q++)
-                if (r->np[q] && r->np[q] != r->np[0]) st = cs_err(CS_EINPUT, "%s: the %s probe misses some unseen spacing", p, mainset_probe_name((mainset_probe)q));
+                if (r->np[q] && r->np[q] != r->np[0])
+                    st = cs_err(CS_EINPUT, "%s: the %s probe misses some unseen spacing", p,
+                                mainset_probe_name((mainset_probe)q));
             for (int q = 0; q < MAINSET_NPROBE && !st; q++) r->probe[q] = r->np[q] ? r->probe[q] / r->np[q] : NAN;
             tsv_free(t);
         }
@@ -213,21 +252,30 @@ cs_status mainsum_summary(const mainsum_summary_args *a)
         snprintf(pv.seeds, sizeof pv.seeds, "model seeds 1..%d (see each run_s*_*.tsv)", nseeds);
         pv.worst_overlap_m = worst;
         if ((st = prov_write(w, &pv))) { tsv_writer_abort(w); break; }
-        tsv_writer_meta(w, "error", pass ? "W1 (m) of focal nearest-neighbour clearances at each extrapolation spacing"
-                                         : "mean over the unseen spacings of W1 (m) of focal nearest-neighbour clearances; probe shuffled = positions permuted within patches (preregistered), rotated = patch geometry turned about the focal stem (added after the first verdict), both evaluated at the true positions");
+        tsv_writer_meta(
+            w, "error",
+            pass ? "W1 (m) of focal nearest-neighbour clearances at each extrapolation spacing"
+                 : "mean over the unseen spacings of W1 (m) of focal nearest-neighbour clearances; probe shuffled = "
+                   "positions permuted within patches (preregistered), rotated = patch geometry turned about the focal "
+                   "stem (added after the first verdict), both evaluated at the true positions");
         tsv_writer_columns(w, pass ? "seed\tarm\tspacing\tw1" : "seed\tarm\tprobe\terror");
         for (int s = 1; s <= nseeds; s++)
             for (int a = 0; a < 2; a++) {
                 runres *r = &rr[(s - 1) * 2 + a];
                 if (pass) {
                     for (int k = 0; k < r->nex; k++) {
-                        tsv_writer_long(w, s); tsv_writer_str(w, arms[a]); tsv_writer_dbl(w, r->exd[k]); tsv_writer_dbl(w, r->ex[k]);
+                        tsv_writer_long(w, s);
+                        tsv_writer_str(w, arms[a]);
+                        tsv_writer_dbl(w, r->exd[k]);
+                        tsv_writer_dbl(w, r->ex[k]);
                         tsv_writer_endrow(w);
                     }
                 } else {
                     for (int q = 0; q < MAINSET_NPROBE; q++) {
                         if (!r->np[q]) continue;
-                        tsv_writer_long(w, s); tsv_writer_str(w, arms[a]); tsv_writer_str(w, mainset_probe_name((mainset_probe)q));
+                        tsv_writer_long(w, s);
+                        tsv_writer_str(w, arms[a]);
+                        tsv_writer_str(w, mainset_probe_name((mainset_probe)q));
                         tsv_writer_dbl(w, r->probe[q]);
                         tsv_writer_endrow(w);
                     }

@@ -62,7 +62,8 @@ cs_status unit_out_polygons(const exp_opts *o, prov *pv, const char *experiment,
     st = prov_write(w, pv);
     if (st) { tsv_writer_abort(w); return st; }
     size_t n = sd->s->n;
-    tsv_writer_meta(w, "panel", "%s, spacing %.2f m, footprint %.0f m, %zu trees, %d rows per tree", panel, d, sd->s->L, n, FIGDATA_ROWS);
+    tsv_writer_meta(w, "panel", "%s, spacing %.2f m, footprint %.0f m, %zu trees, %d rows per tree", panel, d, sd->s->L,
+                    n, FIGDATA_ROWS);
     tsv_writer_meta(w, "k1_median_m", "%.3f", k1);
     st = figdata_write_polygons(w, n, sd->s->x, sd->s->y, sd->h, r, NULL, NULL);
     if (st) { tsv_writer_abort(w); return st; }

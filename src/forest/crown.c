@@ -37,7 +37,8 @@ cs_status crown_draw_n_dist(gsl_rng *rng, size_t n, const crown_dist *c, crown_d
     crown_dist d;
     if (c) d = *c;
     else crown_dist_default(&d);
-    if (!(d.h_sd >= 0.0) || !(d.h_lo < d.h_hi) || !(d.R_scale > 0.0) || !(d.R_lnsd >= 0.0) || !(d.a_max >= 0.0 && d.a_max < 1.0))
+    if (!(d.h_sd >= 0.0) || !(d.h_lo < d.h_hi) || !(d.R_scale > 0.0) || !(d.R_lnsd >= 0.0) ||
+        !(d.a_max >= 0.0 && d.a_max < 1.0))
         return cs_err(CS_EINPUT, "crown: distribution cannot be drawn (h sd %g in [%g, %g], R %g exp(%g z), a_max %g)",
                       d.h_sd, d.h_lo, d.h_hi, d.R_scale, d.R_lnsd, d.a_max);
     for (size_t i = 0; i < n; i++) {

@@ -55,7 +55,8 @@ static int by_first_row(const void *a, const void *b)
  * order) in O(n log n): sort the row indices by (id, row), give the first row
  * of each group a provisional index, then rank the groups by that row.
  * tree_of[r] receives row r's tree, out->id the ids, out->n the count. */
-static cs_status group_trees(const char *path, const char **ids, size_t nr, size_t *ord, size_t *tree_of, field_table *out)
+static cs_status group_trees(const char *path, const char **ids, size_t nr, size_t *ord, size_t *tree_of,
+                             field_table *out)
 {
     cs_status st = CS_OK;
     sort_ids = ids;
@@ -96,7 +97,9 @@ static cs_status check_complete(const char *path, const field_table *out, int (*
             if (!seen[i][c]) {
                 int first = 0;
                 for (int q = 0; q < 4; q++) if (seen[i][q] && (!first || seen[i][q] < first)) first = seen[i][q];
-                return cs_err(CS_EINPUT, "%s:%d: field 'direction': tree '%s' has no %s measurement (each tree needs E, N, W and S exactly once)",
+                return cs_err(CS_EINPUT,
+                              "%s:%d: field 'direction': tree '%s' has no %s measurement (each tree needs E, N, W and "
+                              "S exactly once)",
                               path, first, out->id[i], names[c]);
             }
     return CS_OK;
@@ -133,7 +136,10 @@ cs_status field_table_load(const char *path, field_table *out)
         int line = tsv_line(t, r);
         const char *id = tsv_str(t, r, "tree");
         if (!id[0]) { st = cs_err(CS_EINPUT, "%s:%d: field 'tree': empty", path, line); break; }
-        if (strlen(id) >= sizeof out->id[0]) { st = cs_err(CS_EINPUT, "%s:%d: field 'tree': longer than 63 characters", path, line); break; }
+        if (strlen(id) >= sizeof out->id[0]) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'tree': longer than 63 characters", path, line);
+            break;
+        }
         ord[r] = r;
         ids[r] = id;
     }
@@ -142,16 +148,22 @@ cs_status field_table_load(const char *path, field_table *out)
         int line = tsv_line(t, r);
         const char *id = tsv_str(t, r, "tree"), *dir = tsv_str(t, r, "direction");
         int c = field_direction(dir);
-        if (c < 0) { st = cs_err(CS_EINPUT, "%s:%d: field 'direction': '%s' is not E/N/W/S (or east/north/west/south)", path, line, dir); break; }
+        if (c < 0) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'direction': '%s' is not E/N/W/S (or east/north/west/south)", path,
+                        line, dir);
+            break;
+        }
         double g;
         if ((st = tsv_double(t, r, "clearance_m", &g))) break;
         if (fabs(g) > FIELD_CLEARANCE_MAX_M) {
-            st = cs_err(CS_EINPUT, "%s:%d: field 'clearance_m': %g m is out of range (|clearance| <= %g m)", path, line, g, FIELD_CLEARANCE_MAX_M);
+            st = cs_err(CS_EINPUT, "%s:%d: field 'clearance_m': %g m is out of range (|clearance| <= %g m)", path, line,
+                        g, FIELD_CLEARANCE_MAX_M);
             break;
         }
         size_t i = tree_of[r];
         if (seen[i][c]) {
-            st = cs_err(CS_EINPUT, "%s:%d: field 'direction': tree '%s' already has direction %s (line %d)", path, line, id, dir, seen[i][c]);
+            st = cs_err(CS_EINPUT, "%s:%d: field 'direction': tree '%s' already has direction %s (line %d)", path, line,
+                        id, dir, seen[i][c]);
             break;
         }
         seen[i][c] = line;

@@ -42,8 +42,8 @@ static cs_status fs_reserve(fs_trees *t, size_t want)
     return CS_OK;
 }
 
-cs_status fs_trees_push(fs_trees *t, int coupled, double level, unsigned stand, unsigned tree, const double gap[4], double elong,
-                        double elong_card)
+cs_status fs_trees_push(fs_trees *t, int coupled, double level, unsigned stand, unsigned tree, const double gap[4],
+                        double elong, double elong_card)
 {
     cs_status st = fs_reserve(t, t->n + 1);
     if (st) return st;
@@ -63,11 +63,19 @@ cs_status fs_group(const fs_trees *t, int coupled, double level, fs_summary *out
     memset(out, 0, sizeof *out);
     size_t n = 0;
     for (size_t k = 0; k < t->n; k++) n += t->coupled[k] == coupled && t->level[k] == level;
-    if (n == 0) return cs_err(CS_EINPUT, "fieldsim: no trees for arm %s, level %.17g", coupled ? "coupled" : "uncoupled", level);
+    if (n == 0)
+        return cs_err(CS_EINPUT, "fieldsim: no trees for arm %s, level %.17g", coupled ? "coupled" : "uncoupled",
+                      level);
     double (*g)[4] = malloc(n * sizeof *g);
     double *e = malloc(n * sizeof *e), *ec = malloc(n * sizeof *ec);
     unsigned *st_ids = malloc(n * sizeof *st_ids);
-    if (!g || !e || !ec || !st_ids) { free(g); free(e); free(ec); free(st_ids); return cs_err(CS_ENOMEM, "fieldsim: out of memory"); }
+    if (!g || !e || !ec || !st_ids) {
+        free(g);
+        free(e);
+        free(ec);
+        free(st_ids);
+        return cs_err(CS_ENOMEM, "fieldsim: out of memory");
+    }
     size_t m = 0, ns = 0;
     for (size_t k = 0; k < t->n; k++) {
         if (t->coupled[k] != coupled || t->level[k] != level) continue;
@@ -130,7 +138,8 @@ cs_status fs_trees_read(const char *path, fs_trees *out)
         for (int c = 0; c < 4 && !st; c++) st = tsv_double(t, r, gcol[c], &g[c]);
         if (!st) st = tsv_double(t, r, "elong", &e);
         if (!st) st = tsv_double(t, r, "elong_card", &ec);
-        if (!st && (s < 0 || i < 0)) st = cs_err(CS_EINPUT, "%s:%d: field 'stand'/'tree': negative", path, tsv_line(t, r));
+        if (!st && (s < 0 || i < 0))
+            st = cs_err(CS_EINPUT, "%s:%d: field 'stand'/'tree': negative", path, tsv_line(t, r));
         if (!st) st = fs_trees_push(out, coupled, level, (unsigned)s, (unsigned)i, g, e, ec);
     }
     tsv_free(t);
@@ -138,7 +147,8 @@ cs_status fs_trees_read(const char *path, fs_trees *out)
     return st;
 }
 
-void fs_summary_write_row(tsv_writer *w, int coupled, double level, double beta, size_t stands_failed, const fs_summary *s)
+void fs_summary_write_row(tsv_writer *w, int coupled, double level, double beta, size_t stands_failed,
+                          const fs_summary *s)
 {
     tsv_writer_str(w, coupled ? "coupled" : "uncoupled");
     tsv_writer_dbl(w, level);
@@ -169,7 +179,8 @@ static cs_status fs_same(const tsv *t, size_t r, const char *col, double want)
     cs_status st = tsv_double_nf(t, r, col, &v);
     if (st) return st;
     if (!(v == want) && !(isnan(v) && isnan(want)))
-        return cs_err(CS_EINPUT, "%s:%d: field '%s': says %.17g but the per-tree table gives %.17g (tampered or inconsistent)",
+        return cs_err(CS_EINPUT,
+                      "%s:%d: field '%s': says %.17g but the per-tree table gives %.17g (tampered or inconsistent)",
                       tsv_path(t), tsv_line(t, r), col, v, want);
     return CS_OK;
 }
@@ -282,7 +293,10 @@ cs_status fs_beta_field(const char *calibration_path, fs_calibration *out)
         if (!coupled) continue;
         if ((st = tsv_double(t, r, "beta", &x[m]))) break;
         if ((st = tsv_double(t, r, "tree_mean_median", &y[m]))) break;
-        if (m && !(x[m] > x[m - 1])) { st = cs_err(CS_EINPUT, "%s:%d: field 'beta': grid not ascending", calibration_path, tsv_line(t, r)); break; }
+        if (m && !(x[m] > x[m - 1])) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'beta': grid not ascending", calibration_path, tsv_line(t, r));
+            break;
+        }
         ln[m++] = tsv_line(t, r);
     }
     if (!st && m < 2) st = cs_err(CS_EINPUT, "%s: fewer than 2 calibration points", calibration_path);
@@ -308,7 +322,10 @@ cs_status fs_jitter_star(const char *path, fs_calibration *out)
     for (size_t r = 0; r < n && !st; r++) {
         if ((st = tsv_double(t, r, "level", &x[r]))) break;
         if ((st = tsv_double(t, r, "aniso_median", &y[r]))) break;
-        if (r && !(x[r] > x[r - 1])) { st = cs_err(CS_EINPUT, "%s:%d: field 'level': not ascending", path, tsv_line(t, r)); break; }
+        if (r && !(x[r] > x[r - 1])) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'level': not ascending", path, tsv_line(t, r));
+            break;
+        }
         ln[r] = tsv_line(t, r);
     }
     if (!st && n < 2) st = cs_err(CS_EINPUT, "%s: fewer than 2 sweep levels", path);

@@ -1,11 +1,10 @@
 /* fieldsim: the simulated side of the field comparisons (design.md §7 E5, E6;
  * reference paper §5.3, §5.4). A stand is grown by the teacher
- * (exp_field_grow_append, in the experiments); for each interior tree (>= 2 d from the edge) the canonical estimator gives the four
- * cardinal gaps and the crown elongation. Trees are kept individually
- * (fs_trees) so every summary in a frozen table can be recomputed from the
- * per-tree table beside it (X.tsv and X_trees.tsv) with the same code.
- * A group = (arm, level): arm coupled/uncoupled twin, level = the knob of the
- * experiment (beta for the calibration, jitter a or hard-core c for E6). */
+ * (exp_field_grow_append, in the experiments); for each interior tree (>= 2 d from the edge) the canonical estimator
+ * gives the four cardinal gaps and the crown elongation. Trees are kept individually (fs_trees) so every summary in a
+ * frozen table can be recomputed from the per-tree table beside it (X.tsv and X_trees.tsv) with the same code. A group
+ * = (arm, level): arm coupled/uncoupled twin, level = the knob of the experiment (beta for the calibration, jitter a or
+ * hard-core c for E6). */
 #ifndef FIELDSIM_H
 #define FIELDSIM_H
 #include "cs.h"
@@ -48,8 +47,11 @@ void fs_trees_write(tsv_writer *w, const fs_trees *t);
 cs_status fs_trees_read(const char *path, fs_trees *out);
 
 /* Summary table: one row per group. */
-#define FS_SUMMARY_COLUMNS "arm\tlevel\tbeta\tstands\tstands_failed\ttrees\ttree_mean_median\tspread\taniso_median\taniso_trees\taniso_excluded\telong_median\telong_card_median"
-void fs_summary_write_row(tsv_writer *w, int coupled, double level, double beta, size_t stands_failed, const fs_summary *s);
+#define FS_SUMMARY_COLUMNS                                                                                             \
+    "arm\tlevel\tbeta\tstands\tstands_failed\ttrees\ttree_mean_median\tspread\taniso_median\taniso_trees\taniso_"      \
+    "excluded\telong_median\telong_card_median"
+void fs_summary_write_row(tsv_writer *w, int coupled, double level, double beta, size_t stands_failed,
+                          const fs_summary *s);
 
 /* "dir/X.tsv" -> "dir/X_trees.tsv". */
 void fs_trees_path(const char *summary_path, char *out, size_t n);

@@ -288,9 +288,12 @@ __attribute__((target("avx2"))) static inline void tr8x8(float *dst, ptrdiff_t l
     /* unrolled by hand: as loops over arrays GCC kept r, t and u on the stack */
     const __m256 vs = _mm256_set1_ps(s);
     const __m256 row0 = _mm256_mul_ps(vs, _mm256_loadu_ps(src)), row1 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + lds));
-    const __m256 row2 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 2 * lds)), row3 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 3 * lds));
-    const __m256 row4 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 4 * lds)), row5 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 5 * lds));
-    const __m256 row6 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 6 * lds)), row7 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 7 * lds));
+    const __m256 row2 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 2 * lds)),
+                 row3 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 3 * lds));
+    const __m256 row4 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 4 * lds)),
+                 row5 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 5 * lds));
+    const __m256 row6 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 6 * lds)),
+                 row7 = _mm256_mul_ps(vs, _mm256_loadu_ps(src + 7 * lds));
     const __m256 t0 = _mm256_unpacklo_ps(row0, row1), t1 = _mm256_unpackhi_ps(row0, row1);
     const __m256 t2 = _mm256_unpacklo_ps(row2, row3), t3 = _mm256_unpackhi_ps(row2, row3);
     const __m256 t4 = _mm256_unpacklo_ps(row4, row5), t5 = _mm256_unpackhi_ps(row4, row5);

@@ -7,12 +7,11 @@
  * Why not cblas_sgemm: OpenBLAS picks its kernel per CPU at load time, so the
  * same training run gives different bits on different machines, and at the
  * model's shapes (K or N of 16..256) its operand packing and C scaling took
- * about 15% of a training step's profile on the reference machine. Here every C element is ONE chain of fused multiply-adds over k in
- * ascending order, whatever the ISA: the AVX-512, AVX2+FMA and scalar (fmaf)
- * paths give bit-identical results (tested), so a training run does not
- * depend on the CPU's vector extensions. The vector paths keep a
- * 6-row x (up to) 64-column tile of C in registers and stream B rows.
- * Limits: float only; no threads; A, B and C must not overlap. */
+ * about 15% of a training step's profile on the reference machine. Here every C element is ONE chain of fused
+ * multiply-adds over k in ascending order, whatever the ISA: the AVX-512, AVX2+FMA and scalar (fmaf) paths give
+ * bit-identical results (tested), so a training run does not depend on the CPU's vector extensions. The vector paths
+ * keep a 6-row x (up to) 64-column tile of C in registers and stream B rows. Limits: float only; no threads; A, B and C
+ * must not overlap. */
 #ifndef GEMM_H
 #define GEMM_H
 #include <stddef.h>

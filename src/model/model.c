@@ -59,9 +59,12 @@ cs_status model_cfg_check(const model_cfg *c)
     if (c->ntime % 2) return cs_err(CS_EINPUT, "model config: ntime = %d must be even", c->ntime);
     if (c->joint != 0 && c->joint != 1) return cs_err(CS_EINPUT, "model config: joint = %d must be 0 or 1", c->joint);
     if (c->pair != 0 && c->pair != 1) return cs_err(CS_EINPUT, "model config: pair = %d must be 0 or 1", c->pair);
-    if (c->pair && c->nfeat < 3) return cs_err(CS_EINPUT, "model config: the pair model needs nfeat >= 3 (x, y, rbar), got %d", c->nfeat);
-    if (c->stdz < MODEL_STDZ_AUTO || c->stdz > MODEL_STDZ_OFF) return cs_err(CS_EINPUT, "model config: stdz = %d must be 0 (as pair), 1 (on) or 2 (off)", c->stdz);
-    if (c->nuse < 0 || c->nuse > c->nfeat) return cs_err(CS_EINPUT, "model config: nuse = %d must be 0 (all) .. nfeat = %d", c->nuse, c->nfeat);
+    if (c->pair && c->nfeat < 3)
+        return cs_err(CS_EINPUT, "model config: the pair model needs nfeat >= 3 (x, y, rbar), got %d", c->nfeat);
+    if (c->stdz < MODEL_STDZ_AUTO || c->stdz > MODEL_STDZ_OFF)
+        return cs_err(CS_EINPUT, "model config: stdz = %d must be 0 (as pair), 1 (on) or 2 (off)", c->stdz);
+    if (c->nuse < 0 || c->nuse > c->nfeat)
+        return cs_err(CS_EINPUT, "model config: nuse = %d must be 0 (all) .. nfeat = %d", c->nuse, c->nfeat);
     return CS_OK;
 }
 
@@ -191,7 +194,12 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
     if (!m->blk || !ptrs) { free(ptrs); model_free(m); return cs_err(CS_ENOMEM, "model: out of memory"); }
     m->x = ptrs; m->ln1 = ptrs + (L + 1); m->mu1 = m->ln1 + L; m->rs1 = m->mu1 + L;
     m->qkv = m->rs1 + L; m->prob = m->qkv + L; m->att = m->prob + L; m->xm = m->att + L;
-    m->ln2 = m->xm + L; m->mu2 = m->ln2 + L; m->rs2 = m->mu2 + L; m->h = m->rs2 + L; m->hs = m->h + L; m->hg = m->hs + L;
+    m->ln2 = m->xm + L;
+    m->mu2 = m->ln2 + L;
+    m->rs2 = m->mu2 + L;
+    m->h = m->rs2 + L;
+    m->hs = m->h + L;
+    m->hg = m->hs + L;
     m->Phi = m->hg + L;
     m->nparams = layout(cfg, m, &m->ndecay);
     m->params = falloc(m->nparams);
@@ -212,7 +220,10 @@ cs_status model_alloc(model **out, const model_cfg *cfg, int Bmax)
     const size_t Phin = cfg->pair ? N * cfg->H * PAIRATTN_Q : 0;
     const size_t ascrn = cfg->pair ? pairattn_scratch_len(cfg->T, cfg->C, cfg->H)
                                    : nn_attention_scratch_len(cfg->T, cfg->C, cfg->H);
-    if (!m->params || !m->grads || !m->wtall || !m->norm) { model_free(m); return cs_err(CS_ENOMEM, "model: out of memory"); }
+    if (!m->params || !m->grads || !m->wtall || !m->norm) {
+        model_free(m);
+        return cs_err(CS_ENOMEM, "model: out of memory");
+    }
     /* Pass 0 counts the floats (every array rounded up to 64 bytes, so each
      * starts on a cache line), pass 1 hands them out. */
     for (int pass = 0; pass < 2; pass++) {
@@ -430,7 +441,8 @@ static void backward(model *m, const float *dv, int zero)
         nn_linear_backward_gelu(m->dh, g + o->fc2_w, g + o->fc2_b, m->dx, m->hg[l], w + o->fc2_w,
                                 m->h[l], m->hs[l], N, F, C);
         nn_linear_backward(m->dln, g + o->fc1_w, g + o->fc1_b, m->dh, m->ln2[l], w + o->fc1_w, N, C, F);
-        nn_layernorm_backward(m->dx, g + o->ln2_g, g + o->ln2_b, m->dln, m->xm[l], m->mu2[l], m->rs2[l], w + o->ln2_g, N, C);
+        nn_layernorm_backward(m->dx, g + o->ln2_g, g + o->ln2_b, m->dln, m->xm[l], m->mu2[l], m->rs2[l], w + o->ln2_g,
+                              N, C);
         if (c->pair)
             pairattn_linear_backward(m->dqkv, m->dtmp, g + o->proj_w, g + o->proj_b, g + o->pb_w,
                                      g + o->pv_w, m->dx, m->att[l], w + o->proj_w, m->qkv[l], m->prob[l],
@@ -439,7 +451,8 @@ static void backward(model *m, const float *dv, int zero)
             nn_linear_backward_attention(m->dqkv, m->dtmp, g + o->proj_w, g + o->proj_b, m->dx, m->att[l],
                                          w + o->proj_w, m->qkv[l], m->prob[l], B, T, C, c->H, mode, m->ascr);
         nn_linear_backward_qkv(m->dln, g + o->qkv_w, g + o->qkv_b, m->dqkv, m->ln1[l], w + o->qkv_w, N, C, mode);
-        nn_layernorm_backward(m->dx, g + o->ln1_g, g + o->ln1_b, m->dln, m->x[l], m->mu1[l], m->rs1[l], w + o->ln1_g, N, C);
+        nn_layernorm_backward(m->dx, g + o->ln1_g, g + o->ln1_b, m->dln, m->x[l], m->mu1[l], m->rs1[l], w + o->ln1_g, N,
+                              C);
     }
     nn_linear_backward(NULL, g + m->tok_w, g + m->tok_b, m->dx, m->tin, w + m->tok_w, N, I, C);
     memset(m->de, 0, sizeof(float) * (size_t)B * C);

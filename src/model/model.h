@@ -54,7 +54,13 @@ enum { MODEL_STDZ_AUTO = 0, MODEL_STDZ_ON = 1, MODEL_STDZ_OFF = 2 };
  *                 neither states nor excludes), plain attention;
  *  paper-fourier  paper + the polar Fourier basis, standardised;
  *  pair           paper-fourier + pair-aware attention (the extension). */
-typedef enum { MODEL_PLAIN = 0, MODEL_PAPER = 1, MODEL_PAPER_FOURIER = 2, MODEL_PAIR = 3, MODEL_NREADING = 4 } model_reading;
+typedef enum {
+    MODEL_PLAIN = 0,
+    MODEL_PAPER = 1,
+    MODEL_PAPER_FOURIER = 2,
+    MODEL_PAIR = 3,
+    MODEL_NREADING = 4
+} model_reading;
 const char *model_reading_name(model_reading r);
 /* CS_EUSAGE naming the choices when s is not a reading's name. */
 cs_status model_reading_parse(const char *s, model_reading *r);

@@ -1,12 +1,10 @@
 /* nn: layer kernels (see nn.h). The matrix products go to gemm_fma (src/model/gemm.h:
- * bit-identical on every ISA). Every other loop is written on 8-wide GCC/Clang vector types, because -O2 without fast-math
- * will not vectorise float reductions by itself (reassociation is forbidden).
- * The hot kernels are compiled twice (target_clones: AVX2 and baseline x86-64,
- * picked at load time); both clones execute the same lane-wise IEEE operations
- * in the same order, so their results are bit-identical - no -march=native,
- * no FMA contraction (-ffp-contract=off), no fast-math. Reductions use a fixed
- * lane order. The vector helpers are in nn_vec.h, attention in nn_attn.c.
- * Paper §4.2; design.md §8, §10. */
+ * bit-identical on every ISA). Every other loop is written on 8-wide GCC/Clang vector types, because -O2 without
+ * fast-math will not vectorise float reductions by itself (reassociation is forbidden). The hot kernels are compiled
+ * twice (target_clones: AVX2 and baseline x86-64, picked at load time); both clones execute the same lane-wise IEEE
+ * operations in the same order, so their results are bit-identical - no -march=native, no FMA contraction
+ * (-ffp-contract=off), no fast-math. Reductions use a fixed lane order. The vector helpers are in nn_vec.h, attention
+ * in nn_attn.c. Paper §4.2; design.md §8, §10. */
 #include "nn.h"
 #include "nn_vec.h"
 #include "gemm.h"
@@ -413,7 +411,12 @@ __attribute__((target("avx2"), always_inline)) static inline void bias_gelu8_blo
     S8 p[k] = _mm256_add_ps(_mm256_mul_ps(p[k], r[k]), _mm256_set1_ps(0.5f));
     S8 p[k] = _mm256_add_ps(_mm256_mul_ps(p[k], r[k]), _mm256_set1_ps(1.f));
     S8 p[k] = _mm256_add_ps(_mm256_mul_ps(p[k], r[k]), _mm256_set1_ps(1.f));
-    S8 p[k] = _mm256_div_ps(_mm256_set1_ps(1.f), _mm256_add_ps(_mm256_set1_ps(1.f), _mm256_mul_ps(p[k], _mm256_castsi256_ps(_mm256_slli_epi32(_mm256_add_epi32(_mm256_cvttps_epi32(kn[k]), _mm256_set1_epi32(127)), 23)))));
+    S8 p[k] = _mm256_div_ps(
+        _mm256_set1_ps(1.f),
+        _mm256_add_ps(
+            _mm256_set1_ps(1.f),
+            _mm256_mul_ps(p[k], _mm256_castsi256_ps(_mm256_slli_epi32(
+                                    _mm256_add_epi32(_mm256_cvttps_epi32(kn[k]), _mm256_set1_epi32(127)), 23)))));
     S8 {
         if (sr) {
             _mm256_storeu_ps(hr + c + 8 * k, x[k]);

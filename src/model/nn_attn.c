@@ -225,7 +225,11 @@ A256 void hw_block8(float *Cm, ptrdiff_t ldc, const float *A, const ptrdiff_t ar
                     const float *B, ptrdiff_t ldb)
 {
     __m256 c[6][2];
-    _Pragma("GCC unroll 6") for (int r = 0; r < 6; r++) { c[r][0] = _mm256_setzero_ps(); c[r][1] = _mm256_setzero_ps(); }
+    _Pragma("GCC unroll 6") for (int r = 0; r < 6; r++)
+    {
+        c[r][0] = _mm256_setzero_ps();
+        c[r][1] = _mm256_setzero_ps();
+    }
     for (int k = 0; k < 24; k++) {
         const __m256 b0 = _mm256_loadu_ps(B + k * ldb), b1 = _mm256_loadu_ps(B + k * ldb + 8);
         _Pragma("GCC unroll 6") for (int r = 0; r < 6; r++) {

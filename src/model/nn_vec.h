@@ -198,21 +198,23 @@ DEF_VEXP(vexp16, vf16, vi16, splat16)
         e_sh = SET1(12582912.0f), e_hi2 = SET1(0.693145751953125f), e_lo2 = SET1(1.428606765330187e-06f)
 /* v[k] = exp(v[k]) for k < NV, statement by statement; kn[k] and r[k] scratch.
  * POW2(p, kn) is p * 2^kn. */
-#define EXP_STAGES(V, NV, MUL, ADD, SUB, SET1, MAX, MIN, POW2) do { \
-    __typeof__(V[0]) kn_[NV], r_[NV]; \
-    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = MIN(e_hi, MAX(e_lo, V[k])); \
-    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) kn_[k] = SUB(ADD(MUL(V[k], e_l2e), e_sh), e_sh); \
-    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) r_[k] = SUB(V[k], MUL(kn_[k], e_hi2)); \
-    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) r_[k] = SUB(r_[k], MUL(kn_[k], e_lo2)); \
-    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(SET1(1.f / 5040.f), r_[k]), SET1(1.f / 720.f)); \
-    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(1.f / 120.f)); \
-    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(1.f / 24.f)); \
-    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(1.f / 6.f)); \
-    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(0.5f)); \
-    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(1.f)); \
-    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(1.f)); \
-    _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = POW2(V[k], kn_[k]); \
-} while (0)
+#define EXP_STAGES(V, NV, MUL, ADD, SUB, SET1, MAX, MIN, POW2)                                                         \
+    do {                                                                                                               \
+        __typeof__(V[0]) kn_[NV], r_[NV];                                                                              \
+        _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = MIN(e_hi, MAX(e_lo, V[k]));                       \
+        _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) kn_[k] = SUB(ADD(MUL(V[k], e_l2e), e_sh), e_sh);         \
+        _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) r_[k] = SUB(V[k], MUL(kn_[k], e_hi2));                   \
+        _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) r_[k] = SUB(r_[k], MUL(kn_[k], e_lo2));                  \
+        _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] =                                                   \
+            ADD(MUL(SET1(1.f / 5040.f), r_[k]), SET1(1.f / 720.f));                                                    \
+        _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(1.f / 120.f));         \
+        _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(1.f / 24.f));          \
+        _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(1.f / 6.f));           \
+        _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(0.5f));                \
+        _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(1.f));                 \
+        _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = ADD(MUL(V[k], r_[k]), SET1(1.f));                 \
+        _Pragma("GCC unroll 12") for (int k = 0; k < NV; k++) V[k] = POW2(V[k], kn_[k]);                               \
+    } while (0)
 
 /* vmaxv(x, 24): max over the three 8-lane chunks, then the butterfly */
 __attribute__((target("avx2"), always_inline)) static inline float max24_avx(const float *x)
@@ -239,7 +241,8 @@ __attribute__((target("avx2"), always_inline)) static inline void exp_rows2_avx2
     __m256 v[6];
     _Pragma("GCC unroll 6") for (int k = 0; k < 6; k++)
         v[k] = _mm256_sub_ps(_mm256_loadu_ps(s + (i + k / 3) * 24 + 8 * (k % 3)), _mm256_set1_ps(0.f + mx[i + k / 3]));
-    EXP_STAGES(v, 6, _mm256_mul_ps, _mm256_add_ps, _mm256_sub_ps, _mm256_set1_ps, _mm256_max_ps, _mm256_min_ps, pow2_avx2);
+    EXP_STAGES(v, 6, _mm256_mul_ps, _mm256_add_ps, _mm256_sub_ps, _mm256_set1_ps, _mm256_max_ps, _mm256_min_ps,
+               pow2_avx2);
     _Pragma("GCC unroll 6") for (int k = 0; k < 6; k++) _mm256_storeu_ps(s + (i + k / 3) * 24 + 8 * (k % 3), v[k]);
 }
 #endif
@@ -258,9 +261,11 @@ __attribute__((target("avx512f"), always_inline)) static inline void exp_rows4_a
         v[3 * u + 1] = _mm512_sub_ps(_mm512_loadu_ps(b), _mm512_set1_ps(mb));
         const __m256 ta = _mm256_sub_ps(_mm256_loadu_ps(a + 16), _mm256_set1_ps(ma));
         const __m256 tb = _mm256_sub_ps(_mm256_loadu_ps(b + 16), _mm256_set1_ps(mb));
-        v[3 * u + 2] = _mm512_castpd_ps(_mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(ta)), _mm256_castps_pd(tb), 1));
+        v[3 * u + 2] =
+            _mm512_castpd_ps(_mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(ta)), _mm256_castps_pd(tb), 1));
     }
-    EXP_STAGES(v, 6, _mm512_mul_ps, _mm512_add_ps, _mm512_sub_ps, _mm512_set1_ps, _mm512_max_ps, _mm512_min_ps, _mm512_scalef_ps);
+    EXP_STAGES(v, 6, _mm512_mul_ps, _mm512_add_ps, _mm512_sub_ps, _mm512_set1_ps, _mm512_max_ps, _mm512_min_ps,
+               _mm512_scalef_ps);
     _Pragma("GCC unroll 2") for (int u = 0; u < 2; u++) {
         float *a = s + (i + 2 * u) * 24, *b = a + 24;
         _mm512_storeu_ps(a, v[3 * u]);

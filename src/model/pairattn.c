@@ -142,8 +142,8 @@ A256 void mix3x4(float *Phi, const float *prob, const float *phi, int T, int i, 
     for (int j = 0; j < T; j++) {
         _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++) {
             const __m256 b = _mm256_loadu_ps(phi + ((size_t)(i + u) * T + j) * Q);
-            _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++)
-                c[u][v] = _mm256_fmadd_ps(_mm256_broadcast_ss(prob + (h0 + v) * TT + (size_t)(i + u) * T + j), b, c[u][v]);
+            _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) c[u][v] =
+                _mm256_fmadd_ps(_mm256_broadcast_ss(prob + (h0 + v) * TT + (size_t)(i + u) * T + j), b, c[u][v]);
         }
     }
     _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
@@ -178,8 +178,8 @@ A256 void dpair1x4(float *dpx, const float *dPhi, const float *phit, int T, int 
 A256 void value3x4(float *out, const float *Phi, const float *wvt, int T, int C, int hd, int i, int j)
 {
     __m256 c[3][4], b[4];
-    _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
-        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) c[u][v] = _mm256_loadu_ps(out + (size_t)(i + u) * C + j + 8 * v);
+    _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++) _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) c[u][v] =
+        _mm256_loadu_ps(out + (size_t)(i + u) * C + j + 8 * v);
     for (int q = 0; q < Q; q++) {
         _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) b[v] = _mm256_loadu_ps(wvt + (size_t)q * C + j + 8 * v);
         _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
@@ -188,8 +188,8 @@ A256 void value3x4(float *out, const float *Phi, const float *wvt, int T, int C,
                 c[u][v] = _mm256_fmadd_ps(_mm256_broadcast_ss(Phi + ((size_t)h * T + i + u) * Q + q), b[v], c[u][v]);
             }
     }
-    _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
-        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) _mm256_storeu_ps(out + (size_t)(i + u) * C + j + 8 * v, c[u][v]);
+    _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++) _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++)
+        _mm256_storeu_ps(out + (size_t)(i + u) * C + j + 8 * v, c[u][v]);
 }
 
 /* dPhi[h][i][0..8) = sum_d dO[i][h hd + d] wv[h hd + d][0..8), rows i..i+2, heads h0..h0+3 */
@@ -199,29 +199,29 @@ A256 void dphi3x4(float *dPhi, const float *dO, const float *wv, int T, int C, i
     _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
         _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) c[u][v] = _mm256_setzero_ps();
     for (int d = 0; d < hd; d++) {
-        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) b[v] = _mm256_loadu_ps(wv + ((size_t)(h0 + v) * hd + d) * Q);
-        _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
-            _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++)
-                c[u][v] = _mm256_fmadd_ps(_mm256_broadcast_ss(dO + (size_t)(i + u) * C + (h0 + v) * hd + d), b[v], c[u][v]);
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) b[v] =
+            _mm256_loadu_ps(wv + ((size_t)(h0 + v) * hd + d) * Q);
+        _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++) _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++)
+            c[u][v] = _mm256_fmadd_ps(_mm256_broadcast_ss(dO + (size_t)(i + u) * C + (h0 + v) * hd + d), b[v], c[u][v]);
     }
-    _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++)
-        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) _mm256_storeu_ps(dPhi + ((size_t)(h0 + v) * T + i + u) * Q, c[u][v]);
+    _Pragma("GCC unroll 3") for (int u = 0; u < 3; u++) _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++)
+        _mm256_storeu_ps(dPhi + ((size_t)(h0 + v) * T + i + u) * Q, c[u][v]);
 }
 
 /* dwv[h hd + d][0..8) += sum_i dO[i][h hd + d] Phi[h][i][0..8), d..d+1, heads h0..h0+3 */
 A256 void dwv2x4(float *dwv, const float *dO, const float *Phi, int T, int C, int hd, int d, int h0)
 {
     __m256 c[2][4], b[4];
-    _Pragma("GCC unroll 2") for (int u = 0; u < 2; u++)
-        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) c[u][v] = _mm256_loadu_ps(dwv + ((size_t)(h0 + v) * hd + d + u) * Q);
+    _Pragma("GCC unroll 2") for (int u = 0; u < 2; u++) _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) c[u][v] =
+        _mm256_loadu_ps(dwv + ((size_t)(h0 + v) * hd + d + u) * Q);
     for (int i = 0; i < T; i++) {
-        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) b[v] = _mm256_loadu_ps(Phi + ((size_t)(h0 + v) * T + i) * Q);
-        _Pragma("GCC unroll 2") for (int u = 0; u < 2; u++)
-            _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++)
-                c[u][v] = _mm256_fmadd_ps(_mm256_broadcast_ss(dO + (size_t)i * C + (h0 + v) * hd + d + u), b[v], c[u][v]);
+        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) b[v] =
+            _mm256_loadu_ps(Phi + ((size_t)(h0 + v) * T + i) * Q);
+        _Pragma("GCC unroll 2") for (int u = 0; u < 2; u++) _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++)
+            c[u][v] = _mm256_fmadd_ps(_mm256_broadcast_ss(dO + (size_t)i * C + (h0 + v) * hd + d + u), b[v], c[u][v]);
     }
-    _Pragma("GCC unroll 2") for (int u = 0; u < 2; u++)
-        _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++) _mm256_storeu_ps(dwv + ((size_t)(h0 + v) * hd + d + u) * Q, c[u][v]);
+    _Pragma("GCC unroll 2") for (int u = 0; u < 2; u++) _Pragma("GCC unroll 4") for (int v = 0; v < 4; v++)
+        _mm256_storeu_ps(dwv + ((size_t)(h0 + v) * hd + d + u) * Q, c[u][v]);
 }
 
 /* x[0..n) = s * x[0..n) (a product per value, as the scalar loop) */
@@ -233,7 +233,8 @@ __attribute__((target("avx2"))) static void scale_avx2(float *x, size_t n, float
     for (; e < n; e++) x[e] = s * x[e];
 }
 
-__attribute__((target("avx2,fma"))) static void value_avx2(float *out, const float *Phi, const float *wvt, int T, int C, int H)
+__attribute__((target("avx2,fma"))) static void value_avx2(float *out, const float *Phi, const float *wvt, int T, int C,
+                                                           int H)
 {
     for (int i = 0; i < T; i += 3)
         for (int j = 0; j < C; j += 32) value3x4(out, Phi, wvt, T, C, C / H, i, j);
@@ -255,7 +256,8 @@ __attribute__((target("avx2,fma"))) static void mix_avx2(float *Phi, const float
         for (int i = 0; i < T; i += 3) mix3x4(Phi, prob, phi, T, i, h0);
 }
 
-__attribute__((target("avx2,fma"))) static void dpair_avx2(float *dpx, const float *dPhi, const float *phit, int T, int H)
+__attribute__((target("avx2,fma"))) static void dpair_avx2(float *dpx, const float *dPhi, const float *phit, int T,
+                                                           int H)
 {
     for (int h0 = 0; h0 < H; h0 += 4)
         for (int i = 0; i < T; i++) dpair1x4(dpx, dPhi, phit, T, i, h0);
@@ -292,7 +294,10 @@ static void pair_value(float *out, const float *Phi, const float *wvt, int T, in
 {
     const int hd = C / H;
 #ifdef PAIR_VEC
-    if (T % 3 == 0 && C % 32 == 0 && hd % 8 == 0 && gemm_get_isa() >= GEMM_AVX2) { value_avx2(out, Phi, wvt, T, C, H); return; }
+    if (T % 3 == 0 && C % 32 == 0 && hd % 8 == 0 && gemm_get_isa() >= GEMM_AVX2) {
+        value_avx2(out, Phi, wvt, T, C, H);
+        return;
+    }
 #endif
     for (int h = 0; h < H; h++)
         gemm_fma(T, hd, Q, Phi + (size_t)h * T * Q, Q, 1, wvt + h * hd, C, out + h * hd, C, 1);
@@ -305,7 +310,10 @@ static void pair_dvalue(float *dPhi, float *dwv, const float *dO, const float *P
 {
     const int hd = C / H;
 #ifdef PAIR_VEC
-    if (T % 3 == 0 && H % 4 == 0 && hd % 2 == 0 && gemm_get_isa() >= GEMM_AVX2) { dvalue_avx2(dPhi, dwv, dO, Phi, wv, T, C, H); return; }
+    if (T % 3 == 0 && H % 4 == 0 && hd % 2 == 0 && gemm_get_isa() >= GEMM_AVX2) {
+        dvalue_avx2(dPhi, dwv, dO, Phi, wv, T, C, H);
+        return;
+    }
 #endif
     for (int h = 0; h < H; h++) {
         gemm_fma(T, Q, hd, dO + h * hd, C, 1, wv + (size_t)h * hd * Q, Q, dPhi + (size_t)h * T * Q, Q, 0);

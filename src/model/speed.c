@@ -98,7 +98,8 @@ static void pass_run(pass_set *p, int blas)
             if (blas) {
                 cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasNoTrans, R, N, K, 1.f, p->a, K, p->w, N, 0.f, p->c, N);
                 if (p->l[k].dinp)
-                    cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasNoTrans, R, K, N, 1.f, p->c, N, p->w, K, 0.f, p->d, K);
+                    cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasNoTrans, R, K, N, 1.f, p->c, N, p->w, K, 0.f, p->d,
+                                K);
                 cblas_sgemm(CblasRowMajor, CblasTrans, CblasNoTrans, N, K, R, 1.f, p->c, N, p->a, K, 1.f, p->dw, K);
             } else {
                 gemm_fma(R, N, K, p->a, K, 1, p->w, N, p->c, N, 0);
@@ -221,7 +222,8 @@ cs_status speed_run(const model_cfg *ref, int B, int rounds, int steps, speed_re
     const gemm_isa isa = gemm_get_isa();
     const long n = peak_calibrate();
     double pk[SPEED_MAX_ROUNDS], p256[SPEED_MAX_ROUNDS];
-    double rate[SPEED_NITEMS][SPEED_MAX_ROUNDS], frac[SPEED_NITEMS][SPEED_MAX_ROUNDS], ms[SPEED_NITEMS][SPEED_MAX_ROUNDS];
+    double rate[SPEED_NITEMS][SPEED_MAX_ROUNDS], frac[SPEED_NITEMS][SPEED_MAX_ROUNDS],
+        ms[SPEED_NITEMS][SPEED_MAX_ROUNDS];
     for (int q = 0; q < rounds && !st; q++) {
         double p0 = gemm_peak_gflops(isa, n);
         pk[q] = p0;

@@ -62,7 +62,8 @@ cs_status train_alloc(train **out, const model_cfg *cfg, const patch_set *data, 
     if (!data || data->n < 1) return cs_err(CS_EINPUT, "train: no training patches");
     if (!(data->scale > 0)) return cs_err(CS_EINPUT, "train: training patches are not standardised");
     if (cfg->T != PATCH_T || cfg->P != PATCH_P || cfg->nfeat != PATCH_NFEAT || cfg->ncond != PATCH_NCOND)
-        return cs_err(CS_EINPUT, "train: model config (T %d, P %d, nfeat %d, ncond %d) does not match patches (%d, %d, %d, %d)",
+        return cs_err(CS_EINPUT,
+                      "train: model config (T %d, P %d, nfeat %d, ncond %d) does not match patches (%d, %d, %d, %d)",
                       cfg->T, cfg->P, cfg->nfeat, cfg->ncond, PATCH_T, PATCH_P, PATCH_NFEAT, PATCH_NCOND);
     if (o->batch < 1 || o->steps < 1 || !(o->lr > 0))
         return cs_err(CS_EINPUT, "train: batch %d, steps %ld, lr %g must be positive", o->batch, o->steps, o->lr);
@@ -221,7 +222,8 @@ static void put(buf *b, const void *src, size_t n)
 typedef struct {
     int32_t cfg[11]; /* T P nfeat ncond ntime C L H F joint pair */
     int32_t batch, epoch, pos, ndata;
-    int32_t ingr; /* stdz | nuse << 8 (cfg_ingr): in what was the alignment padding, zero in the files written before the readings */
+    int32_t ingr; /* stdz | nuse << 8 (cfg_ingr): in what was the alignment padding, zero in the files written before
+                     the readings */
     int64_t step, steps;
     uint64_t nparams, data_hash, rng_size, nnorm;
     double scale, lr, warmup, lr_final, b1, b2, eps, wd;
@@ -237,7 +239,8 @@ static model_cfg cfg_from(const int32_t v[11], int32_t ingr)
     model_cfg c = {v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], ingr & 0xff, ingr >> 8};
     return c;
 }
-_Static_assert(offsetof(ckpt_head, step) == 64 && sizeof(ckpt_head) == 200, "checkpoint header layout of format version 2");
+_Static_assert(offsetof(ckpt_head, step) == 64 && sizeof(ckpt_head) == 200,
+               "checkpoint header layout of format version 2");
 
 static void fill_head(const train *t, ckpt_head *h)
 {
@@ -314,26 +317,35 @@ static cs_status ckpt_read(const char *path, unsigned char **data, size_t *len, 
     rewind(f);
     if (n < 0) { fclose(f); return cs_err(CS_EINPUT, "%s: cannot size", path); }
     size_t minlen = 8 + 4 + sizeof *h + 8;
-    if ((size_t)n < minlen) { fclose(f); return cs_err(CS_EINPUT, "%s: truncated checkpoint (%ld bytes, header needs %zu)", path, n, minlen); }
+    if ((size_t)n < minlen) {
+        fclose(f);
+        return cs_err(CS_EINPUT, "%s: truncated checkpoint (%ld bytes, header needs %zu)", path, n, minlen);
+    }
     unsigned char *p = malloc((size_t)n);
     if (!p) { fclose(f); return cs_err(CS_ENOMEM, "%s: out of memory", path); }
     size_t got = fread(p, 1, (size_t)n, f);
     fclose(f);
     if (got != (size_t)n) { free(p); return cs_err(CS_EINPUT, "%s: short read", path); }
-    if (memcmp(p, CKPT_MAGIC, 8) != 0) { free(p); return cs_err(CS_EINPUT, "%s: not a crownshy checkpoint (bad magic)", path); }
+    if (memcmp(p, CKPT_MAGIC, 8) != 0) {
+        free(p);
+        return cs_err(CS_EINPUT, "%s: not a crownshy checkpoint (bad magic)", path);
+    }
     uint32_t ver;
     memcpy(&ver, p + 8, 4);
     if (ver != CKPT_VERSION) {
         free(p);
         if (ver < CKPT_VERSION)
-            return cs_err(CS_EINPUT, "%s: checkpoint format version %u is no longer read (this build writes and reads "
-                          "version %u: pair-aware model configuration and feature z-scores); delete it to restart the run",
-                          path, ver, CKPT_VERSION);
+            return cs_err(
+                CS_EINPUT,
+                "%s: checkpoint format version %u is no longer read (this build writes and reads "
+                "version %u: pair-aware model configuration and feature z-scores); delete it to restart the run",
+                path, ver, CKPT_VERSION);
         return cs_err(CS_EINPUT, "%s: checkpoint version %u, expected %u", path, ver, CKPT_VERSION);
     }
     memcpy(h, p + 12, sizeof *h);
     /* bound the declared sizes before using them in arithmetic */
-    if (h->nparams > ((uint64_t)1 << 34) || h->nnorm > (1u << 20) || h->rng_size > (1u << 20) || h->ndata < 0 || h->ndata > (1 << 28)) {
+    if (h->nparams > ((uint64_t)1 << 34) || h->nnorm > (1u << 20) || h->rng_size > (1u << 20) || h->ndata < 0 ||
+        h->ndata > (1 << 28)) {
         free(p);
         return cs_err(CS_EINPUT, "%s: corrupt checkpoint header (implausible sizes)", path);
     }
@@ -345,7 +357,10 @@ static cs_status ckpt_read(const char *path, unsigned char **data, size_t *len, 
     }
     uint64_t sum;
     memcpy(&sum, p + n - 8, 8);
-    if (fnv1a(FNV0, p, (size_t)n - 8) != sum) { free(p); return cs_err(CS_EINPUT, "%s: checkpoint checksum mismatch (corrupt or tampered)", path); }
+    if (fnv1a(FNV0, p, (size_t)n - 8) != sum) {
+        free(p);
+        return cs_err(CS_EINPUT, "%s: checkpoint checksum mismatch (corrupt or tampered)", path);
+    }
     *data = p;
     *len = (size_t)n;
     return CS_OK;
@@ -369,7 +384,10 @@ cs_status train_load(train *t, const char *path)
     else if (h.ndata != mine.ndata || h.data_hash != mine.data_hash || h.scale != mine.scale) what = "training data";
     else if (h.rng_size != mine.rng_size) what = "RNG type";
     else if (h.step < 0 || h.step > h.steps || h.pos < 0 || h.pos > h.ndata || h.epoch < 0) what = "step counters";
-    if (what) { free(p); return cs_err(CS_EINPUT, "%s: checkpoint belongs to a different run (%s differs)", path, what); }
+    if (what) {
+        free(p);
+        return cs_err(CS_EINPUT, "%s: checkpoint belongs to a different run (%s differs)", path, what);
+    }
     const unsigned char *q = p + 12 + sizeof h;
     memcpy(gsl_rng_state(t->rng_init), q, h.rng_size); q += h.rng_size;
     memcpy(gsl_rng_state(t->rng_batch), q, h.rng_size); q += h.rng_size;
@@ -429,7 +447,11 @@ static cs_status slurp(const char *path, unsigned char **data, long *len)
     if (fseek(f, 0, SEEK_END) == 0) n = ftell(f);
     rewind(f);
     unsigned char *p = n >= 0 ? malloc((size_t)n + 1) : NULL;
-    if (!p || fread(p, 1, (size_t)n, f) != (size_t)n) { free(p); fclose(f); return cs_err(CS_EINPUT, "%s: cannot read", path); }
+    if (!p || fread(p, 1, (size_t)n, f) != (size_t)n) {
+        free(p);
+        fclose(f);
+        return cs_err(CS_EINPUT, "%s: cannot read", path);
+    }
     fclose(f);
     *data = p;
     *len = n;
@@ -447,18 +469,38 @@ static cs_status weights_load(const char *path, model **out, int Bmax, double *s
     const long hl = 8 + 4 + (long)sizeof h;
     if (n < hl + 8) { free(p); return cs_err(CS_EINPUT, "%s: truncated weights file (%ld bytes)", path, n); }
     memcpy(&ver, p + 8, 4);
-    if (ver != WGTS_VERSION) { free(p); return cs_err(CS_EINPUT, "%s: weights format version %u, expected %u", path, ver, WGTS_VERSION); }
+    if (ver != WGTS_VERSION) {
+        free(p);
+        return cs_err(CS_EINPUT, "%s: weights format version %u, expected %u", path, ver, WGTS_VERSION);
+    }
     memcpy(&h, p + 12, sizeof h);
-    if (h.nparams > ((uint64_t)1 << 30) || h.nnorm > (1u << 20)) { free(p); return cs_err(CS_EINPUT, "%s: corrupt weights header (implausible sizes)", path); }
+    if (h.nparams > ((uint64_t)1 << 30) || h.nnorm > (1u << 20)) {
+        free(p);
+        return cs_err(CS_EINPUT, "%s: corrupt weights header (implausible sizes)", path);
+    }
     long want = hl + (long)(sizeof(float) * (h.nnorm + h.nparams)) + 8;
-    if (n != want) { free(p); return cs_err(CS_EINPUT, "%s: %s weights file: %ld bytes, header declares %ld", path, n < want ? "truncated" : "oversized", n, want); }
+    if (n != want) {
+        free(p);
+        return cs_err(CS_EINPUT, "%s: %s weights file: %ld bytes, header declares %ld", path,
+                      n < want ? "truncated" : "oversized", n, want);
+    }
     uint64_t sum;
     memcpy(&sum, p + n - 8, 8);
-    if (fnv1a(FNV0, p, (size_t)n - 8) != sum) { free(p); return cs_err(CS_EINPUT, "%s: weights checksum mismatch (corrupt or tampered)", path); }
+    if (fnv1a(FNV0, p, (size_t)n - 8) != sum) {
+        free(p);
+        return cs_err(CS_EINPUT, "%s: weights checksum mismatch (corrupt or tampered)", path);
+    }
     model_cfg c = cfg_from(h.cfg, h.ingr);
     model *m;
-    if ((st = model_alloc(&m, &c, Bmax))) { free(p); return cs_err(CS_EINPUT, "%s: weights model configuration unusable: %s", path, cs_errmsg()); }
-    if (m->nparams != h.nparams || m->nnorm != h.nnorm) { model_free(m); free(p); return cs_err(CS_EINPUT, "%s: parameter count mismatch", path); }
+    if ((st = model_alloc(&m, &c, Bmax))) {
+        free(p);
+        return cs_err(CS_EINPUT, "%s: weights model configuration unusable: %s", path, cs_errmsg());
+    }
+    if (m->nparams != h.nparams || m->nnorm != h.nnorm) {
+        model_free(m);
+        free(p);
+        return cs_err(CS_EINPUT, "%s: parameter count mismatch", path);
+    }
     memcpy(m->norm, p + hl, sizeof(float) * h.nnorm);
     memcpy(m->params, p + hl + sizeof(float) * h.nnorm, sizeof(float) * h.nparams);
     if (scale) *scale = h.scale;
@@ -476,7 +518,11 @@ cs_status train_load_model(const char *path, model **out, int Bmax, double *scal
     {
         FILE *f = fopen(path, "rb");
         char mg[8] = {0};
-        if (f) { size_t got = fread(mg, 1, 8, f); fclose(f); if (got == 8 && !memcmp(mg, WGTS_MAGIC, 8)) return weights_load(path, out, Bmax, scale); }
+        if (f) {
+            size_t got = fread(mg, 1, 8, f);
+            fclose(f);
+            if (got == 8 && !memcmp(mg, WGTS_MAGIC, 8)) return weights_load(path, out, Bmax, scale);
+        }
     }
     cs_status st = ckpt_read(path, &p, &len, &h);
     if (st) return st;
@@ -484,7 +530,11 @@ cs_status train_load_model(const char *path, model **out, int Bmax, double *scal
     model *m;
     st = model_alloc(&m, &c, Bmax);
     if (st) { free(p); return cs_err(CS_EINPUT, "%s: checkpoint model configuration unusable: %s", path, cs_errmsg()); }
-    if (m->nparams != h.nparams || m->nnorm != h.nnorm) { model_free(m); free(p); return cs_err(CS_EINPUT, "%s: parameter count mismatch", path); }
+    if (m->nparams != h.nparams || m->nnorm != h.nnorm) {
+        model_free(m);
+        free(p);
+        return cs_err(CS_EINPUT, "%s: parameter count mismatch", path);
+    }
     const unsigned char *q = p + 12 + sizeof h + 3 * h.rng_size + sizeof(int32_t) * (size_t)h.ndata;
     memcpy(m->norm, q, sizeof(float) * h.nnorm);
     memcpy(m->params, q + sizeof(float) * h.nnorm, sizeof(float) * h.nparams);
