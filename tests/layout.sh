@@ -33,6 +33,10 @@
 #     field against a string literal, no arithmetic into a macro (a prefix or
 #     suffix cut), no char pointer taken from one (the way such tests hid);
 #     what a function computes comes from the registry row's params.
+#  9. no line over 120 characters in src/, outside declarative tables: the
+#     manifest src/base/manifest.h, initialiser rows ({...}, an option or a
+#     registry entry), lines that are a string literal alone (help text)
+#     and the option macros of src/cli/cli.h.
 # Prints cmocka-style lines so tests/run.sh counts it like a test binary.
 set -u
 cd "$(dirname "$0")/.."
@@ -228,6 +232,14 @@ spelt=$(grep -nE -e "$spell_fn[[:space:]]*$spell_arg[[:space:]]*,[[:space:]]*\""
 if [ -z "$spelt" ]; then ok "no claim behaviour chosen by a macro's spelling (src/claims, src/agree, src/exp)"
 else bad "no claim behaviour chosen by a macro's spelling" "$(echo "$spelt" | wc -l) line(s), each to read the row's params instead:
 $spelt"; fi
+
+# 9. long lines, counted in characters (UTF-8), each file:line (length).
+wide=$(perl -CSD -ne 'next if $ARGV eq "src/base/manifest.h" || length($_) <= 121;
+  next if /^\s*\{.*\}[,;]?\s*\\?\s*(\/\*.*\*\/)?$/ || /^\s*".*"\s*[,;)]*\s*\\?$/ || /^#define CLI_OPT_/;
+  printf "%s:%d (%d)\n", $ARGV, $., length($_) - 1; } continue { close ARGV if eof' src/*/*.c src/*/*.h src/*/*.inc 2>/dev/null)
+if [ -z "$wide" ]; then ok "no line over 120 characters in src/ outside declarative tables"
+else bad "no line over 120 characters in src/ outside declarative tables" "$(echo "$wide" | wc -l) line(s):
+$(echo "$wide" | head -20)"; fi
 
 echo "[==========] layout tests run."
 echo "[  PASSED  ] $pass test(s)."

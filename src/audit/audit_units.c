@@ -43,7 +43,9 @@ static int identity_of(const char *path, char *why, size_t n)
     const char *cmd = tsv_meta(t, "command"), *ev = tsv_meta(t, "eval");
     char v[300], want[64];
     int bad = 0;
-    if (!cmd) { snprintf(why, n, "no # command: line"); bad = 1;
+    if (!cmd) {
+        snprintf(why, n, "no # command: line");
+        bad = 1;
     } else if (!cmd_opt(cmd, "seed", v, sizeof v) || strtoul(v, NULL, 10) != seed) {
         snprintf(why, n, "its name says seed %u, its command --seed %s", seed,
                  cmd_opt(cmd, "seed", v, sizeof v) ? v : "(none)");

@@ -10,9 +10,8 @@
  * baselines of a claim are those of the root of its source, and what a
  * function computes (arm, probe, bound, quantity) comes from the row's params,
  * so one function serves every reading (design.md §8 "Readings of the
- * generator"). m_J and m_I are
- * medians over seeds of the per-run error; p is the exact two-sided Wilcoxon
- * signed-rank test of the paired per-seed errors. */
+ * generator"). m_J and m_I are medians over seeds of the per-run error; p is
+ * the exact two-sided Wilcoxon signed-rank test of the paired per-seed errors. */
 #include "claims.h"
 #include "mainruns.h"
 #include "paths.h"
@@ -133,8 +132,8 @@ static cs_status read_runs(const claim_row *row, const char *path, main_runs *r,
         }
         int k = run_kind(arm, probe);
         if (k < 0) {
-            st =
-                cs_err(CS_EINPUT, "%s:%d: field 'arm'/'probe': unexpected '%s'/'%s'", path, tsv_line(t, i), arm, probe);
+            st = cs_err(CS_EINPUT, "%s:%d: field 'arm'/'probe': unexpected '%s'/'%s'", path, tsv_line(t, i), arm,
+                        probe);
             break;
         }
         if (seen[s - 1][k]++) {
@@ -411,10 +410,8 @@ cs_status claim_main_meta(const claim_row *row, claim_result *res)
         return CS_OK;
     }
     if (!nv) {
-        claim_pending(res,
-                      "%s: none of its %zu frozen units recorded a training speed (a '# train_time:' line): they were "
-                      "trained before the speed was written, "
-                      "and re-evaluated from their weights since",
+        claim_pending(res, "%s: none of its %zu frozen units recorded a training speed (a '# train_time:' line): "
+                      "they were trained before the speed was written, and re-evaluated from their weights since",
                       dir, units);
         return CS_OK;
     }
@@ -532,8 +529,8 @@ static cs_status read_extrap(const claim_row *row, const char *path, extrap_runs
     }
     for (int k = 0; k < e->n && !st; k++)
         if (e->nj[k] != e->ni[k] || e->nj[k] < 1)
-            st =
-                cs_err(CS_EINPUT, "%s: spacing %.1f has %d joint and %d indep runs", path, e->d[k], e->nj[k], e->ni[k]);
+            st = cs_err(CS_EINPUT, "%s: spacing %.1f has %d joint and %d indep runs", path, e->d[k], e->nj[k],
+                        e->ni[k]);
     snprintf(res->where, sizeof res->where, "%s", path);
     tsv_free(t);
     return st;

@@ -62,6 +62,48 @@ static cs_status copy_field(const tsv *t, size_t r, const char *col, char *dst, 
     return CS_OK;
 }
 
+/* One registry row, its fields checked; the duplicates are the caller's. */
+static cs_status row_read(const tsv *t, size_t r, const char *path, claim_row *w)
+{
+    cs_status st;
+    w->line = tsv_line(t, r);
+    if ((st = copy_field(t, r, "macro", w->macro, sizeof w->macro)) ||
+        (st = copy_field(t, r, "kind", w->kind, sizeof w->kind)) ||
+        (st = copy_field(t, r, "source", w->source, sizeof w->source)) ||
+        (st = copy_field(t, r, "function", w->function, sizeof w->function)) ||
+        (st = copy_field(t, r, "gate", w->gate, sizeof w->gate)) ||
+        (st = copy_field(t, r, "test", w->test, sizeof w->test)) ||
+        (st = copy_field(t, r, "section", w->section, sizeof w->section)) ||
+        (st = copy_field(t, r, "format", w->format, sizeof w->format)) ||
+        (st = copy_field(t, r, "reference", w->reference, sizeof w->reference)))
+        return st;
+    char params[512];
+    if ((st = copy_field(t, r, "params", params, sizeof params)) ||
+        (st = claim_params_parse(params, path, w->line, &w->param)))
+        return st;
+    for (size_t k = 0; w->macro[k]; k++)
+        if (!((w->macro[k] >= 'A' && w->macro[k] <= 'Z') || (w->macro[k] >= 'a' && w->macro[k] <= 'z')))
+            return cs_err(CS_EINPUT, "%s:%d: field 'macro': '%s' is not a LaTeX macro name (letters only)", path,
+                          w->line, w->macro);
+    if (strcmp(w->kind, "measured") && strcmp(w->kind, "design") && strcmp(w->kind, "field") &&
+        strcmp(w->kind, "needs-data") && strcmp(w->kind, "probe") && !claims_kind_beside(w->kind))
+        return cs_err(CS_EINPUT,
+                      "%s:%d: field 'kind': unknown kind '%s' (measured, design, field, needs-data, probe, "
+                      "extension, variant)",
+                      path, w->line, w->kind);
+    /* probe: measured like a claim, added after the first verdict, never gated */
+    if (!strcmp(w->kind, "probe") && strcmp(w->gate, "-"))
+        return cs_err(CS_EINPUT, "%s:%d: field 'gate': a probe row is never gated ('-'), not '%s'", path, w->line,
+                      w->gate);
+    if (!gate_ref_ok(w->gate))
+        return cs_err(CS_EINPUT, "%s:%d: field 'gate': '%s' is not 'file.gate:key'", path, w->line, w->gate);
+    strcpy(w->gate_reg, w->gate);
+    if (strcmp(w->format, "text") && (w->format[0] != '%' || strchr(w->format + 1, '%')))
+        return cs_err(CS_EINPUT, "%s:%d: field 'format': '%s' is not one printf conversion or 'text'", path,
+                      w->line, w->format);
+    return CS_OK;
+}
+
 cs_status claims_load(const char *path, claims *out)
 {
     out->rows = NULL;
@@ -74,51 +116,7 @@ cs_status claims_load(const char *path, claims *out)
     if (!rows) { tsv_free(t); return cs_err(CS_ENOMEM, "%s: out of memory", path); }
     for (size_t r = 0; r < n && !st; r++) {
         claim_row *w = &rows[r];
-        w->line = tsv_line(t, r);
-        if ((st = copy_field(t, r, "macro", w->macro, sizeof w->macro))) break;
-        if ((st = copy_field(t, r, "kind", w->kind, sizeof w->kind))) break;
-        if ((st = copy_field(t, r, "source", w->source, sizeof w->source))) break;
-        if ((st = copy_field(t, r, "function", w->function, sizeof w->function))) break;
-        if ((st = copy_field(t, r, "gate", w->gate, sizeof w->gate))) break;
-        if ((st = copy_field(t, r, "test", w->test, sizeof w->test))) break;
-        if ((st = copy_field(t, r, "section", w->section, sizeof w->section))) break;
-        if ((st = copy_field(t, r, "format", w->format, sizeof w->format))) break;
-        if ((st = copy_field(t, r, "reference", w->reference, sizeof w->reference))) break;
-        char params[512];
-        if ((st = copy_field(t, r, "params", params, sizeof params)) ||
-            (st = claim_params_parse(params, path, w->line, &w->param)))
-            break;
-        for (size_t k = 0; w->macro[k]; k++)
-            if (!((w->macro[k] >= 'A' && w->macro[k] <= 'Z') || (w->macro[k] >= 'a' && w->macro[k] <= 'z'))) {
-                st = cs_err(CS_EINPUT, "%s:%d: field 'macro': '%s' is not a LaTeX macro name (letters only)", path,
-                            w->line, w->macro);
-                break;
-            }
-        if (st) break;
-        if (strcmp(w->kind, "measured") && strcmp(w->kind, "design") && strcmp(w->kind, "field") &&
-            strcmp(w->kind, "needs-data") && strcmp(w->kind, "probe") && !claims_kind_beside(w->kind)) {
-            st = cs_err(CS_EINPUT,
-                        "%s:%d: field 'kind': unknown kind '%s' (measured, design, field, needs-data, probe, "
-                        "extension, variant)",
-                        path, w->line, w->kind);
-            break;
-        }
-        /* probe: measured like a claim, added after the first verdict, never gated */
-        if (!strcmp(w->kind, "probe") && strcmp(w->gate, "-")) {
-            st = cs_err(CS_EINPUT, "%s:%d: field 'gate': a probe row is never gated ('-'), not '%s'", path, w->line,
-                        w->gate);
-            break;
-        }
-        if (!gate_ref_ok(w->gate)) {
-            st = cs_err(CS_EINPUT, "%s:%d: field 'gate': '%s' is not 'file.gate:key'", path, w->line, w->gate);
-            break;
-        }
-        strcpy(w->gate_reg, w->gate);
-        if (strcmp(w->format, "text") && (w->format[0] != '%' || strchr(w->format + 1, '%'))) {
-            st = cs_err(CS_EINPUT, "%s:%d: field 'format': '%s' is not one printf conversion or 'text'", path, w->line,
-                        w->format);
-            break;
-        }
+        if ((st = row_read(t, r, path, w))) break;
         for (size_t q = 0; q < r; q++)
             if (!strcmp(rows[q].macro, w->macro)) {
                 st = cs_err(CS_EINPUT, "%s:%d: field 'macro': duplicate of line %d", path, w->line, rows[q].line);

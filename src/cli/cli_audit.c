@@ -55,6 +55,26 @@ int cli_cmd_verify(int argc, char **argv)
     return cs_exit_code(st);
 }
 
+/* Every generated file the generation wrote into dir (readings.tex and
+ * sensitivity.tex only when their frozen summaries exist) moves into paper/,
+ * when the generation succeeded (st); dir is emptied and removed either way. */
+static cs_status move_generated(cs_status st, const char *dir, char *wrote, size_t n)
+{
+    for (size_t i = 0; paper_generated(i); i++) {
+        char p[256];
+        struct stat sb;
+        snprintf(p, sizeof p, "%s/%s", dir, strrchr(paper_generated(i), '/') + 1);
+        if (stat(p, &sb) != 0) continue;
+        if (!st && rename(p, paper_generated(i)) != 0)
+            st = cs_err(CS_EIO, "%s: cannot move to %s", p, paper_generated(i));
+        else if (!st)
+            snprintf(wrote + strlen(wrote), n - strlen(wrote), "%s%s", wrote[0] ? ", " : "", paper_generated(i));
+        unlink(p);
+    }
+    rmdir(dir);
+    return st;
+}
+
 int cli_cmd_numbers(int argc, char **argv)
 {
     int check = 0;
@@ -68,10 +88,7 @@ int cli_cmd_numbers(int argc, char **argv)
         "was computed (exit 3 naming the claim and its input otherwise, writing nothing); then the\n"
         "generated regions (<!--Macro-->value<!--/-->, <!-- findings -->) of README.md and the *.md pages.\n"
         "--check: compare the three with a fresh generation (exit 1 naming the first differing line).",
-        spec,
-        1,
-        0,
-        0};
+        spec, 1, 0, 0};
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     claims c;
@@ -111,23 +128,8 @@ int cli_cmd_numbers(int argc, char **argv)
     char dir[128];
     snprintf(dir, sizeof dir, "build/numbers.%ld", (long)getpid());
     int readings = 0;
-    st = paper_generate(&c, res, dir, &readings);
-    /* every generated file the generation wrote (readings.tex and
-     * sensitivity.tex only when their frozen summaries exist) moves into paper/ */
     char wrote[1024] = "";
-    for (size_t i = 0; paper_generated(i); i++) {
-        char p[256];
-        struct stat sb;
-        snprintf(p, sizeof p, "%s/%s", dir, strrchr(paper_generated(i), '/') + 1);
-        if (stat(p, &sb) != 0) continue;
-        if (!st && rename(p, paper_generated(i)) != 0)
-            st = cs_err(CS_EIO, "%s: cannot move to %s", p, paper_generated(i));
-        else if (!st)
-            snprintf(wrote + strlen(wrote), sizeof wrote - strlen(wrote), "%s%s", wrote[0] ? ", " : "",
-                     paper_generated(i));
-        unlink(p);
-    }
-    rmdir(dir);
+    st = move_generated(paper_generate(&c, res, dir, &readings), dir, wrote, sizeof wrote);
     size_t pend = 0;
     for (size_t i = 0; i < c.n; i++) pend += res[i].status != VERDICT_PASS;
     if (!st) printf("wrote %s: %zu claims (%zu pending)\n", wrote, c.n, pend);

@@ -43,10 +43,7 @@ int cli_field_calibrate(int argc, char **argv)
         "at every beta of dieback_grid, record the median tree-mean clearance per beta, and print\n"
         "beta_field (interpolated to calibration_target_m, rounded to the grid). Also writes\n"
         "DIR/calibration_trees.tsv.",
-        spec,
-        sizeof spec / sizeof *spec,
-        0,
-        0};
+        spec, sizeof spec / sizeof *spec, 0, 0};
     int r = field_parse(&oc, argc, argv, &o);
     if (r) return opts_exit_code(r);
     cs_status st = exp_field_calibrate(&o);
@@ -63,10 +60,7 @@ int cli_field_heldout(int argc, char **argv)
         "E5 held-out (design.md §7): N stands (default 28) on seeds disjoint from the calibration, grown at\n"
         "beta_field coupled and as the uncoupled twin: tree-mean median, spread, elongation, anisotropy.\n"
         "The spread ratios need the raw field table (FIELD_TABLE=path); without it they are pending.",
-        spec,
-        sizeof spec / sizeof *spec,
-        0,
-        0};
+        spec, sizeof spec / sizeof *spec, 0, 0};
     int r = field_parse(&oc, argc, argv, &o);
     if (r) return opts_exit_code(r);
     cs_status st = exp_field_heldout(&o);
@@ -98,10 +92,7 @@ int cli_anisotropy_lattice(int argc, char **argv)
         "--calibration DIR/calibration.tsv --out DIR/lattice.tsv [--stands N]",
         "E6 (design.md §7): anisotropy on the controlled lattice (field layout, canonical jitter) at beta_field,\n"
         "N stands (default 28).",
-        spec,
-        sizeof spec / sizeof *spec,
-        0,
-        0};
+        spec, sizeof spec / sizeof *spec, 0, 0};
     int r = field_parse(&oc, argc, argv, &o);
     if (r) return opts_exit_code(r);
     cs_status st = exp_anisotropy_lattice(&o);
@@ -141,10 +132,7 @@ int cli_anisotropy_heldout(int argc, char **argv)
         "                              --out DIR/heldout.tsv [--stands N]",
         "E6 held-out (design.md §7): N stands (default 28) at jitter a* on seeds disjoint from the sweep,\n"
         "teacher at beta_field: anisotropy, elongation, spread; every stand must build.",
-        spec,
-        sizeof spec / sizeof *spec,
-        0,
-        0};
+        spec, sizeof spec / sizeof *spec, 0, 0};
     int r = field_parse(&oc, argc, argv, &o);
     if (r) return opts_exit_code(r);
     cs_status st = exp_anisotropy_heldout(&o);

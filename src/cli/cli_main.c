@@ -223,7 +223,8 @@ int cli_model_readings_summary(int argc, char **argv)
     if (!st) st = model_readings_write(out, dir, rows, n, argc, argv);
     for (size_t i = 0; !st && i < n; i++)
         printf("%-13s %-11s seeds %2d  joint %.4f  indep %.4f  rel %.1f %%  p %.5f  shuffle x%.2f\n",
-               rows[i].reading, rows[i].role, rows[i].seeds, rows[i].joint, rows[i].indep, 100 * rows[i].rel, rows[i].p, rows[i].shuf_joint);
+               rows[i].reading, rows[i].role, rows[i].seeds, rows[i].joint, rows[i].indep, 100 * rows[i].rel,
+               rows[i].p, rows[i].shuf_joint);
     return st ? cli_fail("model-readings-summary", st) : 0;
 }
 

@@ -149,10 +149,7 @@ int cli_replicates_run(int argc, char **argv)
         "[options]",
         "Replicate stands of the one-stand figure numbers (E1 figure stand, E8 point-cloud stands, E9 hero stems):\n"
         "stands k = 0..N-1 of each figure family (k = 0: the figure's own) -> DIR/replicates/figure_stands.tsv",
-        spec,
-        sizeof spec / sizeof spec[0],
-        0,
-        0};
+        spec, sizeof spec / sizeof spec[0], 0, 0};
     int r = opts_parse(&c, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     exp_opts o = {.out = out, .stands = (int)stands, .beta = NAN, .tag = "train", .argc = argc, .argv = argv};

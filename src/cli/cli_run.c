@@ -168,10 +168,7 @@ int cli_cmd_bench_teacher(int argc, char **argv)
         "[--reps N]",
         "Teacher CPU ms per 144-tree controlled-lattice stand (d = 3.5 m, beta 0.06) at N = 48 and N = 384,\n"
         "median [fastest, slowest] over stands each timed alone (design.md §10).",
-        spec,
-        1,
-        0,
-        0};
+        spec, 1, 0, 0};
     int r = opts_parse(&c, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     const int levels[2] = {48, 384};

@@ -251,7 +251,8 @@ cs_status exp_comp_run(const exp_comp_args *a)
         tsv_writer *w;
         if ((st = tsv_writer_open(&w, path))) break;
         if ((st = prov_write(w, &pv))) { tsv_writer_abort(w); break; }
-        const char *kind = m.mj->cfg.pair ? "pair-aware model, design.md §8.1" : "model without pair terms, design.md §8";
+        const char *kind =
+            m.mj->cfg.pair ? "pair-aware model, design.md §8.1" : "model without pair terms, design.md §8";
         tsv_writer_meta(w, "models", "joint %s, independent %s (E3 seed 1; %s)", cj, ci, kind);
         st = comp_table(w, file, d, &cp, dmed, ndart);
         if (st) tsv_writer_abort(w);

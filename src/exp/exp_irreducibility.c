@@ -431,6 +431,17 @@ static cs_status write_reduction_sectors(const exp_opts *o, double beta, const p
     return unit_out_finish(w, &rp, path);
 }
 
+/* miss[a][q]: summed |r_t - min(r*, b - sigma_q)| over the sectors of spacing a. */
+static void reduction_miss(size_t nd, const dvec *rt, const dvec *rs, const dvec *bb, double *miss)
+{
+    for (size_t a = 0; a < nd; a++)
+        for (int q = 0; q < SIG_N; q++) {
+            double sig = SIGMA(q), sum = 0.0;
+            for (size_t e = 0; e < rt[a].n; e++) sum += fabs(rt[a].v[e] - fmin(rs[a].v[e], bb[a].v[e] - sig));
+            miss[a * SIG_N + q] = sum;
+        }
+}
+
 cs_status exp_irreducibility_reduction(const exp_opts *o, double beta)
 {
     prov pv;
@@ -449,20 +460,12 @@ cs_status exp_irreducibility_reduction(const exp_opts *o, double beta)
         if (!rows.step) st = cs_err(CS_ENOMEM, "experiments: out of memory");
     }
     if (!st) st = reduction_gather(o, beta, &c, rt, rs, bb, step_sum, o->stand_rows ? &rows : NULL, &worst);
-    /* miss[a][q]: summed |r_t - min(r*, b - sigma_q)| for spacing a. */
     double *miss = st ? NULL : calloc(c.nd * SIG_N, sizeof *miss);
     if (!st && !miss) st = cs_err(CS_ENOMEM, "experiments: out of memory");
     size_t ntot = 0;
     double steptot = 0.0;
-    for (size_t a = 0; a < c.nd && !st; a++) {
-        ntot += rt[a].n;
-        steptot += step_sum[a];
-        for (int q = 0; q < SIG_N; q++) {
-            double sig = SIGMA(q), sum = 0.0;
-            for (size_t e = 0; e < rt[a].n; e++) sum += fabs(rt[a].v[e] - fmin(rs[a].v[e], bb[a].v[e] - sig));
-            miss[a * SIG_N + q] = sum;
-        }
-    }
+    for (size_t a = 0; a < c.nd; a++) { ntot += rt[a].n; steptot += step_sum[a]; }
+    if (!st) reduction_miss(c.nd, rt, rs, bb, miss);
     tsv_writer *w = NULL;
     char path[512];
     if (!st && o->stand_rows) st = write_reduction_sectors(o, beta, &pv, worst, &c, rt, rs, bb, &rows);
@@ -510,11 +513,8 @@ cs_status exp_irreducibility_reduction(const exp_opts *o, double beta)
     free(miss);
     free(rows.step);
     for (size_t a = 0; a < 8; a++) {
-        free(rt[a].v);
-        free(rs[a].v);
-        free(bb[a].v);
-        free(rows.stand[a].v);
-        free(rows.tree[a].v);
+        free(rt[a].v), free(rs[a].v), free(bb[a].v);
+        free(rows.stand[a].v), free(rows.tree[a].v);
     }
     return st;
 }

@@ -191,6 +191,52 @@ cs_status mainsum_baselines(const mainsum_baselines_args *a)
 
 /* Gather the per-run tables into main/runs.tsv (error on unseen spacings and
  * the shuffled probe, per seed and arm) and extrapolation/runs.tsv. */
+/* The per-spacing rows of one run table, reduced to its per-probe means over
+ * the unseen spacings and its extrapolation errors; worst overlap carried. */
+typedef struct { double probe[MAINSET_NPROBE], ex[MAXSP], exd[MAXSP]; int np[MAINSET_NPROBE], nex; } runres;
+
+static cs_status read_run(const char *p, runres *r, int joint, double *worst)
+{
+    tsv *t;
+    cs_status st = tsv_read(p, &t);
+    if (st) return st;
+    const char *wo = tsv_meta(t, "worst_overlap_m");
+    if (wo && atof(wo) > *worst) *worst = atof(wo);
+    for (size_t i = 0; i < tsv_nrows(t) && !st; i++) {
+        double w1, d;
+        if ((st = tsv_double(t, i, "w1", &w1)) || (st = tsv_double(t, i, "spacing", &d))) break;
+        const char *split = tsv_str(t, i, "split"), *probe = tsv_str(t, i, "probe");
+        if (!split || !probe) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'split'/'probe' missing", p, tsv_line(t, i));
+            break;
+        }
+        int q = 0;
+        while (q < MAINSET_NPROBE && strcmp(probe, mainset_probe_name((mainset_probe)q))) q++;
+        if (q == MAINSET_NPROBE) {
+            st = cs_err(CS_EINPUT, "%s:%d: field 'probe': unknown '%s'", p, tsv_line(t, i), probe);
+            break;
+        }
+        if (!strcmp(split, "unseen")) {
+            r->probe[q] += w1;
+            r->np[q]++;
+        } else if (!strcmp(split, "extrap") && q == MAINSET_GENERATED && r->nex < MAXSP) {
+            r->ex[r->nex] = w1;
+            r->exd[r->nex] = d;
+            r->nex++;
+        }
+    }
+    if (!st && r->np[0] == 0) st = cs_err(CS_EINPUT, "%s: no unseen-spacing rows", p);
+    if (!st && joint && r->np[MAINSET_SHUFFLED] != r->np[0])
+        st = cs_err(CS_EINPUT, "%s: joint run lacks the shuffled probe at some unseen spacing", p);
+    for (int q = 1; q < MAINSET_NPROBE && !st; q++)
+        if (r->np[q] && r->np[q] != r->np[0])
+            st = cs_err(CS_EINPUT, "%s: the %s probe misses some unseen spacing", p,
+                        mainset_probe_name((mainset_probe)q));
+    for (int q = 0; q < MAINSET_NPROBE && !st; q++) r->probe[q] = r->np[q] ? r->probe[q] / r->np[q] : NAN;
+    tsv_free(t);
+    return st;
+}
+
 cs_status mainsum_summary(const mainsum_summary_args *a)
 {
     const char *dir = a->dir;
@@ -199,7 +245,6 @@ cs_status mainsum_summary(const mainsum_summary_args *a)
     prov pv;
     prov_begin(&pv, "main", argc, argv);
     const char *arms[2] = {"joint", "indep"};
-    typedef struct { double probe[MAINSET_NPROBE], ex[MAXSP], exd[MAXSP]; int np[MAINSET_NPROBE], nex; } runres;
     runres *rr = calloc((size_t)nseeds * 2, sizeof *rr);
     double worst = 0.0;
     cs_status st = rr ? CS_OK : cs_err(CS_ENOMEM, "out of memory");
@@ -207,41 +252,7 @@ cs_status mainsum_summary(const mainsum_summary_args *a)
         for (int a = 0; a < 2 && !st; a++) {
             char p[1024];
             snprintf(p, sizeof p, "%s/main/run_s%02d_%s.tsv", dir, s, arms[a]);
-            tsv *t;
-            if ((st = tsv_read(p, &t))) break;
-            runres *r = &rr[(s - 1) * 2 + a];
-            const char *wo = tsv_meta(t, "worst_overlap_m");
-            if (wo && atof(wo) > worst) worst = atof(wo);
-            for (size_t i = 0; i < tsv_nrows(t) && !st; i++) {
-                double w1, d;
-                if ((st = tsv_double(t, i, "w1", &w1)) || (st = tsv_double(t, i, "spacing", &d))) break;
-                const char *split = tsv_str(t, i, "split"), *probe = tsv_str(t, i, "probe");
-                if (!split || !probe) {
-                    st = cs_err(CS_EINPUT, "%s:%d: field 'split'/'probe' missing", p, tsv_line(t, i));
-                    break;
-                }
-                int q = 0;
-                while (q < MAINSET_NPROBE && strcmp(probe, mainset_probe_name((mainset_probe)q))) q++;
-                if (q == MAINSET_NPROBE) {
-                    st = cs_err(CS_EINPUT, "%s:%d: field 'probe': unknown '%s'", p, tsv_line(t, i), probe);
-                    break;
-                }
-                if (!strcmp(split, "unseen")) { r->probe[q] += w1; r->np[q]++;
-                } else if (!strcmp(split, "extrap") && q == MAINSET_GENERATED && r->nex < MAXSP) {
-                    r->ex[r->nex] = w1;
-                    r->exd[r->nex] = d;
-                    r->nex++;
-                }
-            }
-            if (!st && r->np[0] == 0) st = cs_err(CS_EINPUT, "%s: no unseen-spacing rows", p);
-            if (!st && a == 0 && r->np[MAINSET_SHUFFLED] != r->np[0])
-                st = cs_err(CS_EINPUT, "%s: joint run lacks the shuffled probe at some unseen spacing", p);
-            for (int q = 1; q < MAINSET_NPROBE && !st; q++)
-                if (r->np[q] && r->np[q] != r->np[0])
-                    st = cs_err(CS_EINPUT, "%s: the %s probe misses some unseen spacing", p,
-                                mainset_probe_name((mainset_probe)q));
-            for (int q = 0; q < MAINSET_NPROBE && !st; q++) r->probe[q] = r->np[q] ? r->probe[q] / r->np[q] : NAN;
-            tsv_free(t);
+            if ((st = read_run(p, &rr[(s - 1) * 2 + a], a == 0, &worst))) break;
         }
     for (int pass = 0; pass < 2 && !st; pass++) {
         char p[1024];
