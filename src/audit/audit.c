@@ -3,7 +3,6 @@
 #include "audit.h"
 #include "afile.h"
 #include "prov.h"
-#include "sha256.h"
 #include "tsv.h"
 #include <dirent.h>
 #include <errno.h>
@@ -17,6 +16,8 @@
 #include "audit_paper.h"
 #include "audit_render.h"
 #include "audit_evidence.h"
+#include "audit_grids.h"
+#include "audit_pin.h"
 #include "audit_units.h"
 
 static int file_exists(const char *p) { struct stat sb; return stat(p, &sb) == 0; }
@@ -39,115 +40,6 @@ static void claims_of(const claims *c, const char *path, const char *gatefile, c
 }
 
 /* ---- pins ---- */
-/* The instrument's pins grow with the registry (one per claim row): a set
- * that grows, never one that silently drops its tail. */
-typedef struct { char key[64], value[80], path[256]; } pin;
-typedef struct { pin *p; size_t n, cap; int oom; } pinset;
-
-static void pinset_free(pinset *s) { free(s->p); memset(s, 0, sizeof *s); }
-
-static void add_pin(pinset *s, const char *key, const char *path, const char *value)
-{
-    if (s->n == s->cap) {
-        size_t cap = s->cap ? 2 * s->cap : 512;
-        pin *q = realloc(s->p, cap * sizeof *q);
-        if (!q) { s->oom = 1; return; }
-        s->p = q;
-        s->cap = cap;
-    }
-    pin *e = &s->p[s->n++];
-    snprintf(e->key, sizeof e->key, "%s", key);
-    snprintf(e->path, sizeof e->path, "%s", path);
-    snprintf(e->value, sizeof e->value, "%s", value);
-}
-
-static void add_file_pin(pinset *s, const char *key, const char *path)
-{
-    char hex[65];
-    add_pin(s, key, path, file_exists(path) && !prov_sha256_file(path, hex) ? hex : "absent");
-}
-
-/* One pin per registry row (path "audit/claims.tsv:Macro"): an edited row names its claim. */
-static void registry_row_pins(pinset *s)
-{
-    FILE *f = fopen(PATHS_CLAIMS, "r");
-    char line[4096];
-    int header = 0;
-    while (f && fgets(line, sizeof line, f)) {
-        if (line[0] == '#') continue;
-        if (!header++) continue;
-        char macro[64], path[160], hex[65];
-        if (sscanf(line, "%63[^\t\n]", macro) != 1) continue;
-        snprintf(path, sizeof path, "%s:%s", PATHS_CLAIMS, macro);
-        sha256_hex(line, strlen(line), hex);
-        add_pin(s, "claim_row_sha256", path, hex);
-    }
-    if (f) fclose(f);
-}
-
-/* The design constants no gate carries (design.md §2, §3, §7) and the claim
- * tests (the registry's test column names tests/test_claims.c). */
-static const char *const design_files[] = {"src/base/design.h", "src/forest/crown.h", NULL};
-static const char *const claim_tests[] = {"tests/test_claims.c", "tests/test_field_claims.c", "tests/test_interval.c",
-                                          "tests/testutil.h",    "tests/tamper.sh",           NULL};
-
-/* Every pin of the instrument as it is now, into an empty set *s (freed by
- * the caller, also on failure). */
-static cs_status current_pins(pinset *s)
-{
-    char v[80];
-    if (prov_teacher_version(v, sizeof v)) snprintf(v, sizeof v, "absent");
-    add_pin(s, "teacher_version", PATHS_TEACHER_HDR, v);
-    add_file_pin(s, "teacher_sha256", PATHS_TEACHER_SRC);
-    add_file_pin(s, "estimator_sha256", PATHS_ESTIMATOR_SRC);
-    char hex[65];
-    add_pin(s, "gates_sha256", PATHS_GATES_DIR, prov_gates_sha256(PATHS_GATES_DIR, hex) ? "absent" : hex);
-    paths_list g = {0};
-    paths_list_every(PATHS_GATES_DIR, 1, &g);
-    for (size_t i = 0; i < g.n; i++) add_file_pin(s, "gate_sha256", g.p[i]);
-    paths_list_free(&g);
-    /* pinned with the gates: which claim each gate judges */
-    add_file_pin(s, "gate_map_sha256", PATHS_GATE_MAP);
-    add_file_pin(s, "gate_map_sha256", PATHS_GATE_MAP_EXT);
-    /* the claim-computing code, the intervals and agreement it is judged by,
-     * and the registry: an edit changes a verdict's inputs */
-    const char *claim_dirs[] = {PATHS_CLAIMS_SRC_DIR, PATHS_AGREE_SRC_DIR};
-    for (size_t d = 0; d < sizeof claim_dirs / sizeof *claim_dirs; d++) {
-        paths_list cc = {0};
-        paths_list_files(claim_dirs[d], ".c", 0, &cc);
-        for (size_t i = 0; i < cc.n; i++) add_file_pin(s, "claim_code_sha256", cc.p[i]);
-        paths_list_free(&cc);
-    }
-    /* the code that judges them: the audit, verify, the generated paper files */
-    paths_list ac = {0};
-    paths_list_files(PATHS_AUDIT_SRC_DIR, ".c", 0, &ac);
-    for (size_t i = 0; i < ac.n; i++) add_file_pin(s, "audit_code_sha256", ac.p[i]);
-    paths_list_free(&ac);
-    add_file_pin(s, "registry_sha256", PATHS_CLAIMS);
-    registry_row_pins(s);
-    /* how every interval is computed (design.md §6.1) */
-    add_file_pin(s, "intervals_sha256", PATHS_INTERVALS);
-    add_file_pin(s, "aggregates_sha256", PATHS_AGGREGATES);
-    /* what else a number rests on: the record of superseded readings, the
-     * design grids and the preregistered gates' hashes, the design constants
-     * no gate carries (and the list the paper may type), the claim tests */
-    add_file_pin(s, "superseded_sha256", PATHS_PINS_SUPERSEDED);
-    add_file_pin(s, "grids_sha256", PATHS_GRIDS);
-    add_file_pin(s, "gates_prereg_sha256", PATHS_GATES_PREREG);
-    add_file_pin(s, "design_numbers_sha256", PATHS_DESIGN_NUMBERS);
-    for (size_t i = 0; design_files[i]; i++) add_file_pin(s, "design_sha256", design_files[i]);
-    for (size_t i = 0; claim_tests[i]; i++) add_file_pin(s, "claim_test_sha256", claim_tests[i]);
-    /* what draws each figure, and the data it must plot (figcheck.h) */
-    static const char *const fig_ext[] = {".gp", ".gpi", NULL};
-    for (size_t e = 0; fig_ext[e]; e++) {
-        paths_list fl = {0};
-        paths_list_files(PATHS_FIGURES_DIR, fig_ext[e], 0, &fl);
-        for (size_t i = 0; i < fl.n; i++) add_file_pin(s, "figure_script_sha256", fl.p[i]);
-        paths_list_free(&fl);
-    }
-    add_file_pin(s, "figure_data_sha256", PATHS_FIG_PLOTTED);
-    return s->oom ? cs_err(CS_ENOMEM, "pins: out of memory after %zu pins", s->n) : CS_OK;
-}
 
 /* Claims computed by a function defined in the claim-code file `path`. */
 static void claims_of_code(const claims *c, const char *path, char *buf, size_t n)
@@ -173,99 +65,54 @@ static void claims_of_code(const claims *c, const char *path, char *buf, size_t 
     if (!cnt) snprintf(buf, n, "every claim (shared claim code)");
 }
 
-/* The instrument pins that name a reading (not the gates: a gate is never
- * superseded, it is preregistered). */
-/* Line of (key, value) in the superseded pins t (may be NULL), 0 if absent. */
-static int superseded_line(const tsv *t, const char *key, const char *value)
+/* The claims a changed pin (key, path) affects, into buf: the claims of a
+ * gate or a claim-code file, else what the pinned file decides for all. */
+static void pin_affected(const claims *c, const char *key, const char *path, char *buf, size_t n)
 {
-    for (size_t r = 0; t && r < tsv_nrows(t); r++) {
-        const char *k = tsv_str(t, r, "key"), *v = tsv_str(t, r, "value");
-        if (k && v && !strcmp(k, key) && !strcmp(v, value)) return tsv_line(t, r);
-    }
-    return 0;
-}
-
-/* Keep every earlier pin of a reading that changes now, with the commit it
- * was superseded at: frozen results it made stay traceable until re-run. */
-static cs_status supersede(const pinset *ps)
-{
-    const pin *cur = ps->p;
-    size_t n = ps->n;
-    tsv *old = NULL, *sup = NULL;
-    if (tsv_read(PATHS_PINS, &old)) return CS_OK; /* first pinning: nothing superseded */
-    tsv_read(PATHS_PINS_SUPERSEDED, &sup);        /* absent: none yet */
-    size_t add = 0;
-    const char **newv = calloc(tsv_nrows(old) + 1, sizeof *newv);
-    if (!newv) {
-        tsv_free(old);
-        if (sup) tsv_free(sup);
-        return cs_err(CS_ENOMEM, "pin: out of memory");
-    }
-    for (size_t r = 0; r < tsv_nrows(old); r++) {
-        const char *key = tsv_str(old, r, "key"), *val = tsv_str(old, r, "value");
-        if (!key || !val || !prov_reading_key(key)) continue;
-        for (size_t i = 0; i < n; i++)
-            if (!strcmp(cur[i].key, key) && strcmp(cur[i].value, val) && !superseded_line(sup, key, val)) {
-                newv[r] = val;
-                add++;
-            }
-    }
-    cs_status st = CS_OK;
-    if (add) {
-        char commit[64] = "unknown";
-        FILE *g = popen("git rev-parse --short=12 HEAD 2>/dev/null", "r");
-        if (g) { if (fgets(commit, sizeof commit, g)) commit[strcspn(commit, "\n")] = '\0'; pclose(g); }
-        tsv_writer *w;
-        if (!(st = tsv_writer_open(&w, PATHS_PINS_SUPERSEDED))) {
-            tsv_writer_meta(w, "what",
-                            "earlier pins of the teacher and estimator whose frozen results are not yet re-run");
-            tsv_writer_meta(w, "written_by", "crownshy pin (appends a reading's pin when it changes)");
-            tsv_writer_columns(w, "key\tvalue\tpath\tsuperseded_at");
-            for (size_t r = 0; sup && r < tsv_nrows(sup); r++) {
-                const char *c[4] = {tsv_str(sup, r, "key"), tsv_str(sup, r, "value"), tsv_str(sup, r, "path"),
-                                    tsv_str(sup, r, "superseded_at")};
-                for (int k = 0; k < 4; k++) tsv_writer_str(w, c[k] ? c[k] : "-");
-                tsv_writer_endrow(w);
-            }
-            for (size_t r = 0; r < tsv_nrows(old); r++) {
-                if (!newv[r]) continue;
-                tsv_writer_str(w, tsv_str(old, r, "key")); tsv_writer_str(w, newv[r]);
-                tsv_writer_str(w, tsv_str(old, r, "path")); tsv_writer_str(w, commit);
-                tsv_writer_endrow(w);
-            }
-            st = tsv_writer_commit(w);
-        }
-    }
-    free(newv);
-    tsv_free(old);
-    if (sup) tsv_free(sup);
-    return st;
-}
-
-cs_status audit_pin(void)
-{
-    pinset ps = {0};
-    cs_status st = current_pins(&ps);
-    if (!st) st = supersede(&ps);
-    pinset_free(&ps);
-    if (!st) st = current_pins(&ps); /* the superseded record is pinned as supersede left it */
-    tsv_writer *w = NULL;
-    if (!st) st = tsv_writer_open(&w, PATHS_PINS);
-    if (st) { pinset_free(&ps); return st; }
-    const pin *p = ps.p;
-    size_t n = ps.n;
-    tsv_writer_meta(w, "what",
-                    "pins of the instrument: teacher version and source hash, estimator source hash, gate hashes and "
-                    "the claim-to-gate map; the claim code, the registry (whole and per row) and the aggregate map");
-    tsv_writer_meta(w, "regenerate",
-                    "crownshy pin (deliberate: afterwards frozen/ must be regenerated with make reproduce freeze)");
-    tsv_writer_columns(w, "key\tvalue\tpath");
-    for (size_t i = 0; i < n; i++) {
-        tsv_writer_str(w, p[i].key); tsv_writer_str(w, p[i].value); tsv_writer_str(w, p[i].path);
-        tsv_writer_endrow(w);
-    }
-    pinset_free(&ps);
-    return tsv_writer_commit(w);
+    if (!strcmp(key, "gate_sha256")) {
+        const char *base = strrchr(path, '/');
+        claims_of(c, NULL, base ? base + 1 : path, buf, n);
+    } else if (!strcmp(key, "claim_code_sha256")) {
+        claims_of_code(c, path, buf, n);
+    } else if (!strcmp(key, "audit_code_sha256")) {
+        snprintf(buf, n, "every claim (the code that judges them: %s)", path);
+    } else if (!strcmp(key, "claim_row_sha256")) {
+        snprintf(buf, n, "%s", strchr(path, ':') ? strchr(path, ':') + 1 : path);
+    } else if (!strcmp(key, "gate_map_sha256")) {
+        /* the claims whose judging gate moved (map vs registry), else every mapped one */
+        size_t off = 0, cnt = 0;
+        buf[0] = '\0';
+        for (int pass = 0; pass < 2 && !cnt; pass++)
+            for (size_t i = 0; i < c->n && off < n - 40; i++)
+                if (pass ? c->rows[i].gate_map_line != 0 : strcmp(c->rows[i].gate, c->rows[i].gate_reg) != 0)
+                    off += (size_t)snprintf(buf + off, n - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
+        if (!cnt) snprintf(buf, n, "every gated claim");
+    } else if (!strcmp(key, "intervals_sha256")) {
+        snprintf(buf, n, "the interval of every measured claim (%s)", path);
+    } else if (!strcmp(key, "registry_sha256") || !strcmp(key, "aggregates_sha256")) {
+        snprintf(buf, n, "every claim (%s)", path);
+    } else if (!strcmp(key, "estimator_sha256") || !strcmp(key, "teacher_sha256") || !strcmp(key, "teacher_version")) {
+        size_t off = 0, cnt = 0;
+        buf[0] = '\0';
+        for (size_t i = 0; i < c->n && off < n - 40; i++)
+            if (!strcmp(c->rows[i].kind, "measured") || !strcmp(c->rows[i].kind, "probe") ||
+                claims_is_beside(&c->rows[i]))
+                off += (size_t)snprintf(buf + off, n - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
+        if (!cnt) snprintf(buf, n, "every measured claim");
+    } else if (!strcmp(key, "design_sha256") || !strcmp(key, "design_numbers_sha256")) {
+        snprintf(buf, n, "every claim resting on the design constants (%s)", path);
+    } else if (!strcmp(key, "claim_test_sha256")) {
+        snprintf(buf, n, "every claim whose test is in %s", path);
+    } else if (!strcmp(key, "superseded_sha256")) {
+        snprintf(buf, n, "every claim of a table made by a superseded reading (%s)", path);
+    } else if (!strcmp(key, "grids_sha256")) {
+        snprintf(buf, n, "every claim of a table with a design grid (%s)", path);
+    } else if (!strcmp(key, "figure_script_sha256") || !strcmp(key, "figure_data_sha256")) {
+        snprintf(buf, n, "the figures %s draws or pins (what they show, not a number)", path);
+    } else if (!strcmp(key, "gates_prereg_sha256")) {
+        snprintf(buf, n, "every gated claim (%s)", path);
+    } else
+        snprintf(buf, n, "(gates as a whole)");
 }
 
 static void check_pins(const claims *c, checklist *cl, const pinset *ps)
@@ -294,54 +141,7 @@ static void check_pins(const claims *c, checklist *cl, const pinset *ps)
         }
         if (strcmp(m->value, val)) {
             char affected[600];
-            if (!strcmp(key, "gate_sha256")) {
-                const char *base = strrchr(path, '/');
-                claims_of(c, NULL, base ? base + 1 : path, affected, sizeof affected);
-            } else if (!strcmp(key, "claim_code_sha256")) {
-                claims_of_code(c, path, affected, sizeof affected);
-            } else if (!strcmp(key, "audit_code_sha256")) {
-                snprintf(affected, sizeof affected, "every claim (the code that judges them: %s)", path);
-            } else if (!strcmp(key, "claim_row_sha256")) {
-                snprintf(affected, sizeof affected, "%s", strchr(path, ':') ? strchr(path, ':') + 1 : path);
-            } else if (!strcmp(key, "gate_map_sha256")) {
-                /* the claims whose judging gate moved (map vs registry), else every mapped one */
-                size_t off = 0, cnt = 0;
-                affected[0] = '\0';
-                for (int pass = 0; pass < 2 && !cnt; pass++)
-                    for (size_t i = 0; i < c->n && off < sizeof affected - 40; i++)
-                        if (pass ? c->rows[i].gate_map_line != 0 : strcmp(c->rows[i].gate, c->rows[i].gate_reg) != 0)
-                            off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "",
-                                                    c->rows[i].macro);
-                if (!cnt) snprintf(affected, sizeof affected, "every gated claim");
-            } else if (!strcmp(key, "intervals_sha256")) {
-                snprintf(affected, sizeof affected, "the interval of every measured claim (%s)", path);
-            } else if (!strcmp(key, "registry_sha256") || !strcmp(key, "aggregates_sha256")) {
-                snprintf(affected, sizeof affected, "every claim (%s)", path);
-            } else if (!strcmp(key, "estimator_sha256") || !strcmp(key, "teacher_sha256") ||
-                       !strcmp(key, "teacher_version")) {
-                size_t off = 0, cnt = 0;
-                affected[0] = '\0';
-                for (size_t i = 0; i < c->n && off < sizeof affected - 40; i++)
-                    if (!strcmp(c->rows[i].kind, "measured") || !strcmp(c->rows[i].kind, "probe") ||
-                        claims_is_beside(&c->rows[i]))
-                        off += (size_t)snprintf(affected + off, sizeof affected - off, "%s%s", cnt++ ? ", " : "",
-                                                c->rows[i].macro);
-                if (!cnt) snprintf(affected, sizeof affected, "every measured claim");
-            } else if (!strcmp(key, "design_sha256") || !strcmp(key, "design_numbers_sha256")) {
-                snprintf(affected, sizeof affected, "every claim resting on the design constants (%s)", path);
-            } else if (!strcmp(key, "claim_test_sha256")) {
-                snprintf(affected, sizeof affected, "every claim whose test is in %s", path);
-            } else if (!strcmp(key, "superseded_sha256")) {
-                snprintf(affected, sizeof affected, "every claim of a table made by a superseded reading (%s)", path);
-            } else if (!strcmp(key, "grids_sha256")) {
-                snprintf(affected, sizeof affected, "every claim of a table with a design grid (%s)", path);
-            } else if (!strcmp(key, "figure_script_sha256") || !strcmp(key, "figure_data_sha256")) {
-                snprintf(affected, sizeof affected, "the figures %s draws or pins (what they show, not a number)",
-                         path);
-            } else if (!strcmp(key, "gates_prereg_sha256")) {
-                snprintf(affected, sizeof affected, "every gated claim (%s)", path);
-            } else
-                snprintf(affected, sizeof affected, "(gates as a whole)");
+            pin_affected(c, key, path, affected, sizeof affected);
             checklist_add(cl, VERDICT_FAIL, name,
                           "%s changed: %s is %.16s…, pinned %.16s… (%s:%d); claims affected: %s", path, key, m->value,
                           val, PATHS_PINS, tsv_line(t, r), affected);
@@ -503,7 +303,7 @@ static int provenance_keys(const char *p, const tsv *t, const pinset *ps, const 
              !strcmp(v, "per run")))
             continue;
         mismatch++;
-        int line = v && prov_reading_key(keys[k]) ? superseded_line(sup, keys[k], v) : 0;
+        int line = v && prov_reading_key(keys[k]) ? audit_pin_superseded_line(sup, keys[k], v) : 0;
         if (line) {
             (*excused)++;
             if (!*first_line) *first_line = line;
@@ -644,12 +444,12 @@ cs_status audit_run(const claims *c, const claim_result *res, checklist *out)
     paths_list frozen_files = {0};
     /* the instrument as it is now, hashed once for both checks that read it */
     pinset pins = {0};
-    int have_pins = current_pins(&pins) == CS_OK;
+    int have_pins = audit_pin_current(&pins) == CS_OK;
     if (have_pins) check_pins(c, out, &pins);
     else checklist_add(out, VERDICT_FAIL, "pins", "%s", cs_errmsg());
     check_frozen(c, out, &frozen_files);
     if (have_pins) check_provenance(c, out, &frozen_files, &pins);
-    pinset_free(&pins);
+    audit_pin_free(&pins);
     paths_list_free(&frozen_files);
     audit_aggregates(c, out);
     audit_evidence(c, out);

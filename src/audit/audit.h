@@ -15,9 +15,6 @@
 
 /* Run every audit check; `res` are the evaluated claims (same order as c). */
 cs_status audit_run(const claims *c, const claim_result *res, checklist *out);
-/* Rewrite audit/pins.tsv from the current sources (a deliberate act: after it,
- * frozen/ must be regenerated, or the provenance check fails). */
-cs_status audit_pin(void);
 /* Rewrite audit/frozen.sha256 from the files under frozen/ (make freeze). */
 cs_status audit_hash_frozen(void);
 

@@ -1,8 +1,8 @@
 /* audit_evidence: what a number rests on, checked in tier 1 (design.md §9):
  * the files a table's provenance names (with their hashes), the
- * weights seals, every W1 from its samples, every table's row set against its
- * design grid, the gates against their preregistered content and the
- * superseded pins against the real history of their files. */
+ * weights seals, every W1 from its samples, the gates against their
+ * preregistered content and the superseded pins against the real history of
+ * their files (each table's rows against its design grid: audit_grids.h). */
 #ifndef AUDIT_EVIDENCE_H
 #define AUDIT_EVIDENCE_H
 #include "checklist.h"
@@ -14,8 +14,6 @@
  * (its checksum seal holds); every W1 of the E3/E4 run tables and baselines
  * equals the W1 recomputed from its samples. */
 void audit_evidence(const claims *c, checklist *cl);
-/* Every table of audit/grids.tsv has exactly the rows of its design grid. */
-void audit_grids(const claims *c, checklist *cl);
 /* The gates equal their content at the commit that added them (.git present)
  * and the pinned copy of their hashes (audit/gates_prereg.sha256). */
 void audit_gates_prereg(const claims *c, checklist *cl);

@@ -277,6 +277,22 @@ static void print_distance(const attrib_data *at, const claims *c, const claim_r
     printf("%s\n", gline);
 }
 
+/* The summary's gate lines: the reference paper's gated claims, then each
+ * kind of claim judged beside the verdict by the same thresholds, when it has any. */
+static void print_gates(const gate_tally *t)
+{
+    printf("reference paper's gated claims: %zu reproduced, %zu not reproduced%s%s%s, %zu pending\n", t->rep,
+           t->notrep, t->notrep ? " (" : "", t->notrep_list, t->notrep ? ")" : "", t->gpend);
+    static const char *const beside[2] = {
+        "extension claims (a generator reading added after the first verdict, design.md §8",
+        "variant claims (the paper reading under one unstated training choice, at the gate's seeds, design.md §8"};
+    for (int b = 0; b < 2; b++)
+        if (t->ext[b][0] + t->ext[b][1] + t->ext[b][2])
+            printf("%s; same thresholds, %s): %zu meet, %zu do not%s%s%s, %zu pending; tables: %s\n", beside[b],
+                   PATHS_GATE_MAP_EXT, t->ext[b][0], t->ext[b][1], t->ext[b][1] ? " (" : "", t->ext_fail[b],
+                   t->ext[b][1] ? ")" : "", t->ext[b][2], t->ext_src[b]);
+}
+
 /* The last lines: the package's verdict and the count; CS_EFAIL on an
  * inconsistency or (strict_notrep > 0) a failing gate under --strict. A run
  * that ran out of memory proved nothing either way: an environment error. */
@@ -351,8 +367,6 @@ cs_status verify_run(const verify_opts *o)
     if (ist) count[VERDICT_FAIL]++;
     if (at_ok && ci) attrib_bind(&at, &c, res, ci);
     print_claims(&c, res, have_nt ? &nt : NULL, &at, ci, count, &gt);
-    const size_t rep = gt.rep, notrep = gt.notrep, gpend = gt.gpend;
-    const char *notrep_list = gt.notrep_list;
 
     if (!o->no_figures) {
         checklist fl = {0};
@@ -370,18 +384,9 @@ cs_status verify_run(const verify_opts *o)
     if (!at_ok) printf("(attribution: %s)\n", cs_errmsg());
     print_distance(&at, &c, res, ci, count[VERDICT_PENDING]);
     attrib_free(&at);
-    printf("reference paper's gated claims: %zu reproduced, %zu not reproduced%s%s%s, %zu pending\n", rep, notrep,
-           notrep ? " (" : "", notrep_list, notrep ? ")" : "", gpend);
-    static const char *const beside[2] = {
-        "extension claims (a generator reading added after the first verdict, design.md §8",
-        "variant claims (the paper reading under one unstated training choice, at the gate's seeds, design.md §8"};
-    for (int b = 0; b < 2; b++)
-        if (gt.ext[b][0] + gt.ext[b][1] + gt.ext[b][2])
-            printf("%s; same thresholds, %s): %zu meet, %zu do not%s%s%s, %zu pending; tables: %s\n", beside[b],
-                   PATHS_GATE_MAP_EXT, gt.ext[b][0], gt.ext[b][1], gt.ext[b][1] ? " (" : "", gt.ext_fail[b],
-                   gt.ext[b][1] ? ")" : "", gt.ext[b][2], gt.ext_src[b]);
+    print_gates(&gt);
     printf("%s\n", prereg_line);
-    st = print_verdict(count, o->strict ? notrep : 0);
+    st = print_verdict(count, o->strict ? gt.notrep : 0);
     if (have_nt) numbers_free(&nt);
     free(res);
     claims_free(&c);

@@ -3,6 +3,7 @@
  * the CLI decides how the process dies. */
 #include "cli.h"
 #include "audit.h"
+#include "audit_pin.h"
 #include "claims.h"
 #include "gate.h"
 #include "opts.h"
