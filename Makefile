@@ -65,6 +65,17 @@ deps:
 	fi
 
 # ---- build ------------------------------------------------------------------
+# The registry's computing functions (src/claims/claims.c includes the list):
+# every `cs_status claim_*(const claim_row *row, claim_result *res)` defined
+# in src/claims/, so a new claim function is listed by being written.
+CLAIMS_LIST := $(B)/gen/claims_list.h
+CPPFLAGS += -I$(B)/gen
+$(CLAIMS_LIST): $(wildcard src/claims/*.c)
+	@mkdir -p $(dir $@)
+	@sed -nE 's/^cs_status (claim_[a-z0-9_]+)\(const claim_row \*row, claim_result \*res\)( *\{.*)?$$/X(\1)/p' \
+	  $(sort $^) > $@.tmp && mv $@.tmp $@
+$(B)/obj/claims/claims.o $(B)/asan/obj/claims/claims.o: $(CLAIMS_LIST)
+
 $(B)/obj/%.o: src/%.c $(LIB_HDR)
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -c $< -o $@

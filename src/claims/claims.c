@@ -12,6 +12,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+/* claims_list.h is generated (the Makefile): X(f) for every claim function
+ * defined in src/claims/. A function named by no row of audit/claims.tsv is an
+ * orphan and fails the audit; a row naming no such function is PENDING. */
 #define X(f) cs_status f(const claim_row *row, claim_result *res);
 #include "claims_list.h"
 #undef X

@@ -35,7 +35,7 @@ static const char *const PROBES[] = {"generated", "shuffled", "rotated", NULL};
     {"blocks", OPT_LONG, &(a).blocks, 1, 64, "transformer blocks (default the reference 3)"}, \
     {"lr", OPT_DOUBLE, &(a).lr, 1e-6, 1.0, "peak learning rate (default the plan's 2e-3)"}, \
     {"reading", OPT_CHOICE, &(a).reading, 0, 0, "generator reading (model.h, design.md §8; default pair)", .choices = READINGS}, \
-    {"pair", OPT_LONG, &pair, 0, 1, "1: the pair reading; 0: the plain reading (the form before --reading)"}
+    {"pair", OPT_LONG, &pair, 0, 1, "1: the pair reading; 0: the plain reading (short for --reading pair | plain)"}
 
 int cli_main_run(int argc, char **argv)
 {

@@ -40,7 +40,7 @@ typedef struct {
     long width;              /* 0: the reference width (model.h); else the width, MLP 4 x width */
     long blocks;             /* 0: the reference depth (model.h); else the number of blocks */
     double lr;               /* 0: the plan's peak learning rate; else the peak learning rate */
-    int pair;                /* -1 unset; 1 the pair reading, 0 the plain one (the form before reading) */
+    int pair;                /* -1 unset; 1 the pair reading, 0 the plain one (short for reading) */
     double only_spacing;     /* main-redraw: 0 every spacing; else that spacing alone */
     const char *only_probe;  /* main-redraw: NULL every probe; else that probe alone (generated, shuffled, rotated) */
     long only_patches; /* main-redraw: 0 the plan's generated patches; else the first this many (a prefix of the whole)
