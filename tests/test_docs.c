@@ -5,6 +5,7 @@
  * folder; tests/docs.sh does the same on a copy of the package through verify. */
 #include "testutil.h"
 #include "audit_docs.h"
+#include "docs_render.h"
 
 static claim_row rows[3];
 static claim_result res[3];

@@ -1,15 +1,11 @@
 /* audit_docs: the documentation pages against frozen/ (design.md §9): README.md
  * and every *.md under audit/, frozen/, src/, tests/, paper/, figures/ and
  * gates/ (subfolders too; paper/CHANGELOG.md, which records history, aside).
- * A page states a measured number only through a generated region, which
- * `crownshy numbers` fills and verify compares with a fresh generation:
- *   <!--Macro-->value<!--/-->      one claim's numbers.tex text (MacroGate: its gate's
- *                                  verdict; MacroPaper: the reference paper's value)
- *   <!-- findings ... -->          (a line of its own) up to <!-- /findings -->:
- *                                  the gated claims, reproduced or not, per gate file
- * Outside them a decimal that rounds a measured value or the reference paper's
- * (the rule of the paper text, audit_paper.c) fails naming page and line; so
- * do a comment asking for an exemption and a relative link to a missing file. */
+ * A page states a measured number only through a generated region (the
+ * markers of docs_render.h), equal to a fresh generation. Outside them a
+ * decimal that rounds a measured value or the reference paper's (the rule of
+ * the paper text, audit_paper.c) fails naming page and line; so do a comment
+ * asking for an exemption and a relative link to a missing file. */
 #ifndef AUDIT_DOCS_H
 #define AUDIT_DOCS_H
 #include "checklist.h"
@@ -18,9 +14,6 @@
 
 /* The pages the audit reads, sorted (README.md first). */
 cs_status docs_pages(paths_list *out);
-/* The page with every generated region regenerated, as a malloc'd string in
- * *out. Unknown macro in a marker: CS_EINPUT naming page and line. */
-cs_status docs_render(const char *path, const claims *c, const claim_result *res, char **out);
 /* One page: generated regions equal a fresh generation, no measured number
  * typed outside them, no exemption comment, every relative link resolves.
  * Adds FAIL items (page:line, and the claim) to cl; returns how many. */

@@ -5,6 +5,7 @@
  * constant (audit/design_numbers.tsv); no comment asking for an exemption
  * (none is honoured; one present is itself a failure). */
 #include "audit_paper.h"
+#include "tex_lex.h"
 #include "gate.h"
 #include "tsv.h"
 #include <ctype.h>
@@ -15,73 +16,6 @@
 #include <sys/stat.h>
 
 /* ---- the hand-written text ---- */
-/* LaTeX's own capitalised commands: not claim macros. */
-static const char *latex_upper[] = {"LaTeX",
-                                    "TeX",
-                                    "Large",
-                                    "LARGE",
-                                    "Huge",
-                                    "HUGE",
-                                    "Roman",
-                                    "Alph",
-                                    "Ref",
-                                    "S",
-                                    "P",
-                                    "L",
-                                    "O",
-                                    "AA",
-                                    "AE",
-                                    "OE",
-                                    "Delta",
-                                    "Gamma",
-                                    "Theta",
-                                    "Lambda",
-                                    "Xi",
-                                    "Pi",
-                                    "Sigma",
-                                    "Upsilon",
-                                    "Phi",
-                                    "Psi",
-                                    "Omega",
-                                    "Bigl",
-                                    "Bigr",
-                                    "Big",
-                                    "Biggl",
-                                    "Biggr",
-                                    "bibliographystyle",
-                                    "IfFileExists",
-                                    NULL};
-
-static int audit_latex_upper(const char *name)
-{
-    for (int i = 0; latex_upper[i]; i++) if (!strcmp(latex_upper[i], name)) return 1;
-    return 0;
-}
-
-static int is_defining(const char *cmd)
-{
-    static const char *defs[] = {"newcommand",
-                                 "renewcommand",
-                                 "providecommand",
-                                 "def",
-                                 "gdef",
-                                 "edef",
-                                 "xdef",
-                                 "let",
-                                 "DeclareRobustCommand",
-                                 "NewDocumentCommand",
-                                 "RenewDocumentCommand",
-                                 "ProvideDocumentCommand",
-                                 "DeclareDocumentCommand",
-                                 "NewExpandableDocumentCommand",
-                                 "newrobustcmd",
-                                 "renewrobustcmd",
-                                 "csdef",
-                                 NULL};
-    for (int i = 0; defs[i]; i++) if (!strcmp(defs[i], cmd)) return 1;
-    return 0;
-}
-
 /* A comment that asks for an exemption (never honoured). */
 static int exemption_comment(const char *comment)
 {
@@ -163,19 +97,12 @@ typedef struct {
     size_t body_end;       /* inside a definition body until here: #n and PASS/FAIL allowed */
 } tex_scan;
 
-static int tex_line(const char *text, size_t pos)
-{
-    int l = 1;
-    for (size_t i = 0; i < pos && text[i]; i++) l += text[i] == '\n';
-    return l;
-}
-
 static void tex_fail(tex_scan *t, size_t pos, const char *item, const char *fmt, const char *a, const char *b)
 {
     if (t->collect) return;
     char msg[900];
     snprintf(msg, sizeof msg, fmt, a, b);
-    checklist_add(t->cl, VERDICT_FAIL, item, "%s:%d: %s", t->path, tex_line(t->text, pos), msg);
+    checklist_add(t->cl, VERDICT_FAIL, item, "%s:%d: %s", t->path, tex_lex_line(t->text, pos), msg);
     t->bad++;
 }
 
@@ -183,49 +110,6 @@ static int is_verdict_cmd(const tex_scan *t, const char *name)
 {
     for (size_t i = 0; i < t->nverd; i++) if (!strcmp(t->verdicts[i], name)) return 1;
     return 0;
-}
-
-/* Read "\name" at s[i] (letters, or one other character); returns the end. */
-static size_t tex_cs(const char *s, size_t i, char *name, size_t n)
-{
-    size_t k = 0, j = i + 1;
-    if (!isalpha((unsigned char)s[j]) && s[j] != '@') { if (s[j]) { if (n > 1) { name[0] = s[j]; k = 1; } j++; } }
-    else while (isalpha((unsigned char)s[j]) || s[j] == '@') { if (k + 1 < n) name[k++] = s[j]; j++; }
-    name[k] = '\0';
-    return j;
-}
-
-static size_t skip_space(const char *s, size_t i)
-{
-    while (s[i] && isspace((unsigned char)s[i])) i++;
-    return i;
-}
-
-/* End of the balanced group opening at s[i] == open (index after the close). */
-static size_t tex_group(const char *s, size_t i, char open, char close)
-{
-    int depth = 0;
-    for (; s[i]; i++) {
-        if (s[i] == '\\' && s[i + 1]) { i++; continue; }
-        if (s[i] == open) depth++;
-        else if (s[i] == close && --depth == 0) return i + 1;
-    }
-    return i;
-}
-
-/* The letters spelled between \csname and \endcsname (spaces, braces and
- * \string ignored); returns the index after \endcsname. */
-static size_t tex_csname(const char *s, size_t i, char *name, size_t n)
-{
-    size_t k = 0;
-    const char *e = strstr(s + i, "\\endcsname");
-    size_t end = e ? (size_t)(e - s) : strlen(s);
-    for (size_t j = i; j < end; j++) {
-        if (s[j] == '\\') { char cs[32]; j = tex_cs(s, j, cs, sizeof cs) - 1; continue; }
-        if (isalpha((unsigned char)s[j]) && k + 1 < n) name[k++] = s[j];
-    }
-    name[k] = '\0';
-    return e ? end + 10 : end;
 }
 
 static const claim_row *claim_or_gate(const claims *c, const char *name)
@@ -240,18 +124,10 @@ static const claim_row *claim_or_gate(const claims *c, const char *name)
 /* A name the text uses: registered if capitalised (LaTeX's own aside). */
 static void tex_use(tex_scan *t, size_t pos, const char *name)
 {
-    if (!isupper((unsigned char)name[0]) || audit_latex_upper(name)) return;
+    if (!isupper((unsigned char)name[0]) || tex_lex_latex_own(name)) return;
     if (claim_or_gate(t->c, name)) { (*t->used)++; return; }
     for (size_t q = 0; q < t->nd; q++) if (!strcmp(t->design[q].macro, name)) return;
     tex_fail(t, pos, "paper macros", "\\%s has no row in " PATHS_CLAIMS " or " PATHS_DESIGN_NUMBERS "%s", name, "");
-}
-
-static int is_namedef(const char *cmd)
-{
-    static const char *d[] = {"@namedef", "csdef",   "csgdef",         "csedef", "csxdef",
-                              "cslet",    "csletcs", "NewCommandCopy", NULL};
-    for (int i = 0; d[i]; i++) if (!strcmp(d[i], cmd)) return 1;
-    return 0;
 }
 
 /* After a definer at s[i]: the defined name (\name, \csname..\endcsname, or
@@ -263,23 +139,23 @@ static size_t tex_definition(tex_scan *t, const char *definer, size_t i)
     char name[80] = "";
     size_t start = i;
     for (;;) {
-        i = skip_space(s, i);
-        if (s[i] == '*' || (s[i] == '{' && !is_namedef(definer))) { i++; continue; }
+        i = tex_lex_space(s, i);
+        if (s[i] == '*' || (s[i] == '{' && !tex_lex_is_namedef(definer))) { i++; continue; }
         if (s[i] != '\\') break;
         char cs[80];
-        size_t j = tex_cs(s, i, cs, sizeof cs);
+        size_t j = tex_lex_cs(s, i, cs, sizeof cs);
         if (!strcmp(cs, "expandafter") || !strcmp(cs, "global") || !strcmp(cs, "long") || !strcmp(cs, "protected") ||
             !strcmp(cs, "outer") || !strcmp(cs, "noexpand")) {
             i = j;
             continue;
         }
-        if (!strcmp(cs, "csname")) { i = tex_csname(s, j, name, sizeof name); break; }
+        if (!strcmp(cs, "csname")) { i = tex_lex_csname(s, j, name, sizeof name); break; }
         snprintf(name, sizeof name, "%s", cs);
         i = j;
         break;
     }
-    if (!name[0] && is_namedef(definer) && s[i] == '{') {
-        size_t e = tex_group(s, i, '{', '}'), k = 0;
+    if (!name[0] && tex_lex_is_namedef(definer) && s[i] == '{') {
+        size_t e = tex_lex_group(s, i, '{', '}'), k = 0;
         for (size_t j = i + 1; j + 1 < e; j++)
             if (isalpha((unsigned char)s[j]) && k + 1 < sizeof name) name[k++] = s[j];
         name[k] = '\0';
@@ -290,14 +166,14 @@ static size_t tex_definition(tex_scan *t, const char *definer, size_t i)
         tex_fail(t, start, "paper macro redefined",
                  "\\%s defines the claim macro \\%s in the text (only numbers.tex defines it)", definer, name);
     /* the body: after [n][default] and a \def parameter text, one group */
-    size_t b = skip_space(s, i);
-    if (s[b] == '}') b = skip_space(s, b + 1); /* \newcommand{\name}: its closing brace */
-    while (s[b] == '[') b = skip_space(s, tex_group(s, b, '[', ']'));
+    size_t b = tex_lex_space(s, i);
+    if (s[b] == '}') b = tex_lex_space(s, b + 1); /* \newcommand{\name}: its closing brace */
+    while (s[b] == '[') b = tex_lex_space(s, tex_lex_group(s, b, '[', ']'));
     while (s[b] && s[b] != '{' && s[b] != '\\' &&
            (s[b] == '#' || isdigit((unsigned char)s[b]) || isspace((unsigned char)s[b])))
         b++;
     if (s[b] != '{' || strcmp(definer, "let") == 0) return i;
-    size_t e = tex_group(s, b, '{', '}');
+    size_t e = tex_lex_group(s, b, '{', '}');
     if (e > t->body_end) t->body_end = e;
     if (t->collect && name[0] && t->nverd < 64) {
         char body[4096];
@@ -306,54 +182,6 @@ static size_t tex_definition(tex_scan *t, const char *definer, size_t i)
             snprintf(t->verdicts[t->nverd++], 64, "%s", name);
     }
     return b + 1; /* the body is read on: its uses and numbers count too */
-}
-
-/* Commands whose next argument is a name, a file or a key, not text. */
-static int names_arg(const char *cmd)
-{
-    static const char *a[] = {"label",
-                              "ref",
-                              "eqref",
-                              "pageref",
-                              "autoref",
-                              "cref",
-                              "Cref",
-                              "cite",
-                              "citep",
-                              "citet",
-                              "nocite",
-                              "includegraphics",
-                              "input",
-                              "include",
-                              "InputIfFileExists",
-                              "IfFileExists",
-                              "subfile",
-                              "usepackage",
-                              "RequirePackage",
-                              "documentclass",
-                              "begin",
-                              "end",
-                              "url",
-                              "href",
-                              "fig",
-                              "bibliography",
-                              "bibliographystyle",
-                              "includeonly",
-                              "hypersetup",
-                              "definecolor",
-                              "textcolor",
-                              "color",
-                              "colorbox",
-                              "newenvironment",
-                              "renewenvironment",
-                              "setcounter",
-                              "addtocounter",
-                              "pagestyle",
-                              "thispagestyle",
-                              "texttt",
-                              NULL};
-    for (int i = 0; a[i]; i++) if (!strcmp(a[i], cmd)) return 1;
-    return 0;
 }
 
 /* The file an \input-like argument names under paper/ (what TeX opens from
@@ -395,10 +223,10 @@ static void tex_pull(tex_scan *t, size_t pos, const char *cmd, const char *arg)
 static void tex_verdict_arg(tex_scan *t, size_t pos, const char *cmd, size_t i)
 {
     const char *s = t->text;
-    i = skip_space(s, i);
+    i = tex_lex_space(s, i);
     char arg[128] = "";
     if (s[i] == '{') {
-        size_t e = tex_group(s, i, '{', '}');
+        size_t e = tex_lex_group(s, i, '{', '}');
         snprintf(arg, sizeof arg, "%.*s", (int)(e > i + 2 ? e - i - 2 : 0), s + i + 1);
     }
     char *a = arg;
@@ -412,38 +240,6 @@ static void tex_verdict_arg(tex_scan *t, size_t pos, const char *cmd, size_t i)
         return;
     tex_fail(t, pos, "paper verdicts",
              "\\%s{%s}: a verdict command takes a generated gate macro (\\<Claim>Gate from numbers.tex) only", cmd, a);
-}
-
-static int is_unit(const char *s)
-{
-    static const char *u[] = {"pt",
-                              "em",
-                              "ex",
-                              "cm",
-                              "mm",
-                              "in",
-                              "bp",
-                              "pc",
-                              "dd",
-                              "cc",
-                              "sp",
-                              "mu",
-                              "fil",
-                              "\\linewidth",
-                              "\\textwidth",
-                              "\\columnwidth",
-                              "\\hsize",
-                              "\\textheight",
-                              "\\baselineskip",
-                              "\\paperwidth",
-                              NULL};
-    while (*s == ' ') s++;
-    for (int i = 0; u[i]; i++) {
-        size_t n = strlen(u[i]);
-        if (!strncmp(s, u[i], n) && (u[i][0] == '\\' || !isalpha((unsigned char)s[n]) || !strcmp(u[i], "fil")))
-            return 1;
-    }
-    return 0;
 }
 
 /* A number of the text at s[i..e): a generated macro's job, or a design constant. */
@@ -490,7 +286,7 @@ static char *tex_strip(tex_scan *t, const char *raw, size_t n)
         if (exemption_comment(com) && !t->collect) {
             checklist_add(t->cl, VERDICT_FAIL, "paper self-exemption",
                           "%s:%d: comment '%.80s' asks for an exemption from the audit: none is honoured; remove it",
-                          t->path, tex_line(raw, i), com);
+                          t->path, tex_lex_line(raw, i), com);
             t->bad++;
         }
         memset(s + i, ' ', e - i);
@@ -519,18 +315,18 @@ static void tex_scan_text(tex_scan *t)
     for (size_t i = 0; s[i];) {
         if (s[i] == '\\') {
             char cs[80];
-            size_t j = tex_cs(s, i, cs, sizeof cs), at = i;
+            size_t j = tex_lex_cs(s, i, cs, sizeof cs), at = i;
             if (!strcmp(cs, "catcode"))
                 tex_fail(t, at, "paper text",
                          "\\%s changes how TeX reads the characters that follow: not allowed in the text%s", cs, "");
             if (!strcmp(cs, "csname")) {
                 char nm[80];
-                j = tex_csname(s, j, nm, sizeof nm);
+                j = tex_lex_csname(s, j, nm, sizeof nm);
                 if (nm[0]) { tex_use(t, at, nm); tex_control(t, at, nm); }
                 i = j;
                 continue;
             }
-            if (is_defining(cs) || is_namedef(cs)) {
+            if (tex_lex_is_definer(cs) || tex_lex_is_namedef(cs)) {
                 tex_fail(t, at, "paper text",
                          "\\%s: the text defines no command of its own (its helpers, \\verdict \\ifpass \\ifsame "
                          "\\bandpos \\fig, are generated in numbers.tex)%s",
@@ -540,11 +336,11 @@ static void tex_scan_text(tex_scan *t)
             }
             tex_control(t, at, cs);
             if (is_verdict_cmd(t, cs) && !t->collect) tex_verdict_arg(t, at, cs, j);
-            if (names_arg(cs)) {
-                size_t k = skip_space(s, j);
-                while (s[k] == '[') k = skip_space(s, tex_group(s, k, '[', ']'));
+            if (tex_lex_names_arg(cs)) {
+                size_t k = tex_lex_space(s, j);
+                while (s[k] == '[') k = tex_lex_space(s, tex_lex_group(s, k, '[', ']'));
                 if (s[k] == '{') {
-                    size_t e = tex_group(s, k, '{', '}');
+                    size_t e = tex_lex_group(s, k, '{', '}');
                     char arg[512];
                     snprintf(arg, sizeof arg, "%.*s", (int)(e > k + 2 ? e - k - 2 : 0), s + k + 1);
                     tex_pull(t, at, cs, arg);
@@ -552,7 +348,7 @@ static void tex_scan_text(tex_scan *t)
                     for (size_t q = k; q < e; q++)
                         if (s[q] == '\\') {
                             char u[80];
-                            q = tex_cs(s, q, u, sizeof u) - 1;
+                            q = tex_lex_cs(s, q, u, sizeof u) - 1;
                             if (u[0] && isalpha((unsigned char)u[0])) tex_use(t, q, u);
                         }
                     j = e;
@@ -576,7 +372,7 @@ static void tex_scan_text(tex_scan *t)
             char p = i ? s[i - 1] : ' ';
             int ident = isalnum((unsigned char)p) || p == '_' || p == '#' || p == '!' || p == '.' || s[e] == '!' ||
                         isalpha((unsigned char)s[e]) || (p == '-' && i >= 2 && isalnum((unsigned char)s[i - 2])) ||
-                        is_unit(s + e);
+                        tex_lex_is_unit(s + e);
             if (!ident) tex_number(t, i, e);
             i = e;
             continue;
