@@ -131,7 +131,6 @@ cs_status claim_toy_mean(const claim_row *row, claim_result *res)
     return st;
 }
 EOF
-echo 'X(claim_toy_mean)' >> src/claims/claims_list.h
 printf 'ToyMean\tmeasured\tfrozen/toy/numbers.tsv\tclaim_toy_mean\t-\ttests/test_claims.c:claim_ToyMean\t-\t%%.2f\t-\t-\n' >> audit/claims.tsv
 printf 'claim_toy_mean\tnumber\tnone\ta toy: five numbers, no replicate unit\n' >> audit/intervals.tsv
 
