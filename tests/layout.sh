@@ -158,7 +158,7 @@ hand=$(grep -nE '^\s*(REPRODUCE_UNITS|DEEP_UNITS|MANIFEST_EXPERIMENTS)\s*\+?=\s*
 if [ -z "$hand" ]; then ok "no unit list by hand in the Makefile or experiments.mk"; else bad "no unit list by hand in the Makefile or experiments.mk" "$hand"; fi
 readme=$(awk '/^<!-- experiments: generated/ {on = 1; next} /^<!-- end of experiments -->/ {on = 0} on' src/README.md)
 if [ "$readme" = "$(bash src/base/manifest.sh readme)" ]; then ok "src/README.md's experiment table is the manifest's"
-else bad "src/README.md's experiment table is the manifest's" "regenerate it with: bash src/base/manifest.sh readme"; fi
+else bad "src/README.md's experiment table is the manifest's" "regenerate it with: bash src/base/manifest.sh readme-write"; fi
 
 # 4b. every design.md section a file names exists as a heading of paper/design.md
 # ("design.md §8.2" needs "### §8.2 ..."), with no revision tag after it

@@ -167,11 +167,11 @@ tr=$(build/crownshy trace ToyMean 2>&1)
 if grep -q '^source *frozen/toy/numbers.tsv' <<<"$tr" && grep -q '^function *claim_toy_mean (src/claims/claim_toy.c:[0-9]*)' <<<"$tr" \
    && grep -q '^experiment *toy (E99)' <<<"$tr"; then ok "crownshy trace ToyMean names the table, src/claims/claim_toy.c and the experiment"
 else bad "crownshy trace ToyMean" "$tr"; fi
-# the scratch git holds one commit, not the package's history: verify it as a
-# release archive is verified (no .git: the pinned copies instead of the history)
-mv .git "$T/scratch.git"
+# the layout rules hold with the toy frozen, its row in src/README.md's generated table
+bash src/base/manifest.sh readme-write
+if bash tests/layout.sh > "$T/layout.log" 2>&1; then ok "the layout checks pass with the toy experiment in place"
+else bad "the layout checks with the toy" "$(grep FAILED "$T/layout.log" | head -3)"; fi
 build/crownshy verify --no-figures > "$T/verify.log" 2>&1; rc=$?
-mv "$T/scratch.git" .git
 if [ $rc -eq 0 ] && grep -q '^package: consistent' "$T/verify.log" && grep -q 'PASS *ToyMean' "$T/verify.log"; then
     ok "crownshy verify: the toy claim passes and the package is consistent"
 else bad "crownshy verify with the toy" "exit $rc: $(grep -E 'FAIL|ToyMean|package' "$T/verify.log" | head -5 | tr '\n' ' ')"; fi

@@ -5,6 +5,8 @@
 #                        DEEP_UNITS and one phony target per experiment
 #                        (the Makefile includes it as build/manifest.mk)
 #   manifest.sh readme   the experiment table of src/README.md (markdown)
+#   manifest.sh readme-write  that table written into src/README.md between
+#                        its markers (the rest of the page as it was)
 #   manifest.sh rows     every row as tab-separated fields: KIND name fields...
 # The rows are read line by line: an X-macro row is one line whose fields
 # after the name are string literals without embedded quotes.
@@ -94,9 +96,22 @@ readme() {
     }'
 }
 
+readme_write() {
+    local page=$here/../README.md tmp
+    tmp=$(mktemp "$page.tmp.XXXXXX")
+    readme > "$tmp.table"
+    awk -v table="$tmp.table" '
+        /^<!-- end of experiments -->/ { while ((getline l < table) > 0) print l; on = 0 }
+        !on { print }
+        /^<!-- experiments: generated/ { on = 1 }' "$page" > "$tmp"
+    rm -f "$tmp.table"
+    mv "$tmp" "$page"
+}
+
 case "${1:-}" in
     make) make_rules ;;
     readme) readme ;;
+    readme-write) readme_write ;;
     rows) rows ;;
-    *) echo "usage: manifest.sh make|readme|rows" >&2; exit 2 ;;
+    *) echo "usage: manifest.sh make|readme|readme-write|rows" >&2; exit 2 ;;
 esac
