@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# What it catches: a stage importing up the pipeline or an import cycle, an
+# What it catches: a stage importing up the pipeline or an import cycle, an over-long line, an
 # oversized file or function, an experiment listed by hand beside the
 # manifest, a comment naming a path or design.md section that is gone, a claim
 # chosen by how its macro is spelt.
@@ -33,7 +33,7 @@
 #     field against a string literal, no arithmetic into a macro (a prefix or
 #     suffix cut), no char pointer taken from one (the way such tests hid);
 #     what a function computes comes from the registry row's params.
-#  9. no line over 120 characters in src/, outside declarative tables: the
+#  9. no line over 120 characters in the C of src/ and tests/, outside declarative tables: the
 #     manifest src/base/manifest.h, initialiser rows ({...}, an option or a
 #     registry entry), lines that are a string literal alone (help text)
 #     and the option macros of src/cli/cli.h.
@@ -236,9 +236,10 @@ $spelt"; fi
 # 9. long lines, counted in characters (UTF-8), each file:line (length).
 wide=$(perl -CSD -ne 'next if $ARGV eq "src/base/manifest.h" || length($_) <= 121;
   next if /^\s*\{.*\}[,;]?\s*\\?\s*(\/\*.*\*\/)?$/ || /^\s*".*"\s*[,;)]*\s*\\?$/ || /^#define CLI_OPT_/;
-  printf "%s:%d (%d)\n", $ARGV, $., length($_) - 1; } continue { close ARGV if eof' src/*/*.c src/*/*.h src/*/*.inc 2>/dev/null)
-if [ -z "$wide" ]; then ok "no line over 120 characters in src/ outside declarative tables"
-else bad "no line over 120 characters in src/ outside declarative tables" "$(echo "$wide" | wc -l) line(s):
+  printf "%s:%d (%d)\n", $ARGV, $., length($_) - 1; } continue { close ARGV if eof' src/*/*.c src/*/*.h src/*/*.inc \
+  tests/*.c tests/*.h tests/*/*.c 2>/dev/null)
+if [ -z "$wide" ]; then ok "no line over 120 characters in src/ and tests/ outside declarative tables"
+else bad "no line over 120 characters in src/ and tests/ outside declarative tables" "$(echo "$wide" | wc -l) line(s):
 $(echo "$wide" | head -20)"; fi
 
 echo "[==========] layout tests run."

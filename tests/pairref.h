@@ -10,7 +10,8 @@
 
 enum { REF_PQ = 8 };
 
-/* f[T x T x 8]: dx, dy, dist, free, cos th, sin th, cos 2th, sin 2th (the bearing terms 0 when i == j; free is then -2 rbar_i). */
+/* f[T x T x 8]: dx, dy, dist, free, cos th, sin th, cos 2th, sin 2th (the bearing terms 0 when i == j; free is then -2
+ * rbar_i). */
 static void ref_pair_features(double *f, const double *tok, int stride, int T)
 {
     for (int i = 0; i < T; i++)

@@ -44,7 +44,8 @@ static void frozen_samples_give_every_w1(void **state)
     (void)state;
     char msg[2600];
     int n = 0;
-    if (claim_main_samples_check("frozen/extension-pair-16-stands", 64, msg, sizeof msg, &n) != CS_OK) fail_msg("%s", msg);
+    if (claim_main_samples_check("frozen/extension-pair-16-stands", 64, msg, sizeof msg, &n) != CS_OK)
+        fail_msg("%s", msg);
     assert_int_equal(n, 12 * 2 * 5 * 3 + 5 * 4);
 }
 

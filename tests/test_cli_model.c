@@ -94,7 +94,10 @@ static void check_kill(int pair)
     int was_killed = WIFSIGNALED(st);
     snprintf(a, sizeof a, SMALL "%s --ckpt %s", extra, killed);
     if (run(a) != 0) fail_msg("resumed run failed: %s", out);
-    print_message("kill-and-resume%s: %s\n", extra, was_killed ? (strstr(out, "resumed from") ? "killed mid-run, resumed" : "killed before the first checkpoint, restarted") : "finished before the kill");
+    print_message("kill-and-resume%s: %s\n", extra,
+                  was_killed ? (strstr(out, "resumed from") ? "killed mid-run, resumed"
+                                                            : "killed before the first checkpoint, restarted")
+                             : "finished before the kill");
     assert_true(file_equal(straight, killed));
 }
 static void test_killed_training_resumes_to_identical_bytes(void **s) { (void)s; check_kill(0); }
@@ -105,7 +108,8 @@ static void test_sample_runs_on_a_trained_checkpoint(void **s)
     (void)s;
     const char *dir = tu_tmpdir("cli_model_sample");
     char a[2048];
-    snprintf(a, sizeof a, "train --width 16 --depth 1 --heads 2 --mlp 32 --batch 8 --stands 1 --steps 20 --ckpt %s/m.ckpt", dir);
+    snprintf(a, sizeof a,
+             "train --width 16 --depth 1 --heads 2 --mlp 32 --batch 8 --stands 1 --steps 20 --ckpt %s/m.ckpt", dir);
     if (run(a) != 0) fail_msg("train failed: %s", out);
     snprintf(a, sizeof a, "sample --ckpt %s/m.ckpt --n 4 --euler 10", dir);
     if (run(a) != 0) fail_msg("sample failed: %s", out);

@@ -113,7 +113,8 @@ static void test_help_exits_zero_and_prints_usage(void **s)
         int n = snprintf(want, sizeof want, "usage: crownshy %s", c);
         int rc = run("%s --help", c);
         const char *u = strstr(out, want);
-        if (rc != 0 || !u || (u[n] != ' ' && u[n] != '\n')) fail_msg("crownshy %s --help: exit %d, output:\n%s", c, rc, out);
+        if (rc != 0 || !u || (u[n] != ' ' && u[n] != '\n'))
+            fail_msg("crownshy %s --help: exit %d, output:\n%s", c, rc, out);
     }
 }
 
@@ -124,7 +125,8 @@ static void test_unknown_option_exits_2_naming_it(void **s)
     for (size_t i = 0; i < NCMDS; i++) {
         const cmd_case *c = &CMDS[i];
         int rc = run("%s --no-such-option 1", c->cmd);
-        if (rc != 2 || !strstr(out, "--no-such-option")) fail_msg("crownshy %s --no-such-option: exit %d, output:\n%s", c->cmd, rc, out);
+        if (rc != 2 || !strstr(out, "--no-such-option"))
+            fail_msg("crownshy %s --no-such-option: exit %d, output:\n%s", c->cmd, rc, out);
     }
 }
 
@@ -133,7 +135,8 @@ static void expect_refused(const cmd_case *c, const char *opt, const char *value
     char name[80];
     snprintf(name, sizeof name, "--%s", opt);
     int rc = run("%s %s '%s'", c->cmd, name, value);
-    if (rc != 2 || !strstr(out, name)) fail_msg("crownshy %s %s '%s': exit %d (want 2 naming %s), output:\n%s", c->cmd, name, value, rc, name, out);
+    if (rc != 2 || !strstr(out, name))
+        fail_msg("crownshy %s %s '%s': exit %d (want 2 naming %s), output:\n%s", c->cmd, name, value, rc, name, out);
 }
 
 static void test_bad_numbers_exit_2_naming_the_option(void **s)

@@ -120,7 +120,10 @@ static void test_dist_fields_act(void **st)
     gsl_rng_set(b, 99);
     assert_int_equal(crown_draw_n_dist(b, 500, &cd, db), CS_OK);
     double s2 = 0.0;
-    for (int i = 0; i < 500; i++) { assert_true(db[i].h >= 12.0 && db[i].h <= 38.0); s2 += (db[i].h - 25.0) * (db[i].h - 25.0); }
+    for (int i = 0; i < 500; i++) {
+        assert_true(db[i].h >= 12.0 && db[i].h <= 38.0);
+        s2 += (db[i].h - 25.0) * (db[i].h - 25.0);
+    }
     assert_true(sqrt(s2 / 500.0) > 4.5);
     /* a bad distribution is refused, never drawn */
     cd.h_sd = -1.0;

@@ -53,8 +53,10 @@ static void test_clean_page_passes(void **state)
     snprintf(p, sizeof p, "%s/other.md", d);
     tu_write(p, "x\n");
     snprintf(p, sizeof p, "%s/page.md", d);
-    tu_write(p, "Relative improvement <!--MainRel-->91.3<!--/--> % (paper <!--MainRelPaper-->53.6<!--/-->, gate <!--MainRelGate-->PASS<!--/-->), 12 seeds,\n"
-                "syntax `<!--MainJoint-->...<!--/-->` (a code span: literal), version 1.2.0, host 127.0.0.1, ratio 2.5, see [the other page](other.md#top) and [web](https://example.org).\n");
+    tu_write(p, "Relative improvement <!--MainRel-->91.3<!--/--> % (paper <!--MainRelPaper-->53.6<!--/-->, gate "
+                "<!--MainRelGate-->PASS<!--/-->), 12 seeds,\n"
+                "syntax `<!--MainJoint-->...<!--/-->` (a code span: literal), version 1.2.0, host 127.0.0.1, ratio "
+                "2.5, see [the other page](other.md#top) and [web](https://example.org).\n");
     size_t bad = check(p, out, sizeof out);
     if (bad) print_error("%s", out);
     assert_int_equal(bad, 0);
@@ -85,7 +87,8 @@ static void test_stale_marker_and_block_fail_and_refresh(void **state)
     const char *d = tu_tmpdir("docs_stale");
     char p[600], out[4096];
     snprintf(p, sizeof p, "%s/page.md", d);
-    tu_write(p, "a\n<!-- findings: generated -->\nold text\n<!-- /findings -->\nvalue <!--MainJoint-->0.099<!--/--> m\n");
+    tu_write(p,
+             "a\n<!-- findings: generated -->\nold text\n<!-- /findings -->\nvalue <!--MainJoint-->0.099<!--/--> m\n");
     size_t bad = check(p, out, sizeof out);
     assert_true(bad >= 1);
     char want[700];

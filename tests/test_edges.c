@@ -25,7 +25,9 @@ static const char *scratch(const char *name)
 {
     const char *dir = tu_tmpdir(name);
     char cmd[2048];
-    snprintf(cmd, sizeof cmd, "tar cf - src gates frozen audit paper figures | (cd '%s' && tar xf -) && mkdir -p '%s/build' && ln -s \"$PWD/build/crownshy\" '%s/build/crownshy'",
+    snprintf(cmd, sizeof cmd,
+             "tar cf - src gates frozen audit paper figures | (cd '%s' && tar xf -) && mkdir -p '%s/build' && ln -s "
+             "\"$PWD/build/crownshy\" '%s/build/crownshy'",
              dir, dir, dir);
     if (system(cmd) != 0) fail_msg("cannot copy the repository into %s", dir);
     return dir;
@@ -134,7 +136,8 @@ static void test_exit_codes_by_kind(void **s)
     const char *dir = scratch("edges_exit");
     char cmd[3000], root[1024];
     assert_non_null(getcwd(root, sizeof root));
-    snprintf(cmd, sizeof cmd, "cp Makefile '%s/' && printf 'tree\tdirection\tclearance_m\nx\tE\tabc\n' > '%s/bad.tsv'", dir, dir);
+    snprintf(cmd, sizeof cmd, "cp Makefile '%s/' && printf 'tree\tdirection\tclearance_m\nx\tE\tabc\n' > '%s/bad.tsv'",
+             dir, dir);
     assert_int_equal(system(cmd), 0);
     assert_int_equal(run_in(dir, "FIELD_TABLE=bad.tsv", "verify --no-figures"), 3);
     assert_non_null(strstr(out, "bad.tsv:2: field 'clearance_m'"));
@@ -144,10 +147,14 @@ static void test_exit_codes_by_kind(void **s)
     snprintf(mk, sizeof mk, "make -s --no-print-directory verify B='%s/build'", root);
     snprintf(cmd, sizeof cmd, "cd '%s' && env -u FIELD_TABLE -u CHM -u MAKEFLAGS -u MAKELEVEL", dir);
     char args[1400];
-    snprintf(args, sizeof args, "--help >/dev/null; make -s --no-print-directory numbers FIELD_TABLE=bad.tsv B='%s/build'", root);
+    snprintf(args, sizeof args,
+             "--help >/dev/null; make -s --no-print-directory numbers FIELD_TABLE=bad.tsv B='%s/build'", root);
     assert_int_not_equal(tu_run_cli(cmd, args, out, sizeof out), 0);
     assert_non_null(strstr(out, "crownshy exited 3 (bad input)"));
-    snprintf(cmd, sizeof cmd, "cd '%s' && sed -i 's/^\\newcommand{\\MechRows}{16}/\\newcommand{\\MechRows}{17}/' paper/numbers.tex && env -u FIELD_TABLE -u CHM -u MAKEFLAGS -u MAKELEVEL %s > make.log 2>&1; echo $? >> make.log", dir, mk);
+    snprintf(cmd, sizeof cmd,
+             "cd '%s' && sed -i 's/^\\newcommand{\\MechRows}{16}/\\newcommand{\\MechRows}{17}/' paper/numbers.tex && "
+             "env -u FIELD_TABLE -u CHM -u MAKEFLAGS -u MAKELEVEL %s > make.log 2>&1; echo $? >> make.log",
+             dir, mk);
     if (system(cmd) != 0) { /* the status is in make.log */ }
     char p[1100], log[8192] = "";
     snprintf(p, sizeof p, "%s/make.log", dir);
@@ -155,14 +162,19 @@ static void test_exit_codes_by_kind(void **s)
     assert_non_null(f);
     fseek(f, 0, SEEK_END);
     long size = ftell(f);
-    fseek(f, size > (long)sizeof log - 1 ? size - (long)sizeof log + 1 : 0, SEEK_SET); /* the end: summary, make's lines */
+    fseek(f, size > (long)sizeof log - 1 ? size - (long)sizeof log + 1 : 0,
+          SEEK_SET); /* the end: summary, make's lines */
     size_t n = fread(log, 1, sizeof log - 1, f);
     log[n] = '\0';
     fclose(f);
-    if (!strstr(log, "crownshy exited 1 (inconsistency)")) fail_msg("make verify does not name the inconsistency: %s", log + (n > 600 ? n - 600 : 0));
+    if (!strstr(log, "crownshy exited 1 (inconsistency)"))
+        fail_msg("make verify does not name the inconsistency: %s", log + (n > 600 ? n - 600 : 0));
     assert_non_null(strstr(log, "Error 1"));
     /* a build/ that cannot be written (mkdir is refused in /sys, also to root) */
-    snprintf(cmd, sizeof cmd, "cd '%s' && rm -rf build && ln -s /sys build && env -u FIELD_TABLE -u CHM '%s/build/crownshy' verify --no-figures > out.log 2>&1; echo \"rc=$?\" >> out.log", dir, root);
+    snprintf(cmd, sizeof cmd,
+             "cd '%s' && rm -rf build && ln -s /sys build && env -u FIELD_TABLE -u CHM '%s/build/crownshy' verify "
+             "--no-figures > out.log 2>&1; echo \"rc=$?\" >> out.log",
+             dir, root);
     if (system(cmd) != 0) { /* the status is in out.log */ }
     snprintf(p, sizeof p, "%s/out.log", dir);
     f = fopen(p, "r");
@@ -170,7 +182,8 @@ static void test_exit_codes_by_kind(void **s)
     n = fread(log, 1, sizeof log - 1, f);
     log[n] = '\0';
     fclose(f);
-    if (!strstr(log, "rc=4") || !strstr(log, "build/: cannot create")) fail_msg("a read-only build/ is not an environment error: %s", log);
+    if (!strstr(log, "rc=4") || !strstr(log, "build/: cannot create"))
+        fail_msg("a read-only build/ is not an environment error: %s", log);
     assert_null(strstr(log, "INCONSISTENT"));
 }
 
@@ -182,7 +195,8 @@ static void test_reproduce_lock(void **s)
     const char *dir = tu_tmpdir("edges_lock");
     char cmd[3000], root[1024], p[1100];
     assert_non_null(getcwd(root, sizeof root));
-    snprintf(cmd, sizeof cmd, "cp Makefile '%s/' && tar cf - src | (cd '%s' && tar xf -) && mkdir -p '%s/build'", dir, dir, dir);
+    snprintf(cmd, sizeof cmd, "cp Makefile '%s/' && tar cf - src | (cd '%s' && tar xf -) && mkdir -p '%s/build'", dir,
+             dir, dir);
     assert_int_equal(system(cmd), 0);
     snprintf(p, sizeof p, "%s/build/reproduce.lock", dir);
     int fd = open(p, O_WRONLY | O_CREAT, 0666);
@@ -190,7 +204,8 @@ static void test_reproduce_lock(void **s)
     assert_int_equal(flock(fd, LOCK_EX | LOCK_NB), 0);
     snprintf(cmd, sizeof cmd, "cd '%s' && env -u MAKEFLAGS -u MAKELEVEL", dir);
     char args[1400];
-    snprintf(args, sizeof args, "--help >/dev/null; make -s --no-print-directory reproduce ENGINE=none B='%s/build'", root);
+    snprintf(args, sizeof args, "--help >/dev/null; make -s --no-print-directory reproduce ENGINE=none B='%s/build'",
+             root);
     assert_int_not_equal(tu_run_cli(cmd, args, out, sizeof out), 0);
     assert_non_null(strstr(out, "another make reproduce is running in this tree"));
     assert_null(strstr(out, "unknown ENGINE"));
@@ -422,7 +437,10 @@ static void test_recorded_paths_follow_their_folder(void **s)
     assert_int_equal(access(p, F_OK), 0);
     assert_int_equal(paths_recorded("frozen/extrapolation/runs.tsv", p, sizeof p), 1);
     assert_string_equal(p, "frozen/extension-pair-16-stands/extrapolation/runs.tsv");
-    assert_int_equal(paths_recorded("frozen/generator-probes/plain/../../model-readings/plain/main/weights_s01_joint.ckpt", p, sizeof p), 0);
+    assert_int_equal(
+        paths_recorded("frozen/generator-probes/plain/../../model-readings/plain/main/weights_s01_joint.ckpt", p,
+                       sizeof p),
+        0);
     assert_string_equal(p, "frozen/generator-probes/plain/../../model-readings/plain/main/weights_s01_joint.ckpt");
     assert_int_equal(paths_recorded("frozen/paper-reading/main/./runs.tsv", p, sizeof p), 0);
     assert_string_equal(p, "frozen/paper-reading/main/./runs.tsv");
@@ -468,7 +486,8 @@ static void test_file_size_limit_is_an_environment_error(void **s)
     (void)s;
     const char *dir = tu_tmpdir("edges_fsize");
     char args[1400];
-    snprintf(args, sizeof args, "generator-probes-run --perfect --samples %s/samples.tsv --out %s/probes.tsv", dir, dir);
+    snprintf(args, sizeof args, "generator-probes-run --perfect --samples %s/samples.tsv --out %s/probes.tsv", dir,
+             dir);
     int rc = tu_run_cli("ulimit -f 16; ", args, out, sizeof out);
     if (rc != 4) fail_msg("exit %d under ulimit -f, expected 4 (environment): %s", rc, out);
     assert_non_null(strstr(out, "samples.tsv"));

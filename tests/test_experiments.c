@@ -1,9 +1,7 @@
-/* Smoke tests for src/exp/ (exp_mechanism.c, exp_irreducibility.c, exp_stands.c): units run at one stand per cell into a
- * scratch directory, write provenance and the documented columns, and keep the
- * ablation's ordering (coupling off interpenetrates, both on opens gaps).
- * With --stand-rows the E1 sweep and the E2 units also write the per-stand
- * rows their pooled rows are made of, and the claims' stand bootstrap
- * recomputes the pooled values from them bit for bit. */
+/* Smoke tests for src/exp/ (exp_mechanism.c, exp_irreducibility.c, exp_stands.c): units run at one stand per cell into
+ * a scratch directory, write provenance and the documented columns, and keep the ablation's ordering (coupling off
+ * interpenetrates, both on opens gaps). With --stand-rows the E1 sweep and the E2 units also write the per-stand rows
+ * their pooled rows are made of, and the claims' stand bootstrap recomputes the pooled values from them bit for bit. */
 #include "testutil.h"
 #include "agree.h"
 #include "claims.h"
@@ -102,7 +100,8 @@ static void test_stand_rows_only_when_asked(void **st)
     assert_int_equal(system(cmd), 0);
     assert_int_equal(run_rows("irreducibility-perturb", dir, 1), 0);
     /* the pooled table's data rows do not depend on the per-stand rows */
-    snprintf(cmd, sizeof cmd, "grep -v '^#' %s/irreducibility/perturb_train.tsv | cmp -s - %s/pooled_without", dir, dir);
+    snprintf(cmd, sizeof cmd, "grep -v '^#' %s/irreducibility/perturb_train.tsv | cmp -s - %s/pooled_without", dir,
+             dir);
     assert_int_equal(system(cmd), 0);
     tsv *t = NULL;
     assert_int_equal(tsv_read(path, &t), CS_OK);
@@ -119,7 +118,8 @@ static void test_stand_rows_give_the_pooled_values(void **st)
 {
     (void)st;
     const char *dir = tu_tmpdir("exp_rows");
-    const char *units[] = {"mechanism-sweep", "irreducibility-perturb", "irreducibility-refine", "irreducibility-reduction"};
+    const char *units[] = {"mechanism-sweep", "irreducibility-perturb", "irreducibility-refine",
+                           "irreducibility-reduction"};
     for (int u = 0; u < 4; u++) assert_int_equal(run_rows(units[u], dir, 1), 0);
     static const struct { const char *macro, *table; } c[] = {
         {"MechHits", "mechanism/sweep.tsv"}, {"IrredTrainRespLo", "irreducibility/perturb_train.tsv"},
@@ -135,7 +135,8 @@ static void test_stand_rows_give_the_pooled_values(void **st)
         const claim_row *orig = claims_find(&reg, c[i].macro);
         assert_non_null(orig);
         claim_row row = *orig;
-        if (snprintf(row.source, sizeof row.source, "%.100s/%s", dir, c[i].table) >= (int)sizeof row.source) fail_msg("path too long");
+        if (snprintf(row.source, sizeof row.source, "%.100s/%s", dir, c[i].table) >= (int)sizeof row.source)
+            fail_msg("path too long");
         claim_result r;
         claims_eval(&row, &r);
         if (r.status != VERDICT_PASS) fail_msg("%s from %s: %s", c[i].macro, row.source, r.why);

@@ -63,7 +63,8 @@ static void test_fixture_summary(void **s)
 static void test_duplicate_direction_names_line(void **s)
 {
     (void)s;
-    const char *p = write_table("field_dup", "tree\tdirection\tclearance_m\na\tE\t1\na\tN\t1\na\tW\t1\na\teast\t1\na\tS\t1\n");
+    const char *p =
+        write_table("field_dup", "tree\tdirection\tclearance_m\na\tE\t1\na\tN\t1\na\tW\t1\na\teast\t1\na\tS\t1\n");
     field_table ft;
     assert_int_equal(field_table_load(p, &ft), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), "t.tsv:5:"));

@@ -22,7 +22,9 @@ static int setup_heldout(void **s)
     fs_trees_init(&t);
     stand *sd;
     if (stand_alloc(&sd, stems_lattice, 5.0, 60.0, 0.04, "test/field_claims", 0)) return -1;
-    if (exp_field_grow_append(sd, NULL, 0.19, 1, 0.19, 0, &t, NULL) || exp_field_grow_append(sd, NULL, 0.19, 0, 0.19, 0, &t, NULL)) return -1;
+    if (exp_field_grow_append(sd, NULL, 0.19, 1, 0.19, 0, &t, NULL) ||
+        exp_field_grow_append(sd, NULL, 0.19, 0, 0.19, 0, &t, NULL))
+        return -1;
     stand_free(sd);
     char tp[700];
     fs_trees_path(g_heldout, tp, sizeof tp);
@@ -77,7 +79,9 @@ static void test_spread_ratio_computed_with_synthetic_table(void **s)
     if (r.status != VERDICT_PASS) fail_msg("status %s: %s", verdict_name(r.status), r.why);
     ASSERT_NEAR(r.value, g_spread[1] / FIXTURE_SPREAD, 1e-12);
     assert_int_not_equal(r.gate, VERDICT_PENDING);
-    assert_int_equal(r.gate, (g_spread[1] / FIXTURE_SPREAD >= 0.5 && g_spread[1] / FIXTURE_SPREAD <= 2.0) ? VERDICT_PASS : VERDICT_FAIL);
+    assert_int_equal(r.gate, (g_spread[1] / FIXTURE_SPREAD >= 0.5 && g_spread[1] / FIXTURE_SPREAD <= 2.0)
+                                 ? VERDICT_PASS
+                                 : VERDICT_FAIL);
     assert_non_null(strstr(r.where, FIXTURE));
 }
 
@@ -85,7 +89,8 @@ static void test_control_spread_computed_and_judged_outside(void **s)
 {
     (void)s;
     setenv("FIELD_TABLE", FIXTURE, 1);
-    claim_row row = row_for("ControlSpread", "claim_field_control_spread", "field.gate:control_spread_outside_band", g_heldout);
+    claim_row row =
+        row_for("ControlSpread", "claim_field_control_spread", "field.gate:control_spread_outside_band", g_heldout);
     claim_result r;
     claims_eval(&row, &r);
     unsetenv("FIELD_TABLE");
@@ -137,9 +142,9 @@ static void test_unbuildable_level_is_reported_not_fatal(void **s)
         fs_summary sm;
         assert_int_equal(fs_group(&t, 1, levels[k], &sm), CS_OK);
         char row[512];
-        snprintf(row, sizeof row, "coupled\t%.17g\t0.19\t%zu\t0\t%zu\t%.17g\t%.17g\t%.17g\t%zu\t%zu\t%.17g\t%.17g\n", levels[k], sm.stands, sm.f.trees,
-                 sm.f.tree_mean_median, sm.f.spread, sm.f.aniso_median, sm.f.aniso_trees, sm.f.aniso_excluded, sm.elong_median,
-                 sm.elong_card_median);
+        snprintf(row, sizeof row, "coupled\t%.17g\t0.19\t%zu\t0\t%zu\t%.17g\t%.17g\t%.17g\t%zu\t%zu\t%.17g\t%.17g\n",
+                 levels[k], sm.stands, sm.f.trees, sm.f.tree_mean_median, sm.f.spread, sm.f.aniso_median,
+                 sm.f.aniso_trees, sm.f.aniso_excluded, sm.elong_median, sm.elong_card_median);
         strcat(sb, row);
     }
     strcat(sb, "coupled\t0.7\t0.19\t0\t12\t0\tnan\tnan\tnan\t0\t0\tnan\tnan\n");

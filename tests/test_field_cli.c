@@ -11,8 +11,10 @@ static int run(const char *args) { return tu_run_cli("env -u FIELD_TABLE ", args
 static void test_help_exits_zero(void **s)
 {
     (void)s;
-    const char *cmds[] = {"field-summary", "field-calibrate", "field-beta", "field-heldout", "anisotropy-lattice",
-                          "anisotropy-hardcore", "anisotropy-jitter", "anisotropy-jitter-calibrate", "anisotropy-heldout", "field-diagnose"};
+    const char *cmds[] = {
+        "field-summary",      "field-calibrate",     "field-beta",        "field-heldout",
+        "anisotropy-lattice", "anisotropy-hardcore", "anisotropy-jitter", "anisotropy-jitter-calibrate",
+        "anisotropy-heldout", "field-diagnose"};
     for (size_t i = 0; i < sizeof cmds / sizeof *cmds; i++) {
         char a[96];
         snprintf(a, sizeof a, "%s --help", cmds[i]);
@@ -64,8 +66,11 @@ static void test_missing_inputs_are_input_errors(void **s)
     (void)s;
     assert_int_equal(run("field-beta build/test-tmp/no-such-calibration.tsv"), 3);
     assert_non_null(strstr(out, "no-such-calibration.tsv"));
-    assert_int_equal(run("anisotropy-jitter-calibrate --sweep build/test-tmp/no-such.tsv --out build/test-tmp/x.tsv"), 3);
-    assert_int_equal(run("anisotropy-heldout --calibration build/test-tmp/no-such.tsv --jitter-calibration x --out build/test-tmp/x.tsv"), 3);
+    assert_int_equal(run("anisotropy-jitter-calibrate --sweep build/test-tmp/no-such.tsv --out build/test-tmp/x.tsv"),
+                     3);
+    assert_int_equal(run("anisotropy-heldout --calibration build/test-tmp/no-such.tsv --jitter-calibration x --out "
+                         "build/test-tmp/x.tsv"),
+                     3);
 }
 
 /* trace of a claim whose input is bad exits 3 (bad input), naming the file,
@@ -82,7 +87,8 @@ static void test_trace_of_a_bad_field_table_exits_3(void **s)
     if (rc != 3) fail_msg("trace exit %d, expected 3: %s", rc, out);
     assert_non_null(strstr(out, "bad.tsv:2: field 'clearance_m'"));
     assert_non_null(strstr(out, "registry"));
-    if ((rc = run("trace SpreadRatio")) != 0) fail_msg("trace without a field table: exit %d, expected 0 (pending): %s", rc, out);
+    if ((rc = run("trace SpreadRatio")) != 0)
+        fail_msg("trace without a field table: exit %d, expected 0 (pending): %s", rc, out);
 }
 
 int main(void)

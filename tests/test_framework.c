@@ -20,7 +20,8 @@ static const char *registry(const char *name, const char *rows)
 static void test_registry_rejects_unknown_kind(void **s)
 {
     (void)s;
-    const char *p = registry("reg_kind", "MainSeeds\tguess\tgates/main.gate\tclaim_design_main_seeds\t-\tt\t4.4\t%.0f\t12\t-\n");
+    const char *p =
+        registry("reg_kind", "MainSeeds\tguess\tgates/main.gate\tclaim_design_main_seeds\t-\tt\t4.4\t%.0f\t12\t-\n");
     claims c;
     assert_int_equal(claims_load(p, &c), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), "claims.tsv:3:"));
@@ -42,7 +43,8 @@ static void test_registry_rejects_duplicate_macro(void **s)
 static void test_registry_rejects_bad_gate_reference(void **s)
 {
     (void)s;
-    const char *p = registry("reg_gate", "MainSeeds\tdesign\tgates/main.gate\tclaim_design_main_seeds\tmain:seeds\tt\t4.4\t%.0f\t12\t-\n");
+    const char *p = registry(
+        "reg_gate", "MainSeeds\tdesign\tgates/main.gate\tclaim_design_main_seeds\tmain:seeds\tt\t4.4\t%.0f\t12\t-\n");
     claims c;
     assert_int_equal(claims_load(p, &c), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), "'gate'"));
@@ -52,12 +54,15 @@ static void test_registry_rejects_bad_gate_reference(void **s)
 static void test_registry_rejects_gated_probe_row(void **s)
 {
     (void)s;
-    const char *p = registry("reg_probe", "MainRotJoint\tprobe\tfrozen/extension-pair-16-stands/main/runs.tsv\tclaim_main_probe\tmain.gate:shuffle_ratio_min\tt\t5.1\t%.3f\t-\t-\n");
+    const char *p =
+        registry("reg_probe", "MainRotJoint\tprobe\tfrozen/extension-pair-16-stands/main/"
+                              "runs.tsv\tclaim_main_probe\tmain.gate:shuffle_ratio_min\tt\t5.1\t%.3f\t-\t-\n");
     claims c;
     assert_int_equal(claims_load(p, &c), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), "'gate'"));
     assert_non_null(strstr(cs_errmsg(), "probe"));
-    p = registry("reg_probe_ok", "MainRotJoint\tprobe\tfrozen/extension-pair-16-stands/main/runs.tsv\tclaim_main_probe\t-\tt\t5.1\t%.3f\t-\t-\n");
+    p = registry("reg_probe_ok", "MainRotJoint\tprobe\tfrozen/extension-pair-16-stands/main/"
+                                 "runs.tsv\tclaim_main_probe\t-\tt\t5.1\t%.3f\t-\t-\n");
     assert_int_equal(claims_load(p, &c), CS_OK);
     claims_free(&c);
 }
@@ -92,12 +97,14 @@ static void test_registry_rejects_bad_params(void **s)
     };
     for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
         char rows[400];
-        snprintf(rows, sizeof rows, "MainSeeds\tdesign\tgates/main.gate\tclaim_design_main_seeds\t-\tt\t4.4\t%%.0f\t12\t%s\n", bad[i][0]);
+        snprintf(rows, sizeof rows,
+                 "MainSeeds\tdesign\tgates/main.gate\tclaim_design_main_seeds\t-\tt\t4.4\t%%.0f\t12\t%s\n", bad[i][0]);
         const char *p = registry("reg_params", rows);
         claims c;
         if (claims_load(p, &c) != CS_EINPUT) fail_msg("params '%s' accepted", bad[i][0]);
         const char *m = cs_errmsg();
-        if (!strstr(m, "claims.tsv:3: field 'params'") || !strstr(m, bad[i][1])) fail_msg("params '%s': message '%s', expected '%s'", bad[i][0], m, bad[i][1]);
+        if (!strstr(m, "claims.tsv:3: field 'params'") || !strstr(m, bad[i][1]))
+            fail_msg("params '%s': message '%s', expected '%s'", bad[i][0], m, bad[i][1]);
     }
     /* the typed fields of a good cell */
     const char *p = registry("reg_params_ok",
@@ -107,14 +114,16 @@ static void test_registry_rejects_bad_params(void **s)
     assert_int_equal(claims_load(p, &c), CS_OK);
     const claim_params *q = &c.rows[1].param;
     assert_int_equal(c.rows[0].param.set, 0);
-    assert_int_equal(q->set, PARAM_ARM | PARAM_PROBE | PARAM_BOUND | PARAM_STAT | PARAM_COLUMN | PARAM_OF | PARAM_X | PARAM_SCALE | PARAM_SPACING);
+    assert_int_equal(q->set, PARAM_ARM | PARAM_PROBE | PARAM_BOUND | PARAM_STAT | PARAM_COLUMN | PARAM_OF | PARAM_X |
+                                 PARAM_SCALE | PARAM_SPACING);
     assert_int_equal(q->arm, ARM_INDEP);
     assert_int_equal(q->probe, PROBE_ROTATED);
     assert_int_equal(q->bound, BOUND_HI);
     assert_int_equal(q->stat, STAT_RANGE);
     assert_string_equal(q->column, "k2_m");
     assert_string_equal(q->of, "MainSeeds");
-    if (q->x != 6.0 || q->scale != 100.0 || q->spacing != 6.5) fail_msg("x %.17g scale %.17g spacing %.17g, expected 6, 100, 6.5", q->x, q->scale, q->spacing);
+    if (q->x != 6.0 || q->scale != 100.0 || q->spacing != 6.5)
+        fail_msg("x %.17g scale %.17g spacing %.17g, expected 6, 100, 6.5", q->x, q->scale, q->spacing);
     claims_free(&c);
 }
 
@@ -132,12 +141,15 @@ static void test_params_not_the_macro_choose_the_bound(void **s)
     static const struct { const char *params; verdict status; double want; } k[] = {
         {"bound=lo", VERDICT_PASS, 0.25}, {"bound=hi", VERDICT_PASS, 1.75}, {"-", VERDICT_FAIL, NAN}};
     for (size_t i = 0; i < sizeof k / sizeof *k; i++) {
-        snprintf(rows, sizeof rows, "SensAbrOffLo\tprobe\t%s\tclaim_sens_abroff\t-\tt\tE0\t%%.2f\t-\t%s\n", src, k[i].params);
+        snprintf(rows, sizeof rows, "SensAbrOffLo\tprobe\t%s\tclaim_sens_abroff\t-\tt\tE0\t%%.2f\t-\t%s\n", src,
+                 k[i].params);
         claims c;
         assert_int_equal(claims_load(registry("reg_bound_reg", rows), &c), CS_OK);
         claim_result r;
         claims_eval(&c.rows[0], &r);
-        if (r.status != k[i].status) fail_msg("params %s: status %s (%s), expected %s", k[i].params, verdict_name(r.status), r.why, verdict_name(k[i].status));
+        if (r.status != k[i].status)
+            fail_msg("params %s: status %s (%s), expected %s", k[i].params, verdict_name(r.status), r.why,
+                     verdict_name(k[i].status));
         if (k[i].status == VERDICT_PASS && r.value != k[i].want)
             fail_msg("params %s: observed %.17g, expected %.17g", k[i].params, r.value, k[i].want);
         if (k[i].status == VERDICT_FAIL && (!strstr(r.why, ":3: field 'params'") || !strstr(r.why, "needs bound")))
@@ -149,7 +161,12 @@ static void test_params_not_the_macro_choose_the_bound(void **s)
 static void test_design_claim_reads_gate_value(void **s)
 {
     (void)s;
-    claim_row row = {.macro = "MainSeeds", .kind = "design", .source = "gates/main.gate", .function = "claim_design_main_seeds", .gate = "-", .format = "%.0f"};
+    claim_row row = {.macro = "MainSeeds",
+                     .kind = "design",
+                     .source = "gates/main.gate",
+                     .function = "claim_design_main_seeds",
+                     .gate = "-",
+                     .format = "%.0f"};
     claim_result r;
     claims_eval(&row, &r);
     assert_int_equal(r.status, VERDICT_PASS);
@@ -160,7 +177,12 @@ static void test_design_claim_reads_gate_value(void **s)
 static void test_unimplemented_function_is_pending_with_reason(void **s)
 {
     (void)s;
-    claim_row row = {.macro = "MainRel", .kind = "measured", .source = "frozen/extension-pair-16-stands/main/runs.tsv", .function = "claim_no_such_fn", .gate = "-", .format = "%.1f"};
+    claim_row row = {.macro = "MainRel",
+                     .kind = "measured",
+                     .source = "frozen/extension-pair-16-stands/main/runs.tsv",
+                     .function = "claim_no_such_fn",
+                     .gate = "-",
+                     .format = "%.1f"};
     claim_result r;
     claims_eval(&row, &r);
     assert_int_equal(r.status, VERDICT_PENDING);
@@ -176,7 +198,12 @@ static void test_tampered_numbers_value_is_named(void **s)
     tu_write(p, "% x\n\\newcommand{\\MainSeeds}{11}\n");
     numbers_tex nt;
     assert_int_equal(numbers_read(p, &nt), CS_OK);
-    claim_row row = {.macro = "MainSeeds", .kind = "design", .source = "gates/main.gate", .function = "claim_design_main_seeds", .gate = "-", .format = "%.0f"};
+    claim_row row = {.macro = "MainSeeds",
+                     .kind = "design",
+                     .source = "gates/main.gate",
+                     .function = "claim_design_main_seeds",
+                     .gate = "-",
+                     .format = "%.0f"};
     claim_result r;
     claims_eval(&row, &r);
     char msg[1200];
@@ -198,7 +225,12 @@ static void test_missing_registered_source_fails(void **s)
     tu_write(p, "\\newcommand{\\MainRel}{53.6}\n");
     numbers_tex nt;
     assert_int_equal(numbers_read(p, &nt), CS_OK);
-    claim_row row = {.macro = "MainRel", .kind = "measured", .source = "frozen/extension-pair-16-stands/main/none.tsv", .function = "claim_design_main_seeds", .gate = "-", .format = "%.1f"};
+    claim_row row = {.macro = "MainRel",
+                     .kind = "measured",
+                     .source = "frozen/extension-pair-16-stands/main/none.tsv",
+                     .function = "claim_design_main_seeds",
+                     .gate = "-",
+                     .format = "%.1f"};
     claim_result r;
     claims_eval(&row, &r);
     assert_int_equal(r.status, VERDICT_FAIL);
@@ -233,7 +265,12 @@ static void test_gate_failure_is_consistent_but_fails_verify(void **s)
     tu_write(p, "\\newcommand{\\MainRel}{12.0}\n\\newcommand{\\MainRelGate}{FAIL}\n");
     numbers_tex nt;
     assert_int_equal(numbers_read(p, &nt), CS_OK);
-    claim_row row = {.macro = "MainRel", .kind = "measured", .source = "x", .function = "f", .gate = "main.gate:rel_improvement_min", .format = "%.1f"};
+    claim_row row = {.macro = "MainRel",
+                     .kind = "measured",
+                     .source = "x",
+                     .function = "f",
+                     .gate = "main.gate:rel_improvement_min",
+                     .format = "%.1f"};
     claim_result r;
     memset(&r, 0, sizeof r);
     r.status = VERDICT_PASS;

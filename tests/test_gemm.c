@@ -115,7 +115,8 @@ static void test_bias_start_equals_preloaded_rows(void **st)
         gemm_fma_isa(GEMM_SCALAR, s->M, s->N, s->K, o.A, o.ars, o.aks, o.B, o.ldb, want, o.ldc, 1, NULL, NULL, NULL);
         for (int isa = GEMM_SCALAR; isa <= GEMM_AVX512; isa++) {
             memcpy(got, o.C0, sizeof(float) * (size_t)s->M * o.ldc);
-            gemm_fma_isa((gemm_isa)isa, s->M, s->N, s->K, o.A, o.ars, o.aks, o.B, o.ldb, got, o.ldc, 0, bias, NULL, NULL);
+            gemm_fma_isa((gemm_isa)isa, s->M, s->N, s->K, o.A, o.ars, o.aks, o.B, o.ldb, got, o.ldc, 0, bias, NULL,
+                         NULL);
             for (size_t i = 0; i < (size_t)s->M * o.ldc; i++)
                 if (memcmp(&want[i], &got[i], sizeof(float)) != 0) {
                     print_error("shape %zu path %d element %zu: %.17g, want %.17g\n", t, isa, i,

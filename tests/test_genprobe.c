@@ -25,7 +25,10 @@ static void lattice_patch(float *f, double jit)
         t[0] = (float)x; t[1] = (float)y;
         t[PATCH_FEAT_RBAR] = (float)(0.5 + 0.01 * i);
         const double rho = hypot(x, y), phi = atan2(y, x);
-        for (int h = 1; h <= 4; h++) { t[1 + 2 * h] = i ? (float)cos(h * phi) : 0.f; t[2 + 2 * h] = i ? (float)sin(h * phi) : 0.f; }
+        for (int h = 1; h <= 4; h++) {
+            t[1 + 2 * h] = i ? (float)cos(h * phi) : 0.f;
+            t[2 + 2 * h] = i ? (float)sin(h * phi) : 0.f;
+        }
         t[11] = (float)rho;
     }
 }

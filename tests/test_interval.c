@@ -43,7 +43,8 @@ static void perturb_copy(const char *src, const char *dst, const char *key, int 
 
 /* Evaluate macro with its source (and, when given, the replicates of its
  * statement) replaced; the interval and the claim test's verdict. */
-static verdict eval_with(const char *macro, const char *source, const char *replicates, claim_interval *ci, char *msg, size_t n)
+static verdict eval_with(const char *macro, const char *source, const char *replicates, claim_interval *ci, char *msg,
+                         size_t n)
 {
     const claim_row *orig = claims_find(&g_c, macro);
     assert_non_null(orig);
@@ -55,7 +56,8 @@ static verdict eval_with(const char *macro, const char *source, const char *repl
     t.s = specs;
     if (replicates)
         for (size_t i = 0; i < t.n; i++)
-            if (!strcmp(specs[i].function, row.function)) snprintf(specs[i].replicates, sizeof specs[i].replicates, "%s", replicates);
+            if (!strcmp(specs[i].function, row.function))
+                snprintf(specs[i].replicates, sizeof specs[i].replicates, "%s", replicates);
     claim_result r;
     claims_eval(&row, &r);
     if (r.status != VERDICT_PASS) fail_msg("%s from %s: %s", macro, row.source, r.why);
@@ -70,7 +72,8 @@ static void test_every_measured_claim_has_a_stated_method(void **s)
     (void)s;
     for (size_t i = 0; i < g_c.n; i++) {
         if (strcmp(g_c.rows[i].kind, "measured")) continue;
-        if (!interval_table_find(&g_it, g_c.rows[i].function)) fail_msg("%s: %s has no row in %s", g_c.rows[i].macro, g_c.rows[i].function, PATHS_INTERVALS);
+        if (!interval_table_find(&g_it, g_c.rows[i].function))
+            fail_msg("%s: %s has no row in %s", g_c.rows[i].macro, g_c.rows[i].function, PATHS_INTERVALS);
     }
 }
 
@@ -206,7 +209,8 @@ static void test_pooled_claims_get_a_stand_bootstrap(void **s)
         plain_copy(src, copy);
         plain_copy(rows, copy_rows);
         claim_interval same;
-        if (eval_with(macro, copy, NULL, &same, msg, sizeof msg) != VERDICT_PASS) fail_msg("%s from the copy: %s", macro, msg);
+        if (eval_with(macro, copy, NULL, &same, msg, sizeof msg) != VERDICT_PASS)
+            fail_msg("%s from the copy: %s", macro, msg);
         ASSERT_EXACT(same.lo, ci.lo);
         ASSERT_EXACT(same.hi, ci.hi);
         perturb_copy(rows, copy_rows, stand_cases[i].key, stand_cases[i].col, stand_cases[i].delta);
@@ -260,7 +264,8 @@ static void test_a_misstated_method_is_refused(void **s)
     interval_spec *specs = malloc(g_it.n * sizeof *specs);
     memcpy(specs, g_it.s, g_it.n * sizeof *specs);
     t.s = specs;
-    for (size_t i = 0; i < t.n; i++) if (!strcmp(specs[i].function, "claim_field_elong")) snprintf(specs[i].unit, sizeof specs[i].unit, "seed");
+    for (size_t i = 0; i < t.n; i++)
+        if (!strcmp(specs[i].function, "claim_field_elong")) snprintf(specs[i].unit, sizeof specs[i].unit, "seed");
     claim_interval ci;
     assert_int_equal(interval_eval(&t, row, &r, &ci), CS_EINVARIANT);
     assert_non_null(strstr(cs_errmsg(), "claim_field_elong"));
@@ -313,7 +318,13 @@ static void test_agreement_classes(void **s)
  * 2.0 in [1.9, 2.1] (paper other_ref); the sensitivity values: the centre,
  * crown_R 3 moving Toy to 1.1 and Other to other_r3, crown_R 5 moving Toy to
  * 1.1 and Other to other_r5. */
-typedef struct { claims c; claim_row rows[2]; claim_result res[2]; claim_interval ci[2]; attrib_value v[6]; } toy_fixture;
+typedef struct {
+    claims c;
+    claim_row rows[2];
+    claim_result res[2];
+    claim_interval ci[2];
+    attrib_value v[6];
+} toy_fixture;
 
 static void toy_fixture_make(toy_fixture *x, const char *other_ref, double other_r3, double other_r5)
 {
@@ -419,9 +430,10 @@ static void test_training_choices_join_the_alternatives(void **s)
     claim_row rows[5];
     memset(rows, 0, sizeof rows);
     static const char *mac[5] = {"Ratio", "GenStandsRatio", "GenStandsJoint", "Joint", "GenWidthRatio"};
-    static const char *src[5] = {"frozen/paper-reading/main/run_s*_*.tsv", "frozen/generator-sensitivity/stands-x4/main/run_s*_*.tsv",
-                                 "frozen/generator-sensitivity/stands-x4/main/run_s*_*.tsv", "frozen/paper-reading/main/run_s*_*.tsv",
-                                 "frozen/generator-sensitivity/width-x2/main/run_s*_*.tsv"};
+    static const char *src[5] = {
+        "frozen/paper-reading/main/run_s*_*.tsv", "frozen/generator-sensitivity/stands-x4/main/run_s*_*.tsv",
+        "frozen/generator-sensitivity/stands-x4/main/run_s*_*.tsv", "frozen/paper-reading/main/run_s*_*.tsv",
+        "frozen/generator-sensitivity/width-x2/main/run_s*_*.tsv"};
     static const char *fn[5] = {"f_ratio", "f_ratio", "f_other", "f_joint", "f_ratio"};
     static const char *of[5] = {NULL, "Ratio", "Joint", NULL, NULL};
     for (int i = 0; i < 5; i++) {

@@ -36,8 +36,10 @@ static void test_unit_samples_redraw_bit_for_bit_and_recompute_w1(void **s)
                  "--samples %s/main/samples_s03_%s.tsv --weights %s/main/weights_s03_%s.ckpt --out %s/main/run_s03_%s.tsv",
                  arm, dir, arm, dir, arm, dir, arm, dir, arm);
         if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("main-run: %s", out);
-        snprintf(args, sizeof args, "main-redraw --weights %s/main/weights_s03_%s.ckpt --seed 3 --arm %s --scale smoke --out %s/redraw_%s.tsv",
-                 dir, arm, arm, dir, arm);
+        snprintf(
+            args, sizeof args,
+            "main-redraw --weights %s/main/weights_s03_%s.ckpt --seed 3 --arm %s --scale smoke --out %s/redraw_%s.tsv",
+            dir, arm, arm, dir, arm);
         if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("main-redraw: %s", out);
         char p1[600], p2[600];
         snprintf(p1, sizeof p1, "%s/main/samples_s03_%s.tsv", dir, arm);
@@ -47,12 +49,15 @@ static void test_unit_samples_redraw_bit_for_bit_and_recompute_w1(void **s)
         assert_string_equal(x, y);
         free(x); free(y);
         /* the weights of the other arm are refused */
-        snprintf(args, sizeof args, "main-redraw --weights %s/main/weights_s03_%s.ckpt --seed 3 --arm %s --scale smoke --out %s/bad.tsv",
+        snprintf(args, sizeof args,
+                 "main-redraw --weights %s/main/weights_s03_%s.ckpt --seed 3 --arm %s --scale smoke --out %s/bad.tsv",
                  dir, arm, a ? "joint" : "indep", dir);
         assert_int_equal(tu_run_cli("", args, out, sizeof out), 3);
     }
     /* comparison-dist on these two arms: every patch and source, the summary and the figure patch */
-    snprintf(args, sizeof args, "comparison-dist --patches 5 --joint %s/main/weights_s03_joint.ckpt --indep %s/main/weights_s03_indep.ckpt --out %s",
+    snprintf(args, sizeof args,
+             "comparison-dist --patches 5 --joint %s/main/weights_s03_joint.ckpt --indep "
+             "%s/main/weights_s03_indep.ckpt --out %s",
              dir, dir, dir);
     if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("comparison-dist: %s", out);
     {
@@ -111,7 +116,10 @@ static void test_unit_samples_redraw_bit_for_bit_and_recompute_w1(void **s)
     /* one changed sample changes a W1: the check names the row */
     char p[600], cmd[2600];
     snprintf(p, sizeof p, "%s/main/samples_s03_joint.tsv", dir);
-    snprintf(cmd, sizeof cmd, "awk -F'\\t' 'BEGIN{OFS=\"\\t\"} !/^#/ && $4==\"generated\" && !done {$5=$5+0.5; done=1} {print}' %s > %s.x && mv %s.x %s", p, p, p, p);
+    snprintf(cmd, sizeof cmd,
+             "awk -F'\\t' 'BEGIN{OFS=\"\\t\"} !/^#/ && $4==\"generated\" && !done {$5=$5+0.5; done=1} {print}' %s > "
+             "%s.x && mv %s.x %s",
+             p, p, p, p);
     assert_int_equal(system(cmd), 0);
     assert_int_equal(claim_main_samples_check(dir, 3, msg, sizeof msg, &nchecked), CS_EINVARIANT);
     assert_non_null(strstr(msg, "run_s03_joint.tsv"));
@@ -130,8 +138,10 @@ static void test_eval_from_weights_gives_the_unit_rows(void **s)
     snprintf(args, sizeof args, "main-run --reading paper --seed 2 --arm joint --scale smoke --epochs 2 "
              "--samples %s/samples_a.tsv --weights %s/w_a.ckpt --out %s/run_a.tsv", dir, dir, dir);
     if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("main-run: %s", out);
-    snprintf(args, sizeof args, "main-eval --weights %s/w_a.ckpt --trained %s/run_a.tsv --seed 2 --arm joint --scale smoke "
-             "--samples %s/samples_b.tsv --out %s/run_b.tsv", dir, dir, dir, dir);
+    snprintf(args, sizeof args,
+             "main-eval --weights %s/w_a.ckpt --trained %s/run_a.tsv --seed 2 --arm joint --scale smoke "
+             "--samples %s/samples_b.tsv --out %s/run_b.tsv",
+             dir, dir, dir, dir);
     if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("main-eval: %s", out);
     const char *pairs[2][2] = {{"run_a.tsv", "run_b.tsv"}, {"samples_a.tsv", "samples_b.tsv"}};
     for (int k = 0; k < 2; k++) {
@@ -150,9 +160,12 @@ static void test_eval_from_weights_gives_the_unit_rows(void **s)
     tsv_free(t);
     /* a re-evaluation of a re-evaluation carries the training record of the
      * run that trained, never its own wall time, commit or date */
-    snprintf(args, sizeof args, "main-eval --weights %s/w_a.ckpt --trained %s/run_b.tsv --seed 2 --arm joint --scale smoke "
-             "--out %s/run_bb.tsv", dir, dir, dir);
-    if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("main-eval of an evaluation: %s", out);
+    snprintf(args, sizeof args,
+             "main-eval --weights %s/w_a.ckpt --trained %s/run_b.tsv --seed 2 --arm joint --scale smoke "
+             "--out %s/run_bb.tsv",
+             dir, dir, dir);
+    if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0)
+        fail_msg("main-eval of an evaluation: %s", out);
     {
         tsv *ta, *tb, *tbb;
         snprintf(p1, sizeof p1, "%s/run_a.tsv", dir);
@@ -161,13 +174,17 @@ static void test_eval_from_weights_gives_the_unit_rows(void **s)
         assert_int_equal(tsv_read(p1, &tb), CS_OK);
         snprintf(p1, sizeof p1, "%s/run_bb.tsv", dir);
         assert_int_equal(tsv_read(p1, &tbb), CS_OK);
-        static const char *const kv[][2] = {{"wall_s", "trained_wall_s"}, {"git_commit", "trained_git_commit"}, {"date", "trained_date"}};
+        static const char *const kv[][2] = {
+            {"wall_s", "trained_wall_s"}, {"git_commit", "trained_git_commit"}, {"date", "trained_date"}};
         for (int k = 0; k < 3; k++) {
             const char *trained = tsv_meta(ta, kv[k][0]);
             assert_non_null(trained);
-            if (strcmp(tsv_meta(tb, kv[k][1]), trained)) fail_msg("run_b %s '%s', the training run's %s '%s'", kv[k][1], tsv_meta(tb, kv[k][1]), kv[k][0], trained);
-            if (strcmp(tsv_meta(tbb, kv[k][1]), trained)) fail_msg("run_bb %s '%s' (run_b's own %s '%s'), the training run's '%s'", kv[k][1],
-                                                                   tsv_meta(tbb, kv[k][1]), kv[k][0], tsv_meta(tb, kv[k][0]), trained);
+            if (strcmp(tsv_meta(tb, kv[k][1]), trained))
+                fail_msg("run_b %s '%s', the training run's %s '%s'", kv[k][1], tsv_meta(tb, kv[k][1]), kv[k][0],
+                         trained);
+            if (strcmp(tsv_meta(tbb, kv[k][1]), trained))
+                fail_msg("run_bb %s '%s' (run_b's own %s '%s'), the training run's '%s'", kv[k][1],
+                         tsv_meta(tbb, kv[k][1]), kv[k][0], tsv_meta(tb, kv[k][0]), trained);
         }
         tsv_free(ta); tsv_free(tb); tsv_free(tbb);
     }
@@ -183,8 +200,11 @@ static void test_eval_from_weights_gives_the_unit_rows(void **s)
     snprintf(args, sizeof args, "cmp %s/w_a.ckpt %s/w_c.ckpt", dir, dir);
     assert_int_equal(system(args), 0);
     /* 96-stands: probes at the unseen spacings only */
-    snprintf(args, sizeof args, "main-eval --volume 96-stands --weights %s/w_a.ckpt --trained %s/run_a.tsv --seed 2 --arm joint --scale smoke "
-             "--out %s/run_96_stands.tsv", dir, dir, dir);
+    snprintf(
+        args, sizeof args,
+        "main-eval --volume 96-stands --weights %s/w_a.ckpt --trained %s/run_a.tsv --seed 2 --arm joint --scale smoke "
+        "--out %s/run_96_stands.tsv",
+        dir, dir, dir);
     if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("main-eval 96-stands: %s", out);
     snprintf(p2, sizeof p2, "%s/run_96_stands.tsv", dir);
     assert_int_equal(tsv_read(p2, &t), CS_OK);
@@ -197,14 +217,19 @@ static void test_eval_from_weights_gives_the_unit_rows(void **s)
     assert_int_equal(extrap, 2);
     tsv_free(t);
     /* a volume by any other name is a usage error naming the two */
-    snprintf(args, sizeof args, "main-eval --volume 48-stands --weights %s/w_a.ckpt --trained %s/run_a.tsv --seed 2 --arm joint --scale smoke "
-             "--out %s/bad.tsv", dir, dir, dir);
+    snprintf(
+        args, sizeof args,
+        "main-eval --volume 48-stands --weights %s/w_a.ckpt --trained %s/run_a.tsv --seed 2 --arm joint --scale smoke "
+        "--out %s/bad.tsv",
+        dir, dir, dir);
     assert_int_equal(tu_run_cli("", args, out, sizeof out), 2);
     assert_non_null(strstr(out, "16-stands"));
     assert_non_null(strstr(out, "96-stands"));
     /* the reading is checked against the weights */
-    snprintf(args, sizeof args, "main-eval --reading pair --weights %s/w_a.ckpt --trained %s/run_a.tsv --seed 2 --arm joint --scale smoke "
-             "--out %s/bad.tsv", dir, dir, dir);
+    snprintf(args, sizeof args,
+             "main-eval --reading pair --weights %s/w_a.ckpt --trained %s/run_a.tsv --seed 2 --arm joint --scale smoke "
+             "--out %s/bad.tsv",
+             dir, dir, dir);
     assert_int_equal(tu_run_cli("", args, out, sizeof out), 3);
     assert_non_null(strstr(out, "paper reading"));
 }

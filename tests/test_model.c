@@ -233,7 +233,11 @@ static void test_pair_norm_fit_standardises(void **s)
     assert_int_equal(model_norm_fit(m, feat, B), CS_OK);
     for (int k = 0; k < 3; k++) {
         double sum = 0, ss = 0;
-        for (int i = 0; i < B * 5; i++) { double z = ((double)feat[i * 3 + k] - m->norm[k]) * m->norm[3 + k]; sum += z; ss += z * z; }
+        for (int i = 0; i < B * 5; i++) {
+            double z = ((double)feat[i * 3 + k] - m->norm[k]) * m->norm[3 + k];
+            sum += z;
+            ss += z * z;
+        }
         ASSERT_NEAR(sum / (B * 5), 0.0, 1e-6);
         ASSERT_NEAR(ss / (B * 5), 1.0, 1e-5);
     }
@@ -422,7 +426,8 @@ static void check_sample_forward_only(int pair, int joint)
         assert_int_equal(model_sample(m, r, B, feat, cond, STEPS, xs), CS_OK);
         euler_on_model_forward(m, rref, B, feat, cond, STEPS, xr);
         if (memcmp(xs, xr, sizeof(float) * n) != 0) {
-            print_error("path %d: the forward-only sampler differs from the Euler loop on model_forward\n", (int)paths[q]);
+            print_error("path %d: the forward-only sampler differs from the Euler loop on model_forward\n",
+                        (int)paths[q]);
             fail();
         }
         if (first) memcpy(x0, xs, sizeof(float) * n);
@@ -436,7 +441,11 @@ static void check_sample_forward_only(int pair, int joint)
 }
 static void test_sample_is_the_euler_loop_on_model_forward(void **s) { (void)s; check_sample_forward_only(0, 1); }
 static void test_pair_sample_is_the_euler_loop_on_model_forward(void **s) { (void)s; check_sample_forward_only(1, 1); }
-static void test_pair_indep_sample_is_the_euler_loop_on_model_forward(void **s) { (void)s; check_sample_forward_only(1, 0); }
+static void test_pair_indep_sample_is_the_euler_loop_on_model_forward(void **s)
+{
+    (void)s;
+    check_sample_forward_only(1, 0);
+}
 
 static void test_forward_rejects_oversized_batch(void **s)
 {

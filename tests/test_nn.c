@@ -88,7 +88,10 @@ static void check_bias_grad(int M, int K, int N, unsigned st)
     float *in = malloc(sizeof(float) * M * K), *w = malloc(sizeof(float) * N * K),
           *dout = malloc(sizeof(float) * M * N), *dw = calloc((size_t)N * K, sizeof(float)),
           *db = malloc(sizeof(float) * N), *want = malloc(sizeof(float) * N);
-    tu_fill(in, (size_t)M * K, 1, &st); tu_fill(w, (size_t)N * K, 1, &st); tu_fill(dout, (size_t)M * N, 3, &st); tu_fill(db, N, 1, &st);
+    tu_fill(in, (size_t)M * K, 1, &st);
+    tu_fill(w, (size_t)N * K, 1, &st);
+    tu_fill(dout, (size_t)M * N, 3, &st);
+    tu_fill(db, N, 1, &st);
     for (int c = 0; c < N; c++) {
         float e = db[c];
         for (int r = 0; r < M; r++) e += dout[r * N + c];
@@ -97,7 +100,8 @@ static void check_bias_grad(int M, int K, int N, unsigned st)
     nn_linear_backward(NULL, dw, db, dout, in, w, M, K, N);
     for (int c = 0; c < N; c++)
         if (memcmp(&db[c], &want[c], sizeof(float)) != 0) {
-            print_error("db[%d] = %.17g, row-ordered sum %.17g (M %d, N %d)\n", c, (double)db[c], (double)want[c], M, N);
+            print_error("db[%d] = %.17g, row-ordered sum %.17g (M %d, N %d)\n", c, (double)db[c], (double)want[c], M,
+                        N);
             fail();
         }
     free(in); free(w); free(dout); free(dw); free(db); free(want);
@@ -256,7 +260,11 @@ static void test_fused_bias_passes_match_unfused(void **s)
         for (int c = 0; c < N; c++) h2[r * N + c] = h[r * N + c] + b[c];
     nn_gelu_forward_save(o2, sig2, h2, M * N);
     nn_bias_gelu_forward_save(h, sig, o1, b, M, N);
-    for (int i = 0; i < M * N; i++) { ASSERT_EXACT(h[i], h2[i]); ASSERT_EXACT(sig[i], sig2[i]); ASSERT_EXACT(o1[i], o2[i]); }
+    for (int i = 0; i < M * N; i++) {
+        ASSERT_EXACT(h[i], h2[i]);
+        ASSERT_EXACT(sig[i], sig2[i]);
+        ASSERT_EXACT(o1[i], o2[i]);
+    }
     nn_bias_residual_forward(o1, h, b, x, M, N);
     for (int r = 0; r < M; r++)
         for (int c = 0; c < N; c++) ASSERT_EXACT(o1[r * N + c], (h[r * N + c] + b[c]) + x[r * N + c]);
@@ -302,7 +310,11 @@ static void test_fused_bias_gelu_interleaved_matches_unfused(void **s)
                 for (int c = 0; c < N; c++) h2[r * N + c] = h[r * N + c] + b[c];
             nn_gelu_forward_save(o2, sig2, h2, (size_t)M * N);
             nn_bias_gelu_forward_save(h, sig, o1, b, M, N);
-            for (int i = 0; i < M * N; i++) { ASSERT_EXACT(h[i], h2[i]); ASSERT_EXACT(sig[i], sig2[i]); ASSERT_EXACT(o1[i], o2[i]); }
+            for (int i = 0; i < M * N; i++) {
+                ASSERT_EXACT(h[i], h2[i]);
+                ASSERT_EXACT(sig[i], sig2[i]);
+                ASSERT_EXACT(o1[i], o2[i]);
+            }
         }
         gemm_set_isa(before);
     }
@@ -395,7 +407,8 @@ static void check_fused_attention(int B, int T, int C, int H, nn_attn_mode mode,
 {
     const size_t N = (size_t)B * T, C3 = 3 * (size_t)C, np = (size_t)B * H * T * T;
     float *in = malloc(sizeof(float) * N * C), *w = malloc(sizeof(float) * C3 * C), *b = malloc(sizeof(float) * C3);
-    float *wp = malloc(sizeof(float) * C * C), *dout = malloc(sizeof(float) * N * C), *wt = malloc(sizeof(float) * C3 * C);
+    float *wp = malloc(sizeof(float) * C * C), *dout = malloc(sizeof(float) * N * C),
+          *wt = malloc(sizeof(float) * C3 * C);
     float *scr = malloc(sizeof(float) * nn_attention_scratch_len(T, C, H));
     float *q1 = malloc(sizeof(float) * N * C3), *q2 = malloc(sizeof(float) * N * C3);
     float *o1 = malloc(sizeof(float) * N * C), *o2 = malloc(sizeof(float) * N * C);
@@ -423,9 +436,21 @@ static void check_fused_attention(int B, int T, int C, int H, nn_attn_mode mode,
     free(dw1); free(dw2); free(db1); free(db2);
 }
 
-static void test_fused_attention_odd_patch_matches_unfused(void **s) { (void)s; check_fused_attention(3, 5, 12, 3, NN_ATTN_JOINT, 51); }
-static void test_fused_attention_reference_patch_matches_unfused(void **s) { (void)s; check_fused_attention(2, 24, 64, 4, NN_ATTN_JOINT, 53); }
-static void test_fused_attention_self_mode_matches_unfused(void **s) { (void)s; check_fused_attention(3, 5, 12, 3, NN_ATTN_SELF, 57); }
+static void test_fused_attention_odd_patch_matches_unfused(void **s)
+{
+    (void)s;
+    check_fused_attention(3, 5, 12, 3, NN_ATTN_JOINT, 51);
+}
+static void test_fused_attention_reference_patch_matches_unfused(void **s)
+{
+    (void)s;
+    check_fused_attention(2, 24, 64, 4, NN_ATTN_JOINT, 53);
+}
+static void test_fused_attention_self_mode_matches_unfused(void **s)
+{
+    (void)s;
+    check_fused_attention(3, 5, 12, 3, NN_ATTN_SELF, 57);
+}
 
 /* ---- residual ---------------------------------------------------------------------- */
 static void test_residual_forward_and_backward(void **s)
@@ -473,7 +498,11 @@ static void check_attention(int B, int T, int C, int H, nn_attn_mode mode, unsig
 
 static void test_attention_joint_odd_sizes(void **s) { (void)s; check_attention(2, 5, 12, 2, NN_ATTN_JOINT, 5); }
 static void test_attention_joint_patch_of_24(void **s) { (void)s; check_attention(1, 24, 16, 2, NN_ATTN_JOINT, 6); }
-static void test_attention_joint_reference_head_width(void **s) { (void)s; check_attention(2, 24, 32, 2, NN_ATTN_JOINT, 9); }
+static void test_attention_joint_reference_head_width(void **s)
+{
+    (void)s;
+    check_attention(2, 24, 32, 2, NN_ATTN_JOINT, 9);
+}
 static void test_attention_self_gradients(void **s) { (void)s; check_attention(2, 5, 12, 3, NN_ATTN_SELF, 7); }
 
 static void test_attention_self_ignores_other_tokens(void **s)

@@ -72,7 +72,8 @@ static void test_range_ends_are_accepted(void **s)
 static void test_unknown_option_and_missing_value(void **s)
 {
     (void)s;
-    char *unknown[] = {"toy", "--stand-count", "3", "u"}, *missing[] = {"toy", "u", "--out"}, *shortopt[] = {"toy", "-x", "u"};
+    char *unknown[] = {"toy", "--stand-count", "3", "u"}, *missing[] = {"toy", "u", "--out"},
+         *shortopt[] = {"toy", "-x", "u"};
     char *pos[4];
     assert_int_equal(parse(4, unknown, pos, NULL), OPTS_USAGE);
     assert_int_equal(parse(3, missing, pos, NULL), OPTS_USAGE);

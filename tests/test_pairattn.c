@@ -263,10 +263,14 @@ static void check_paths(nn_attn_mode mode)
     pa_make(&b, 3, 24, 64, 4, 31);
     run_path(GEMM_SCALAR, &a, mode);
     for (int isa = GEMM_AVX2; isa <= GEMM_AVX512; isa++) {
-        if (!gemm_isa_available((gemm_isa)isa)) { print_message("gemm path %d not on this CPU: skipped\n", isa); continue; }
+        if (!gemm_isa_available((gemm_isa)isa)) {
+            print_message("gemm path %d not on this CPU: skipped\n", isa);
+            continue;
+        }
         run_path((gemm_isa)isa, &b, mode);
         same_bits(b.out, a.out, a.no, "pair forward across gemm paths");
-        if (mode == NN_ATTN_JOINT) same_bits(b.prob, a.prob, (size_t)3 * 4 * 24 * 24, "pair probabilities across gemm paths");
+        if (mode == NN_ATTN_JOINT)
+            same_bits(b.prob, a.prob, (size_t)3 * 4 * 24 * 24, "pair probabilities across gemm paths");
         same_bits(b.Phi, a.Phi, (size_t)3 * 4 * 24 * Q, "pair mixes across gemm paths");
         same_bits(b.dqkv, a.dqkv, a.nq, "pair d/dqkv across gemm paths");
         same_bits(b.dwb, a.dwb, (size_t)4 * Q, "pair d/dwb across gemm paths");
@@ -284,7 +288,8 @@ static void check_fused(int B, int T, int C, int H, nn_attn_mode mode, unsigned 
     pa_make(&f, B, T, C, H, seed);
     const int N = B * T, C3 = 3 * C;
     float *in = malloc(sizeof(float) * N * C), *w = malloc(sizeof(float) * C3 * C), *bias = malloc(sizeof(float) * C3);
-    float *wt = malloc(sizeof(float) * C3 * C), *pw = malloc(sizeof(float) * C * C), *dy = malloc(sizeof(float) * N * C);
+    float *wt = malloc(sizeof(float) * C3 * C), *pw = malloc(sizeof(float) * C * C),
+          *dy = malloc(sizeof(float) * N * C);
     float *q1 = malloc(sizeof(float) * N * C3), *q2 = malloc(sizeof(float) * N * C3);
     float *o1 = malloc(sizeof(float) * N * C), *o2 = malloc(sizeof(float) * N * C);
     float *p1 = malloc(sizeof(float) * B * H * T * T), *p2 = malloc(sizeof(float) * B * H * T * T);
@@ -308,7 +313,8 @@ static void check_fused(int B, int T, int C, int H, nn_attn_mode mode, unsigned 
         for (int r = 0; r < N; r++) {
             same_bits(q1 + (size_t)r * C3 + 2 * C, q2 + (size_t)r * C3 + 2 * C, C, "fused qkv (v)");
             for (int j = 0; j < 2 * C; j++)
-                if (q1[(size_t)r * C3 + j] != 1234.5f) fail_msg("fused qkv row %d column %d (q or k) was written", r, j);
+                if (q1[(size_t)r * C3 + j] != 1234.5f)
+                    fail_msg("fused qkv row %d column %d (q or k) was written", r, j);
         }
     same_bits(o1, o2, (size_t)N * C, "fused pair attention out");
     same_bits(F1, F2, (size_t)B * H * T * Q, "fused pair mixes");

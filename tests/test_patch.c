@@ -193,8 +193,10 @@ static void test_check_passes_against_reference_and_focal_clearances_agree(void 
     assert_int_equal(patch_focal_clearances(ps->px, ps->py, r, ps->n, 3, g), CS_OK);
     for (int k = 0; k < ps->n; k++)
         for (int j = 1; j <= 3; j++)
-            ASSERT_NEAR(g[k * 3 + j - 1], ref_clear(ps->px[k * 24], ps->py[k * 24], r + k * 576,
-                                                    ps->px[k * 24 + j], ps->py[k * 24 + j], r + (k * 24 + j) * 24), 1e-9);
+            ASSERT_NEAR(g[k * 3 + j - 1],
+                        ref_clear(ps->px[k * 24], ps->py[k * 24], r + k * 576, ps->px[k * 24 + j], ps->py[k * 24 + j],
+                                  r + (k * 24 + j) * 24),
+                        1e-9);
     free(r);
     patch_set_free(ps);
 }

@@ -31,17 +31,20 @@ static void write_unit(const char *dir, int seed, int indep)
     char p[1400], buf[4096];
     static const char *probe[3] = {"generated", "shuffled", "rotated"};
     snprintf(p, sizeof p, "%s/run_s%02d_%s.tsv", dir, seed, indep ? "indep" : "joint");
-    size_t o = (size_t)snprintf(buf, sizeof buf, "# model: T 24 P 24 width 64 blocks 3 heads 4 mlp 256 joint %d pair 0 params 159000 reading paper\n"
-                                "# train_time: train_s 1900 steps_per_s %g (this invocation)\nseed\tarm\tspacing\tsplit\tprobe\tw1\tn_gen\tn_teacher\n",
-                                !indep, 7.0 + seed + 0.5 * indep);
+    size_t o = (size_t)snprintf(
+        buf, sizeof buf,
+        "# model: T 24 P 24 width 64 blocks 3 heads 4 mlp 256 joint %d pair 0 params 159000 reading paper\n"
+        "# train_time: train_s 1900 steps_per_s %g (this "
+        "invocation)\nseed\tarm\tspacing\tsplit\tprobe\tw1\tn_gen\tn_teacher\n",
+        !indep, 7.0 + seed + 0.5 * indep);
     for (int k = 0; k < 3; k++)
         for (int q = 0; q < 3; q++)
-            o += (size_t)snprintf(buf + o, sizeof buf - o, "%d\t%s\t%d\tunseen\t%s\t%.17g\t1536\t6145\n", seed, indep ? "indep" : "joint", 4 + k, probe[q],
-                                  w1_of(seed, indep, q, 4 + k));
+            o += (size_t)snprintf(buf + o, sizeof buf - o, "%d\t%s\t%d\tunseen\t%s\t%.17g\t1536\t6145\n", seed,
+                                  indep ? "indep" : "joint", 4 + k, probe[q], w1_of(seed, indep, q, 4 + k));
     const double ex[2] = {3.0, 7.5};
     for (int k = 0; k < 2; k++)
-        o += (size_t)snprintf(buf + o, sizeof buf - o, "%d\t%s\t%g\textrap\tgenerated\t%.17g\t1536\t6128\n", seed, indep ? "indep" : "joint", ex[k],
-                              w1_of(seed, indep, 0, ex[k]) * (k ? 1.3 : 0.8));
+        o += (size_t)snprintf(buf + o, sizeof buf - o, "%d\t%s\t%g\textrap\tgenerated\t%.17g\t1536\t6128\n", seed,
+                              indep ? "indep" : "joint", ex[k], w1_of(seed, indep, 0, ex[k]) * (k ? 1.3 : 0.8));
     tu_write(p, buf);
 }
 
@@ -57,7 +60,8 @@ static const char *fixture(const char *name, int nseeds)
     for (int s = 1; s <= nseeds; s++) { write_unit(dir, s, 0); write_unit(dir, s, 1); }
     char p[1400];
     snprintf(p, sizeof p, "%s/baselines.tsv", dir);
-    tu_write(p, "spacing\tsplit\tdirection_blind_w1\tnoise_floor_w1\tteacher_shuffled_w1\tteacher_rotated_w1\tn_teacher\tn_half\n"
+    tu_write(p, "spacing\tsplit\tdirection_blind_w1\tnoise_floor_w1\tteacher_shuffled_w1\tteacher_rotated_w1\tn_"
+                "teacher\tn_half\n"
                 "4\tunseen\t0.6\t0.002\t0.36\t0.81\t6145\t3069\n5\tunseen\t0.8\t0.0017\t0.42\t1.04\t6155\t3071\n"
                 "6\tunseen\t0.95\t0.0018\t0.48\t1.21\t6137\t3069\n3\textrap\t0.47\t0.001\t0.29\t0.61\t6128\t3056\n"
                 "7.5\textrap\t0.86\t0.005\t0.6\t1.03\t6127\t3068\n");
@@ -66,7 +70,8 @@ static const char *fixture(const char *name, int nseeds)
 
 /* A fixture row computes what the registry's row of that claim computes:
  * its params (none for a name the registry lacks). */
-static void row_of(claim_row *r, const char *macro, const char *source, const char *fn, const char *gate, const char *fmt)
+static void row_of(claim_row *r, const char *macro, const char *source, const char *fn, const char *gate,
+                   const char *fmt)
 {
     static claims reg;
     if (!reg.n && claims_load(PATHS_CLAIMS, &reg)) fail_msg("%s", cs_errmsg());
@@ -84,7 +89,8 @@ static void row_of(claim_row *r, const char *macro, const char *source, const ch
 static claim_result eval(const char *macro, const char *source, const char *fn, const char *gate)
 {
     claim_row r;
-    row_of(&r, macro, source, fn, gate, strstr(macro, "Seeds") ? "text" : "%.6f"); /* as the registry: a count is text */
+    row_of(&r, macro, source, fn, gate,
+           strstr(macro, "Seeds") ? "text" : "%.6f"); /* as the registry: a count is text */
     claim_result res;
     claims_eval(&r, &res);
     return res;
@@ -235,9 +241,11 @@ static void unit_set_equals_main_summary(void **st)
         claim_interval iu, is;
         cs_status su = interval_eval(&it, &ru, &u, &iu), ss = interval_eval(&it, &rs, &s, &is);
         if (su || ss) fail_msg("%s: interval: %s", k[q].m, cs_errmsg());
-        if (!iu.has || !is.has || iu.n != 12) fail_msg("%s: interval has %d/%d over %zu seeds: %s", k[q].m, iu.has, is.has, iu.n, iu.why);
+        if (!iu.has || !is.has || iu.n != 12)
+            fail_msg("%s: interval has %d/%d over %zu seeds: %s", k[q].m, iu.has, is.has, iu.n, iu.why);
         if (iu.lo != is.lo || iu.hi != is.hi)
-            fail_msg("%s: interval from the units [%.17g, %.17g], from main-summary [%.17g, %.17g]", k[q].m, iu.lo, iu.hi, is.lo, is.hi);
+            fail_msg("%s: interval from the units [%.17g, %.17g], from main-summary [%.17g, %.17g]", k[q].m, iu.lo,
+                     iu.hi, is.lo, is.hi);
     }
     interval_table_free(&it);
 }
@@ -273,12 +281,14 @@ static void extension_map_judges_extension_rows_only(void **st)
     assert_int_equal(claims_apply_gate_maps(&c, PATHS_GATE_MAP, bad), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), "extension claims only"));
     snprintf(bad, sizeof bad, "%s/main.tsv", dir);
-    snprintf(cmd, sizeof cmd, "cp %s %s && printf 'PairMainP\\tmain.gate:wilcoxon_p_max\\n' >> %s", PATHS_GATE_MAP, bad, bad);
+    snprintf(cmd, sizeof cmd, "cp %s %s && printf 'PairMainP\\tmain.gate:wilcoxon_p_max\\n' >> %s", PATHS_GATE_MAP, bad,
+             bad);
     assert_int_equal(system(cmd), 0);
     assert_int_equal(claims_apply_gate_maps(&c, bad, PATHS_GATE_MAP_EXT), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), PATHS_GATE_MAP_EXT));
     snprintf(bad, sizeof bad, "%s/main_variant.tsv", dir);
-    snprintf(cmd, sizeof cmd, "cp %s %s && printf 'MoreEpochsMainP\\tmain.gate:wilcoxon_p_max\\n' >> %s", PATHS_GATE_MAP, bad, bad);
+    snprintf(cmd, sizeof cmd, "cp %s %s && printf 'MoreEpochsMainP\\tmain.gate:wilcoxon_p_max\\n' >> %s",
+             PATHS_GATE_MAP, bad, bad);
     assert_int_equal(system(cmd), 0);
     assert_int_equal(claims_apply_gate_maps(&c, bad, PATHS_GATE_MAP_EXT), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), PATHS_GATE_MAP_EXT));
@@ -291,7 +301,8 @@ static void comparison_medians_and_ranges(void **st)
     const char *dir = tu_tmpdir("reading_claims_comp");
     char p[700];
     snprintf(p, sizeof p, "%s/dist_summary.tsv", dir);
-    tu_write(p, "probe\tsource\tpatches\tmedian_nn_q05\tmedian_nn_q50\tmedian_nn_q95\toverlapping_q05\toverlapping_q50\toverlapping_q95\tno_overlap_fraction\n"
+    tu_write(p, "probe\tsource\tpatches\tmedian_nn_q05\tmedian_nn_q50\tmedian_nn_q95\toverlapping_q05\toverlapping_"
+                "q50\toverlapping_q95\tno_overlap_fraction\n"
                 "comparison\tteacher\t256\t0.28\t0.30\t0.32\t0\t0\t0\t1\n"
                 "comparison\tjoint\t256\t0.23\t0.28\t0.33\t0\t2\t4\t0.46875\n"
                 "comparison\tindep\t256\t-0.4\t-0.12\t0.14\t14\t20\t23\t0\n"
@@ -337,7 +348,8 @@ static const char *choice_dir(const char *dir)
 {
     static char choice[900];
     char cmd[1000];
-    snprintf(choice, sizeof choice, "%.*s/generator-sensitivity/stands-x4/main", (int)(strlen(dir) - strlen("/paper-reading/main")), dir);
+    snprintf(choice, sizeof choice, "%.*s/generator-sensitivity/stands-x4/main",
+             (int)(strlen(dir) - strlen("/paper-reading/main")), dir);
     snprintf(cmd, sizeof cmd, "mkdir -p '%s'", choice);
     assert_int_equal(system(cmd), 0);
     return choice;
@@ -387,7 +399,8 @@ static void training_choice_over_the_blind_level(void **st)
     assert_int_equal(r.status, VERDICT_PENDING);
     write_unit(choice, 4, 1);
     const double blind = (0.6 + 0.8 + 0.95) / 3;
-    const double want[2] = {(err_of(2, 0, 0) + err_of(3, 0, 0)) / 2 / blind, (err_of(2, 1, 0) + err_of(3, 1, 0)) / 2 / blind};
+    const double want[2] = {(err_of(2, 0, 0) + err_of(3, 0, 0)) / 2 / blind,
+                            (err_of(2, 1, 0) + err_of(3, 1, 0)) / 2 / blind};
     static const char *fn[2] = {"claim_gensens_joint_blind", "claim_gensens_indep_blind"};
     for (int a = 0; a < 2; a++) {
         r = eval(a ? "GenStandsIndepBlind" : "GenStandsJointBlind", src, fn[a], "-");
@@ -425,12 +438,14 @@ static void seeds_come_from_the_row_not_the_path(void **st)
     assert_int_equal(r.status, VERDICT_PASS);
     if (r.value != twelve) fail_msg("no seeds (the gate's twelve): observed %.17g, expected %.17g", r.value, twelve);
     /* the choice's direction-blind precondition, judged on the ratio itself at twelve seeds */
-    row_of(&row, "MoreStandsMainIso", src, "claim_gensens_joint_blind", "main.gate:joint_over_direction_blind_max", "%.6f");
+    row_of(&row, "MoreStandsMainIso", src, "claim_gensens_joint_blind", "main.gate:joint_over_direction_blind_max",
+           "%.6f");
     snprintf(row.kind, sizeof row.kind, "variant");
     claims_eval(&row, &r);
     assert_int_equal(r.status, VERDICT_PASS);
     const double blind = (0.6 + 0.8 + 0.95) / 3;
-    if (r.value != twelve / blind) fail_msg("MoreStandsMainIso: observed %.17g, expected %.17g", r.value, twelve / blind);
+    if (r.value != twelve / blind)
+        fail_msg("MoreStandsMainIso: observed %.17g, expected %.17g", r.value, twelve / blind);
     assert_int_equal(r.gate, VERDICT_FAIL); /* about 0.42 over 0.78 > 0.5 */
     if (r.gate_observed != twelve / blind) fail_msg("judged %.17g, expected %.17g", r.gate_observed, twelve / blind);
     /* its extrapolation gate reads the paper reading's baselines too (the same stands), never pending */
@@ -484,7 +499,8 @@ static void perfect_generator_levels(void **st)
         if (r.value != c[i].want) fail_msg("%s: observed %.17g, expected %.17g", c[i].fn, r.value, c[i].want);
     }
     /* a level that is not positive is refused, naming the line */
-    tu_write(src, "quantity\tchoice\tx\tvalue\tpaper\trel_diff\tsource\nMainShufTeach\tcentre\tnan\tnan\tnan\tnan\tc\n");
+    tu_write(src,
+             "quantity\tchoice\tx\tvalue\tpaper\trel_diff\tsource\nMainShufTeach\tcentre\tnan\tnan\tnan\tnan\tc\n");
     claim_result r = eval("PerfectX", src, "claim_perfect_shuf_hi", "-");
     assert_int_equal(r.status, VERDICT_FAIL);
     assert_non_null(strstr(r.why, "summary.tsv:2"));
@@ -523,7 +539,8 @@ static void generator_probe_ratios(void **st)
     assert_int_equal(r.status, VERDICT_FAIL);
     assert_non_null(strstr(r.why, "no rows of the nnswap probe"));
     snprintf(p, sizeof p, "%s/probes.tsv", dir);
-    tu_write(p, "spacing\tprobe\tw1\tn_gen\tn_teacher\n4\trot90\t0.3\t1000\t1000\n5\trot90\t0.4\t1000\t1000\n6\trot90\t0.5\t1000\t1000\n");
+    tu_write(p, "spacing\tprobe\tw1\tn_gen\tn_teacher\n4\trot90\t0.3\t1000\t1000\n5\trot90\t0."
+                "4\t1000\t1000\n6\trot90\t0.5\t1000\t1000\n");
     r = eval("ProbeTeacherRotNinety", p, "claim_probe_teacher_rot90", "-");
     assert_int_equal(r.status, VERDICT_PASS);
     ASSERT_NEAR(r.value, 0.4, 1e-15);

@@ -144,7 +144,8 @@ static void test_reading_switches_parse_strictly(void **s)
             exp_reading v;
             assert_int_equal(exp_reading_parse(NULL, NULL, &v), CS_OK);
             assert_int_equal(exp_reading_vary(spec, &v), CS_OK);
-            if (strcmp(uc[i].name, "dieback")) assert_true(k < uc[i].nvalues / 2 ? uc[i].values[k] < uc[i].ours : uc[i].values[k] > uc[i].ours);
+            if (strcmp(uc[i].name, "dieback"))
+                assert_true(k < uc[i].nvalues / 2 ? uc[i].values[k] < uc[i].ours : uc[i].values[k] > uc[i].ours);
         }
     assert_int_equal(exp_reading_parse("teacher-2-arc", NULL, &r), CS_OK);
     assert_int_equal(r.dieback, TEACHER_DIEBACK_NEIGHBOURS);

@@ -42,7 +42,8 @@ static void test_listed_names_pass(void **state)
 {
     (void)state;
     char msg[4096];
-    size_t bad = scan("(E3), W1; AVX-512, AVX2 and SHA-256: \xe2\x80\x9cteacher-2\xe2\x80\x9d. Wasserstein-1.\n", msg, sizeof msg);
+    size_t bad = scan("(E3), W1; AVX-512, AVX2 and SHA-256: \xe2\x80\x9cteacher-2\xe2\x80\x9d. Wasserstein-1.\n", msg,
+                      sizeof msg);
     if (bad != 0) fail_msg("observed %zu finding(s), expected 0: %s", bad, msg);
 }
 
@@ -59,7 +60,8 @@ static void test_verdict_words_any_case(void **state)
     (void)state;
     char msg[4096];
     size_t bad = scan("The gate: PASS. Another: fail, a third (Pending) and NOTREP.\n", msg, sizeof msg);
-    if (bad != 4 || !strstr(msg, "the verdict word 'PASS'") || !strstr(msg, "'Pending'")) fail_msg("observed %zu finding(s), expected 4: %s", bad, msg);
+    if (bad != 4 || !strstr(msg, "the verdict word 'PASS'") || !strstr(msg, "'Pending'"))
+        fail_msg("observed %zu finding(s), expected 4: %s", bad, msg);
 }
 
 static void test_prose_words_pass(void **state)

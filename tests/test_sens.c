@@ -48,8 +48,9 @@ static void test_summary_recomputes_from_the_unit_tables(void **s)
 static void test_centre_equals_the_full_run_where_counts_agree(void **s)
 {
     (void)s;
-    static const char *same[] = {"MechOn", "MechCoupOff", "MechCoverOn", "CalibDieback", "Elong", "AnisoLattice",
-                                 "JitterStar", "JitterAniso", "HardcoreOvershoot", "PcCoupled", "PcContacted", "MainIso", "MainNoise"};
+    static const char *same[] = {"MechOn",       "MechCoupOff", "MechCoverOn", "CalibDieback",      "Elong",
+                                 "AnisoLattice", "JitterStar",  "JitterAniso", "HardcoreOvershoot", "PcCoupled",
+                                 "PcContacted",  "MainIso",     "MainNoise"};
     size_t n = sens_count();
     sens_row *rows = calloc(n, sizeof *rows);
     assert_int_equal(sens_compute(&g_c, PATHS_SENS_DIR, rows), CS_OK);
@@ -64,7 +65,8 @@ static void test_centre_equals_the_full_run_where_counts_agree(void **s)
         int found = 0;
         for (size_t i = 0; i < n; i++)
             if (!strcmp(rows[i].quantity, same[k]) && !strcmp(rows[i].choice, UNSTATED_CENTRE)) {
-                if (rows[i].value != r.value) printf("%s: centre %.17g, frozen claim %.17g\n", same[k], rows[i].value, r.value);
+                if (rows[i].value != r.value)
+                    printf("%s: centre %.17g, frozen claim %.17g\n", same[k], rows[i].value, r.value);
                 ASSERT_EXACT(rows[i].value, r.value);
                 found = 1;
             }

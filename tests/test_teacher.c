@@ -105,7 +105,8 @@ static void test_no_overlap_at_every_spacing_and_dieback(void **st)
             /* 8 d footprints (~64 trees) keep the test fast; hard-core on odd cells. */
             const stems_type *kind = ((a + b) & 1) ? stems_hardcore : stems_lattice;
             double shape = kind == stems_hardcore ? 0.5 : 0.04;
-            assert_int_equal(stand_alloc(&sd, kind, spacings[a], 8.0 * spacings[a], shape, "test/overlap", (unsigned)b), CS_OK);
+            assert_int_equal(stand_alloc(&sd, kind, spacings[a], 8.0 * spacings[a], shape, "test/overlap", (unsigned)b),
+                             CS_OK);
             teacher_stand v;
             stand_view(sd, &v);
             double *r = malloc(v.n * CROWN_NSEC * sizeof *r);
@@ -519,7 +520,8 @@ static void test_dieback_readings_never_overlap_on_full_stands(void **st)
                 p.dieback = rules[a];
                 p.beta = betas[b];
                 teacher_info inf;
-                if (teacher_grow(&v, &p, r, &inf)) fail_msg("%s beta=%g: %s", teacher_version(&p), betas[b], cs_errmsg());
+                if (teacher_grow(&v, &p, r, &inf))
+                    fail_msg("%s beta=%g: %s", teacher_version(&p), betas[b], cs_errmsg());
                 if (!(inf.frozen > 0)) fail_msg("%s: no contact at all", teacher_version(&p));
                 ASSERT_EXACT(inf.worst_overlap, 0.0);
                 free(r);
@@ -540,7 +542,8 @@ static void test_mutual_abrasion_never_overlaps_on_full_stands(void **st)
                 stand *sd = NULL;
                 const stems_type *sk = kind ? stems_hardcore : stems_lattice;
                 double shape = kind ? 0.5 : 0.04;
-                assert_int_equal(stand_alloc(&sd, sk, spacings[a], 12.0 * spacings[a], shape, "test/mutual", (unsigned)b), CS_OK);
+                assert_int_equal(
+                    stand_alloc(&sd, sk, spacings[a], 12.0 * spacings[a], shape, "test/mutual", (unsigned)b), CS_OK);
                 teacher_stand v;
                 stand_view(sd, &v);
                 double *r = malloc(v.n * CROWN_NSEC * sizeof *r);
@@ -549,12 +552,14 @@ static void test_mutual_abrasion_never_overlaps_on_full_stands(void **st)
                 p.beta = betas[b];
                 teacher_info inf;
                 cs_status rc = teacher_grow(&v, &p, r, &inf);
-                if (rc) fail_msg("%s d=%g beta=%g: %s", kind ? "hardcore" : "lattice", spacings[a], betas[b], cs_errmsg());
+                if (rc)
+                    fail_msg("%s d=%g beta=%g: %s", kind ? "hardcore" : "lattice", spacings[a], betas[b], cs_errmsg());
                 if (inf.worst_overlap > worst) worst = inf.worst_overlap;
                 if (!(inf.frozen > 0)) fail_msg("d=%g beta=%g: no contact at all", spacings[a], betas[b]);
                 for (size_t i = 0; i < v.n; i++)
                     for (size_t j = i + 1; j < v.n; j++) {
-                        double g = est_clearance(v.x[i], v.y[i], r + i * CROWN_NSEC, v.x[j], v.y[j], r + j * CROWN_NSEC);
+                        double g =
+                            est_clearance(v.x[i], v.y[i], r + i * CROWN_NSEC, v.x[j], v.y[j], r + j * CROWN_NSEC);
                         if (g < -1e-9) fail_msg("d=%g beta=%g pair %zu,%zu g=%.17g", spacings[a], betas[b], i, j, g);
                     }
                 stands++;

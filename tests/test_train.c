@@ -43,7 +43,8 @@ static patch_set *toy_set(int n, int mode, unsigned long seed)
             f[1] = (float)gsl_ran_gaussian(g, 1.0);
             f[2] = mode ? a[i] : 0.5f;
             for (int j = 0; j < PATCH_P; j++)
-                s->x1[((size_t)k * PATCH_T + i) * PATCH_P + j] = sign * (float)(sqrt(2.0) * cos(2 * M_PI * j / PATCH_P));
+                s->x1[((size_t)k * PATCH_T + i) * PATCH_P + j] =
+                    sign * (float)(sqrt(2.0) * cos(2 * M_PI * j / PATCH_P));
         }
         for (int c = 0; c < PATCH_NCOND; c++) s->cond[k * PATCH_NCOND + c] = 0.2f * c;
     }
@@ -96,7 +97,8 @@ static void adamw_check(void)
     const double lr = 3e-3;
     adamw_update(p, g, m, v, n, nd, t, lr, &hp);
     const float b1 = (float)hp.beta1, b2 = (float)hp.beta2, c1 = 1.f - b1, c2 = 1.f - b2;
-    const float a = (float)(lr / (1.0 - pow(hp.beta1, (double)t))), cv = (float)(1.0 / (1.0 - pow(hp.beta2, (double)t)));
+    const float a = (float)(lr / (1.0 - pow(hp.beta1, (double)t))),
+                cv = (float)(1.0 / (1.0 - pow(hp.beta2, (double)t)));
     const float eps = (float)hp.eps;
     for (int i = 0; i < n; i++) {
         float keep = i < nd ? (float)(1.0 - lr * hp.wd) : 1.f;
@@ -240,7 +242,10 @@ static void check_gemm_paths(int pair)
     assert_int_equal(train_alloc(&ref, &c, d, &o), CS_OK);
     assert_int_equal(train_run(ref, 6, NULL, 0, NULL), CS_OK);
     for (int isa = GEMM_AVX2; isa <= GEMM_AVX512; isa++) {
-        if (!gemm_isa_available((gemm_isa)isa)) { print_message("gemm path %d not on this CPU: skipped\n", isa); continue; }
+        if (!gemm_isa_available((gemm_isa)isa)) {
+            print_message("gemm path %d not on this CPU: skipped\n", isa);
+            continue;
+        }
         gemm_set_isa((gemm_isa)isa);
         train *t;
         assert_int_equal(train_alloc(&t, &c, d, &o), CS_OK);
@@ -262,7 +267,9 @@ static void check_resume2(int joint, int pair)
     patch_set *d = toy_set(40, 1, 5); /* 40 patches, batch 16: epochs of 2 steps, cursor mid-epoch */
     model_cfg c = small_cfg2(joint, pair);
     train_opts o = small_opts(20);
-    const char *dir = tu_tmpdir(pair ? (joint ? "resume_pair_joint" : "resume_pair_indep") : joint ? "resume_joint" : "resume_indep");
+    const char *dir = tu_tmpdir(pair    ? (joint ? "resume_pair_joint" : "resume_pair_indep")
+                                : joint ? "resume_joint"
+                                        : "resume_indep");
     char path[600];
     snprintf(path, sizeof path, "%s/run.ckpt", dir);
     train *straight, *first, *second;
@@ -373,7 +380,9 @@ static void test_foreign_missing_and_mismatched_checkpoints_are_rejected(void **
     train *t, *u; patch_set *d;
     write_ckpt("ckpt_foreign", path, sizeof path, &t, &d);
     snprintf(other, sizeof other, "%s.txt", path);
-    tu_write(other, "this is not a checkpoint at all, just some text that is long enough to have a header..........................................................................................................................................\n");
+    tu_write(other, "this is not a checkpoint at all, just some text that is long enough to have a "
+                    "header............................................................................................"
+                    "..............................................\n");
     assert_int_equal(train_load(t, other), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), "magic"));
     snprintf(other, sizeof other, "%s.missing", path);

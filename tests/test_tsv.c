@@ -14,7 +14,8 @@ static const char *fixture(const char *name, const char *text)
 static void test_reads_meta_header_and_cells(void **s)
 {
     (void)s;
-    const char *p = fixture("tsv_read", "# experiment: mechanism\n# seeds: 1..8\nbeta\tspacing\tk1\n0.06\t3.5\t0.25\n0.09\t4.5\t-1e-3\n");
+    const char *p = fixture(
+        "tsv_read", "# experiment: mechanism\n# seeds: 1..8\nbeta\tspacing\tk1\n0.06\t3.5\t0.25\n0.09\t4.5\t-1e-3\n");
     tsv *t = NULL;
     assert_int_equal(tsv_read(p, &t), CS_OK);
     assert_string_equal(tsv_meta(t, "experiment"), "mechanism");

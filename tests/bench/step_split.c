@@ -163,8 +163,13 @@ void __wrap_gemm_fma_heads(int H, int M, int n, int K, const float *A, ptrdiff_t
 static void replay(const call_rec *r)
 {
     switch (r->kind) {
-    case 2: __real_gemm_fma_heads(r->H, r->M, r->n, r->K, r->A, r->ahs, r->ars, r->aks, r->B, r->ldb, r->C, r->ldc); break;
-    case 1: __real_gemm_fma_bias_epi(r->M, r->N, r->K, r->A, r->ars, r->aks, r->B, r->ldb, r->C, r->ldc, r->bias, NULL, NULL); break;
+    case 2:
+        __real_gemm_fma_heads(r->H, r->M, r->n, r->K, r->A, r->ahs, r->ars, r->aks, r->B, r->ldb, r->C, r->ldc);
+        break;
+    case 1:
+        __real_gemm_fma_bias_epi(r->M, r->N, r->K, r->A, r->ars, r->aks, r->B, r->ldb, r->C, r->ldc, r->bias, NULL,
+                                 NULL);
+        break;
     default: __real_gemm_fma(r->M, r->N, r->K, r->A, r->ars, r->aks, r->B, r->ldb, r->C, r->ldc, r->acc);
     }
 }
@@ -176,7 +181,8 @@ static const char *const s_name[S_NS] = {"step_ms", "products_in_step_ms", "prod
 /* One round: a fresh model, `steps` timed steps, then the last step's
  * products replayed. v[S_STEP..S_REST] (ms) for the round; returns 0, 1 on
  * failure, or 2 when every step tried was preempted (no figure). */
-static int round_run(const model_cfg *cfg, patch_set *ps, int steps, double v[S_NS], double *gflop_products, int *preempted, int *timed)
+static int round_run(const model_cfg *cfg, patch_set *ps, int steps, double v[S_NS], double *gflop_products,
+                     int *preempted, int *timed)
 {
     train_opts o = train_opts_default();
     o.batch = BATCH;
@@ -264,7 +270,8 @@ static int split_path(gemm_isa isa, patch_set *ps, int rounds, int steps)
             int rc = round_run(&cfg, ps, steps, r, &gp, &preempted, &timed);
             if (rc == 2) continue; /* a round the machine's load left without a figure */
             if (rc) {
-                fprintf(stderr, "step_split: a training step failed%s\n", overflow ? " (more gemm calls than recorded)" : "");
+                fprintf(stderr, "step_split: a training step failed%s\n",
+                        overflow ? " (more gemm calls than recorded)" : "");
                 return 1;
             }
             const int q = nr++;
@@ -275,9 +282,11 @@ static int split_path(gemm_isa isa, patch_set *ps, int rounds, int steps)
             v[S_BOUND][q] = model_fl / ((r[S_HOT] + r[S_REST]) * 1e-3) / pk[q];
             v[S_FRAC][q] = model_fl / (r[S_STEP] * 1e-3) / pk[q];
         }
-        printf("%s_steps_discarded\t%d\tof %d timed (preempted: wall time beyond the thread's CPU time by 5 %%)\n", model_name[mk], preempted, timed);
+        printf("%s_steps_discarded\t%d\tof %d timed (preempted: wall time beyond the thread's CPU time by 5 %%)\n",
+               model_name[mk], preempted, timed);
         if (!nr) {
-            printf("%s: every step of every round was preempted: no split on this path (run on a quieter machine)\n", model_name[mk]);
+            printf("%s: every step of every round was preempted: no split on this path (run on a quieter machine)\n",
+                   model_name[mk]);
             continue;
         }
         double lo, hi, pmed = median_of(pk, nr, &lo, &hi);
@@ -292,8 +301,10 @@ static int split_path(gemm_isa isa, patch_set *ps, int rounds, int steps)
             printf("\n");
         }
         const double allowed = model_fl / (SPEED_GOAL_TRAIN * pmed) * 1e3;
-        printf("%s_step_ms_at_goal\t%.3f\t(%.2f of the peak); with the products at their hot rate the rest may take %.3f ms, "
-               "it takes %.3f\n", model_name[mk], allowed, SPEED_GOAL_TRAIN, allowed - med[S_HOT], med[S_REST]);
+        printf("%s_step_ms_at_goal\t%.3f\t(%.2f of the peak); with the products at their hot rate the rest may take "
+               "%.3f ms, "
+               "it takes %.3f\n",
+               model_name[mk], allowed, SPEED_GOAL_TRAIN, allowed - med[S_HOT], med[S_REST]);
     }
     return 0;
 }
@@ -307,7 +318,8 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[k], "--steps") && k + 1 < argc) steps = atoi(argv[++k]);
         else if (!strcmp(argv[k], "--path") && k + 1 < argc) path = argv[++k];
         else {
-            fprintf(stderr, "usage: step_split [--rounds 1..%d] [--steps N] [--path all|avx512|avx2|scalar]\n", MAX_ROUNDS);
+            fprintf(stderr, "usage: step_split [--rounds 1..%d] [--steps N] [--path all|avx512|avx2|scalar]\n",
+                    MAX_ROUNDS);
             return 2;
         }
     }
