@@ -14,43 +14,40 @@
 #include <stdio.h>
 #include <string.h>
 
-/* Reference quantity of each field macro, and the gate value it must equal
- * (file, key, index) when a gate also states it. */
-static const struct { const char *macro, *quantity, *gate_file, *gate_key; int idx; } field_refs[] = {
-    {"FieldTrees", "trees", NULL, NULL, 0},
-    {"FieldMeas", "measurements", NULL, NULL, 0},
-    {"ElongLo", "elong_band_lo", "field.gate", "elongation_band", 0},
-    {"ElongHi", "elong_band_hi", "field.gate", "elongation_band", 1},
-    {"AnisoBandLo", "aniso_band_lo", "anisotropy.gate", "field_band", 0},
-    {"AnisoBandHi", "aniso_band_hi", "anisotropy.gate", "field_band", 1},
-    {"AnisoFieldMed", "aniso_median", "anisotropy.gate", "field_median", 0},
+/* The gate value a reference quantity must equal (file, key, index) when a
+ * gate also states it; the quantity itself is the row's `quantity` param. */
+static const struct { const char *quantity, *gate_file, *gate_key; int idx; } field_gated[] = {
+    {"elong_band_lo", "field.gate", "elongation_band", 0},
+    {"elong_band_hi", "field.gate", "elongation_band", 1},
+    {"aniso_band_lo", "anisotropy.gate", "field_band", 0},
+    {"aniso_band_hi", "anisotropy.gate", "field_band", 1},
+    {"aniso_median", "anisotropy.gate", "field_median", 0},
 };
 
 cs_status claim_field_reference(const claim_row *row, claim_result *res)
 {
-    for (size_t i = 0; i < sizeof field_refs / sizeof field_refs[0]; i++) {
-        if (strcmp(field_refs[i].macro, row->macro)) continue;
-        double v;
-        int line = 0;
-        cs_status st = field_reference_get(row->source, field_refs[i].quantity, &v, &line);
+    cs_status st = claim_param_need(row, PARAM_QUANTITY);
+    if (st) return st;
+    const char *quantity = row->param.quantity;
+    double v;
+    int line = 0;
+    if ((st = field_reference_get(row->source, quantity, &v, &line))) return st;
+    for (size_t i = 0; i < sizeof field_gated / sizeof field_gated[0]; i++) {
+        if (strcmp(field_gated[i].quantity, quantity)) continue;
+        gate *g;
+        double gv;
+        if ((st = claim_gate_load(field_gated[i].gate_file, &g))) return st;
+        st = gate_value(g, field_gated[i].gate_key, (size_t)field_gated[i].idx, &gv);
+        gate_free(g);
         if (st) return st;
-        if (field_refs[i].gate_file) {
-            gate *g;
-            double gv;
-            if ((st = claim_gate_load(field_refs[i].gate_file, &g))) return st;
-            st = gate_value(g, field_refs[i].gate_key, (size_t)field_refs[i].idx, &gv);
-            gate_free(g);
-            if (st) return st;
-            if (gv != v)
-                return cs_err(CS_EINPUT, "%s:%d: field 'value': %s = %.17g but gates/%s %s states %.17g", row->source,
-                              line, field_refs[i].quantity, v, field_refs[i].gate_file, field_refs[i].gate_key, gv);
-        }
-        snprintf(res->where, sizeof res->where, "%s:%d (%s; published figure, not measured here)", row->source, line,
-                 field_refs[i].quantity);
-        claim_set_value(row, res, v);
-        return CS_OK;
+        if (gv != v)
+            return cs_err(CS_EINPUT, "%s:%d: field 'value': %s = %.17g but gates/%s %s states %.17g", row->source,
+                          line, quantity, v, field_gated[i].gate_file, field_gated[i].gate_key, gv);
     }
-    return cs_err(CS_EINPUT, "claim_field_reference: no reference quantity for macro %s", row->macro);
+    snprintf(res->where, sizeof res->where, "%s:%d (%s; published figure, not measured here)", row->source, line,
+             quantity);
+    claim_set_value(row, res, v);
+    return CS_OK;
 }
 
 cs_status claim_field_calib_dieback(const claim_row *row, claim_result *res)
