@@ -4,7 +4,7 @@
 # manifest, a comment naming a path or design.md section that is gone, a claim
 # chosen by how its macro is spelt.
 # The layout of src/: the pipeline is visible in its folders and
-# imports only point down it. Checks, from the sources alone:
+# imports only point down it. Checks, from the sources (3b: their objects):
 #  1. no source file over 600 lines;
 #  2. the module import graph has no cycle (a module is a basename: x.c +
 #     x.h; an edge is an #include "y.h" or "y.inc"), and the include depth
@@ -16,6 +16,8 @@
 #     each other, an experiment file imports no other experiment file (only
 #     exp_common), and nothing the claims, their intervals and agreement or
 #     the audit reach (transitively) is the teacher or the model stage;
+# 3b. the same direction and reach for the calls between the objects of
+#     build/obj/ (nm: a symbol one needs and another defines);
 #  4. the experiment manifest src/base/manifest.h is the one list of
 #     experiments: the files its rows name exist, every frozen/ folder has a
 #     row, every command is named <experiment>-... (or after the
@@ -119,6 +121,33 @@ reach=$(awk -v stages="$(for m in "${!STAGE[@]}"; do echo -n "$m=${STAGE[$m]} ";
   }' <<<"$edges" | sort | tr '\n' ' ')
 if [ -z "$reach" ]; then ok "the claims, the agreement and the audit reach neither the teacher nor the model"
 else bad "the claims, the agreement and the audit reach neither the teacher nor the model" "reached: $reach"; fi
+
+# 3b. the same rules on the calls themselves, which no header can hide: an
+# edge is a symbol an object of build/obj/ needs that another object defines
+# (the 25 .c files that share their stage's header are seen like the rest).
+if ls build/obj/*/*.o > /dev/null 2>&1; then
+  calls=$(for o in build/obj/*/*.o; do
+    f=$(basename "$(dirname "$o")")/$(basename "$o" .o)
+    nm --defined-only -g "$o" | awk -v f="$f" '$2 ~ /[TDRBV]/ { print "D", f, $3 }'
+    nm -u "$o" | awk -v f="$f" '{ print "U", f, $2 }'
+  done | awk '$1 == "D" { def[$3] = $2; next } { use[++n] = $2 " " $3 }
+    END { for (i = 1; i <= n; i++) { split(use[i], u, " "); if ((u[2] in def) && def[u[2]] != u[1]) print u[1], def[u[2]] } }' | sort -u)
+  up=""
+  while read -r a b; do
+    [ -n "$a" ] || continue
+    sa=${a%%/*}; sb=${b%%/*}; ra=$(rank "$sa"); rb=$(rank "$sb")
+    if [ "$rb" -gt "$ra" ] || { [ "$rb" -eq "$ra" ] && [ "$sa" != "$sb" ]; }; then up="$up $a->$b"; fi
+    ma=${a#*/}; mb=${b#*/}
+    if [ "$sa" = exp ] && [[ "$ma" == exp_* ]] && [[ "$mb" == exp_* ]] && [ "$mb" != exp_common ]; then up="$up $a->$b(experiment->experiment)"; fi
+  done <<<"$calls"
+  reached=$(awk '{ dep[$1] = dep[$1] " " $2; split($1, a, "/"); if (a[1] == "claims" || a[1] == "agree" || a[1] == "audit") { q[$1]; seen[$1] } }
+    END { do { grew = 0; for (m in q) { k = split(dep[m], d, " "); for (i = 1; i <= k; i++) if (!(d[i] in seen)) { seen[d[i]]; q[d[i]]; grew = 1 } } } while (grew)
+          for (m in seen) if (m == "forest/teacher" || m == "forest/stand_grow" || m ~ /^(model|exp)\//) print m }' <<<"$calls" | sort | tr '\n' ' ')
+  if [ -z "$up$reached" ]; then ok "calls point down the pipeline, and the claims, agreement and audit call neither the teacher nor the model ($(wc -l <<<"$calls") call edges)"
+  else bad "calls point down the pipeline" "${up:+up:$up }${reached:+reached: $reached}"; fi
+else
+  bad "calls point down the pipeline" "no objects under build/obj/: build first (make all)"
+fi
 
 # 4. the experiment manifest (src/base/manifest.h) is the one list of experiments
 rows=$(bash src/base/manifest.sh rows)
