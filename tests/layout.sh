@@ -171,12 +171,18 @@ while IFS=$'\t' read -r kind name f1 f2 f3 rest; do
   EGATE[$name]=$g
 done <<<"$rows"
 badcmd=""
-while IFS=$'\t' read -r kind name cmd handler help; do
-  [ "$kind" = COMMAND ] || continue
+while IFS=$'\t' read -r kind name cmd handler f4 f5; do
+  [ "$kind" = COMMAND ] || [ "$kind" = RUN ] || continue
   if [ -z "${EGATE[$name]:-}" ]; then badcmd="$badcmd $cmd(no experiment $name)"
   elif [[ "$cmd" != "$name"-* ]] && { [ "${EGATE[$name]}" = - ] || [[ "$cmd" != "${EGATE[$name]}"-* ]]; }; then
     badcmd="$badcmd $cmd(not $name-... nor ${EGATE[$name]}-...)"; fi
-  grep -qE "^int $handler\(int argc, char \*\*argv\)" src/cli/*.c src/exp/*.c || badcmd="$badcmd $cmd(no handler $handler)"
+  if [ "$kind" = COMMAND ]; then
+    grep -qE "^int $handler\(int argc, char \*\*argv\)" src/cli/*.c src/exp/*.c || badcmd="$badcmd $cmd(no handler $handler)"
+  else
+    # a RUN row: its entry is the experiment's own, and takes names common options only
+    grep -qE "^cs_status $handler\(const exp_opts \*o\)" src/exp/*.c || badcmd="$badcmd $cmd(no entry $handler in src/exp)"
+    for w in ${f4#-}; do [[ " stands beta tag rows " == *" $w "* ]] || badcmd="$badcmd $cmd(takes '$w')"; done
+  fi
   # nothing lists the command by hand: no table of src/cli, no rule outside the manifest
   grep -q "\"$cmd\"" src/cli/cli.c && badcmd="$badcmd $cmd(listed in src/cli/cli.c)"
   grep -E "\\\$\(CLI\) $cmd( |$)" Makefile src/exp/experiments.mk | grep -qE '\$\(RESULTS\)|\$@' && badcmd="$badcmd $cmd(a hand unit in the Makefile or experiments.mk)"

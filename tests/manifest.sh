@@ -5,8 +5,9 @@
 # manifest.sh: a new experiment is added through the manifest alone. In a
 # scratch copy of the package (build/manifest-test/repo, its own git), adds a
 # toy experiment "toy" with exactly the files the "Adding an
-# experiment" section of src/README.md names (manifest rows, the experiment, its argv table,
-# a claim function, its list line, its registry row), then checks that
+# experiment" section of src/README.md names for a unit with the common
+# options (manifest rows, the experiment, a claim function, its registry and
+# interval rows), then checks that
 #  - the number of hand-written files equals the count src/README.md states;
 #  - make lists its unit (`make units`: reproduce and verify-deep) and
 #    `make toy` runs it;
@@ -43,41 +44,28 @@ $G init -q . && $G add -A && $G commit -qm "package before the toy experiment" |
 # ---- the toy experiment, by src/README.md's list -------------------------------
 cat >> src/base/manifest.h.new <<'EOF'
 EXPERIMENT(toy, "E99", "src/exp/exp_toy.c", "-", "src/claims/claim_toy.c", "-", "rerun", "a toy: five numbers and their mean")
-COMMAND(toy, "toy-run", cli_toy_run, "toy: write five numbers")
-UNIT(toy, "numbers.tsv", "", "$(CLI) toy-run --out $@", "top")
+RUN(toy, "toy-run", exp_toy_run, "-", "toy: write five numbers")
+UNIT(toy, "numbers.tsv", "", "$(CLI) toy-run --out @R@", "top")
 EOF
 # the rows go before the closing #undef lines
 awk 'FNR == NR { add = add $0 "\n"; next } /^#undef EXPERIMENT/ && !done { printf "%s\n", add; done = 1 } { print }' \
     src/base/manifest.h.new src/base/manifest.h > src/base/manifest.h.tmp && mv src/base/manifest.h.tmp src/base/manifest.h
 rm -f src/base/manifest.h.new
 
-cat > src/exp/exp_toy.h <<'EOF'
-/* exp_toy: a toy experiment (tests/manifest.sh): five numbers. */
-#ifndef EXP_TOY_H
-#define EXP_TOY_H
-#include "cs.h"
-
-typedef struct {
-    const char *out; /* the table */
-    int argc;        /* the command line, for the provenance */
-    char **argv;
-} exp_toy_args;
-
-cs_status exp_toy_run(const exp_toy_args *a);
-
-#endif
-EOF
 cat > src/exp/exp_toy.c <<'EOF'
-/* exp_toy: see exp_toy.h. */
-#include "exp_toy.h"
+/* exp_toy: a toy experiment (tests/manifest.sh): five numbers under DIR/toy/. */
+#include "exp_common.h"
 #include "unit_out.h"
+#include <stdio.h>
 
-cs_status exp_toy_run(const exp_toy_args *a)
+cs_status exp_toy_run(const exp_opts *o)
 {
+    char path[512];
+    snprintf(path, sizeof path, "%s/toy/numbers.tsv", o->out);
     prov p;
-    exp_prov_begin(&p, "toy", NULL, a->argc, a->argv);
+    exp_prov_begin(&p, "toy", &o->rd, o->argc, o->argv);
     tsv_writer *w;
-    cs_status st = tsv_writer_open(&w, a->out);
+    cs_status st = tsv_writer_open(&w, path);
     if (st) return st;
     if ((st = prov_write(w, &p))) { tsv_writer_abort(w); return st; }
     tsv_writer_columns(w, "k\tvalue");
@@ -86,25 +74,7 @@ cs_status exp_toy_run(const exp_toy_args *a)
         tsv_writer_dbl(w, 0.5 * k);
         tsv_writer_endrow(w);
     }
-    return unit_out_finish(w, &p, a->out);
-}
-EOF
-cat > src/cli/cli_toy.c <<'EOF'
-/* cli_toy: the argv table of `crownshy toy-run`. */
-#include "cli.h"
-#include "exp_toy.h"
-#include "opts.h"
-
-int cli_toy_run(int argc, char **argv)
-{
-    exp_toy_args a = {.argc = argc, .argv = argv};
-    const opt_spec spec[] = {{"out", OPT_STR, &a.out, 0, 0, "output table (required)"}};
-    const opts_cmd c = {"toy-run", "--out FILE", "The toy experiment: five numbers.", spec, 1, 0, 0};
-    int r = opts_parse(&c, argc, argv, NULL, NULL);
-    if (r) return opts_exit_code(r);
-    if (!a.out) { opts_usage_error("toy-run", "--out is required"); return 2; }
-    cs_status st = exp_toy_run(&a);
-    return st ? cli_fail("toy-run", st) : 0;
+    return unit_out_finish(w, &p, path);
 }
 EOF
 cat > src/claims/claim_toy.c <<'EOF'
@@ -135,7 +105,7 @@ printf 'ToyMean\tmeasured\tfrozen/toy/numbers.tsv\tclaim_toy_mean\t-\ttests/test
 printf 'claim_toy_mean\tnumber\tnone\ta toy: five numbers, no replicate unit\n' >> audit/intervals.tsv
 
 # ---- the count src/README.md states --------------------------------------------
-want=$(sed -n 's/^A new experiment `X` needs \*\*\([0-9]*\) files\*\*.*/\1/p' src/README.md)
+want=$(sed -n 's/.*needs \*\*\([0-9]*\) files\*\*.*/\1/p' src/README.md | head -1)
 have=$($G status --porcelain | wc -l)
 if [ -n "$want" ] && [ "$have" = "$want" ]; then ok "the toy experiment takes the $want files the README names"
 else bad "the toy experiment takes the files src/README.md names" "src/README.md says '${want:-?}', the toy needed $have: $($G status --porcelain | tr '\n' ' ')"; fi

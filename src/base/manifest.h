@@ -1,6 +1,6 @@
 /* manifest: every experiment of the study, in one place (design.md §7). One
- * EXPERIMENT row per experiment, its COMMAND rows (the crownshy commands it
- * adds), its UNIT rows (the make units of the full run) and, for an
+ * EXPERIMENT row per experiment, its COMMAND or RUN rows (the crownshy
+ * commands it adds), its UNIT rows (the make units of the full run) and, for an
  * experiment that reruns other units under changed switches, its VARIANT
  * rows. Everything else is derived from this file:
  *  - the make units, `make reproduce`'s unit list and `make verify-deep`'s
@@ -31,6 +31,12 @@
  * COMMAND(name, command, handler, help)
  *   handler is `int handler(int argc, char **argv)` in src/cli (the argv
  *   table lives there); help is the line of `crownshy --help`.
+ * RUN(name, command, entry, takes, help)
+ *   a command whose options are the common ones of a unit (--out DIR,
+ *   --teacher, --vary, and those takes names: "stands", "beta", "tag",
+ *   "rows" for --stand-rows; "-" none): entry is `cs_status entry(const
+ *   exp_opts *)` in the experiment's file, declared here, its argv table the
+ *   CLI's one for such units (src/cli/cli_run.c).
  * UNIT(name, target, prereqs, recipe, flags)
  *   target  file under <root>/<name>/ (a % makes a pattern rule);
  *   prereqs and recipe are make text, with @R@ = the results root of the
@@ -51,6 +57,9 @@
 #endif
 #ifndef COMMAND
 #define COMMAND(name, command, handler, help)
+#endif
+#ifndef RUN
+#define RUN(name, command, entry, takes, help)
 #endif
 #ifndef UNIT
 #define UNIT(name, target, prereqs, recipe, flags)
@@ -75,9 +84,9 @@ UNIT(sensitivity, "%/unit.tsv", "$(SENS_DEPS)", "$(CLI) sensitivity-run --unit $
 UNIT(sensitivity, "summary.tsv", "$(foreach u,centre crown_R_3 crown_R_5 crown_spread_0.05 crown_spread_0.25 height_sd_2 height_sd_6 lobing_0.1 lobing_0.3 growth_N_24 growth_N_96 start_0.02 start_0.1 fig_hardcore_0.3 fig_hardcore_0.4 fig_hardcore_0.6 fig_hardcore_0.7 field_d_3 field_d_3.5 field_d_4.5 field_d_5 field_L_28 field_L_32 field_L_44 field_L_60 dieback_1 dieback_2 dieback_3,@R@/sensitivity/$(u)/unit.tsv) audit/claims.tsv", "$(CLI) sensitivity-summary --dir @R@/sensitivity --out $@", "top")
 
 EXPERIMENT(mechanism, "E1", "src/exp/exp_mechanism.c", "gates/mechanism.gate", "src/claims/claim_teacher.c", "figures/mechanism.gp", "rerun", "the growth rule's mechanism: a beta x spacing sweep, the coupling/abrasion ablation, the figure stand")
-COMMAND(mechanism, "mechanism-sweep", cli_mechanism_sweep, "E1: 16 rows beta x d on the controlled lattice")
-COMMAND(mechanism, "mechanism-ablation", cli_mechanism_ablation, "E1: coupling off / abrasion off / both on at 3.5 m")
-COMMAND(mechanism, "mechanism-figure", cli_mechanism_figure, "E1: crowns and statistics of the three figure panels (hard-core, 3.5 m, L = 36 m)")
+RUN(mechanism, "mechanism-sweep", exp_mechanism_sweep, "stands rows", "E1: 16 rows beta x d on the controlled lattice")
+RUN(mechanism, "mechanism-ablation", exp_mechanism_ablation, "stands", "E1: coupling off / abrasion off / both on at 3.5 m")
+RUN(mechanism, "mechanism-figure", exp_mechanism_figure, "-", "E1: crowns and statistics of the three figure panels (hard-core, 3.5 m, L = 36 m)")
 UNIT(mechanism, "sweep.tsv", "$(TEACHER_DEPS)", "$(CLI) mechanism-sweep @TEACHER@ --stands $(TEACHER_STANDS) --stand-rows --out @R@", "top readings")
 UNIT(mechanism, "sweep_trees.tsv", "@R@/mechanism/sweep.tsv", "", "side")
 UNIT(mechanism, "ablation.tsv", "$(TEACHER_DEPS)", "$(CLI) mechanism-ablation @TEACHER@ --stands $(TEACHER_STANDS) --out @R@", "top readings")
@@ -204,11 +213,11 @@ UNIT(generator-probes, "teacher/probes.tsv", "", "$(CLI) generator-probes-run --
 UNIT(generator-probes, "summary.tsv", "$(foreach r,paper pair paper-fourier plain,$(foreach s,$(READING_SEED_LIST),@R@/generator-probes/$(r)/probes_s$(s)_joint.tsv @R@/generator-probes/$(r)/probes_s$(s)_indep.tsv))", "$(CLI) generator-probes-summary --dir @R@ --seeds $(READING_NSEEDS) --out $@", "top")
 
 EXPERIMENT(pointcloud, "E8", "src/exp/exp_stands.c", "-", "src/claims/claim_teacher.c", "figures/hardcore-canopies.gp", "rerun", "hard-core stands at 5, 4 and 3 m: crowns contacting a neighbour, coupled vs uncoupled clearance")
-COMMAND(pointcloud, "pointcloud-figure", cli_pointcloud_figure, "E8: point-cloud stands (5/4/3 m and uncoupled) and pointcloud/stats.tsv")
+RUN(pointcloud, "pointcloud-figure", exp_pointcloud_figure, "-", "E8: point-cloud stands (5/4/3 m and uncoupled) and pointcloud/stats.tsv")
 UNIT(pointcloud, "figure_crowns.tsv", "$(TEACHER_DEPS)", "$(CLI) pointcloud-figure @TEACHER@ --out @R@", "top readings")
 
 EXPERIMENT(hero, "E9", "src/exp/exp_stands.c", "-", "src/claims/claim_teacher.c", "figures/hero.gp", "rerun", "hard-core stands from 3.0 to 6.5 m at beta_train and beta_field")
-COMMAND(hero, "hero-figure", cli_hero_figure, "E9: crowns of the hero figure (hard-core, L = 36 m, d = 3.0..6.5)")
+RUN(hero, "hero-figure", exp_hero_figure, "beta", "E9: crowns of the hero figure (hard-core, L = 36 m, d = 3.0..6.5)")
 UNIT(hero, "figure_crowns.tsv", "$(TEACHER_DEPS) @R@/field/calibration.tsv", "$(CLI) hero-figure --beta $$($(CLI) field-beta @R@/field/calibration.tsv) --out @R@", "top")
 
 EXPERIMENT(replicates, "E1", "src/cli/cli_replicates.c", "-", "src/agree/interval_src.c", "-", "rerun", "replicate stands of the numbers resting on one figure stand (E1 figure stand, E8 point-cloud stands, E9 hero stems): the same family, disjoint seeds; their intervals (design.md §6.1)")
@@ -217,5 +226,6 @@ UNIT(replicates, "figure_stands.tsv", "$(TEACHER_DEPS)", "$(CLI) replicates-run 
 
 #undef EXPERIMENT
 #undef COMMAND
+#undef RUN
 #undef UNIT
 #undef VARIANT

@@ -16,13 +16,13 @@ MANIFEST=${MANIFEST:-$here/manifest.h}
 
 rows() {
     awk '
-    /^(EXPERIMENT|COMMAND|UNIT|VARIANT)\(/ {
+    /^(EXPERIMENT|COMMAND|RUN|UNIT|VARIANT)\(/ {
         kind = $0; sub(/\(.*/, "", kind)
         rest = $0; sub(/^[A-Z]+\(/, "", rest)
         name = rest; sub(/,.*/, "", name); gsub(/[ \t]/, "", name)
         sub(/^[^,]*,/, "", rest)
         out = kind "\t" name
-        # the handler of a COMMAND row is an identifier between two strings
+        # the handler of a COMMAND row and the entry of a RUN row are identifiers between strings
         while (match(rest, /"[^"]*"|[A-Za-z_][A-Za-z0-9_]*/)) {
             f = substr(rest, RSTART, RLENGTH)
             if (f ~ /^"/) f = substr(f, 2, length(f) - 2)
@@ -86,7 +86,7 @@ readme() {
     rows | awk -F'\t' '
     function cell(s) { return s == "-" ? "-" : "`" s "`" }
     $1 == "EXPERIMENT" { ne++; en[ne] = $2; code[$2] = $3; gate[$2] = $5; cl[$2] = $6; fig[$2] = $7; deep[$2] = $8; what[$2] = $9 }
-    $1 == "COMMAND" { cmds[$2] = cmds[$2] (cmds[$2] == "" ? "" : ", ") "`" $3 "`" }
+    $1 == "COMMAND" || $1 == "RUN" { cmds[$2] = cmds[$2] (cmds[$2] == "" ? "" : ", ") "`" $3 "`" }
     END {
         for (e = 1; e <= ne; e++) {
             n = en[e]

@@ -1,6 +1,8 @@
 /* crownshy: the one command-line entry point (design.md §11): the table of
  * commands, grouped by who runs them. The experiments' commands come from the
- * manifest (src/base/manifest.h), the others are listed here. Every argv
+ * manifest (src/base/manifest.h): a COMMAND row names its handler, a RUN
+ * row an experiment's entry that cli_run_unit parses for; the others are
+ * listed here. Every argv
  * table is in src/cli: cli_audit.c (reviewing and maintaining), cli_model.c
  * (the generator), cli_run.c (the teacher units, bench-teacher,
  * readings-summary), cli_main.c (E3/E4, E7), cli_field.c (E5, E6). Only the
@@ -16,11 +18,20 @@
 
 /* the handler of every experiment command, declared from the manifest */
 #define COMMAND(name, command, handler, help) int handler(int argc, char **argv);
+#define RUN(name, command, entry, takes, help) cs_status entry(const exp_opts *o);
 #include "manifest.h"
 
 typedef int (*cmd_fn)(int argc, char **argv);
 typedef enum { G_REVIEW, G_STUDY, G_MAINTAIN } cmd_group;
-typedef struct { const char *name; cmd_fn fn; cmd_group group; const char *help; } cli_cmd;
+/* fn, or for a RUN row of the manifest: the unit's entry, what it takes and its experiment */
+typedef struct {
+    const char *name;
+    cmd_fn fn;
+    cmd_group group;
+    const char *help;
+    cs_status (*entry)(const exp_opts *);
+    const char *takes, *experiment;
+} cli_cmd;
 
 const char *const CLI_ARMS[] = {"joint", "indep", "independent=indep", NULL};
 const char *const CLI_TEACHERS[] = {TEACHER_VERSION,
@@ -55,6 +66,7 @@ static const cli_cmd cli_cmds[] = {
     {"gates", cli_cmd_gates, G_REVIEW, "parse and list the preregistered gate files"},
     {"check-tsv", cli_cmd_check_tsv, G_REVIEW, "validate frozen TSV files"},
 #define COMMAND(name, command, handler, help) {command, handler, G_STUDY, help},
+#define RUN(name, command, entry, takes, help) {command, NULL, G_STUDY, help, entry, takes, #name},
 #include "manifest.h"
     {"train", cli_cmd_train, G_STUDY, "train the flow-matching generator on toy stands (a trainer check; E3 trains with main-run)"},
     {"sample", cli_cmd_sample, G_STUDY, "generate crowns with a checkpoint of train (100 Euler steps)"},
@@ -102,7 +114,11 @@ int cli_main(int argc, char **argv)
         return 0;
     }
     for (size_t i = 0; i < NCMDS; i++)
-        if (!strcmp(argv[1], cli_cmds[i].name)) return cli_cmds[i].fn(argc - 1, argv + 1);
+        if (!strcmp(argv[1], cli_cmds[i].name)) {
+            const cli_cmd *c = &cli_cmds[i];
+            return c->fn ? c->fn(argc - 1, argv + 1)
+                         : cli_run_unit(c->experiment, c->name, c->entry, c->takes, c->help, argc - 1, argv + 1);
+        }
     fprintf(stderr, "crownshy: unknown command '%s'\n", argv[1]);
     usage(stderr);
     return 2;

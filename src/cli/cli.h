@@ -4,6 +4,7 @@
 #ifndef CLI_H
 #define CLI_H
 #include "cs.h"
+#include "exp_common.h"
 
 /* cli_audit.c */
 int cli_cmd_verify(int argc, char **argv);
@@ -40,5 +41,11 @@ extern const char *const CLI_LAYOUTS[];
 int cli_main(int argc, char **argv);
 /* "crownshy CMD: <cs_errmsg>" on stderr; the exit code of st. */
 int cli_fail(const char *cmd, cs_status st);
+/* The argv table shared by the RUN rows of src/base/manifest.h (cli_run.c):
+ * --out DIR, --teacher, --vary and what `takes` names ("stands", "beta",
+ * "tag", "rows"; "-" none), then entry; the exit code of the command.
+ * name: the experiment (its tables under DIR/<name>/); help: its --help line. */
+int cli_run_unit(const char *name, const char *cmd, cs_status (*entry)(const exp_opts *), const char *takes,
+                 const char *help, int argc, char **argv);
 
 #endif

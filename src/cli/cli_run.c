@@ -4,8 +4,6 @@
  * process dies. */
 #include "cli.h"
 #include "exp_irreducibility.h"
-#include "exp_mechanism.h"
-#include "exp_stands.h"
 #include "gate.h"
 #include "opts.h"
 #include "paths.h"
@@ -88,30 +86,24 @@ static int teacher_unit_run(const teacher_unit *u, int argc, char **argv)
     return st ? cli_fail(u->cmd, st) : 0;
 }
 
-int cli_mechanism_sweep(int argc, char **argv)
+int cli_run_unit(const char *name, const char *cmd, cs_status (*entry)(const exp_opts *), const char *takes,
+                 const char *help, int argc, char **argv)
 {
-    static const teacher_unit u = {
-        "mechanism-sweep",
-        "E1: 16 rows beta x d on the controlled lattice -> DIR/mechanism/sweep.tsv (and sweep_trees.tsv)",
-        U_STANDS | U_ROWS, exp_mechanism_sweep, NULL};
-    return teacher_unit_run(&u, argc, argv);
-}
-
-int cli_mechanism_ablation(int argc, char **argv)
-{
-    static const teacher_unit u = {"mechanism-ablation",
-                                   "E1: coupling off / abrasion off / both on at 3.5 m -> DIR/mechanism/ablation.tsv",
-                                   U_STANDS, exp_mechanism_ablation, NULL};
-    return teacher_unit_run(&u, argc, argv);
-}
-
-int cli_mechanism_figure(int argc, char **argv)
-{
-    static const teacher_unit u = {
-        "mechanism-figure",
-        "E1: crowns of the three mechanism panels (hard-core, 3.5 m, L = 36 m) and their statistics\n"
-        "-> DIR/mechanism/figure_crowns.tsv, figure_stats.tsv, figure_poly_*.tsv",
-        0, exp_mechanism_figure, NULL};
+    static const struct { const char *word; int flag; } words[] = {
+        {"stands", U_STANDS}, {"beta", U_BETA}, {"tag", U_TAG}, {"rows", U_ROWS}};
+    int flags = 0;
+    for (const char *w = strcmp(takes, "-") ? takes : ""; *w;) {
+        size_t n = strcspn(w, " "), k = 0;
+        while (k < sizeof words / sizeof *words && (strlen(words[k].word) != n || strncmp(w, words[k].word, n))) k++;
+        if (k == sizeof words / sizeof *words)
+            return cli_fail(cmd, cs_err(CS_EINVARIANT, "src/base/manifest.h: RUN %s: takes '%.*s' is not one of "
+                                                       "stands, beta, tag, rows", cmd, (int)n, w));
+        flags |= words[k].flag;
+        w += n + strspn(w + n, " ");
+    }
+    char about[512];
+    snprintf(about, sizeof about, "%s\n-> DIR/%s/ (the tables its UNIT rows in src/base/manifest.h name)", help, name);
+    const teacher_unit u = {cmd, about, flags, entry, NULL};
     return teacher_unit_run(&u, argc, argv);
 }
 
@@ -138,23 +130,6 @@ int cli_irreducibility_reduction(int argc, char **argv)
         "irreducibility-reduction",
         "E2: best-fit Voronoi reduction -> DIR/irreducibility/reduction_<tag>.tsv (and _sectors.tsv)",
         U_STANDS | U_BETA | U_TAG | U_ROWS, NULL, exp_irreducibility_reduction};
-    return teacher_unit_run(&u, argc, argv);
-}
-
-int cli_hero_figure(int argc, char **argv)
-{
-    static const teacher_unit u = {"hero-figure",
-                                   "E9: crowns of the hero figure (hard-core, L = 36 m, d = 3.0..6.5) -> DIR/hero/",
-                                   U_BETA, exp_hero_figure, NULL};
-    return teacher_unit_run(&u, argc, argv);
-}
-
-int cli_pointcloud_figure(int argc, char **argv)
-{
-    static const teacher_unit u = {
-        "pointcloud-figure",
-        "E8: point-cloud stands (5/4/3 m and uncoupled) -> DIR/pointcloud/ and pointcloud/stats.tsv", 0,
-        exp_pointcloud_figure, NULL};
     return teacher_unit_run(&u, argc, argv);
 }
 
