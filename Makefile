@@ -243,9 +243,10 @@ freeze: deps
 	@if [ -d $(B)/results ]; then \
 	  for d in $(B)/results/*/; do [ -d "$$d" ] || continue; e=$$(basename $$d); mkdir -p frozen/$$e; \
 	    (cd $$d && find . \( -name '*.tsv' -o -name 'weights_*.ckpt' \) ! -name '*.tmp*' ! -name '.*' ! -path './*/*/figure_crowns*' ! -path './*/*/figure_poly*' -exec cp --parents {} $(CURDIR)/frozen/$$e/ \;) ; done; fi
-	@# the readings and the sensitivity units keep their run folders; their figure tables are not part of their tables
-	@if [ -f frozen/readings/summary.tsv ]; then $(CLI) readings-summary --dir frozen/readings --out frozen/readings/summary.tsv >/dev/null; fi
-	@if [ -f frozen/sensitivity/summary.tsv ]; then $(CLI) sensitivity-summary --dir frozen/sensitivity --out frozen/sensitivity/summary.tsv >/dev/null; fi
+	@# the readings and the sensitivity units keep their run folders; their figure tables are not part of their tables;
+	@# a summary is remade only when units of its experiment were frozen now (freezing one experiment touches no other)
+	@if [ -d $(B)/results/readings ] && [ -f frozen/readings/summary.tsv ]; then $(CLI) readings-summary --dir frozen/readings --out frozen/readings/summary.tsv >/dev/null; fi
+	@if [ -d $(B)/results/sensitivity ] && [ -f frozen/sensitivity/summary.tsv ]; then $(CLI) sensitivity-summary --dir frozen/sensitivity --out frozen/sensitivity/summary.tsv >/dev/null; fi
 	@$(CLI) hash-frozen
 	@$(CLI) numbers
 

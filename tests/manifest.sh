@@ -12,7 +12,8 @@
 #  - make lists its unit (`make units`: reproduce and verify-deep) and
 #    `make toy` runs it;
 #  - `crownshy --help` lists its command and `crownshy toy-run --help` works;
-#  - after `make freeze`-style steps (copy, hash-frozen, pin, numbers) its
+#  - `make freeze` (after `crownshy pin`) writes frozen/toy/ and no other
+#    frozen file; its
 #    claim is computed from its frozen table, `crownshy trace` names it,
 #    the computing function's real file and the experiment, and
 #    `crownshy verify --no-figures` says the package is consistent.
@@ -129,8 +130,15 @@ if make -s toy > "$T/run.log" 2>&1 && [ -f build/results/toy/numbers.tsv ] && gr
 else bad "make toy runs the unit" "$(tail -5 "$T/run.log")"; finish; fi
 
 # ---- freeze, the claim, trace, verify ----------------------------------------
-mkdir -p frozen/toy && cp build/results/toy/numbers.tsv frozen/toy/
-build/crownshy pin > /dev/null && build/crownshy hash-frozen > /dev/null && build/crownshy numbers > "$T/numbers.log" 2>&1
+# `make freeze` adds the toy's table and touches no other frozen file (the
+# summaries of other experiments are remade only when their units were run)
+snap() { (cd frozen && find . -type f -print0 | sort -z | xargs -0 sha256sum); }
+before=$(snap)
+build/crownshy pin > /dev/null
+make -s freeze > "$T/numbers.log" 2>&1 || bad "make freeze" "$(tail -3 "$T/numbers.log")"
+touched=$(diff <(echo "$before") <(snap) | sed -n 's/^[<>] [0-9a-f]*  //p' | sort -u | tr '\n' ' ')
+if [ "$touched" = "./toy/numbers.tsv " ]; then ok "make freeze writes frozen/toy/ and touches no other frozen file"
+else bad "make freeze touches only the toy's frozen files" "changed: $touched"; fi
 if grep -q 'ToyMean}{1.50}' paper/numbers.tex; then ok "crownshy numbers computes the toy claim from frozen/toy/ (1.50)"
 else bad "crownshy numbers computes the toy claim" "$(grep Toy paper/numbers.tex; tail -3 "$T/numbers.log")"; fi
 tr=$(build/crownshy trace ToyMean 2>&1)
