@@ -12,7 +12,7 @@
 #  - make lists its unit (`make units`: reproduce and verify-deep) and
 #    `make toy` runs it;
 #  - `crownshy --help` lists its command and `crownshy toy-run --help` works;
-#  - `make freeze` (after `crownshy pin`) writes frozen/toy/ and no other
+#  - `make freeze` (after `crownshy pin`) writes the toy's table and no other
 #    frozen file; its
 #    claim is computed from its frozen table, `crownshy trace` names it,
 #    the computing function's real file and the experiment, and
