@@ -13,6 +13,13 @@
 
 #define REACH 0.10 /* "reaches": within 10 % of the paper's value */
 
+/* Whether a summary value is of the claim row: the summaries name a claim by
+ * its whole name, the registry's key. */
+static int measures(const attrib_value *a, const claim_row *row)
+{
+    return !strcmp(a->quantity, row->macro);
+}
+
 static cs_status push(attrib_data *d, const char *q, const char *unit, double x, double v, int sens)
 {
     attrib_value *nv = realloc(d->v, (d->n + 1) * sizeof *nv);
@@ -82,7 +89,7 @@ void attrib_judge(const attrib_data *d, const claim_row *row, const claim_result
     /* the readings: each is one alternative */
     for (size_t i = 0; i < d->n; i++) {
         const attrib_value *a = &d->v[i];
-        if (a->sens == 1 || strcmp(a->quantity, row->macro)) continue;
+        if (a->sens == 1 || !measures(a, row)) continue;
         tested = 1;
         if (fabs(a->value - p) <= REACH * fabs(p)) {
             char s[64];
@@ -95,7 +102,7 @@ void attrib_judge(const attrib_data *d, const claim_row *row, const claim_result
     char seen[1024] = "";
     for (size_t i = 0; i < d->n; i++) {
         const attrib_value *a = &d->v[i];
-        if (a->sens != 1 || strcmp(a->quantity, row->macro) || !strcmp(a->unit, "centre")) continue;
+        if (a->sens != 1 || !measures(a, row) || !strcmp(a->unit, "centre")) continue;
         tested = 1;
         char key[48];
         snprintf(key, sizeof key, "|%s|", a->unit);
@@ -104,7 +111,7 @@ void attrib_judge(const attrib_data *d, const claim_row *row, const claim_result
         double lo = INFINITY, hi = -INFINITY, best = NAN;
         for (size_t j = 0; j < d->n; j++) {
             const attrib_value *b = &d->v[j];
-            if (b->sens != 1 || strcmp(b->quantity, row->macro)) continue;
+            if (b->sens != 1 || !measures(b, row)) continue;
             if (strcmp(b->unit, a->unit) && strcmp(b->unit, "centre")) continue;
             if (b->value < lo) lo = b->value;
             if (b->value > hi) hi = b->value;
@@ -150,12 +157,8 @@ static long gensens_base(const claims *c, size_t r, char *choice, size_t n)
     char want[300];
     snprintf(want, sizeof want, "%.*s" READING_DIR "%s", (int)(at - g->source), g->source, rest + 1);
     snprintf(choice, n, "%.*s", (int)(rest - ch), ch);
-    for (size_t i = 0; i < c->n; i++) {
-        const claim_row *q = &c->rows[i];
-        if (i != r && !strcmp(q->macro, g->param.of) && !strcmp(q->function, g->function) && !strcmp(q->source, want))
-            return (long)i;
-    }
-    return -1;
+    const claim_row *q = claims_find(c, g->param.of);
+    return q && q != g && !strcmp(q->function, g->function) && !strcmp(q->source, want) ? (long)(q - c->rows) : -1;
 }
 
 void attrib_bind(attrib_data *d, const claims *c, const claim_result *res, const struct claim_interval *ci)
@@ -202,10 +205,10 @@ static int t_closer(double v, double p, double s, int cont, double *a, double *b
 }
 
 /* The centre run's value of a quantity (v when the centre did not measure it). */
-static double centre_of(const attrib_data *d, const char *macro, double v)
+static double centre_of(const attrib_data *d, const claim_row *row, double v)
 {
     for (size_t i = 0; i < d->n; i++)
-        if (d->v[i].sens == 1 && !strcmp(d->v[i].quantity, macro) && !strcmp(d->v[i].unit, "centre"))
+        if (d->v[i].sens == 1 && measures(&d->v[i], row) && !strcmp(d->v[i].unit, "centre"))
             return d->v[i].value;
     return v;
 }
@@ -227,22 +230,21 @@ static int consistent(const attrib_data *d, const claim_row *row, const attrib_v
                       double *tb, char *blocker, size_t n)
 {
     const char *ex = experiment_of(row);
+    const claim_row *self = claims_find(d->c, row->macro); /* row may be a copy */
     for (size_t i = 0; i < d->c->n; i++) {
         const claim_row *q = &d->c->rows[i];
         const claim_result *qr = &d->res[i];
         const claim_interval *qi = &d->ci[i];
         double p, rel;
-        if (!strcmp(q->macro, row->macro) || !qi->has || !claims_rel_diff(q, qr, &p, &rel) ||
-            strcmp(experiment_of(q), ex))
-            continue;
+        if (q == self || !qi->has || !claims_rel_diff(q, qr, &p, &rel) || strcmp(experiment_of(q), ex)) continue;
         const double h = attrib_half_unit(q->reference), lo = qi->lo - h, hi = qi->hi + h;
         const int agrees = lo <= p && p <= hi;
         for (size_t j = 0; j < d->n; j++) {
             const attrib_value *b = &d->v[j];
-            if (b->sens != a->sens || strcmp(b->unit, a->unit) || strcmp(b->quantity, q->macro)) continue;
+            if (b->sens != a->sens || strcmp(b->unit, a->unit) || !measures(b, q)) continue;
             if ((a->sens == 1 && !(b->x == a->x)) || !isfinite(b->value))
                 continue; /* not computable there: not measured */
-            double s = b->value - (b->sens == 1 ? centre_of(d, q->macro, qr->value) : qr->value), qa, qb;
+            double s = b->value - (b->sens == 1 ? centre_of(d, q, qr->value) : qr->value), qa, qb;
             /* one in agreement stays in it; one outside may not move further from the paper */
             const int ok = agrees ? t_range(lo, hi, p, s, cont, &qa, &qb) : t_closer(qr->value, p, s, cont, &qa, &qb);
             if (!ok || fmax(*ta, qa) > fmin(*tb, qb)) {
@@ -263,11 +265,11 @@ int attrib_reached(const attrib_data *d, const claim_row *row, const claim_resul
     *tested = 0;
     double p, rel;
     if (!claims_rel_diff(row, res, &p, &rel)) return 0;
-    const double v = res->value, centre = centre_of(d, row->macro, v);
+    const double v = res->value, centre = centre_of(d, row, v);
     char blocked[240] = "";
     for (size_t i = 0; i < d->n; i++) {
         const attrib_value *a = &d->v[i];
-        if (strcmp(a->quantity, row->macro) || (a->sens == 1 && !strcmp(a->unit, "centre"))) continue;
+        if (!measures(a, row) || (a->sens == 1 && !strcmp(a->unit, "centre"))) continue;
         *tested = 1;
         const unstated_choice *uc = a->sens == 1 ? unstated_find(a->unit) : NULL;
         /* a reading or a categorical choice moves by its whole shift; a numeric choice by a fraction */

@@ -59,7 +59,8 @@ static void claims_of_code(const claims *c, const char *path, char *buf, size_t 
     for (size_t i = 0; text && i < c->n && off < n; i++) {
         char def[96];
         snprintf(def, sizeof def, "cs_status %s(", c->rows[i].function);
-        if (strstr(text, def)) off += (size_t)snprintf(buf + off, n - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
+        if (!strstr(text, def)) continue;
+        off += (size_t)snprintf(buf + off, n - off, "%s%s", cnt++ ? ", " : "", c->rows[i].macro);
     }
     free(text);
     if (!cnt) snprintf(buf, n, "every claim (shared claim code)");

@@ -38,6 +38,12 @@ static int source_holds(const char *file, const char *name, int define, double x
  * study: a count in the reference paper's words, an ordinal; its 'what' says
  * which). Each is checked at its source; each macro prints one phrase of the
  * text (design.md §9). */
+const design_const *audit_design_find(const design_const *v, size_t n, const char *name)
+{
+    for (size_t q = 0; q < n; q++) if (!strcmp(v[q].macro, name)) return &v[q];
+    return NULL;
+}
+
 size_t audit_design_consts(checklist *cl, design_const **out)
 {
     tsv *t;
@@ -63,9 +69,7 @@ size_t audit_design_consts(checklist *cl, design_const **out)
                 PATHS_DESIGN_NUMBERS, line);
             continue;
         }
-        int dup = 0;
-        for (size_t q = 0; q < n; q++) dup |= !strcmp(v[q].macro, mac);
-        if (dup) {
+        if (audit_design_find(v, n, mac)) {
             checklist_add(cl, VERDICT_FAIL, "design numbers", "%s:%d: field 'macro': %s appears twice",
                           PATHS_DESIGN_NUMBERS, line, mac);
             continue;

@@ -156,12 +156,8 @@ void audit_generated(const claims *c, const claim_result *res, checklist *cl, in
         else if (d) {
             /* name the claim on the differing line when there is one */
             char claim[80] = "";
-            for (size_t r = 0; r < c->n && !claim[0]; r++) {
-                char pat[96];
-                snprintf(pat, sizeof pat, "{%s}", c->rows[r].macro);
-                if (strstr(lb, pat) || strstr(lb, c->rows[r].macro))
-                    snprintf(claim, sizeof claim, "; claim: %s", c->rows[r].macro);
-            }
+            for (size_t r = 0; r < c->n && !claim[0]; r++)
+                if (strstr(lb, c->rows[r].macro)) snprintf(claim, sizeof claim, "; claim: %s", c->rows[r].macro);
             checklist_add(cl, VERDICT_FAIL, item,
                           "%s:%d differs from a fresh generation ('%.200s'): edited by hand or stale%s", generated[i],
                           d, lb, claim);

@@ -16,6 +16,8 @@ typedef struct { char macro[64], value[32]; int line; } design_const;
 /* Every row of audit/design_numbers.tsv checked at its source (a failing row
  * is a FAIL item of cl, left out); *out malloc'd; returns how many hold. */
 size_t audit_design_consts(checklist *cl, design_const **out);
+/* The design constant named name among v[0..n), NULL when none. */
+const design_const *audit_design_find(const design_const *v, size_t n, const char *name);
 /* paper/constants.tex from audit/design_numbers.tsv: one macro per design
  * constant the text prints (hide: the audit's render, each printing the
  * hidden word). Errors name the file, line and field. */

@@ -126,7 +126,7 @@ static void tex_use(tex_scan *t, size_t pos, const char *name)
 {
     if (!isupper((unsigned char)name[0]) || tex_lex_latex_own(name)) return;
     if (claim_or_gate(t->c, name)) { (*t->used)++; return; }
-    for (size_t q = 0; q < t->nd; q++) if (!strcmp(t->design[q].macro, name)) return;
+    if (audit_design_find(t->design, t->nd, name)) return;
     tex_fail(t, pos, "paper macros", "\\%s has no row in " PATHS_CLAIMS " or " PATHS_DESIGN_NUMBERS "%s", name, "");
 }
 

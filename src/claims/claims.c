@@ -107,6 +107,15 @@ static cs_status row_read(const tsv *t, size_t r, const char *path, claim_row *w
     return CS_OK;
 }
 
+/* The index of the row named name among rows[0..n), n when none: a claim is
+ * found by its whole name, the registry's one key. */
+static size_t row_index(const claim_row *rows, size_t n, const char *name)
+{
+    size_t i = 0;
+    while (i < n && strcmp(rows[i].macro, name)) i++;
+    return i;
+}
+
 cs_status claims_load(const char *path, claims *out)
 {
     out->rows = NULL;
@@ -120,19 +129,15 @@ cs_status claims_load(const char *path, claims *out)
     for (size_t r = 0; r < n && !st; r++) {
         claim_row *w = &rows[r];
         if ((st = row_read(t, r, path, w))) break;
-        for (size_t q = 0; q < r; q++)
-            if (!strcmp(rows[q].macro, w->macro)) {
-                st = cs_err(CS_EINPUT, "%s:%d: field 'macro': duplicate of line %d", path, w->line, rows[q].line);
-                break;
-            }
+        const size_t q = row_index(rows, r, w->macro);
+        if (q < r) st = cs_err(CS_EINPUT, "%s:%d: field 'macro': duplicate of line %d", path, w->line, rows[q].line);
     }
     tsv_free(t);
     /* a variant names the claim it stands for: a row of this registry */
     for (size_t r = 0; r < n && !st; r++) {
         const claim_row *w = &rows[r];
         if (!(w->param.set & PARAM_OF)) continue;
-        size_t q = 0;
-        while (q < n && strcmp(rows[q].macro, w->param.of)) q++;
+        const size_t q = row_index(rows, n, w->param.of);
         if (q == n || q == r)
             st = cs_err(CS_EINPUT, "%s:%d: field 'params': of=%s names %s", path, w->line, w->param.of,
                         q == r ? "the row itself" : "no row of the registry");
@@ -189,8 +194,8 @@ static cs_status apply_map(claims *c, const char *map_path, int ext, int reset)
     for (size_t r = 0; r < tsv_nrows(t) && !st; r++) {
         const char *m = tsv_str(t, r, "macro"), *g = tsv_str(t, r, "gate");
         int line = tsv_line(t, r);
-        claim_row *row = NULL;
-        for (size_t i = 0; i < c->n && !row; i++) if (!strcmp(c->rows[i].macro, m)) row = &c->rows[i];
+        const size_t i = row_index(c->rows, c->n, m);
+        claim_row *row = i < c->n ? &c->rows[i] : NULL;
         if (!row)
             st = cs_err(CS_EINPUT, "%s:%d: field 'macro': '%s' is not a claim of the registry", map_path, line, m);
         else if (row->gate_map_line)
@@ -221,8 +226,8 @@ cs_status claims_apply_gate_maps(claims *c, const char *main_map, const char *ex
 
 const claim_row *claims_find(const claims *c, const char *macro)
 {
-    for (size_t i = 0; i < c->n; i++) if (!strcmp(c->rows[i].macro, macro)) return &c->rows[i];
-    return NULL;
+    const size_t i = row_index(c->rows, c->n, macro);
+    return i < c->n ? &c->rows[i] : NULL;
 }
 
 void claim_pending(claim_result *res, const char *fmt, ...)
