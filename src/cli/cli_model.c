@@ -261,6 +261,10 @@ static int bench_path(gemm_isa isa, const model_cfg *cfg, long batch, long round
                "%.3f");
     ok &= goal("plain model training, fraction of this path's FMA peak", r.item[SPEED_PLAIN].frac.med, SPEED_GOAL_TRAIN,
                "%.3f");
+    ok &= goal("pair model sampling (joint arm), fraction of this path's FMA peak", r.item[SPEED_PAIR_SAMPLE].frac.med,
+               SPEED_GOAL_SAMPLE, "%.3f");
+    ok &= goal("pair model sampling (independent arm), fraction of this path's FMA peak",
+               r.item[SPEED_PAIR_INDEP_SAMPLE].frac.med, SPEED_GOAL_SAMPLE, "%.3f");
     double wall, uj, ui;
     long nsteps;
     int nunits;

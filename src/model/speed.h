@@ -20,9 +20,13 @@ enum { SPEED_MAX_ROUNDS = 15 };
 /* The goals `make bench` judges, each a fraction of the path's own FMA peak
  * measured beside the figure (never of another library's rate, whose kernel
  * choice on a given core is not ours): the own product on the products of a
- * training pass, and a training step of either model. */
+ * training pass, a training step of either model, and a sampling step of the
+ * pair model. */
 #define SPEED_GOAL_PRODUCT 0.85
 #define SPEED_GOAL_TRAIN 0.75
+/* An Euler step of the pair model's sampling (either arm): forward only, so
+ * no lower than training's goal, and the pass tier 2 spends most of its time in. */
+#define SPEED_GOAL_SAMPLE 0.80
 
 /* Training steps run before each timed run of consecutive steps on one
  * model, so a figure is the sustained rate of training, not the rate of a
