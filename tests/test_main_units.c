@@ -5,6 +5,9 @@
  * build/crownshy from the repository root (it reads gates/). */
 #include "testutil.h"
 #include "claims.h"
+#include "mainrun.h"
+#include "speed.h"
+#include "train.h"
 #include "tsv.h"
 
 static char *data_rows(const char *path)
@@ -234,11 +237,56 @@ static void test_eval_from_weights_gives_the_unit_rows(void **s)
     assert_non_null(strstr(out, "paper reading"));
 }
 
+/* main-redraw --cost counts the model FLOPs of the passes a redraw makes:
+ * every row of the unit's run table (spacing x probe) is n_gen patches drawn
+ * in chunks of the plan's batch, each chunk one forward pass per Euler step.
+ * A probe or spacing the count missed, or a chunk counted at the wrong size,
+ * makes the two differ. */
+static void test_redraw_cost_counts_every_pass_of_the_run(void **s)
+{
+    (void)s;
+    const char *dir = tu_tmpdir("main_cost");
+    char args[4096], out[8192];
+    snprintf(args, sizeof args,
+             "main-run --seed 4 --arm joint --scale smoke --epochs 2 --ckpt %s/c.ckpt --weights %s/w.ckpt --out %s/run.tsv",
+             dir, dir, dir);
+    if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("main-run: %s", out);
+    snprintf(args, sizeof args, "main-redraw --weights %s/w.ckpt --seed 4 --arm joint --scale smoke --cost", dir);
+    if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("main-redraw --cost: %s", out);
+    double flops = 0, gflops = 0, cpu = 0;
+    const char *line = strstr(out, "redraw_cost\t");
+    assert_non_null(line);
+    assert_int_equal(sscanf(line, "redraw_cost\tflops %lf\tgflops %lf\tcpu_s %lf", &flops, &gflops, &cpu), 3);
+    mainrun_plan pl;
+    assert_int_equal(mainrun_plan_get("smoke", &pl), CS_OK);
+    model *m = NULL;
+    double scl = 0, want = 0;
+    char path[600];
+    snprintf(path, sizeof path, "%s/w.ckpt", dir);
+    assert_int_equal(train_load_model(path, &m, pl.batch, &scl), CS_OK);
+    tsv *t;
+    snprintf(path, sizeof path, "%s/run.tsv", dir);
+    assert_int_equal(tsv_read(path, &t), CS_OK);
+    assert_true(tsv_nrows(t) >= 6);
+    for (size_t r = 0; r < tsv_nrows(t); r++) {
+        double ng;
+        assert_int_equal(tsv_double(t, r, "n_gen", &ng), CS_OK);
+        assert_true(ng == pl.gen_patches); /* every row drew the plan's patches: the count is exact */
+        for (int done = 0; done < (int)ng; done += pl.batch)
+            want += pl.euler * speed_forward_flops(&m->cfg, (int)ng - done < pl.batch ? (int)ng - done : pl.batch);
+    }
+    tsv_free(t);
+    model_free(m);
+    ASSERT_NEAR(flops, want, 1e-12 * want);
+    assert_true(gflops > 0 && cpu > 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_unit_samples_redraw_bit_for_bit_and_recompute_w1),
         cmocka_unit_test(test_eval_from_weights_gives_the_unit_rows),
+        cmocka_unit_test(test_redraw_cost_counts_every_pass_of_the_run),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -111,21 +111,23 @@ int cli_main_eval(int argc, char **argv)
 int cli_main_redraw(int argc, char **argv)
 {
     long seed = 0;
+    int cost = 0;
     exp_main_run_args a = {.scale = "full", .pair = -1, .argc = argc, .argv = argv};
     const opt_spec spec[] = {
         {"weights", OPT_STR, &a.weights, 0, 0, "weights FILE written by main-run --weights (or its checkpoint)", .required = 1},
         {"seed", OPT_LONG, &seed, 1, 4294967295.0, "model seed of the unit", .required = 1},
         {"arm", OPT_CHOICE, &a.arm, 0, 0, "the arm (must match the weights)", .required = 1, .choices = CLI_ARMS},
-        {"out", OPT_STR, &a.out, 0, 0, "output samples FILE.tsv", .required = 1},
+        {"out", OPT_STR, &a.out, 0, 0, "output samples FILE.tsv (required unless --cost)"},
         {"scale", OPT_CHOICE, &a.scale, 0, 0, "the plan's scale (default full)", .choices = SCALES},
         {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume, named by its teacher stands per spacing (src/exp/mainrun.h; default " EVALVOL_SMALL ")", .choices = VOLUMES},
+        {"cost", OPT_FLAG, &cost, 0, 0, "draw nothing: print the redraw's model FLOPs, this core's sampling rate for the model and their quotient (make verify-deep's projection)"},
         {"spacing", OPT_DOUBLE, &a.only_spacing, 0.5, 100, "draw this evaluation spacing (m) alone (default every one)"},
         {"probe", OPT_CHOICE, &a.only_probe, 0, 0, "draw this probe alone (default every one)", .choices = PROBES},
         {"patches", OPT_LONG, &a.only_patches, 1, 1e6, "draw only the first N generated patches of each spacing and probe (default the plan's)"},
     };
     const opts_cmd c = {"main-redraw",
                         "--weights FILE --seed S --arm joint|indep --out FILE.tsv [--scale full|smoke] "
-                        "[--volume 16-stands|96-stands] [--spacing D] [--probe P] [--patches N]",
+                        "[--volume 16-stands|96-stands] [--spacing D] [--probe P] [--patches N] [--cost]",
                         "Draw the clearance samples of one E3/E4 unit again from its weights, without training:\n"
                         "the data rows of FILE.tsv equal those of the unit's samples_s<seed>_<arm>.tsv bit for bit.\n"
                         "With --spacing and --probe only that slice is drawn (the spacing's teacher rows and the\n"
@@ -135,6 +137,14 @@ int cli_main_redraw(int argc, char **argv)
     int r = opts_parse(&c, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     a.seed = (unsigned)seed;
+    if (cost) {
+        double flops = 0, gflops = 0;
+        cs_status st = exp_main_redraw_cost(&a, &flops, &gflops);
+        if (st) return cli_fail("main-redraw", st);
+        printf("redraw_cost\tflops %.17g\tgflops %.3f\tcpu_s %.3f\n", flops, gflops,
+               gflops > 0 ? flops / gflops / 1e9 : 0.0);
+        return 0;
+    }
     cs_status st = exp_main_redraw(&a);
     return st ? cli_fail("main-redraw", st) : 0;
 }

@@ -17,6 +17,7 @@
  * are 14 700 steps = 306.25 passes over the data. The same for every reading,
  * so the frozen pair-aware runs keep their weights; stated in design.md §8. */
 #include "exp_main.h"
+#include "speed.h"
 #include "exp_common.h"
 #include "afile.h"
 #include "estimator.h"
@@ -370,6 +371,23 @@ static cs_status unit_load(const unit_args *a, const mainrun_plan *pl, model **m
     if (!st && a->reading && !model_reading_parse(a->reading, &r) && model_cfg_reading(&(*m)->cfg) != r)
         st = cs_err(CS_EINPUT, "%s: weights of the %s reading, not %s", a->weights,
                     model_reading_name(model_cfg_reading(&(*m)->cfg)), a->reading);
+    return st;
+}
+
+cs_status exp_main_redraw_cost(const exp_main_run_args *ap, double *flops, double *gflops)
+{
+    unit_args a = *ap;
+    if (!a.out) a.out = "-"; /* nothing is written */
+    cs_status st = unit_check("main-redraw", &a, 1);
+    mainset_design ds;
+    mainrun_plan pl;
+    model *m = NULL;
+    double scl = 0;
+    if (!st) st = unit_plan(&a, &ds, &pl);
+    if (!st) st = unit_load(&a, &pl, &m, &scl);
+    if (!st) *flops = mainrun_eval_flops(&m->cfg, pl.batch, &ds, &pl);
+    if (!st) st = speed_sample_gflops(m, pl.batch, 4, gflops);
+    model_free(m);
     return st;
 }
 

@@ -48,6 +48,11 @@ typedef struct {
     int argc;
     char **argv;
 } exp_main_run_args;
+/* What redrawing a unit costs, drawing nothing: the model FLOPs of its
+ * evaluation (mainrun_eval_flops, at the weights' configuration and the
+ * plan's volume) and this core's sampling rate for that model now
+ * (speed_sample_gflops, GFLOP/s of thread CPU time): tier 2's projection. */
+cs_status exp_main_redraw_cost(const exp_main_run_args *a, double *flops, double *gflops);
 /* One (seed, arm) unit: train (resuming), evaluate, write the run table. */
 cs_status exp_main_run(const exp_main_run_args *a);
 /* Train only: the weights and a one-row training table. */

@@ -1,5 +1,6 @@
 /* mainrun: one E3/E4 unit's evaluation and tables (see mainrun.h). */
 #include "mainrun.h"
+#include "speed.h"
 #include "estimator.h"
 #include "gate.h"
 #include "paths.h"
@@ -63,6 +64,19 @@ int mainrun_nprobe(const mainrun_plan *pl, const model_cfg *cfg, int unseen)
 {
     if (mainrun_volume_small(pl)) return cfg->pair ? MAINSET_NPROBE : cfg->joint ? 2 : 1;
     return unseen ? MAINSET_NPROBE : 1;
+}
+
+double mainrun_eval_flops(const model_cfg *cfg, int Bmax, const mainset_design *ds, const mainrun_plan *pl)
+{
+    const int full = pl->gen_patches / Bmax, rest = pl->gen_patches % Bmax;
+    const double per = full * speed_forward_flops(cfg, Bmax) + (rest ? speed_forward_flops(cfg, rest) : 0);
+    double f = 0;
+    for (size_t si = 0; si < ds->nunseen + ds->nextrap; si++) {
+        int unseen;
+        mainset_eval_spacing(ds, si, &unseen);
+        f += mainrun_nprobe(pl, cfg, unseen) * (double)pl->euler * per;
+    }
+    return f;
 }
 
 cs_status mainrun_evaluate(model *m, int Bmax, const mainset_design *ds, const mainrun_plan *pl, double scale,

@@ -84,6 +84,11 @@ cs_status mainrun_evaluate(model *m, int Bmax, const mainset_design *ds, const m
  * every probe) alone: the rows equal those rows of the whole evaluation bit
  * for bit (each spacing and probe draws from its own stream); the teacher
  * values ride on the first row of each spacing. */
+/* The model FLOPs mainrun_evaluate spends on model m's configuration: every
+ * evaluation spacing x its probes (mainrun_nprobe) x pl->euler forward passes
+ * over pl->gen_patches in chunks of Bmax (speed_forward_flops); the most a
+ * spacing with fewer patches can take. A projection's count (tier 2). */
+double mainrun_eval_flops(const model_cfg *cfg, int Bmax, const mainset_design *ds, const mainrun_plan *pl);
 cs_status mainrun_evaluate_slice(model *m, int Bmax, const mainset_design *ds, const mainrun_plan *pl, double scale,
                                  unsigned seed, const char *arm, double only_d, int only_probe, mainrun_row *rows,
                                  size_t *nrows, double *worst, double *maxdiff);

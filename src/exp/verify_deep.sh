@@ -56,25 +56,28 @@ while IFS=$'\t' read -r exp sub kind; do
         done
     done
 done <<<"$sets"
-# ---- the projected time, from the wall times the frozen units recorded ----
-# (on the machines and loads that made them: a projection, not a promise),
-# read per unit by unit_walls (unit_wall.sh, the reader study_cost.sh uses):
-# the rerun makes every unit of the experiments whose manifest row says
-# "rerun" (the units the registered ones need included), each at its
-# recorded wall time; a model redraw costs one evaluation, the median over
-# the frozen models of their evaluation part (a re-evaluation's own wall
-# time, or a training run's wall time less its training).
+# ---- the projected time ----
+# The teacher part at the wall times its frozen units recorded (unit_walls,
+# unit_wall.sh, the reader study_cost.sh uses; on the machines and loads
+# that made them, so an upper bound more than a forecast): the rerun makes
+# every unit of the experiments whose manifest row says "rerun", the units
+# the registered ones need included. The model part measured here and now:
+# `crownshy main-redraw --cost` gives each redraw's model FLOPs and this
+# core's sampling rate for that model (a few timed Euler steps, thread CPU
+# time), JOBS at a time; the teacher stands and estimator of a redraw are
+# left out (a few per cent).
 . src/exp/unit_wall.sh
 rerun_re=$(awk -F'\t' '$1 == "EXPERIMENT" && $8 == "rerun" { r = r (r == "" ? "" : "|") $2 } END { print "^(" r ")/" }' <<<"$rows")
 teach_s=$(env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL "$MAKE" -s --no-print-directory reproduce-status SCALE=full 2>/dev/null |
           awk -v re="$rerun_re" '$1 ~ /^(done|missing|queued|running|failed)$/ && $2 ~ re { print $2 }' |
           unit_walls frozen | awk -F'\t' '{ s += $2 } END { print s + 0 }')
-model_each=$(for j in "${jobs_list[@]}"; do set -- $j; printf '%s/run_s%02d_%s.tsv\n' "$6" "$2" "$3"; done |
-             unit_walls frozen | awk -F'\t' '$3 != "" { print $3 }' | sort -g |
-             awk '{ a[NR] = $1 } END { print NR ? (NR % 2 ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2) : 0 }')
-awk -v t="$teach_s" -v e="$model_each" -v j="$JOBS" -v nt="$total" -v nm="${#jobs_list[@]}" 'BEGIN {
-    printf "verify-deep: projected %.0f min on %d cores: %d teacher units (%.0f CPU-min, with the units they need) and %d model redraws (%.0f s each, median), from the wall times the frozen units recorded\n",
-           (t + e * nm) / j / 60, j, nt, t / 60, nm, e }'
+cost_one() { [ -f "$1" ] && "$CLI" main-redraw --weights "$1" --seed "$2" --arm "$3" --volume "$4" --cost 2>/dev/null; }
+export -f cost_one; export CLI
+model_s=$(printf '%s\n' "${jobs_list[@]}" | xargs -r -P "$JOBS" -L 1 bash -c 'cost_one "$@"' _ |
+          awk -F'\t' '$1 == "redraw_cost" { sub(/^cpu_s /, "", $4); s += $4 } END { print s + 0 }')
+awk -v t="$teach_s" -v m="$model_s" -v j="$JOBS" -v nt="$total" -v nm="${#jobs_list[@]}" 'BEGIN {
+    printf "verify-deep: projected %.0f min on %d cores: %d teacher units (%.0f CPU-min at the wall times the frozen units recorded, with the units they need) and %d model redraws (%.0f CPU-min at this core'"'"'s sampling rate measured now)\n",
+           (t + m) / j / 60, j, nt, t / 60, nm, m / 60 }'
 echo "verify-deep: rerunning $total teacher experiment units into $DEEP/ (make -j$JOBS; log $log)"
 unset MAKEFLAGS MFLAGS MAKELEVEL MAKEOVERRIDES
 nice $MAKE --no-print-directory -j"$JOBS" RESULTS="$DEEP" SCALE=full "${units[@]}" > "$log" 2>&1 &

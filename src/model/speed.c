@@ -252,3 +252,25 @@ cs_status speed_run(const model_cfg *ref, int B, int rounds, int steps, speed_re
     }
     return CS_OK;
 }
+
+cs_status speed_sample_gflops(model *m, int B, int steps, double *gflops)
+{
+    const model_cfg *c = &m->cfg;
+    const size_t nf = (size_t)B * c->T * c->nfeat, nc = (size_t)B * c->ncond;
+    float *feat = malloc(sizeof(float) * (nf + nc + 1)), *x = malloc(sizeof(float) * (size_t)B * c->T * c->P);
+    gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
+    cs_status st = feat && x && g ? CS_OK : cs_err(CS_ENOMEM, "speed: out of memory");
+    if (!st) {
+        gsl_rng_set(g, 1);
+        for (size_t i = 0; i < nf + nc; i++) feat[i] = (float)(2 * gsl_rng_uniform(g) - 1);
+        st = model_sample(m, g, B, feat, feat + nf, 1, x);
+    }
+    const double t0 = now_s();
+    if (!st) st = model_sample(m, g, B, feat, feat + nf, steps, x);
+    const double s = (now_s() - t0) / steps;
+    if (!st) *gflops = s > 0 ? speed_forward_flops(c, B) / s / 1e9 : 0;
+    if (g) gsl_rng_free(g);
+    free(feat);
+    free(x);
+    return st;
+}

@@ -65,6 +65,13 @@ const char *speed_name(speed_what w);
  * the forward part of model_train_flops's count. */
 double speed_forward_flops(const model_cfg *cfg, int B);
 
+/* The sampling rate of model m on this core now: one untimed Euler step of a
+ * B-patch batch (features drawn uniform in [-1, 1] from a fixed seed: the
+ * work of a pass does not depend on the values), then `steps` timed ones, in
+ * the thread's CPU time; *gflops = speed_forward_flops / CPU seconds per
+ * step. A projection's yardstick (tier 2's projected time), never a test. */
+cs_status speed_sample_gflops(model *m, int B, int steps, double *gflops);
+
 /* `rounds` rounds (1..SPEED_MAX_ROUNDS) on the current gemm path at the
  * reference configuration with batch B (cfg's joint/pair are set per item);
  * `steps` consecutive training steps (after SPEED_WARMUP_STEPS untimed ones
