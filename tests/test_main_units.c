@@ -4,6 +4,7 @@
  * table is est_w1 of its samples (claim_main_samples_check). Runs
  * build/crownshy from the repository root (it reads gates/). */
 #include "testutil.h"
+#include <unistd.h>
 #include "claims.h"
 #include "mainrun.h"
 #include "speed.h"
@@ -241,14 +242,17 @@ static void test_eval_from_weights_gives_the_unit_rows(void **s)
  * every row of the unit's run table (spacing x probe) is n_gen patches drawn
  * in chunks of the plan's batch, each chunk one forward pass per Euler step.
  * A probe or spacing the count missed, or a chunk counted at the wrong size,
- * makes the two differ. */
+ * makes the two differ. main-run --cost, before training, counts the same
+ * evaluation for the model the unit's options make (a width and depth other
+ * than the reference's, so that a cost ignoring them differs). */
 static void test_redraw_cost_counts_every_pass_of_the_run(void **s)
 {
     (void)s;
     const char *dir = tu_tmpdir("main_cost");
     char args[4096], out[8192];
     snprintf(args, sizeof args,
-             "main-run --seed 4 --arm joint --scale smoke --epochs 2 --ckpt %s/c.ckpt --weights %s/w.ckpt --out %s/run.tsv",
+             "main-run --seed 4 --arm joint --scale smoke --epochs 2 --width 32 --blocks 2 --ckpt %s/c.ckpt --weights %s/w.ckpt "
+             "--out %s/run.tsv",
              dir, dir, dir);
     if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("main-run: %s", out);
     snprintf(args, sizeof args, "main-redraw --weights %s/w.ckpt --seed 4 --arm joint --scale smoke --cost", dir);
@@ -279,6 +283,17 @@ static void test_redraw_cost_counts_every_pass_of_the_run(void **s)
     model_free(m);
     ASSERT_NEAR(flops, want, 1e-12 * want);
     assert_true(gflops > 0 && cpu > 0);
+    snprintf(args, sizeof args,
+             "main-run --seed 4 --arm joint --scale smoke --epochs 2 --width 32 --blocks 2 --out %s/x.tsv --cost", dir);
+    if (tu_run_cli("OPENBLAS_NUM_THREADS=1 ", args, out, sizeof out) != 0) fail_msg("main-run --cost: %s", out);
+    double tf = 0, ef = 0;
+    line = strstr(out, "unit_cost\t");
+    assert_non_null(line);
+    assert_int_equal(sscanf(line, "unit_cost\ttrain_flops %lf\teval_flops %lf", &tf, &ef), 2);
+    ASSERT_NEAR(ef, want, 1e-12 * want);
+    assert_true(tf > 0);
+    snprintf(path, sizeof path, "%s/x.tsv", dir);
+    assert_false(access(path, F_OK) == 0); /* --cost runs nothing and writes nothing */
 }
 
 int main(void)

@@ -40,6 +40,7 @@ static const char *const PROBES[] = {"generated", "shuffled", "rotated", NULL};
 int cli_main_run(int argc, char **argv)
 {
     long seed = 0, pair = -1;
+    int cost = 0;
     exp_main_run_args a = {.scale = "full", .argc = argc, .argv = argv};
     const opt_spec spec[] = {
         UNIT_OPTS(a, seed), TRAIN_OPTS(a, pair),
@@ -47,6 +48,7 @@ int cli_main_run(int argc, char **argv)
         {"samples", OPT_STR, &a.samples, 0, 0, "also write the clearance samples behind every W1 to FILE.tsv (default none)"},
         {"weights", OPT_STR, &a.weights, 0, 0, "also write the final weights to FILE (weights format, README; default none)"},
         {"volume", OPT_CHOICE, &a.volume, 0, 0, "evaluation volume, named by its teacher stands per spacing (src/exp/mainrun.h; default " EVALVOL_SMALL ")", .choices = VOLUMES},
+        {"cost", OPT_FLAG, &cost, 0, 0, "run nothing: print the unit's model FLOPs (training, evaluation) and this core's rates for its model (make bench's study cost)"},
     };
     const opts_cmd c = {"main-run", "--seed S --arm joint|indep --out FILE.tsv [options]",
                         "One (seed, arm) unit of E3/E4: build teacher data, train the flow model (resuming from\n"
@@ -58,6 +60,16 @@ int cli_main_run(int argc, char **argv)
     if (r) return opts_exit_code(r);
     a.seed = (unsigned)seed;
     a.pair = (int)pair;
+    if (cost) {
+        exp_main_cost k;
+        cs_status st = exp_main_run_cost(&a, &k);
+        if (st) return cli_fail("main-run", st);
+        const double cpu = (k.train_gflops > 0 ? k.train_flops / k.train_gflops / 1e9 : 0) +
+                           (k.sample_gflops > 0 ? k.eval_flops / k.sample_gflops / 1e9 : 0);
+        printf("unit_cost\ttrain_flops %.17g\teval_flops %.17g\ttrain_gflops %.3f\tsample_gflops %.3f\tcpu_s %.3f\n",
+               k.train_flops, k.eval_flops, k.train_gflops, k.sample_gflops, cpu);
+        return 0;
+    }
     cs_status st = exp_main_run(&a);
     return st ? cli_fail("main-run", st) : 0;
 }

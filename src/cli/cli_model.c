@@ -216,8 +216,7 @@ static cs_status projection(const speed_result *r, double *wall_min, double *uni
     if (!st) st = mainset_design_get(&ds);
     if (!st) st = gate_read_value(PATHS_GATE("main"), "seeds", 0, &seeds);
     if (st) return st;
-    /* about 64 interior focal stems per training stand (mainrun.h); volume 16-stands */
-    const long npatch = 64L * pl.train_stands * (long)ds.ntrain;
+    const long npatch = mainrun_train_patches(&ds, &pl); /* volume 16-stands */
     *steps = (long)pl.epochs * ((npatch + pl.batch - 1) / pl.batch);
     const double euler_calls = (double)(ds.nunseen + ds.nextrap) * MAINSET_NPROBE *
                                ((pl.gen_patches + r->batch - 1) / r->batch) * pl.euler;

@@ -93,6 +93,18 @@ typedef struct {
     char wsha[65];
 } unit_trained;
 
+/* The model a unit trains: the reference, its arm and reading, and the
+ * width or depth the unit overrides. */
+static model_cfg unit_cfg(const unit_args *a, model_reading reading)
+{
+    model_cfg cfg = model_cfg_reference(PATCH_NCOND);
+    cfg.joint = !strcmp(a->arm, "joint");
+    model_cfg_set_reading(&cfg, reading);
+    if (a->width) { cfg.C = (int)a->width; cfg.F = 4 * (int)a->width; } /* the reference keeps MLP = 4 x width */
+    if (a->blocks) cfg.L = (int)a->blocks;
+    return cfg;
+}
+
 /* Build the teacher data, train (resuming from a->ckpt), write the weights;
  * *out owns the trainer, *data its patches. */
 static cs_status unit_train(const unit_args *a, const mainset_design *ds, const mainrun_plan *pl,
@@ -107,11 +119,7 @@ static cs_status unit_train(const unit_args *a, const mainset_design *ds, const 
     if (st) return st;
     u->scale = patch_set_rms(tr);
     if ((st = patch_set_standardise(tr, u->scale))) return st;
-    model_cfg cfg = model_cfg_reference(PATCH_NCOND);
-    cfg.joint = !strcmp(a->arm, "joint");
-    model_cfg_set_reading(&cfg, reading);
-    if (a->width) { cfg.C = (int)a->width; cfg.F = 4 * (int)a->width; } /* the reference keeps MLP = 4 x width */
-    if (a->blocks) cfg.L = (int)a->blocks;
+    model_cfg cfg = unit_cfg(a, reading);
     train_opts o = train_opts_default();
     o.batch = pl->batch;
     o.lr = pl->lr;
@@ -372,6 +380,22 @@ static cs_status unit_load(const unit_args *a, const mainrun_plan *pl, model **m
         st = cs_err(CS_EINPUT, "%s: weights of the %s reading, not %s", a->weights,
                     model_reading_name(model_cfg_reading(&(*m)->cfg)), a->reading);
     return st;
+}
+
+cs_status exp_main_run_cost(const exp_main_run_args *ap, exp_main_cost *c)
+{
+    const unit_args a = *ap;
+    memset(c, 0, sizeof *c);
+    cs_status st = unit_check("main-run", &a, 0);
+    mainset_design ds;
+    mainrun_plan pl;
+    if (!st) st = unit_plan(&a, &ds, &pl);
+    if (st) return st;
+    const model_cfg cfg = unit_cfg(&a, unit_reading(&a));
+    const long npatch = mainrun_train_patches(&ds, &pl);
+    c->train_flops = (double)pl.epochs * ((npatch + pl.batch - 1) / pl.batch) * model_train_flops(&cfg, pl.batch);
+    c->eval_flops = mainrun_eval_flops(&cfg, pl.batch, &ds, &pl);
+    return speed_model_gflops(&cfg, pl.batch, 3, &c->train_gflops, &c->sample_gflops);
 }
 
 cs_status exp_main_redraw_cost(const exp_main_run_args *ap, double *flops, double *gflops)

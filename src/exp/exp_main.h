@@ -48,6 +48,13 @@ typedef struct {
     int argc;
     char **argv;
 } exp_main_run_args;
+/* What a unit costs, run nothing: the model FLOPs of its training (the
+ * plan's epochs x steps over mainrun_train_patches patches, model_train_flops
+ * each) and of its evaluation (mainrun_eval_flops), and this core's rates now
+ * for a fresh model of the unit's configuration (speed_model_gflops): the
+ * study's projected cost (make bench). */
+typedef struct { double train_flops, eval_flops, train_gflops, sample_gflops; } exp_main_cost;
+cs_status exp_main_run_cost(const exp_main_run_args *a, exp_main_cost *c);
 /* What redrawing a unit costs, drawing nothing: the model FLOPs of its
  * evaluation (mainrun_eval_flops, at the weights' configuration and the
  * plan's volume) and this core's sampling rate for that model now

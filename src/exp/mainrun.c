@@ -66,6 +66,11 @@ int mainrun_nprobe(const mainrun_plan *pl, const model_cfg *cfg, int unseen)
     return unseen ? MAINSET_NPROBE : 1;
 }
 
+long mainrun_train_patches(const mainset_design *ds, const mainrun_plan *pl)
+{
+    return 64L * pl->train_stands * (long)ds->ntrain;
+}
+
 double mainrun_eval_flops(const model_cfg *cfg, int Bmax, const mainset_design *ds, const mainrun_plan *pl)
 {
     const int full = pl->gen_patches / Bmax, rest = pl->gen_patches % Bmax;

@@ -84,6 +84,11 @@ cs_status mainrun_evaluate(model *m, int Bmax, const mainset_design *ds, const m
  * every probe) alone: the rows equal those rows of the whole evaluation bit
  * for bit (each spacing and probe draws from its own stream); the teacher
  * values ride on the first row of each spacing. */
+/* The training patches of a unit, as a projection counts them: about 64
+ * interior focal stems per training stand (the stand layout of mainset.h),
+ * x pl->train_stands x the training spacings; the count itself comes from
+ * building the stands, which a projection does not. */
+long mainrun_train_patches(const mainset_design *ds, const mainrun_plan *pl);
 /* The model FLOPs mainrun_evaluate spends on model m's configuration: every
  * evaluation spacing x its probes (mainrun_nprobe) x pl->euler forward passes
  * over pl->gen_patches in chunks of Bmax (speed_forward_flops); the most a

@@ -56,12 +56,14 @@ cost() {
       if (w == "") { w = median(bye[E[i]]); src = "experiment" }
       if (w == "") { unknown[E[i]]++; totunknown++; continue }
       cpu[E[i]] += w; total += w; if (src == "recorded") { rec[E[i]]++; totrec++ }
+      if (H[i] == "measured") { meas[E[i]]++; totmeas++ }
       if (H[i] == "trained") trained++
     }
     if (!totrec) { printf "  none of its %d units has a recorded wall time here: no projection (make reproduce SCALE=%s records them)\n", n, scale; exit }
     printf "%-24s %6s %9s %10s\n", "experiment", "units", "recorded", "CPU-hours"
     for (e in units) printf "%-24s %6d %9d %10.2f%s\n", e, units[e], rec[e], cpu[e] / 3600, unknown[e] ? sprintf("  (%d with no time of their kind)", unknown[e]) : ""
-    printf "whole study at SCALE=%s: %d units (%d with a recorded time), %.2f CPU-hours%s\n", scale, n, totrec, total / 3600,
+    printf "whole study at SCALE=%s: %d units (%d with a recorded time%s), %.2f CPU-hours%s\n", scale, n, totrec,
+           totmeas ? sprintf(", %d of them measured here", totmeas) : "", total / 3600,
            totunknown ? sprintf(" (%d units with no recorded time of their kind left out)", totunknown) : ""
     if (trained) printf "(%d training units are frozen as re-evaluations of their weights: each is counted at the wall time its training run recorded, trained_wall_s)\n", trained
     printf "  make -j2 on one two-core machine: about %.2f h (%.1f min)\n", total / 3600 / 2, total / 60 / 2
@@ -70,9 +72,31 @@ cost() {
   }'
 }
 
+# model_cpu SCALE ROOT < paths: "path <TAB> cpu_s" for each unit whose recipe
+# runs `crownshy main-run`: its recipe as make expands it (make -n), run with
+# --cost (the unit's model FLOPs at this core's rates now, thread CPU time;
+# its teacher stands left out), both cores at a time
+model_cpu() {
+    local scale=$1 root=$2
+    sed "s|^|$root/|" | xargs -r env -u MAKEFLAGS -u MAKELEVEL make -s -n -B -o "$cli" --no-print-directory \
+        SCALE="$scale" RESULTS="$root" 2>/dev/null |
+        sed -n "s|.*\($cli main-run .*\)\$|\1|p" |
+        xargs -r -d '\n' -P 2 -I{} bash -c 'c="{}"; o=${c##*--out }; o=${o%% *}; OPENBLAS_NUM_THREADS=1 $c --cost |
+            awk -F"\t" -v p="${o#'"$root"'/}" '"'"'$1 == "unit_cost" { sub(/^cpu_s /, "", $6); print p "\t" $6 }'"'"''
+}
+cli=build/crownshy
+
 full_units=$(units_at full) || { echo "study_cost: make reproduce-status failed" >&2; exit 4; }
 full=$(unit_walls frozen <<<"$full_units")
 cut -f1,2,4 <<<"$full" | cost full "the full run, from the manifest and the frozen units' recorded wall times"
+# the same with every model unit at this core's rates now (the recorded
+# times of the model units are those of a loaded machine)
+if [ -x "$cli" ]; then
+    measured=$(model_cpu full build/results <<<"$full_units")
+    awk -F'\t' -v OFS='\t' 'FNR == NR { M[$1] = $2; next } ($1 in M) { $2 = M[$1]; $4 = "measured" } { print }' \
+        <(printf '%s\n' "$measured") <(printf '%s\n' "$full") |
+        cut -f1,2,4 | cost full "the full run, its $(grep -c . <<<"$measured") model units (crownshy main-run) at this core's rates measured now (main-run --cost: model FLOPs over the training and sampling rates of a fresh model of the unit's configuration; a unit's teacher stands left out), the other units at their recorded wall times"
+fi
 
 # this machine's rates x the plan's counts, for the pair model's training units
 if [ -n "${BENCH_MODEL_OUT:-}" ] && [ -f "$BENCH_MODEL_OUT" ]; then

@@ -274,3 +274,25 @@ cs_status speed_sample_gflops(model *m, int B, int steps, double *gflops)
     free(x);
     return st;
 }
+
+cs_status speed_model_gflops(const model_cfg *cfg, int B, int steps, double *train_gflops, double *sample_gflops)
+{
+    patch_set *ps = NULL;
+    train *t = NULL;
+    cs_status st = patch_set_alloc(&ps, 2 * B);
+    if (!st) st = patch_set_add_toy(ps, (2 * B + 63) / 64, 4.5, 7);
+    if (!st) st = patch_set_standardise(ps, patch_set_rms(ps));
+    train_opts o = train_opts_default();
+    o.batch = B;
+    o.steps = 100000;
+    if (!st) st = train_alloc(&t, cfg, ps, &o);
+    if (!st) st = train_step(t, NULL);
+    const double t0 = now_s();
+    for (int k = 0; k < steps && !st; k++) st = train_step(t, NULL);
+    const double s = (now_s() - t0) / steps;
+    if (!st) *train_gflops = s > 0 ? model_train_flops(cfg, B) / s / 1e9 : 0;
+    if (!st) st = speed_sample_gflops(t->m, B, steps, sample_gflops);
+    train_free(t);
+    patch_set_free(ps);
+    return st;
+}

@@ -72,6 +72,12 @@ double speed_forward_flops(const model_cfg *cfg, int B);
  * step. A projection's yardstick (tier 2's projected time), never a test. */
 cs_status speed_sample_gflops(model *m, int B, int steps, double *gflops);
 
+/* This core's rates now for a fresh model of configuration cfg on toy
+ * patches (patch_set_add_toy): training (one untimed step, then `steps`
+ * timed, model_train_flops each) and sampling (speed_sample_gflops), GFLOP/s
+ * of thread CPU time. A projection's yardstick (the study's cost). */
+cs_status speed_model_gflops(const model_cfg *cfg, int B, int steps, double *train_gflops, double *sample_gflops);
+
 /* `rounds` rounds (1..SPEED_MAX_ROUNDS) on the current gemm path at the
  * reference configuration with batch B (cfg's joint/pair are set per item);
  * `steps` consecutive training steps (after SPEED_WARMUP_STEPS untimed ones
