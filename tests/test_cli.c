@@ -33,8 +33,7 @@ static void test_malformed_gate_exit_3_names_file_line_field(void **s)
     (void)s;
     const char *dir = tu_tmpdir("cli_gate");
     char p[600], a[700];
-    snprintf(p, sizeof p, "%s/bad.gate", dir);
-    tu_write(p, "# c\nseeds 12\nrel_improvement_min 0.2O\n");
+    tu_write_in(p, sizeof p, dir, "bad.gate", "# c\nseeds 12\nrel_improvement_min 0.2O\n");
     snprintf(a, sizeof a, "gates %s", p);
     assert_int_equal(run(a, out, sizeof out), 3);
     assert_non_null(strstr(out, "bad.gate:3:"));
@@ -46,8 +45,7 @@ static void test_truncated_tsv_exit_3_names_line_and_field(void **s)
     (void)s;
     const char *dir = tu_tmpdir("cli_tsv");
     char p[600], a[700];
-    snprintf(p, sizeof p, "%s/runs.tsv", dir);
-    tu_write(p, "# experiment: main\nseed\tarm\tw1\n1\tjoint\t0.4\n2\tjoint\n");
+    tu_write_in(p, sizeof p, dir, "runs.tsv", "# experiment: main\nseed\tarm\tw1\n1\tjoint\t0.4\n2\tjoint\n");
     snprintf(a, sizeof a, "check-tsv %s", p);
     assert_int_equal(run(a, out, sizeof out), 3);
     assert_non_null(strstr(out, "runs.tsv:4:"));
@@ -59,8 +57,7 @@ static void test_non_number_tsv_exit_3(void **s)
     (void)s;
     const char *dir = tu_tmpdir("cli_nan");
     char p[600], a[700];
-    snprintf(p, sizeof p, "%s/runs.tsv", dir);
-    tu_write(p, "seed\tw1\n1\t0.4\n2\t0.4x\n");
+    tu_write_in(p, sizeof p, dir, "runs.tsv", "seed\tw1\n1\t0.4\n2\t0.4x\n");
     snprintf(a, sizeof a, "check-tsv %s", p);
     assert_int_equal(run(a, out, sizeof out), 3);
     assert_non_null(strstr(out, "runs.tsv:3:"));

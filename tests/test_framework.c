@@ -10,10 +10,9 @@ static const char *HDR = "macro\tkind\tsource\tfunction\tgate\ttest\tsection\tfo
 static const char *registry(const char *name, const char *rows)
 {
     static char path[600];
-    snprintf(path, sizeof path, "%s/claims.tsv", tu_tmpdir(name));
     char buf[4096];
     snprintf(buf, sizeof buf, "# what: test registry\n%s%s", HDR, rows);
-    tu_write(path, buf);
+    tu_write_in(path, sizeof path, tu_tmpdir(name), "claims.tsv", buf);
     return path;
 }
 
@@ -134,10 +133,8 @@ static void test_registry_rejects_bad_params(void **s)
 static void test_params_not_the_macro_choose_the_bound(void **s)
 {
     (void)s;
-    const char *dir = tu_tmpdir("reg_bound");
     char src[600], rows[1200];
-    snprintf(src, sizeof src, "%s/sweep.tsv", dir);
-    tu_write(src, "beta\tk1_m\n0\t1.75\n0.5\t9\n0\t0.25\n0\t1\n");
+    tu_write_in(src, sizeof src, tu_tmpdir("reg_bound"), "sweep.tsv", "beta\tk1_m\n0\t1.75\n0.5\t9\n0\t0.25\n0\t1\n");
     static const struct { const char *params; verdict status; double want; } k[] = {
         {"bound=lo", VERDICT_PASS, 0.25}, {"bound=hi", VERDICT_PASS, 1.75}, {"-", VERDICT_FAIL, NAN}};
     for (size_t i = 0; i < sizeof k / sizeof *k; i++) {
@@ -194,8 +191,7 @@ static void test_tampered_numbers_value_is_named(void **s)
     (void)s;
     const char *dir = tu_tmpdir("nt_tamper");
     char p[600];
-    snprintf(p, sizeof p, "%s/numbers.tex", dir);
-    tu_write(p, "% x\n\\newcommand{\\MainSeeds}{11}\n");
+    tu_write_in(p, sizeof p, dir, "numbers.tex", "% x\n\\newcommand{\\MainSeeds}{11}\n");
     numbers_tex nt;
     assert_int_equal(numbers_read(p, &nt), CS_OK);
     claim_row row = {.macro = "MainSeeds",
@@ -221,8 +217,7 @@ static void test_missing_registered_source_fails(void **s)
     (void)s;
     const char *dir = tu_tmpdir("nt_pending");
     char p[600];
-    snprintf(p, sizeof p, "%s/numbers.tex", dir);
-    tu_write(p, "\\newcommand{\\MainRel}{53.6}\n");
+    tu_write_in(p, sizeof p, dir, "numbers.tex", "\\newcommand{\\MainRel}{53.6}\n");
     numbers_tex nt;
     assert_int_equal(numbers_read(p, &nt), CS_OK);
     claim_row row = {.macro = "MainRel",
@@ -246,8 +241,7 @@ static void test_truncated_numbers_tex_is_input_error(void **s)
     (void)s;
     const char *dir = tu_tmpdir("nt_trunc");
     char p[600];
-    snprintf(p, sizeof p, "%s/numbers.tex", dir);
-    tu_write(p, "\\newcommand{\\MainRel}{\\pending{Mai\n");
+    tu_write_in(p, sizeof p, dir, "numbers.tex", "\\newcommand{\\MainRel}{\\pending{Mai\n");
     numbers_tex nt;
     assert_int_equal(numbers_read(p, &nt), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), "numbers.tex:1:"));
@@ -261,8 +255,7 @@ static void test_gate_failure_is_consistent_but_fails_verify(void **s)
      * FAIL, and a failure for verify. */
     const char *dir = tu_tmpdir("gate_fail");
     char p[600];
-    snprintf(p, sizeof p, "%s/numbers.tex", dir);
-    tu_write(p, "\\newcommand{\\MainRel}{12.0}\n\\newcommand{\\MainRelGate}{FAIL}\n");
+    tu_write_in(p, sizeof p, dir, "numbers.tex", "\\newcommand{\\MainRel}{12.0}\n\\newcommand{\\MainRelGate}{FAIL}\n");
     numbers_tex nt;
     assert_int_equal(numbers_read(p, &nt), CS_OK);
     claim_row row = {.macro = "MainRel",

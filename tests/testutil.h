@@ -35,6 +35,14 @@ static inline void tu_write(const char *path, const char *text)
     fclose(f);
 }
 
+/* Write `text` to the fixture <dir>/<name>, its path into path[n]: a test
+ * names its inputs by that path, so a cut one would test another file. */
+static inline void tu_write_in(char *path, size_t n, const char *dir, const char *name, const char *text)
+{
+    if (snprintf(path, n, "%s/%s", dir, name) >= (int)n) fail_msg("tu_write_in: path %s/%s too long", dir, name);
+    tu_write(path, text);
+}
+
 /* A fresh scratch directory under build/test-tmp/<name>. Returns a static buffer. */
 static inline const char *tu_tmpdir(const char *name)
 {
