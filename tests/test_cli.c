@@ -7,6 +7,16 @@ static int run(const char *args, char *out, size_t n) { return tu_run_cli("", ar
 
 static char out[65536];
 
+/* "crownshy <command> <file>" on a file holding text, written into the
+ * scratch folder build/test-tmp/<scratch>; returns the exit code, its output in out. */
+static int run_on_file(const char *command, const char *scratch, const char *file, const char *text)
+{
+    char p[600], a[700];
+    tu_write_in(p, sizeof p, tu_tmpdir(scratch), file, text);
+    snprintf(a, sizeof a, "%s %s", command, p);
+    return run(a, out, sizeof out);
+}
+
 static void test_help_exits_zero(void **s)
 {
     (void)s;
@@ -31,11 +41,7 @@ static void test_unknown_command_is_usage_error(void **s)
 static void test_malformed_gate_exit_3_names_file_line_field(void **s)
 {
     (void)s;
-    const char *dir = tu_tmpdir("cli_gate");
-    char p[600], a[700];
-    tu_write_in(p, sizeof p, dir, "bad.gate", "# c\nseeds 12\nrel_improvement_min 0.2O\n");
-    snprintf(a, sizeof a, "gates %s", p);
-    assert_int_equal(run(a, out, sizeof out), 3);
+    assert_int_equal(run_on_file("gates", "cli_gate", "bad.gate", "# c\nseeds 12\nrel_improvement_min 0.2O\n"), 3);
     assert_non_null(strstr(out, "bad.gate:3:"));
     assert_non_null(strstr(out, "rel_improvement_min"));
 }
@@ -43,11 +49,9 @@ static void test_malformed_gate_exit_3_names_file_line_field(void **s)
 static void test_truncated_tsv_exit_3_names_line_and_field(void **s)
 {
     (void)s;
-    const char *dir = tu_tmpdir("cli_tsv");
-    char p[600], a[700];
-    tu_write_in(p, sizeof p, dir, "runs.tsv", "# experiment: main\nseed\tarm\tw1\n1\tjoint\t0.4\n2\tjoint\n");
-    snprintf(a, sizeof a, "check-tsv %s", p);
-    assert_int_equal(run(a, out, sizeof out), 3);
+    assert_int_equal(run_on_file("check-tsv", "cli_tsv", "runs.tsv",
+                                 "# experiment: main\nseed\tarm\tw1\n1\tjoint\t0.4\n2\tjoint\n"),
+                     3);
     assert_non_null(strstr(out, "runs.tsv:4:"));
     assert_non_null(strstr(out, "'w1'"));
 }
@@ -55,11 +59,7 @@ static void test_truncated_tsv_exit_3_names_line_and_field(void **s)
 static void test_non_number_tsv_exit_3(void **s)
 {
     (void)s;
-    const char *dir = tu_tmpdir("cli_nan");
-    char p[600], a[700];
-    tu_write_in(p, sizeof p, dir, "runs.tsv", "seed\tw1\n1\t0.4\n2\t0.4x\n");
-    snprintf(a, sizeof a, "check-tsv %s", p);
-    assert_int_equal(run(a, out, sizeof out), 3);
+    assert_int_equal(run_on_file("check-tsv", "cli_nan", "runs.tsv", "seed\tw1\n1\t0.4\n2\t0.4x\n"), 3);
     assert_non_null(strstr(out, "runs.tsv:3:"));
     assert_non_null(strstr(out, "'w1'"));
 }
