@@ -7,14 +7,9 @@ static int run(const char *args, char *out, size_t n) { return tu_run_cli("", ar
 
 static char out[65536];
 
-/* "crownshy <command> <file>" on a file holding text, written into the
- * scratch folder build/test-tmp/<scratch>; returns the exit code, its output in out. */
 static int run_on_file(const char *command, const char *scratch, const char *file, const char *text)
 {
-    char p[600], a[700];
-    tu_write_in(p, sizeof p, tu_tmpdir(scratch), file, text);
-    snprintf(a, sizeof a, "%s %s", command, p);
-    return run(a, out, sizeof out);
+    return tu_run_cli_on("", command, scratch, file, text, out, sizeof out);
 }
 
 static void test_help_exits_zero(void **s)

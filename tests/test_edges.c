@@ -231,25 +231,28 @@ static void test_directory_as_input_is_input_error(void **s)
     assert_null(strstr(out, "out of memory"));
 }
 
+/* field-summary of a table holding text, with no FIELD_TABLE from the caller's environment. */
+static int field_summary_of(const char *scratch, const char *file, const char *text)
+{
+    return tu_run_cli_on("env -u FIELD_TABLE ", "field-summary", scratch, file, text, out, sizeof out);
+}
+
 static void test_utf8_bom_is_handled(void **s)
 {
     (void)s;
-    char p[600], a[700];
-    tu_write_in(p, sizeof p, tu_tmpdir("edges_bom"), "bom.tsv",
-                "\xef\xbb\xbftree\tdirection\tclearance_m\nx\tE\t0.5\nx\tN\t0.5\nx\tW\t0.5\nx\tS\t0.5\n");
-    snprintf(a, sizeof a, "field-summary %s", p);
-    assert_int_equal(tu_run_cli("env -u FIELD_TABLE ", a, out, sizeof out), 0);
+    assert_int_equal(field_summary_of("edges_bom", "bom.tsv",
+                                      "\xef\xbb\xbftree\tdirection\tclearance_m\nx\tE\t0.5\nx\tN\t0.5\n"
+                                      "x\tW\t0.5\nx\tS\t0.5\n"),
+                     0);
     assert_non_null(strstr(out, "trees\t1"));
 }
 
 static void test_huge_value_names_file_line_field(void **s)
 {
     (void)s;
-    char p[600], a[700];
-    tu_write_in(p, sizeof p, tu_tmpdir("edges_huge"), "huge.tsv",
-                "tree\tdirection\tclearance_m\nx\tE\t0.5\nx\tN\t1e308\nx\tW\t0.5\nx\tS\t0.5\n");
-    snprintf(a, sizeof a, "field-summary %s", p);
-    assert_int_equal(tu_run_cli("env -u FIELD_TABLE ", a, out, sizeof out), 3);
+    assert_int_equal(field_summary_of("edges_huge", "huge.tsv",
+                                      "tree\tdirection\tclearance_m\nx\tE\t0.5\nx\tN\t1e308\nx\tW\t0.5\nx\tS\t0.5\n"),
+                     3);
     assert_non_null(strstr(out, "huge.tsv:3: field 'clearance_m'"));
 }
 

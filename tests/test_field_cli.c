@@ -41,11 +41,9 @@ static void test_field_summary_without_table_is_input_error(void **s)
 static void test_field_summary_bad_table_names_line(void **s)
 {
     (void)s;
-    char p[600], a[700];
-    tu_write_in(p, sizeof p, tu_tmpdir("field_cli_bad"), "bad.tsv",
-                "tree\tdirection\tclearance_m\nx\tE\t0.5\nx\tup\t0.5\n");
-    snprintf(a, sizeof a, "field-summary %s", p);
-    assert_int_equal(run(a), 3);
+    assert_int_equal(tu_run_cli_on("env -u FIELD_TABLE ", "field-summary", "field_cli_bad", "bad.tsv",
+                                   "tree\tdirection\tclearance_m\nx\tE\t0.5\nx\tup\t0.5\n", out, sizeof out),
+                     3);
     assert_non_null(strstr(out, "bad.tsv:3: field 'direction'"));
 }
 

@@ -68,4 +68,16 @@ static inline int tu_run_cli(const char *env, const char *args, char *out, size_
     int st = pclose(p);
     return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
+
+/* tu_run_cli of "<command> <path>" on a fixture file holding text, written as
+ * <file> into the scratch folder build/test-tmp/<scratch>. */
+static inline int tu_run_cli_on(const char *env, const char *command, const char *scratch, const char *file,
+                                const char *text, char *out, size_t n)
+{
+    char p[600], a[700];
+    tu_write_in(p, sizeof p, tu_tmpdir(scratch), file, text);
+    if (snprintf(a, sizeof a, "%s %s", command, p) >= (int)sizeof a)
+        fail_msg("tu_run_cli_on: '%s %s' too long", command, p);
+    return tu_run_cli(env, a, out, n);
+}
 #endif
