@@ -66,6 +66,14 @@ expect() {
   if [ -z "$lines" ]; then bad "$name" "no FAIL line naming all of: $*"; grep -E '^  FAIL ' <<<"$out" | head -3 | cut -c1-300; return; fi
   ok "$name"
 }
+# expect_numbers_check NAME RC PATTERN: numbers --check in the scratch copy
+# exits RC and prints a line matching PATTERN (a grep regex)
+expect_numbers_check() {
+  local out rc
+  out=$(cd "$scratch" && "$cli" numbers --check 2>&1); rc=$?
+  if [ $rc -eq "$2" ] && grep -q "$3" <<<"$out"; then ok "$1"
+  else bad "$1" "exit $rc: $out"; fi
+}
 reseal() { (cd "$scratch" && "$cli" hash-frozen >/dev/null 2>&1); }
 # the dishonest author's whole chain after an edit: re-pin, rewrite the gates
 # hash in every frozen provenance, reseal, regenerate the paper files
@@ -106,10 +114,7 @@ t_strict() {
 # numbers --check compares paper/numbers.tex with a fresh generation only
 t_numbers_check() {
   fresh
-  local out rc
-  out=$(cd "$scratch" && "$cli" numbers --check 2>&1); rc=$?
-  if [ $rc -eq 0 ] && grep -q '^PASS ' <<<"$out"; then ok "numbers --check passes on the untampered copy"
-  else bad "numbers --check passes on the untampered copy" "exit $rc: $out"; fi
+  expect_numbers_check "numbers --check passes on the untampered copy" 0 '^PASS '
 }
 
 # 1. one gate threshold
@@ -131,10 +136,7 @@ t03() {
   fresh
   sed -i 's/^\\newcommand{\\MechRows}{16}/\\newcommand{\\MechRows}{17}/' "$scratch/paper/numbers.tex"
   expect "numbers.tex macro" "paper/numbers.tex" "MechRows"
-  local out rc
-  out=$(cd "$scratch" && "$cli" numbers --check 2>&1); rc=$?
-  if [ $rc -eq 1 ] && grep -q '^FAIL .*paper/numbers.tex:[0-9]* differs' <<<"$out"; then ok "numbers --check names the edited line"
-  else bad "numbers --check names the edited line" "exit $rc: $out"; fi
+  expect_numbers_check "numbers --check names the edited line" 1 '^FAIL .*paper/numbers.tex:[0-9]* differs'
 }
 # 4. one frozen number (the first numeric data cell of the first hashed table)
 # (named with the claims of the file, or "(no claim)" for a figure-only table)

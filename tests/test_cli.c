@@ -7,6 +7,11 @@ static int run(const char *args, char *out, size_t n) { return tu_run_cli("", ar
 
 static char out[65536];
 
+static int run_on_file(const char *command, const char *scratch, const char *file, const char *text)
+{
+    return tu_run_cli_on("", command, scratch, file, text, out, sizeof out);
+}
+
 static void test_help_exits_zero(void **s)
 {
     (void)s;
@@ -31,12 +36,7 @@ static void test_unknown_command_is_usage_error(void **s)
 static void test_malformed_gate_exit_3_names_file_line_field(void **s)
 {
     (void)s;
-    const char *dir = tu_tmpdir("cli_gate");
-    char p[600], a[700];
-    snprintf(p, sizeof p, "%s/bad.gate", dir);
-    tu_write(p, "# c\nseeds 12\nrel_improvement_min 0.2O\n");
-    snprintf(a, sizeof a, "gates %s", p);
-    assert_int_equal(run(a, out, sizeof out), 3);
+    assert_int_equal(run_on_file("gates", "cli_gate", "bad.gate", "# c\nseeds 12\nrel_improvement_min 0.2O\n"), 3);
     assert_non_null(strstr(out, "bad.gate:3:"));
     assert_non_null(strstr(out, "rel_improvement_min"));
 }
@@ -44,12 +44,9 @@ static void test_malformed_gate_exit_3_names_file_line_field(void **s)
 static void test_truncated_tsv_exit_3_names_line_and_field(void **s)
 {
     (void)s;
-    const char *dir = tu_tmpdir("cli_tsv");
-    char p[600], a[700];
-    snprintf(p, sizeof p, "%s/runs.tsv", dir);
-    tu_write(p, "# experiment: main\nseed\tarm\tw1\n1\tjoint\t0.4\n2\tjoint\n");
-    snprintf(a, sizeof a, "check-tsv %s", p);
-    assert_int_equal(run(a, out, sizeof out), 3);
+    assert_int_equal(run_on_file("check-tsv", "cli_tsv", "runs.tsv",
+                                 "# experiment: main\nseed\tarm\tw1\n1\tjoint\t0.4\n2\tjoint\n"),
+                     3);
     assert_non_null(strstr(out, "runs.tsv:4:"));
     assert_non_null(strstr(out, "'w1'"));
 }
@@ -57,12 +54,7 @@ static void test_truncated_tsv_exit_3_names_line_and_field(void **s)
 static void test_non_number_tsv_exit_3(void **s)
 {
     (void)s;
-    const char *dir = tu_tmpdir("cli_nan");
-    char p[600], a[700];
-    snprintf(p, sizeof p, "%s/runs.tsv", dir);
-    tu_write(p, "seed\tw1\n1\t0.4\n2\t0.4x\n");
-    snprintf(a, sizeof a, "check-tsv %s", p);
-    assert_int_equal(run(a, out, sizeof out), 3);
+    assert_int_equal(run_on_file("check-tsv", "cli_nan", "runs.tsv", "seed\tw1\n1\t0.4\n2\t0.4x\n"), 3);
     assert_non_null(strstr(out, "runs.tsv:3:"));
     assert_non_null(strstr(out, "'w1'"));
 }

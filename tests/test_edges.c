@@ -53,8 +53,7 @@ static void test_numbers_bad_field_table_writes_nothing(void **s)
     (void)s;
     const char *dir = scratch("edges_numbers_field");
     char env[1200], p[1100];
-    snprintf(p, sizeof p, "%s/bad.tsv", dir);
-    tu_write(p, "tree\tdirection\tclearance_m\nx\tE\tabc\n");
+    tu_write_in(p, sizeof p, dir, "bad.tsv", "tree\tdirection\tclearance_m\nx\tE\tabc\n");
     snprintf(env, sizeof env, "FIELD_TABLE=bad.tsv");
     assert_int_equal(run_in(dir, env, "numbers"), 3);
     assert_non_null(strstr(out, "bad.tsv:2: field 'clearance_m'"));
@@ -67,8 +66,8 @@ static void test_numbers_chm_1e300_never_writes_inf(void **s)
     (void)s;
     const char *dir = scratch("edges_numbers_chm");
     char p[1100];
-    snprintf(p, sizeof p, "%s/chm.asc", dir);
-    tu_write(p, "ncols 1e300\nnrows 1e300\nxllcorner 0\nyllcorner 0\ncellsize 1e300\nNODATA_value -9999\n1 2\n");
+    tu_write_in(p, sizeof p, dir, "chm.asc",
+                "ncols 1e300\nnrows 1e300\nxllcorner 0\nyllcorner 0\ncellsize 1e300\nNODATA_value -9999\n1 2\n");
     assert_int_equal(run_in(dir, "CHM=chm.asc", "numbers"), 3);
     assert_non_null(strstr(out, "RealChmSpan"));
     assert_non_null(strstr(out, "field 'ncols'"));
@@ -232,25 +231,28 @@ static void test_directory_as_input_is_input_error(void **s)
     assert_null(strstr(out, "out of memory"));
 }
 
+/* field-summary of a table holding text, with no FIELD_TABLE from the caller's environment. */
+static int field_summary_of(const char *scratch, const char *file, const char *text)
+{
+    return tu_run_cli_on("env -u FIELD_TABLE ", "field-summary", scratch, file, text, out, sizeof out);
+}
+
 static void test_utf8_bom_is_handled(void **s)
 {
     (void)s;
-    char p[600], a[700];
-    snprintf(p, sizeof p, "%s/bom.tsv", tu_tmpdir("edges_bom"));
-    tu_write(p, "\xef\xbb\xbftree\tdirection\tclearance_m\nx\tE\t0.5\nx\tN\t0.5\nx\tW\t0.5\nx\tS\t0.5\n");
-    snprintf(a, sizeof a, "field-summary %s", p);
-    assert_int_equal(tu_run_cli("env -u FIELD_TABLE ", a, out, sizeof out), 0);
+    assert_int_equal(field_summary_of("edges_bom", "bom.tsv",
+                                      "\xef\xbb\xbftree\tdirection\tclearance_m\nx\tE\t0.5\nx\tN\t0.5\n"
+                                      "x\tW\t0.5\nx\tS\t0.5\n"),
+                     0);
     assert_non_null(strstr(out, "trees\t1"));
 }
 
 static void test_huge_value_names_file_line_field(void **s)
 {
     (void)s;
-    char p[600], a[700];
-    snprintf(p, sizeof p, "%s/huge.tsv", tu_tmpdir("edges_huge"));
-    tu_write(p, "tree\tdirection\tclearance_m\nx\tE\t0.5\nx\tN\t1e308\nx\tW\t0.5\nx\tS\t0.5\n");
-    snprintf(a, sizeof a, "field-summary %s", p);
-    assert_int_equal(tu_run_cli("env -u FIELD_TABLE ", a, out, sizeof out), 3);
+    assert_int_equal(field_summary_of("edges_huge", "huge.tsv",
+                                      "tree\tdirection\tclearance_m\nx\tE\t0.5\nx\tN\t1e308\nx\tW\t0.5\nx\tS\t0.5\n"),
+                     3);
     assert_non_null(strstr(out, "huge.tsv:3: field 'clearance_m'"));
 }
 
@@ -283,8 +285,8 @@ static void test_field_table_duplicate_still_named(void **s)
 {
     (void)s;
     char p[600];
-    snprintf(p, sizeof p, "%s/dup.tsv", tu_tmpdir("edges_dup"));
-    tu_write(p, "tree\tdirection\tclearance_m\nb\tE\t1\na\tE\t1\nb\tE\t2\n");
+    tu_write_in(p, sizeof p, tu_tmpdir("edges_dup"), "dup.tsv",
+                "tree\tdirection\tclearance_m\nb\tE\t1\na\tE\t1\nb\tE\t2\n");
     field_table ft;
     assert_int_equal(field_table_load(p, &ft), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), "dup.tsv:4: field 'direction': tree 'b' already has direction E (line 2)"));

@@ -41,11 +41,9 @@ static void test_field_summary_without_table_is_input_error(void **s)
 static void test_field_summary_bad_table_names_line(void **s)
 {
     (void)s;
-    char p[600], a[700];
-    snprintf(p, sizeof p, "%s/bad.tsv", tu_tmpdir("field_cli_bad"));
-    tu_write(p, "tree\tdirection\tclearance_m\nx\tE\t0.5\nx\tup\t0.5\n");
-    snprintf(a, sizeof a, "field-summary %s", p);
-    assert_int_equal(run(a), 3);
+    assert_int_equal(tu_run_cli_on("env -u FIELD_TABLE ", "field-summary", "field_cli_bad", "bad.tsv",
+                                   "tree\tdirection\tclearance_m\nx\tE\t0.5\nx\tup\t0.5\n", out, sizeof out),
+                     3);
     assert_non_null(strstr(out, "bad.tsv:3: field 'direction'"));
 }
 
@@ -78,10 +76,8 @@ static void test_missing_inputs_are_input_errors(void **s)
 static void test_trace_of_a_bad_field_table_exits_3(void **s)
 {
     (void)s;
-    const char *dir = tu_tmpdir("field_cli_trace");
     char p[600], env[700];
-    snprintf(p, sizeof p, "%s/bad.tsv", dir);
-    tu_write(p, "tree\tdirection\tclearance_m\n1\tN\tabc\n");
+    tu_write_in(p, sizeof p, tu_tmpdir("field_cli_trace"), "bad.tsv", "tree\tdirection\tclearance_m\n1\tN\tabc\n");
     snprintf(env, sizeof env, "FIELD_TABLE=%s ", p);
     int rc = tu_run_cli(env, "trace SpreadRatio", out, sizeof out);
     if (rc != 3) fail_msg("trace exit %d, expected 3: %s", rc, out);

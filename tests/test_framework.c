@@ -10,10 +10,9 @@ static const char *HDR = "macro\tkind\tsource\tfunction\tgate\ttest\tsection\tfo
 static const char *registry(const char *name, const char *rows)
 {
     static char path[600];
-    snprintf(path, sizeof path, "%s/claims.tsv", tu_tmpdir(name));
     char buf[4096];
     snprintf(buf, sizeof buf, "# what: test registry\n%s%s", HDR, rows);
-    tu_write(path, buf);
+    tu_write_in(path, sizeof path, tu_tmpdir(name), "claims.tsv", buf);
     return path;
 }
 
@@ -134,10 +133,8 @@ static void test_registry_rejects_bad_params(void **s)
 static void test_params_not_the_macro_choose_the_bound(void **s)
 {
     (void)s;
-    const char *dir = tu_tmpdir("reg_bound");
     char src[600], rows[1200];
-    snprintf(src, sizeof src, "%s/sweep.tsv", dir);
-    tu_write(src, "beta\tk1_m\n0\t1.75\n0.5\t9\n0\t0.25\n0\t1\n");
+    tu_write_in(src, sizeof src, tu_tmpdir("reg_bound"), "sweep.tsv", "beta\tk1_m\n0\t1.75\n0.5\t9\n0\t0.25\n0\t1\n");
     static const struct { const char *params; verdict status; double want; } k[] = {
         {"bound=lo", VERDICT_PASS, 0.25}, {"bound=hi", VERDICT_PASS, 1.75}, {"-", VERDICT_FAIL, NAN}};
     for (size_t i = 0; i < sizeof k / sizeof *k; i++) {
@@ -158,17 +155,27 @@ static void test_params_not_the_macro_choose_the_bound(void **s)
     }
 }
 
+/* MainSeeds as a design row: its value is the one gates/main.gate holds (12), read and then contradicted below. */
+static const claim_row design_seeds = {.macro = "MainSeeds",
+                                       .kind = "design",
+                                       .source = "gates/main.gate",
+                                       .function = "claim_design_main_seeds",
+                                       .gate = "-",
+                                       .format = "%.0f"};
+
+/* numbers.tex holding text, in the scratch folder build/test-tmp/<name>, read into nt. */
+static cs_status numbers_from(const char *name, const char *text, numbers_tex *nt)
+{
+    char p[600];
+    tu_write_in(p, sizeof p, tu_tmpdir(name), "numbers.tex", text);
+    return numbers_read(p, nt);
+}
+
 static void test_design_claim_reads_gate_value(void **s)
 {
     (void)s;
-    claim_row row = {.macro = "MainSeeds",
-                     .kind = "design",
-                     .source = "gates/main.gate",
-                     .function = "claim_design_main_seeds",
-                     .gate = "-",
-                     .format = "%.0f"};
     claim_result r;
-    claims_eval(&row, &r);
+    claims_eval(&design_seeds, &r);
     assert_int_equal(r.status, VERDICT_PASS);
     assert_string_equal(r.text, "12");
     assert_non_null(strstr(r.where, "gates/main.gate:"));
@@ -192,22 +199,12 @@ static void test_unimplemented_function_is_pending_with_reason(void **s)
 static void test_tampered_numbers_value_is_named(void **s)
 {
     (void)s;
-    const char *dir = tu_tmpdir("nt_tamper");
-    char p[600];
-    snprintf(p, sizeof p, "%s/numbers.tex", dir);
-    tu_write(p, "% x\n\\newcommand{\\MainSeeds}{11}\n");
     numbers_tex nt;
-    assert_int_equal(numbers_read(p, &nt), CS_OK);
-    claim_row row = {.macro = "MainSeeds",
-                     .kind = "design",
-                     .source = "gates/main.gate",
-                     .function = "claim_design_main_seeds",
-                     .gate = "-",
-                     .format = "%.0f"};
+    assert_int_equal(numbers_from("nt_tamper", "% x\n\\newcommand{\\MainSeeds}{11}\n", &nt), CS_OK);
     claim_result r;
-    claims_eval(&row, &r);
+    claims_eval(&design_seeds, &r);
     char msg[1200];
-    assert_int_equal(verify_consistent(&row, &r, &nt, msg, sizeof msg), VERDICT_FAIL);
+    assert_int_equal(verify_consistent(&design_seeds, &r, &nt, msg, sizeof msg), VERDICT_FAIL);
     assert_non_null(strstr(msg, "MainSeeds"));
     assert_non_null(strstr(msg, "numbers.tex:2"));
     assert_non_null(strstr(msg, "'11'"));
@@ -219,12 +216,8 @@ static void test_tampered_numbers_value_is_named(void **s)
 static void test_missing_registered_source_fails(void **s)
 {
     (void)s;
-    const char *dir = tu_tmpdir("nt_pending");
-    char p[600];
-    snprintf(p, sizeof p, "%s/numbers.tex", dir);
-    tu_write(p, "\\newcommand{\\MainRel}{53.6}\n");
     numbers_tex nt;
-    assert_int_equal(numbers_read(p, &nt), CS_OK);
+    assert_int_equal(numbers_from("nt_pending", "\\newcommand{\\MainRel}{53.6}\n", &nt), CS_OK);
     claim_row row = {.macro = "MainRel",
                      .kind = "measured",
                      .source = "frozen/extension-pair-16-stands/main/none.tsv",
@@ -244,12 +237,8 @@ static void test_missing_registered_source_fails(void **s)
 static void test_truncated_numbers_tex_is_input_error(void **s)
 {
     (void)s;
-    const char *dir = tu_tmpdir("nt_trunc");
-    char p[600];
-    snprintf(p, sizeof p, "%s/numbers.tex", dir);
-    tu_write(p, "\\newcommand{\\MainRel}{\\pending{Mai\n");
     numbers_tex nt;
-    assert_int_equal(numbers_read(p, &nt), CS_EINPUT);
+    assert_int_equal(numbers_from("nt_trunc", "\\newcommand{\\MainRel}{\\pending{Mai\n", &nt), CS_EINPUT);
     assert_non_null(strstr(cs_errmsg(), "numbers.tex:1:"));
     assert_non_null(strstr(cs_errmsg(), "MainRel"));
 }
@@ -259,12 +248,9 @@ static void test_gate_failure_is_consistent_but_fails_verify(void **s)
     (void)s;
     /* A claim whose value fails its gate: consistent with a paper that says
      * FAIL, and a failure for verify. */
-    const char *dir = tu_tmpdir("gate_fail");
-    char p[600];
-    snprintf(p, sizeof p, "%s/numbers.tex", dir);
-    tu_write(p, "\\newcommand{\\MainRel}{12.0}\n\\newcommand{\\MainRelGate}{FAIL}\n");
     numbers_tex nt;
-    assert_int_equal(numbers_read(p, &nt), CS_OK);
+    const char *tex = "\\newcommand{\\MainRel}{12.0}\n\\newcommand{\\MainRelGate}{FAIL}\n";
+    assert_int_equal(numbers_from("gate_fail", tex, &nt), CS_OK);
     claim_row row = {.macro = "MainRel",
                      .kind = "measured",
                      .source = "x",

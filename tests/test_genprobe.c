@@ -33,6 +33,15 @@ static void lattice_patch(float *f, double jit)
     }
 }
 
+/* The lattice patch (jitter 0.05) in f, and in g the same patch after probe k:
+ * every probe is judged by what it changed in g against f. */
+static void probed_patch(probekind k, float *f, float *g, gsl_rng *r)
+{
+    lattice_patch(f, 0.05);
+    memcpy(g, f, sizeof(float) * PATCH_T * PATCH_NFEAT);
+    genprobe_apply(k, g, 1, r);
+}
+
 static void names_parse_both_ways(void **st)
 {
     (void)st;
@@ -51,9 +60,7 @@ static void rot90_turns_every_position_and_keeps_sizes(void **st)
 {
     (void)st;
     float f[PATCH_T * PATCH_NFEAT], g[PATCH_T * PATCH_NFEAT];
-    lattice_patch(f, 0.05);
-    memcpy(g, f, sizeof f);
-    genprobe_apply(PROBEKIND_ROT90, g, 1, NULL);
+    probed_patch(PROBEKIND_ROT90, f, g, NULL);
     for (int i = 0; i < PATCH_T; i++) {
         const float *a = f + i * PATCH_NFEAT, *b = g + i * PATCH_NFEAT;
         ASSERT_NEAR(b[0], -a[1], 1e-6);
@@ -127,11 +134,9 @@ static void sizes_permute_the_neighbours_only(void **st)
 {
     (void)st;
     float f[PATCH_T * PATCH_NFEAT], g[PATCH_T * PATCH_NFEAT];
-    lattice_patch(f, 0.05);
-    memcpy(g, f, sizeof f);
     gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
     gsl_rng_set(r, 5);
-    genprobe_apply(PROBEKIND_SIZES, g, 1, r);
+    probed_patch(PROBEKIND_SIZES, f, g, r);
     gsl_rng_free(r);
     ASSERT_EXACT(g[PATCH_FEAT_RBAR], f[PATCH_FEAT_RBAR]);
     double sa = 0, sb = 0;
@@ -151,9 +156,7 @@ static void none_and_self_leave_the_features(void **st)
 {
     (void)st;
     float f[PATCH_T * PATCH_NFEAT], g[PATCH_T * PATCH_NFEAT];
-    lattice_patch(f, 0.05);
-    memcpy(g, f, sizeof f);
-    genprobe_apply(PROBEKIND_NONE, g, 1, NULL);
+    probed_patch(PROBEKIND_NONE, f, g, NULL);
     genprobe_apply(PROBEKIND_SELF, g, 1, NULL);
     assert_memory_equal(f, g, sizeof f);
 }

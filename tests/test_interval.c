@@ -317,13 +317,15 @@ static void test_agreement_classes(void **s)
 /* Two claims of one section: Toy 1.5 in [1.2, 1.6] (paper 1.00) and Other
  * 2.0 in [1.9, 2.1] (paper other_ref); the sensitivity values: the centre,
  * crown_R 3 moving Toy to 1.1 and Other to other_r3, crown_R 5 moving Toy to
- * 1.1 and Other to other_r5. */
+ * 1.1 and Other to other_r5; d holds the centre and crown_R 3 until a test
+ * lets it see crown_R 5 too (d.n = 6). */
 typedef struct {
     claims c;
     claim_row rows[2];
     claim_result res[2];
     claim_interval ci[2];
     attrib_value v[6];
+    attrib_data d;
 } toy_fixture;
 
 static void toy_fixture_make(toy_fixture *x, const char *other_ref, double other_r3, double other_r5)
@@ -361,6 +363,28 @@ static void toy_fixture_make(toy_fixture *x, const char *other_ref, double other
         v[i].value = in[i].val;
         v[i].sens = 1;
     }
+    x->d = (attrib_data){v, 4, 0, 1};
+}
+
+/* Toy judged: every check is of Toy; Other only constrains which alternative may reach it. */
+static void toy_judge(const toy_fixture *x, agree_result *a)
+{
+    agree_judge(&x->d, &x->rows[0], &x->res[0], &x->ci[0], a);
+}
+
+/* Bound to both claims, crown_R 3 alone leaves Toy unexplained for the reason
+ * why_r3 names; seeing crown_R 5 too, Toy is reached by it. */
+static void toy_reached_by_r5_only(toy_fixture *x, const char *why_r3)
+{
+    agree_result a;
+    attrib_bind(&x->d, &x->c, x->res, x->ci);
+    toy_judge(x, &a);
+    assert_int_equal(a.kind, AGREE_UNEXPLAINED);
+    assert_non_null(strstr(a.by, why_r3));
+    x->d.n = 6;
+    toy_judge(x, &a);
+    assert_int_equal(a.kind, AGREE_REACHED);
+    assert_string_equal(a.by, "crown_R 5");
 }
 
 static void test_reached_keeps_the_experiment_in_agreement(void **s)
@@ -368,26 +392,13 @@ static void test_reached_keeps_the_experiment_in_agreement(void **s)
     (void)s;
     toy_fixture x;
     toy_fixture_make(&x, "2.05", 2.4, 2.1);
-    claims c = x.c;
-    claim_row *rows = x.rows;
-    claim_result *res = x.res;
-    claim_interval *ci = x.ci;
-    attrib_value *v = x.v;
     agree_result a;
-    attrib_data d = {v, 4, 0, 1};
-    agree_judge(&d, &rows[0], &res[0], &ci[0], &a); /* unbound: nothing else constrained */
+    toy_judge(&x, &a); /* unbound: nothing else constrained */
     assert_int_equal(a.kind, AGREE_REACHED);
-    attrib_bind(&d, &c, res, ci);
-    agree_judge(&d, &rows[0], &res[0], &ci[0], &a);
-    assert_int_equal(a.kind, AGREE_UNEXPLAINED);
-    assert_non_null(strstr(a.by, "crown_R 3 (moves Other out)"));
-    d.n = 6;
-    agree_judge(&d, &rows[0], &res[0], &ci[0], &a);
-    assert_int_equal(a.kind, AGREE_REACHED);
-    assert_string_equal(a.by, "crown_R 5");
+    toy_reached_by_r5_only(&x, "crown_R 3 (moves Other out)");
     /* a value the alternative could not compute constrains nothing */
-    v[5].value = NAN;
-    agree_judge(&d, &rows[0], &res[0], &ci[0], &a);
+    x.v[5].value = NAN;
+    toy_judge(&x, &a);
     assert_int_equal(a.kind, AGREE_REACHED);
 }
 
@@ -400,22 +411,8 @@ static void test_reached_moves_no_other_number_further_off(void **s)
     (void)s;
     toy_fixture x;
     toy_fixture_make(&x, "2.5", 1.6, 2.3);
-    claims c = x.c;
-    claim_row *rows = x.rows;
-    claim_result *res = x.res;
-    claim_interval *ci = x.ci;
-    attrib_value *v = x.v;
-    agree_result a;
-    attrib_data d = {v, 4, 0, 1};
-    d.have_gensens = 1; /* a fixture: no training choice to add */
-    attrib_bind(&d, &c, res, ci);
-    agree_judge(&d, &rows[0], &res[0], &ci[0], &a);
-    assert_int_equal(a.kind, AGREE_UNEXPLAINED);
-    assert_non_null(strstr(a.by, "crown_R 3 (moves Other further off)"));
-    d.n = 6;
-    agree_judge(&d, &rows[0], &res[0], &ci[0], &a);
-    assert_int_equal(a.kind, AGREE_REACHED);
-    assert_string_equal(a.by, "crown_R 5");
+    x.d.have_gensens = 1; /* a fixture: no training choice to add */
+    toy_reached_by_r5_only(&x, "crown_R 3 (moves Other further off)");
 }
 
 /* A generator training choice joins the alternatives through its claims: the

@@ -21,6 +21,14 @@ static size_t scan(const char *text, char *buf, size_t n)
     return bad;
 }
 
+/* Fails unless the scan of text finds exactly want findings, listing those it found. */
+static void expect_findings(const char *text, size_t want)
+{
+    char msg[4096];
+    size_t bad = scan(text, msg, sizeof msg);
+    if (bad != want) fail_msg("observed %zu finding(s), expected %zu: %s", bad, want, msg);
+}
+
 static void test_digit_named_with_its_page(void **state)
 {
     (void)state;
@@ -32,27 +40,20 @@ static void test_digit_named_with_its_page(void **state)
 static void test_digit_inside_a_word(void **state)
 {
     (void)state;
-    char msg[4096];
     /* a number glued to a word or a hidden value is still a number */
-    size_t bad = scan("x13 HIDDEN45 10^-6\n", msg, sizeof msg);
-    if (bad != 3) fail_msg("observed %zu finding(s), expected 3: %s", bad, msg);
+    expect_findings("x13 HIDDEN45 10^-6\n", 3);
 }
 
 static void test_listed_names_pass(void **state)
 {
     (void)state;
-    char msg[4096];
-    size_t bad = scan("(E3), W1; AVX-512, AVX2 and SHA-256: \xe2\x80\x9cteacher-2\xe2\x80\x9d. Wasserstein-1.\n", msg,
-                      sizeof msg);
-    if (bad != 0) fail_msg("observed %zu finding(s), expected 0: %s", bad, msg);
+    expect_findings("(E3), W1; AVX-512, AVX2 and SHA-256: \xe2\x80\x9cteacher-2\xe2\x80\x9d. Wasserstein-1.\n", 0);
 }
 
 static void test_listed_name_with_a_suffix_fails(void **state)
 {
     (void)state;
-    char msg[4096];
-    size_t bad = scan("E3.5 W12 AVX-5120\n", msg, sizeof msg);
-    if (bad != 3) fail_msg("observed %zu finding(s), expected 3: %s", bad, msg);
+    expect_findings("E3.5 W12 AVX-5120\n", 3);
 }
 
 static void test_verdict_words_any_case(void **state)
@@ -67,9 +68,7 @@ static void test_verdict_words_any_case(void **state)
 static void test_prose_words_pass(void **state)
 {
     (void)state;
-    char msg[4096];
-    size_t bad = scan("It passes over the data; the passed test and a bypass; HIDDEN HIDDEN.\n", msg, sizeof msg);
-    if (bad != 0) fail_msg("observed %zu finding(s), expected 0: %s", bad, msg);
+    expect_findings("It passes over the data; the passed test and a bypass; HIDDEN HIDDEN.\n", 0);
 }
 
 /* The hidden numbers.tex defines every claim and gate macro the shown one

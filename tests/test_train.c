@@ -303,14 +303,24 @@ static void test_pair_kill_and_resume_is_bit_identical_joint(void **s) { (void)s
 static void test_pair_kill_and_resume_is_bit_identical_independent(void **s) { (void)s; check_resume2(0, 1); }
 static void test_kill_and_resume_is_bit_identical_independent(void **s) { (void)s; check_resume(0); }
 
+/* The joint model, plain or pair, two steps into a toy set of 20 patches
+ * (mode 1, the neighbour-dependent one, for the pair model) that *d gets;
+ * ckpt and ckpt_every as train_run takes them. */
+static train *toy_trained(int pair, const char *ckpt, long ckpt_every, patch_set **d)
+{
+    *d = toy_set(20, pair, 6);
+    model_cfg c = small_cfg2(1, pair);
+    train_opts o = small_opts(4);
+    train *t;
+    assert_int_equal(train_alloc(&t, &c, *d, &o), CS_OK);
+    assert_int_equal(train_run(t, 2, ckpt, ckpt_every, NULL), CS_OK);
+    return t;
+}
+
 static void write_ckpt(const char *name, char *path, size_t n, train **t, patch_set **d)
 {
-    *d = toy_set(20, 0, 6);
-    model_cfg c = small_cfg(1);
-    train_opts o = small_opts(4);
     snprintf(path, n, "%s/c.ckpt", tu_tmpdir(name));
-    assert_int_equal(train_alloc(t, &c, *d, &o), CS_OK);
-    assert_int_equal(train_run(*t, 2, path, 0, NULL), CS_OK);
+    *t = toy_trained(0, path, 0, d);
 }
 
 /* A unit killed between its last checkpoint and its table resumes
@@ -425,14 +435,10 @@ static void test_version_1_checkpoint_is_refused_clearly(void **s)
 static void test_pair_model_loads_with_its_z_scores(void **s)
 {
     (void)s;
-    patch_set *d = toy_set(20, 1, 6);
-    model_cfg c = small_cfg2(1, 1);
-    train_opts o = small_opts(4);
     char path[600];
     snprintf(path, sizeof path, "%s/p.ckpt", tu_tmpdir("ckpt_pair_model"));
-    train *t;
-    assert_int_equal(train_alloc(&t, &c, d, &o), CS_OK);
-    assert_int_equal(train_run(t, 2, path, 0, NULL), CS_OK);
+    patch_set *d;
+    train *t = toy_trained(1, path, 0, &d);
     assert_true(t->m->norm[0] != 0.f && t->m->norm[PATCH_NFEAT] != 1.f); /* fitted, not the identity */
     model *m;
     assert_int_equal(train_load_model(path, &m, 3, NULL), CS_OK);
@@ -534,17 +540,13 @@ static void test_frozen_weights_load_as_the_pair_reading(void **s)
 static void test_sealed_writes_take_a_temporary_name_of_their_own(void **s)
 {
     (void)s;
-    patch_set *d = toy_set(20, 1, 6);
-    model_cfg c = small_cfg2(1, 1);
-    train_opts o = small_opts(4);
     const char *dir = tu_tmpdir("sealed_tmp");
     char path[600], other[640], cmd[1400];
     snprintf(path, sizeof path, "%s/w.ckpt", dir);
     snprintf(other, sizeof other, "%s.tmp", path);
     assert_int_equal(mkdir(other, 0777), 0);
-    train *t;
-    assert_int_equal(train_alloc(&t, &c, d, &o), CS_OK);
-    assert_int_equal(train_run(t, 2, path, 1, NULL), CS_OK);
+    patch_set *d;
+    train *t = toy_trained(1, path, 1, &d);
     assert_int_equal(train_save_weights(t, path), CS_OK);
     struct stat sb;
     assert_int_equal(stat(other, &sb), 0);
@@ -560,15 +562,11 @@ static void test_sealed_writes_take_a_temporary_name_of_their_own(void **s)
 static void test_weights_file_round_trips_and_is_sealed(void **s)
 {
     (void)s;
-    patch_set *d = toy_set(20, 1, 6);
-    model_cfg c = small_cfg2(1, 1);
-    train_opts o = small_opts(4);
     const char *dir = tu_tmpdir("weights_file");
     char path[600], bad[640];
     snprintf(path, sizeof path, "%s/w.ckpt", dir);
-    train *t;
-    assert_int_equal(train_alloc(&t, &c, d, &o), CS_OK);
-    assert_int_equal(train_run(t, 2, NULL, 0, NULL), CS_OK);
+    patch_set *d;
+    train *t = toy_trained(1, NULL, 0, &d);
     assert_int_equal(train_save_weights(t, path), CS_OK);
     model *m;
     double scale = 0;

@@ -35,6 +35,14 @@ static inline void tu_write(const char *path, const char *text)
     fclose(f);
 }
 
+/* Write `text` to the fixture <dir>/<name>, its path into path[n]: a test
+ * names its inputs by that path, so a cut one would test another file. */
+static inline void tu_write_in(char *path, size_t n, const char *dir, const char *name, const char *text)
+{
+    if (snprintf(path, n, "%s/%s", dir, name) >= (int)n) fail_msg("tu_write_in: path %s/%s too long", dir, name);
+    tu_write(path, text);
+}
+
 /* A fresh scratch directory under build/test-tmp/<name>. Returns a static buffer. */
 static inline const char *tu_tmpdir(const char *name)
 {
@@ -59,5 +67,17 @@ static inline int tu_run_cli(const char *env, const char *args, char *out, size_
     out[got] = '\0';
     int st = pclose(p);
     return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* tu_run_cli of "<command> <path>" on a fixture file holding text, written as
+ * <file> into the scratch folder build/test-tmp/<scratch>. */
+static inline int tu_run_cli_on(const char *env, const char *command, const char *scratch, const char *file,
+                                const char *text, char *out, size_t n)
+{
+    char p[600], a[700];
+    tu_write_in(p, sizeof p, tu_tmpdir(scratch), file, text);
+    if (snprintf(a, sizeof a, "%s %s", command, p) >= (int)sizeof a)
+        fail_msg("tu_run_cli_on: '%s %s' too long", command, p);
+    return tu_run_cli(env, a, out, n);
 }
 #endif

@@ -19,6 +19,7 @@
 #include "tsv.h"
 #include <glob.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -157,6 +158,24 @@ static size_t grid_block(const claims *c, const tsv *t, const char *filter, cons
     return bad;
 }
 
+/* A FAIL item "FILE:LINE: what; claims affected: ..." naming the claims that
+ * read fed (the table at fault, or the pattern no frozen table matched): a
+ * broken grid puts those numbers in doubt, whichever file holds the line. */
+static void grid_fail_at(const claims *c, checklist *cl, const char *fed, const char *file, int line, const char *fmt,
+                         ...) __attribute__((format(printf, 6, 7)));
+static void grid_fail_at(const claims *c, checklist *cl, const char *fed, const char *file, int line, const char *fmt,
+                         ...)
+{
+    /* what no longer than an item's message, so the item is cut where one checklist_add would cut it */
+    char what[sizeof cl->items[0].msg], affected[600];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    audit_feeds(c, fed, affected, sizeof affected);
+    checklist_add(cl, VERDICT_FAIL, "design grids", "%s:%d: %s; claims affected: %s", file, line, what, affected);
+}
+
 static size_t grid_table(const claims *c, const char *path, const tsv *spec, const char *pattern, checklist *cl)
 {
     tsv *t;
@@ -170,11 +189,8 @@ static size_t grid_table(const claims *c, const char *path, const tsv *spec, con
     }
     for (size_t r = 0; covered && r < tsv_nrows(t); r++)
         if (!covered[r]) {
-            char affected[600];
-            audit_feeds(c, path, affected, sizeof affected);
-            checklist_add(cl, VERDICT_FAIL, "design grids",
-                          "%s:%d: a row outside every block of its design grid (%s); claims affected: %s", path,
-                          tsv_line(t, r), PATHS_GRIDS, affected);
+            grid_fail_at(c, cl, path, path, tsv_line(t, r), "a row outside every block of its design grid (%s)",
+                         PATHS_GRIDS);
             bad++;
         }
     free(covered);
@@ -201,11 +217,7 @@ void audit_grids(const claims *c, checklist *cl)
         if (again) continue;
         glob_t g;
         if (strncmp(pat, PATHS_FROZEN_DIR "/", strlen(PATHS_FROZEN_DIR) + 1) || glob(pat, 0, NULL, &g) != 0) {
-            char affected[600];
-            audit_feeds(c, pat, affected, sizeof affected);
-            checklist_add(cl, VERDICT_FAIL, "design grids",
-                          "%s:%d: field 'table': no frozen table matches %s; claims affected: %s", PATHS_GRIDS,
-                          tsv_line(spec, r), pat, affected);
+            grid_fail_at(c, cl, pat, PATHS_GRIDS, tsv_line(spec, r), "field 'table': no frozen table matches %s", pat);
             bad++;
             continue;
         }

@@ -56,6 +56,13 @@ size_t tex_lex_csname(const char *s, size_t i, char *name, size_t n)
     return e ? end + 10 : end;
 }
 
+/* Is name one of list's names (NULL-terminated)? Every command class is such a list. */
+static int listed(const char *const *list, const char *name)
+{
+    for (int i = 0; list[i]; i++) if (!strcmp(list[i], name)) return 1;
+    return 0;
+}
+
 /* LaTeX's own capitalised commands: not claim macros. */
 static const char *latex_upper[] = {"LaTeX",
                                     "TeX",
@@ -95,8 +102,7 @@ static const char *latex_upper[] = {"LaTeX",
 
 int tex_lex_latex_own(const char *name)
 {
-    for (int i = 0; latex_upper[i]; i++) if (!strcmp(latex_upper[i], name)) return 1;
-    return 0;
+    return listed(latex_upper, name);
 }
 
 int tex_lex_is_definer(const char *cmd)
@@ -119,16 +125,14 @@ int tex_lex_is_definer(const char *cmd)
                                  "renewrobustcmd",
                                  "csdef",
                                  NULL};
-    for (int i = 0; defs[i]; i++) if (!strcmp(defs[i], cmd)) return 1;
-    return 0;
+    return listed(defs, cmd);
 }
 
 int tex_lex_is_namedef(const char *cmd)
 {
     static const char *d[] = {"@namedef", "csdef",   "csgdef",         "csedef", "csxdef",
                               "cslet",    "csletcs", "NewCommandCopy", NULL};
-    for (int i = 0; d[i]; i++) if (!strcmp(d[i], cmd)) return 1;
-    return 0;
+    return listed(d, cmd);
 }
 
 int tex_lex_names_arg(const char *cmd)
@@ -174,8 +178,7 @@ int tex_lex_names_arg(const char *cmd)
                               "thispagestyle",
                               "texttt",
                               NULL};
-    for (int i = 0; a[i]; i++) if (!strcmp(a[i], cmd)) return 1;
-    return 0;
+    return listed(a, cmd);
 }
 
 int tex_lex_is_unit(const char *s)
