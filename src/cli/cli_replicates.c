@@ -6,8 +6,8 @@
  * stems|crowns)): the same stems process and crown-draw distribution, seeds
  * disjoint from the figure's (k = 0, included so that the claims can check
  * that this code gives the figure's numbers bit for bit). Each number is
- * computed by the figure unit's own function (exp_mechanism_figure_stand,
- * exp_pointcloud_stand, exp_hero_stems).
+ * computed by the function the figure unit uses (figstand.c:
+ * figstand_mechanism, figstand_pointcloud, figstand_hero_stems).
  * Output replicates/figure_stands.tsv, one row per (family, arm, spacing,
  * stand): family arm spacing_m stand stems trees k1_m k2_m k3_m cover
  * overlap_m contact_pct (nan where the family does not define a column).
@@ -15,8 +15,7 @@
  * no other (tests/layout.sh): its loop lives here, not among the experiments. */
 #include "cli.h"
 #include "exp_common.h"
-#include "exp_mechanism.h"
-#include "exp_stands.h"
+#include "figstand.h"
 #include "gate.h"
 #include "paths.h"
 #include "opts.h"
@@ -52,9 +51,9 @@ static void put(rep_row *r, const char *family, const char *arm, double d, unsig
 /* The ROWS_PER_STAND rows of stand k; *worst: the coupled growths' worst overlap. */
 static cs_status stand_rows(const exp_opts *o, unsigned k, double btrain, rep_row *out, double *worst)
 {
-    exp_fig_arm fa[3];
+    figstand_arm fa[3];
     size_t n = 0;
-    cs_status st = exp_mechanism_figure_stand(o, k, fa);
+    cs_status st = figstand_mechanism(o, k, fa);
     for (int a = 0; a < 3 && !st; a++) {
         put(&out[n++], "mechanism", fa[a].arm, fa[a].d, k, NAN, (double)fa[a].trees, fa[a].k, fa[a].cover,
             fa[a].overlap, NAN);
@@ -62,8 +61,8 @@ static cs_status stand_rows(const exp_opts *o, unsigned k, double btrain, rep_ro
     }
     static const double pcd[3] = {5.0, 4.0, 3.0};
     for (int i = 0; i < 3 && !st; i++) {
-        exp_pc_row pr;
-        if ((st = exp_pointcloud_stand(o, pcd[i], btrain, k, &pr, worst))) break;
+        figstand_pc_row pr;
+        if ((st = figstand_pointcloud(o, pcd[i], btrain, k, &pr, worst))) break;
         double kc[3] = {pr.k1_c, NAN, NAN}, ku[3] = {pr.k1_u, NAN, NAN};
         put(&out[n++], "pointcloud", "coupled", pcd[i], k, (double)pr.stems, (double)pr.trees, kc, NAN, pr.ovl_c,
             100.0 * pr.contact);
@@ -73,7 +72,7 @@ static cs_status stand_rows(const exp_opts *o, unsigned k, double btrain, rep_ro
     static const double hd[2] = {3.0, 6.5};
     for (int i = 0; i < 2 && !st; i++) {
         size_t m;
-        if (!(st = exp_hero_stems(o, hd[i], k, &m)))
+        if (!(st = figstand_hero_stems(o, hd[i], k, &m)))
             put(&out[n++], "hero", "beta_train", hd[i], k, (double)m, NAN, NULL, NAN, NAN, NAN);
     }
     return st;
