@@ -1,7 +1,7 @@
 /* figstand: the figure stands of E1, E8 and E9 (hard-core, L = 36 m; design.md §7 E1/E8/E9) and
  * the numbers each gives on stand k of its family (k = 0: the stand the figure shows; k > 0: the
  * replicate stands of design.md §6.1). The figure units (exp_mechanism.c, exp_stands.c) and the
- * replicates (replicates-run) compute them here, so that stand 0 of the replicates is the
+ * replicates (exp_replicates.c) compute them here, so that stand 0 of the replicates is the
  * figure's number bit for bit. It grows stands and measures them; it writes no table. */
 #ifndef FIGSTAND_H
 #define FIGSTAND_H
