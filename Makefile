@@ -83,9 +83,9 @@ $(B)/asan/obj/%.o: src/%.c $(LIB_HDR)
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) $(SANFLAGS) -c $< -o $@
 $(B)/libcrownshy.a: $(LIB_OBJ)
-	ar rcs $@ $^
+	rm -f $@; ar rcs $@ $^
 $(B)/asan/libcrownshy.a: $(ASAN_OBJ)
-	ar rcs $@ $^
+	rm -f $@; ar rcs $@ $^
 # The CLI's command handlers are a library of their own (tests call them);
 # src/cli/main.c is the executable's one-line main.
 CLI_LIB_SRC := $(filter-out src/cli/main.c,$(wildcard src/cli/*.c))
@@ -94,9 +94,9 @@ ASAN_CLI_OBJ := $(patsubst src/%.c,$(B)/asan/obj/%.o,$(CLI_LIB_SRC))
 LIBS := $(B)/libcli.a $(B)/libcrownshy.a
 ASAN_LIBS := $(B)/asan/libcli.a $(B)/asan/libcrownshy.a
 $(B)/libcli.a: $(CLI_OBJ)
-	ar rcs $@ $^
+	rm -f $@; ar rcs $@ $^
 $(B)/asan/libcli.a: $(ASAN_CLI_OBJ)
-	ar rcs $@ $^
+	rm -f $@; ar rcs $@ $^
 $(CLI): src/cli/main.c $(LIBS)
 	$(CC) $(CPPFLAGS) $(CFLAGS) $< $(LIBS) $(LDLIBS) -o $@
 $(B)/tests/%: tests/%.c $(LIBS) $(wildcard tests/*.h) | $(B)/tests

@@ -1,7 +1,8 @@
-/* Smoke tests for src/exp/ (exp_mechanism.c, exp_irreducibility.c, exp_stands.c): units run at one stand per cell into
- * a scratch directory, write provenance and the documented columns, and keep the ablation's ordering (coupling off
- * interpenetrates, both on opens gaps). With --stand-rows the E1 sweep and the E2 units also write the per-stand rows
- * their pooled rows are made of, and the claims' stand bootstrap recomputes the pooled values from them bit for bit. */
+/* Smoke tests for src/exp/ (exp_mechanism.c, exp_irreducibility.c, exp_stands.c, exp_replicates.c): units run at one
+ * stand per cell into a scratch directory, write provenance and the documented columns, and keep the ablation's
+ * ordering (coupling off interpenetrates, both on opens gaps). With --stand-rows the E1 sweep and the E2 units also
+ * write the per-stand rows their pooled rows are made of, and the claims' stand bootstrap recomputes the pooled values
+ * from them bit for bit. Stand 0 of the replicates is the figure units' own stand, with their numbers bit for bit. */
 #include "testutil.h"
 #include "agree.h"
 #include "claims.h"
@@ -150,6 +151,46 @@ static void test_stand_rows_give_the_pooled_values(void **st)
     claims_free(&reg);
 }
 
+/* Stand 0 of each replicate family is the figure's own stand: replicates-run gives the numbers of
+ * mechanism/figure_stats.tsv and pointcloud/stats.tsv bit for bit (figstand.c computes all three). */
+static void test_replicate_stand_0_is_the_figure_stand(void **st)
+{
+    (void)st;
+    const char *dir = tu_tmpdir("exp_replicates");
+    const char *figures[] = {"mechanism-figure", "pointcloud-figure"};
+    for (int u = 0; u < 2; u++) {
+        char *argv[] = {"crownshy", (char *)figures[u], "--out", (char *)dir, NULL};
+        assert_int_equal(cli_main(4, argv), 0);
+    }
+    assert_int_equal(run("replicates-run", dir), 0);
+    const char *files[3] = {"replicates/figure_stands.tsv", "mechanism/figure_stats.tsv", "pointcloud/stats.tsv"};
+    tsv *t[3] = {NULL, NULL, NULL};
+    for (int f = 0; f < 3; f++) {
+        char path[600];
+        snprintf(path, sizeof path, "%s/%s", dir, files[f]);
+        assert_int_equal(tsv_read(path, &t[f]), CS_OK);
+    }
+    assert_int_equal(tsv_nrows(t[0]), 11); /* 3 E1 arms, 3 x 2 E8 stands, 2 E9 spacings */
+    static const char *const e1[] = {"spacing_m", "trees", "k1_m", "k2_m", "k3_m", "cover", "overlap_m"};
+    for (size_t a = 0; a < 3; a++) {
+        assert_string_equal(tsv_str(t[0], a, "family"), "mechanism");
+        assert_string_equal(tsv_str(t[0], a, "arm"), tsv_str(t[1], a, "arm"));
+        for (size_t c = 0; c < sizeof e1 / sizeof *e1; c++) ASSERT_EXACT(cell(t[0], a, e1[c]), cell(t[1], a, e1[c]));
+    }
+    for (size_t i = 0; i < 3; i++) {
+        size_t c = 3 + 2 * i, u = c + 1; /* the coupled and the uncoupled row of spacing i */
+        assert_string_equal(tsv_str(t[0], c, "arm"), "coupled");
+        ASSERT_EXACT(cell(t[0], c, "spacing_m"), cell(t[2], i, "spacing_m"));
+        ASSERT_EXACT(cell(t[0], c, "trees"), cell(t[2], i, "trees"));
+        ASSERT_EXACT(cell(t[0], c, "k1_m"), cell(t[2], i, "k1_coupled_m"));
+        ASSERT_EXACT(cell(t[0], u, "k1_m"), cell(t[2], i, "k1_uncoupled_m"));
+        ASSERT_EXACT(cell(t[0], c, "overlap_m"), cell(t[2], i, "overlap_fraction_coupled"));
+        ASSERT_EXACT(cell(t[0], u, "overlap_m"), cell(t[2], i, "overlap_fraction_uncoupled"));
+        ASSERT_EXACT(cell(t[0], c, "contact_pct"), 100.0 * cell(t[2], i, "contact_fraction"));
+    }
+    for (int f = 0; f < 3; f++) tsv_free(t[f]);
+}
+
 static void test_bad_usage_exits_2(void **st)
 {
     (void)st;
@@ -171,6 +212,7 @@ int main(void)
         cmocka_unit_test(test_reduction_unit_reports_a_pooled_sigma),
         cmocka_unit_test(test_stand_rows_only_when_asked),
         cmocka_unit_test(test_stand_rows_give_the_pooled_values),
+        cmocka_unit_test(test_replicate_stand_0_is_the_figure_stand),
         cmocka_unit_test(test_bad_usage_exits_2),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -220,8 +220,8 @@ EXPERIMENT(hero, "E9", "src/exp/exp_stands.c", "-", "src/claims/claim_teacher.c"
 RUN(hero, "hero-figure", exp_hero_figure, "beta", "E9: crowns of the hero figure (hard-core, L = 36 m, d = 3.0..6.5)")
 UNIT(hero, "figure_crowns.tsv", "$(TEACHER_DEPS) @R@/field/calibration.tsv", "$(CLI) hero-figure --beta $$($(CLI) field-beta @R@/field/calibration.tsv) --out @R@", "top")
 
-EXPERIMENT(replicates, "E1", "src/cli/cli_replicates.c", "-", "src/agree/interval_src.c", "-", "rerun", "replicate stands of the numbers resting on one figure stand (E1 figure stand, E8 point-cloud stands, E9 hero stems): the same family, disjoint seeds; their intervals (design.md §6.1)")
-COMMAND(replicates, "replicates-run", cli_replicates_run, "E1/E8/E9: replicate stands of the one-stand figure numbers")
+EXPERIMENT(replicates, "E1", "src/exp/exp_replicates.c", "-", "src/agree/interval_src.c", "-", "rerun", "replicate stands of the numbers resting on one figure stand (E1 figure stand, E8 point-cloud stands, E9 hero stems): the same family, disjoint seeds; their intervals (design.md §6.1)")
+RUN(replicates, "replicates-run", exp_replicates_run, "stands", "E1/E8/E9: replicate stands k = 0..N-1 of the one-stand figure numbers (k = 0: the figure's own)")
 UNIT(replicates, "figure_stands.tsv", "$(TEACHER_DEPS)", "$(CLI) replicates-run --stands $(REPLICATE_STANDS) --out @R@", "top")
 
 #undef EXPERIMENT

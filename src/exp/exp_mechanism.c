@@ -15,11 +15,13 @@
  *  mechanism/sweep_trees.tsv (--stand-rows; design.md §6.1, written before
  *                          sweep.tsv) beta spacing_m stand tree k1_m k2_m k3_m
  *                          stand_cover: the interior trees each sweep row pools,
- *                          in the order it pooled them, with their stand's cover */
+ *                          in the order it pooled them, with their stand's cover
+ * The ablation arms, the figure stand's growth and the cell statistics are
+ * figstand.c's (the replicates compute the same numbers there). */
 #include "exp_mechanism.h"
 #include "exp_common.h"
+#include "figstand.h"
 #include "unit_out.h"
-#include "estimator.h"
 #include "gate.h"
 #include "paths.h"
 #include "stand_grow.h"
@@ -29,8 +31,6 @@
 #include <string.h>
 
 #define NS CROWN_NSEC
-
-typedef struct { double k[3], cover, overlap; size_t trees; } cell_result;
 
 /* The rows a cell pools (--stand-rows): per interior tree its stand, its
  * index and its k = 1..3 clearances; per stand its cover. */
@@ -44,30 +44,10 @@ static void cell_rows_free(cell_rows *c)
     free(c->cover);
 }
 
-/* One grown stand's share of a cell: its interior trees' k = 1..3 clearances
- * appended to g, its interior cover and its worst overlap. */
-static cs_status stand_stats(const stand *sd, const double *r, dvec g[3], double *cov, double *w, size_t *trees)
-{
-    cs_status st = exp_stand_metrics(sd, r, g, cov, trees);
-    if (!st) st = teacher_worst_overlap(sd->s->x, sd->s->y, r, sd->s->n, w);
-    return st;
-}
-
-/* A cell's result from its pooled clearances (freed here) after status st. */
-static cs_status cell_close(dvec g[3], double cover, double overlap, size_t trees, cs_status st, cell_result *res)
-{
-    for (int k = 0; k < 3 && !st; k++) st = est_median(g[k].v, g[k].n, &res->k[k]);
-    res->cover = cover;
-    res->overlap = overlap;
-    res->trees = trees;
-    for (int k = 0; k < 3; k++) free(g[k].v);
-    return st;
-}
-
 /* One (stem process, d, params) cell over o->stands stands of key `key`;
  * rows (may be NULL) receives what it pools. */
 static cs_status run_cell(const exp_opts *o, const char *key, const stems_type *kind, double d, double shape,
-                          const teacher_params *p, cell_result *res, cell_rows *rows, double *worst)
+                          const teacher_params *p, figstand_cell *res, cell_rows *rows, double *worst)
 {
     dvec g[3] = {{0}, {0}, {0}};
     double cov_sum = 0.0, ovl = 0.0;
@@ -87,7 +67,7 @@ static cs_status run_cell(const exp_opts *o, const char *key, const stems_type *
         if (!st) st = stand_grow(sd, p, NULL, r, NULL, worst);
         double cov = 0.0, w = 0.0;
         size_t from = g[0].n;
-        if (!st) st = stand_stats(sd, r, g, &cov, &w, &trees);
+        if (!st) st = figstand_stand_stats(sd, r, g, &cov, &w, &trees);
         if (!st && rows) {
             /* exp_stand_metrics appends the interior trees in index order */
             rows->cover[k] = cov;
@@ -107,7 +87,7 @@ static cs_status run_cell(const exp_opts *o, const char *key, const stems_type *
         free(r);
         stand_free(sd);
     }
-    return cell_close(g, cov_sum / (double)o->stands, ovl, trees, st, res);
+    return figstand_cell_close(g, cov_sum / (double)o->stands, ovl, trees, st, res);
 }
 
 /* mechanism/sweep_trees.tsv: the trees each sweep row pools (file order
@@ -157,7 +137,7 @@ cs_status exp_mechanism_sweep(const exp_opts *o)
     if (!st) st = gate_read_value(PATHS_GATE("mechanism"), "cover_min", 0, &thr[3]);
     if (!st) st = gate_read_value(PATHS_GATE("mechanism"), "dieback_train", 0, &btrain);
     if (st) return st;
-    cell_result *res = calloc(nb * nd, sizeof *res);
+    figstand_cell *res = calloc(nb * nd, sizeof *res);
     cell_rows *rows = o->stand_rows ? calloc(nb * nd, sizeof *rows) : NULL;
     if (!res || (o->stand_rows && !rows)) {
         free(res);
@@ -194,7 +174,7 @@ cs_status exp_mechanism_sweep(const exp_opts *o)
     tsv_writer_columns(w, "beta\tspacing_m\tstands\ttrees\tk1_m\tk2_m\tk3_m\tcover\tworst_overlap_m\tpass\ttrain_row");
     for (size_t a = 0; a < nd; a++)
         for (size_t b = 0; b < nb; b++) {
-            const cell_result *c = &res[a * nb + b];
+            const figstand_cell *c = &res[a * nb + b];
             int pass = c->k[0] >= thr[0] && c->k[1] >= thr[1] && c->k[2] >= thr[2] && c->cover >= thr[3];
             tsv_writer_dbl(w, betas[b]);
             tsv_writer_dbl(w, ds[a]);
@@ -211,27 +191,10 @@ cs_status exp_mechanism_sweep(const exp_opts *o)
     return unit_out_finish(w, &pv, path);
 }
 
-/* The E1 ablation's three arms (coupling off, abrasion off, both on) at the
- * gate's ablation spacing; the table unit and the figure unit share them. */
-static const char *const ablation_arms[3] = {"coupling_off", "abrasion_off", "both_on"};
-static const int ablation_coupled[3] = {0, 1, 1};
-
-static cs_status ablation_gate(double *d, double beta[3])
-{
-    double btrain;
-    cs_status st = gate_read_value(PATHS_GATE("mechanism"), "ablation_spacing_m", 0, d);
-    if (!st) st = gate_read_value(PATHS_GATE("mechanism"), "dieback_train", 0, &btrain);
-    if (st) return st;
-    beta[0] = btrain;
-    beta[1] = 0.0;
-    beta[2] = btrain;
-    return CS_OK;
-}
-
 /* One row per arm (the ablation's columns), for ablation.tsv (lattice) and
  * figure_stats.tsv (the figure stand). */
 static cs_status write_ablation(const exp_opts *o, prov *pv, const char *file, const char *stems, double d,
-                                const double beta[3], int stands, const cell_result res[3])
+                                const double beta[3], int stands, const figstand_cell res[3])
 {
     tsv_writer *w = NULL;
     char path[512];
@@ -247,8 +210,8 @@ static cs_status write_ablation(const exp_opts *o, prov *pv, const char *file, c
     tsv_writer_meta(w, "overlap", "worst overlap of the final crowns (teacher self-check measure), m");
     tsv_writer_columns(w, "arm\tcoupled\tbeta\tspacing_m\tstands\ttrees\tk1_m\tk2_m\tk3_m\tcover\toverlap_m");
     for (int a = 0; a < 3; a++) {
-        tsv_writer_str(w, ablation_arms[a]);
-        tsv_writer_long(w, ablation_coupled[a]);
+        tsv_writer_str(w, figstand_ablation_arms[a]);
+        tsv_writer_long(w, figstand_ablation_coupled[a]);
         tsv_writer_dbl(w, beta[a]);
         tsv_writer_dbl(w, d);
         tsv_writer_long(w, stands);
@@ -261,26 +224,16 @@ static cs_status write_ablation(const exp_opts *o, prov *pv, const char *file, c
     return unit_out_finish(w, pv, path);
 }
 
-/* The statistics of one grown stand (the figure stand) as a cell. */
-static cs_status stand_cell(const stand *sd, const double *r, cell_result *res)
-{
-    dvec g[3] = {{0}, {0}, {0}};
-    double cov = 0.0, w = 0.0;
-    size_t trees = 0;
-    cs_status st = stand_stats(sd, r, g, &cov, &w, &trees);
-    return cell_close(g, cov, w, trees, st, res);
-}
-
 cs_status exp_mechanism_ablation(const exp_opts *o)
 {
     prov pv;
     exp_prov_begin(&pv, "mechanism", &o->rd, o->argc, o->argv);
     double d, beta[3];
-    cs_status st = ablation_gate(&d, beta);
+    cs_status st = figstand_ablation_gate(&d, beta);
     if (st) return st;
-    const char *const *arms = ablation_arms;
-    const int *coupled = ablation_coupled;
-    cell_result res[3];
+    const char *const *arms = figstand_ablation_arms;
+    const int *coupled = figstand_ablation_coupled;
+    figstand_cell res[3];
     double worst = 0.0;
     for (int a = 0; a < 3 && !st; a++) {
         teacher_params p;
@@ -300,65 +253,20 @@ cs_status exp_mechanism_ablation(const exp_opts *o)
                           o->stands, res);
 }
 
-/* Stand k of the figure stand's family (k = 0: the stand shown) grown in
- * the three ablation arms: *sd, *r (3 x n x NS radii, arm-major) owned by
- * the caller, *worst the worst overlap over the arms, fres the arms' numbers. */
-static cs_status figure_stand_grow(const exp_opts *o, unsigned k, double d, const double beta[3], stand **sd,
-                                   double **r, double *worst, cell_result fres[3])
-{
-    *r = NULL;
-    cs_status st = exp_stand_alloc(&o->rd, sd, stems_hardcore, d, EXP_FIG_L, exp_fig_c(&o->rd), "fig/mechanism", k);
-    if (st) return st;
-    size_t n = (*sd)->s->n;
-    *r = malloc(3 * n * NS * sizeof **r);
-    if (!*r) return cs_err(CS_ENOMEM, "experiments: out of memory");
-    for (int a = 0; a < 3 && !st; a++) {
-        teacher_params p;
-        EXP_TEACHER_PARAMS(&o->rd, &p);
-        p.coupled = ablation_coupled[a];
-        p.beta = beta[a];
-        st = stand_grow(*sd, &p, NULL, *r + (size_t)a * n * NS, NULL, worst);
-    }
-    for (int a = 0; a < 3 && !st; a++) st = stand_cell(*sd, *r + (size_t)a * n * NS, &fres[a]);
-    return st;
-}
-
-cs_status exp_mechanism_figure_stand(const exp_opts *o, unsigned k, exp_fig_arm out[3])
-{
-    double d, beta[3], worst = 0.0;
-    cs_status st = ablation_gate(&d, beta);
-    if (st) return st;
-    stand *sd = NULL;
-    double *r = NULL;
-    cell_result fres[3];
-    st = figure_stand_grow(o, k, d, beta, &sd, &r, &worst, fres);
-    for (int a = 0; a < 3 && !st; a++) {
-        snprintf(out[a].arm, sizeof out[a].arm, "%s", ablation_arms[a]);
-        out[a].d = d;
-        for (int q = 0; q < 3; q++) out[a].k[q] = fres[a].k[q];
-        out[a].cover = fres[a].cover;
-        out[a].overlap = fres[a].overlap;
-        out[a].trees = fres[a].trees;
-    }
-    free(r);
-    stand_free(sd);
-    return st;
-}
-
 cs_status exp_mechanism_figure(const exp_opts *o)
 {
     prov pv;
     exp_prov_begin(&pv, "mechanism", &o->rd, o->argc, o->argv);
     double d, beta[3];
-    cs_status st = ablation_gate(&d, beta);
+    cs_status st = figstand_ablation_gate(&d, beta);
     if (st) return st;
     stand *sd = NULL;
     double *r = NULL, worst = 0.0;
-    cell_result fres[3];
-    st = figure_stand_grow(o, 0, d, beta, &sd, &r, &worst, fres);
+    figstand_cell fres[3];
+    st = figstand_mechanism_grow(o, 0, d, beta, &sd, &r, &worst, fres);
     if (st) { free(r); stand_free(sd); return st; }
     size_t n = sd->s->n;
-    const char *const *arms = ablation_arms;
+    const char *const *arms = figstand_ablation_arms;
     /* The ablation numbers on the stand shown (figure_stats.tsv), written
      * before the crowns table that make counts as the unit's target. */
     if (!st) {

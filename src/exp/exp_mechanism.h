@@ -10,9 +10,5 @@ cs_status exp_mechanism_sweep(const exp_opts *o);
 cs_status exp_mechanism_ablation(const exp_opts *o);
 /* crowns of the three figure panels -> mechanism/figure_crowns.tsv */
 cs_status exp_mechanism_figure(const exp_opts *o);
-/* The figure stand's numbers on stand k of its family (hard-core, 3.5 m,
- * L = 36 m; k = 0 is the stand shown): per ablation arm, as figure_stats.tsv. */
-typedef struct { char arm[16]; double d, k[3], cover, overlap; size_t trees; } exp_fig_arm;
-cs_status exp_mechanism_figure_stand(const exp_opts *o, unsigned k, exp_fig_arm out[3]);
 
 #endif

@@ -3,11 +3,12 @@
  * one stand per spacing with its crown draws shared within a column.
  * Outputs: <exp>/figure_crowns.tsv and figure_poly_<panel>_<d>.tsv
  * (exp_common.h); pointcloud/stats.tsv: spacing_m trees contact_fraction
- * overlap_fraction_coupled overlap_fraction_uncoupled k1_coupled_m k1_uncoupled_m. */
+ * overlap_fraction_coupled overlap_fraction_uncoupled k1_coupled_m k1_uncoupled_m, each row
+ * figstand.c's numbers on the figure's point-cloud stand (as for its replicates). */
 #include "exp_stands.h"
 #include "exp_common.h"
+#include "figstand.h"
 #include "unit_out.h"
-#include "estimator.h"
 #include "gate.h"
 #include "paths.h"
 #include "stand_grow.h"
@@ -17,7 +18,6 @@
 #include <string.h>
 
 #define NS CROWN_NSEC
-
 
 /* Hero (E9) and point cloud (E8): hard-core stands at L = 36 m over spacings;
  * crown draws shared within a column (one stand per spacing, both rows). */
@@ -79,55 +79,6 @@ static cs_status unit_fig_stands(const exp_opts *o, const char *experiment, cons
     return st;
 }
 
-/* Stand k of the point-cloud family at spacing d (k = 0: the figure's). */
-cs_status exp_pointcloud_stand(const exp_opts *o, double d, double beta, unsigned k, exp_pc_row *row, double *worst)
-{
-    stand *sd = NULL;
-    cs_status st = exp_stand_alloc(&o->rd, &sd, stems_hardcore, d, EXP_FIG_L, exp_fig_c(&o->rd), "fig/pointcloud", k);
-    if (st) return st;
-    size_t n = sd->s->n;
-    double *rc = malloc(n * NS * sizeof *rc), *ru = malloc(n * NS * sizeof *ru);
-    unsigned char *fz = malloc(n * NS);
-    if (!rc || !ru || !fz) st = cs_err(CS_ENOMEM, "experiments: out of memory");
-    teacher_params p;
-    EXP_TEACHER_PARAMS(&o->rd, &p);
-    p.beta = beta;
-    p.frozen_out = fz;
-    if (!st) st = stand_grow(sd, &p, NULL, rc, NULL, worst);
-    p.coupled = 0;
-    p.frozen_out = NULL;
-    if (!st) st = stand_grow(sd, &p, NULL, ru, NULL, NULL);
-    size_t m = 0, contact = 0, oc = 0, ou = 0;
-    for (size_t i = 0; i < n && !st; i++) {
-        if (!stems_interior(sd->s, i)) continue;
-        m++;
-        int any = 0;
-        for (int s = 0; s < NS; s++) any |= fz[i * NS + s];
-        contact += (size_t)any;
-        int c_ov = 0, u_ov = 0;
-        for (size_t j = 0; j < n; j++) {
-            if (j == i) continue;
-            const stems *S = sd->s;
-            if (est_clearance(S->x[i], S->y[i], rc + i * NS, S->x[j], S->y[j], rc + j * NS) < 0.0) c_ov = 1;
-            if (est_clearance(S->x[i], S->y[i], ru + i * NS, S->x[j], S->y[j], ru + j * NS) < 0.0) u_ov = 1;
-        }
-        oc += (size_t)c_ov;
-        ou += (size_t)u_ov;
-    }
-    if (!st) {
-        row->stems = n;
-        row->trees = m;
-        row->contact = (double)contact / (double)m;
-        row->ovl_c = (double)oc / (double)m;
-        row->ovl_u = (double)ou / (double)m;
-        row->k1_c = exp_stand_k1(sd, rc);
-        row->k1_u = exp_stand_k1(sd, ru);
-    }
-    free(rc); free(ru); free(fz);
-    stand_free(sd);
-    return st;
-}
-
 /* E8 numbers on the point-cloud stands: per spacing, the share of interior
  * crowns that made contact during coupled growth (a sector froze), the share
  * of interior crowns that interpenetrate a neighbour (some g(i,j) < 0) in
@@ -136,10 +87,10 @@ static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size
 {
     prov pv;
     exp_prov_begin(&pv, "pointcloud", &o->rd, o->argc, o->argv);
-    exp_pc_row rows[8];
+    figstand_pc_row rows[8];
     double worst = 0.0;
     cs_status st = CS_OK;
-    for (size_t a = 0; a < nd && !st; a++) st = exp_pointcloud_stand(o, ds[a], beta, 0, &rows[a], &worst);
+    for (size_t a = 0; a < nd && !st; a++) st = figstand_pointcloud(o, ds[a], beta, 0, &rows[a], &worst);
     tsv_writer *w = NULL;
     char path[512];
     if (!st) st = unit_out_open(o, "pointcloud", "stats.tsv", &w, path, sizeof path);
@@ -165,16 +116,6 @@ static cs_status unit_pointcloud_stats(const exp_opts *o, const double *ds, size
         tsv_writer_endrow(w);
     }
     return unit_out_finish(w, &pv, path);
-}
-
-
-cs_status exp_hero_stems(const exp_opts *o, double d, unsigned k, size_t *stems_n)
-{
-    stand *sd = NULL;
-    cs_status st = exp_stand_alloc(&o->rd, &sd, stems_hardcore, d, EXP_FIG_L, exp_fig_c(&o->rd), "fig/hero", k);
-    if (!st) *stems_n = sd->s->n;
-    stand_free(sd);
-    return st;
 }
 
 cs_status exp_hero_figure(const exp_opts *o)

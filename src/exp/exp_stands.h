@@ -8,13 +8,5 @@
 cs_status exp_hero_figure(const exp_opts *o);
 /* E8: 5, 4, 3 m coupled + uncoupled, and pointcloud/stats.tsv. */
 cs_status exp_pointcloud_figure(const exp_opts *o);
-/* One point-cloud stand (k = 0: the figure's) at spacing d, die-back beta:
- * stems, interior trees, contact and overlap shares, median k1 coupled and
- * uncoupled, as a row of pointcloud/stats.tsv; *worst: the coupled growth's
- * worst overlap (maximum kept). */
-typedef struct { size_t stems, trees; double contact, ovl_c, ovl_u, k1_c, k1_u; } exp_pc_row;
-cs_status exp_pointcloud_stand(const exp_opts *o, double d, double beta, unsigned k, exp_pc_row *row, double *worst);
-/* Stems of hero stand k (k = 0: the figure's) at spacing d. */
-cs_status exp_hero_stems(const exp_opts *o, double d, unsigned k, size_t *stems_n);
 
 #endif

@@ -1,25 +1,19 @@
-/* cli_replicates: `crownshy replicates-run`, the replicate stands of the numbers that rest on one
- * figure stand (design.md §6.1): the E1 figure stand (hard-core, 3.5 m,
- * L = 36 m; its ablation arms), the E8 point-cloud stands (5, 4, 3 m;
- * coupled and uncoupled) and the E9 hero stems (3.0 and 6.5 m). Stand k of a
- * family is the figure's own key with stand index k (seed_derive(key, d, k,
- * stems|crowns)): the same stems process and crown-draw distribution, seeds
- * disjoint from the figure's (k = 0, included so that the claims can check
- * that this code gives the figure's numbers bit for bit). Each number is
- * computed by the figure unit's own function (exp_mechanism_figure_stand,
- * exp_pointcloud_stand, exp_hero_stems).
- * Output replicates/figure_stands.tsv, one row per (family, arm, spacing,
- * stand): family arm spacing_m stand stems trees k1_m k2_m k3_m cover
- * overlap_m contact_pct (nan where the family does not define a column).
- * It runs three experiments' figure stands, and an experiment file imports
- * no other (tests/layout.sh): its loop lives here, not among the experiments. */
-#include "cli.h"
+/* exp_replicates: the replicate stands of the numbers that rest on one figure stand
+ * (design.md §6.1): the E1 figure stand (hard-core, 3.5 m, L = 36 m; its ablation arms), the
+ * E8 point-cloud stands (5, 4, 3 m; coupled and uncoupled) and the E9 hero stems (3.0 and
+ * 6.5 m). Stand k of a family is the figure's own key with stand index k (seed_derive(key, d,
+ * k, stems|crowns)): the same stems process and crown-draw distribution, seeds disjoint from
+ * the figure's (k = 0, included so that the claims can check that this code gives the
+ * figure's numbers bit for bit). Each number is computed by the function the figure unit
+ * uses (figstand.c: figstand_mechanism, figstand_pointcloud, figstand_hero_stems).
+ * Output replicates/figure_stands.tsv, one row per (family, arm, spacing, stand): family arm
+ * spacing_m stand stems trees k1_m k2_m k3_m cover overlap_m contact_pct (nan where the
+ * family does not define a column). */
+#include "exp_replicates.h"
 #include "exp_common.h"
-#include "exp_mechanism.h"
-#include "exp_stands.h"
+#include "figstand.h"
 #include "gate.h"
 #include "paths.h"
-#include "opts.h"
 #include "unit_out.h"
 #include <math.h>
 #include <stdio.h>
@@ -52,9 +46,9 @@ static void put(rep_row *r, const char *family, const char *arm, double d, unsig
 /* The ROWS_PER_STAND rows of stand k; *worst: the coupled growths' worst overlap. */
 static cs_status stand_rows(const exp_opts *o, unsigned k, double btrain, rep_row *out, double *worst)
 {
-    exp_fig_arm fa[3];
+    figstand_arm fa[3];
     size_t n = 0;
-    cs_status st = exp_mechanism_figure_stand(o, k, fa);
+    cs_status st = figstand_mechanism(o, k, fa);
     for (int a = 0; a < 3 && !st; a++) {
         put(&out[n++], "mechanism", fa[a].arm, fa[a].d, k, NAN, (double)fa[a].trees, fa[a].k, fa[a].cover,
             fa[a].overlap, NAN);
@@ -62,8 +56,8 @@ static cs_status stand_rows(const exp_opts *o, unsigned k, double btrain, rep_ro
     }
     static const double pcd[3] = {5.0, 4.0, 3.0};
     for (int i = 0; i < 3 && !st; i++) {
-        exp_pc_row pr;
-        if ((st = exp_pointcloud_stand(o, pcd[i], btrain, k, &pr, worst))) break;
+        figstand_pc_row pr;
+        if ((st = figstand_pointcloud(o, pcd[i], btrain, k, &pr, worst))) break;
         double kc[3] = {pr.k1_c, NAN, NAN}, ku[3] = {pr.k1_u, NAN, NAN};
         put(&out[n++], "pointcloud", "coupled", pcd[i], k, (double)pr.stems, (double)pr.trees, kc, NAN, pr.ovl_c,
             100.0 * pr.contact);
@@ -73,7 +67,7 @@ static cs_status stand_rows(const exp_opts *o, unsigned k, double btrain, rep_ro
     static const double hd[2] = {3.0, 6.5};
     for (int i = 0; i < 2 && !st; i++) {
         size_t m;
-        if (!(st = exp_hero_stems(o, hd[i], k, &m)))
+        if (!(st = figstand_hero_stems(o, hd[i], k, &m)))
             put(&out[n++], "hero", "beta_train", hd[i], k, (double)m, NAN, NULL, NAN, NAN, NAN);
     }
     return st;
@@ -94,7 +88,7 @@ static void write_row(tsv_writer *w, const rep_row *r)
     tsv_writer_endrow(w);
 }
 
-static cs_status replicates_run(const exp_opts *o)
+cs_status exp_replicates_run(const exp_opts *o)
 {
     prov pv;
     exp_prov_begin(&pv, "replicates", &o->rd, o->argc, o->argv);
@@ -133,27 +127,4 @@ static cs_status replicates_run(const exp_opts *o)
     }
     free(rows);
     return st;
-}
-
-int cli_replicates_run(int argc, char **argv)
-{
-    long stands = 100;
-    const char *out = "build/results", *teacher = NULL;
-    const opt_spec spec[] = {
-        {"out", OPT_STR, &out, 0, 0, "results root; writes DIR/replicates/figure_stands.tsv (default build/results)"},
-        CLI_OPT_TEACHER(teacher),
-        {"stands", OPT_LONG, &stands, 1, 10000, "stands per family, k = 0..N-1 (default 100)"},
-    };
-    const opts_cmd c = {
-        "replicates-run",
-        "[options]",
-        "Replicate stands of the one-stand figure numbers (E1 figure stand, E8 point-cloud stands, E9 hero stems):\n"
-        "stands k = 0..N-1 of each figure family (k = 0: the figure's own) -> DIR/replicates/figure_stands.tsv",
-        spec, sizeof spec / sizeof spec[0], 0, 0};
-    int r = opts_parse(&c, argc, argv, NULL, NULL);
-    if (r) return opts_exit_code(r);
-    exp_opts o = {.out = out, .stands = (int)stands, .beta = NAN, .tag = "train", .argc = argc, .argv = argv};
-    if (exp_reading_parse(teacher, NULL, &o.rd)) { opts_usage_error("replicates-run", "%s", cs_errmsg()); return 2; }
-    cs_status st = replicates_run(&o);
-    return st ? cli_fail("replicates-run", st) : 0;
 }
