@@ -120,6 +120,24 @@ typedef struct {
     long peak_iters;
 } bench_ctx;
 
+/* The measured models train on toy patches (two batches' worth, standardised):
+ * a rate depends on the shapes, not on what the patches hold. */
+static cs_status toy_patches(patch_set **ps, int B)
+{
+    cs_status st = patch_set_alloc(ps, 2 * B);
+    if (!st) st = patch_set_add_toy(*ps, (2 * B + 63) / 64, 4.5, 7);
+    if (!st) st = patch_set_standardise(*ps, patch_set_rms(*ps));
+    return st;
+}
+
+static cs_status toy_trainer(train **t, const model_cfg *cfg, const patch_set *ps, int B)
+{
+    train_opts o = train_opts_default();
+    o.batch = B;
+    o.steps = 100000;
+    return train_alloc(t, cfg, ps, &o);
+}
+
 static void ctx_free(bench_ctx *b)
 {
     for (int k = 0; k < 3; k++) train_free(b->t[k]);
@@ -132,17 +150,12 @@ static void ctx_free(bench_ctx *b)
 static cs_status ctx_alloc(bench_ctx *b, const model_cfg *ref, int B)
 {
     memset(b, 0, sizeof *b);
-    cs_status st = patch_set_alloc(&b->ps, 2 * B);
-    if (!st) st = patch_set_add_toy(b->ps, (2 * B + 63) / 64, 4.5, 7);
-    if (!st) st = patch_set_standardise(b->ps, patch_set_rms(b->ps));
-    train_opts o = train_opts_default();
-    o.batch = B;
-    o.steps = 100000;
+    cs_status st = toy_patches(&b->ps, B);
     for (int k = 0; k < 3 && !st; k++) {
         b->cfg[k] = *ref;
         b->cfg[k].pair = k > 0;
         b->cfg[k].joint = k < 2;
-        st = train_alloc(&b->t[k], &b->cfg[k], b->ps, &o);
+        st = toy_trainer(&b->t[k], &b->cfg[k], b->ps, B);
         for (int w = 0; !st && w < 2; w++) st = train_step(b->t[k], NULL); /* warm caches */
     }
     if (!st) st = pass_alloc(&b->pass, ref);
@@ -279,13 +292,8 @@ cs_status speed_model_gflops(const model_cfg *cfg, int B, int steps, double *tra
 {
     patch_set *ps = NULL;
     train *t = NULL;
-    cs_status st = patch_set_alloc(&ps, 2 * B);
-    if (!st) st = patch_set_add_toy(ps, (2 * B + 63) / 64, 4.5, 7);
-    if (!st) st = patch_set_standardise(ps, patch_set_rms(ps));
-    train_opts o = train_opts_default();
-    o.batch = B;
-    o.steps = 100000;
-    if (!st) st = train_alloc(&t, cfg, ps, &o);
+    cs_status st = toy_patches(&ps, B);
+    if (!st) st = toy_trainer(&t, cfg, ps, B);
     if (!st) st = train_step(t, NULL);
     const double t0 = now_s();
     for (int k = 0; k < steps && !st; k++) st = train_step(t, NULL);
