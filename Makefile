@@ -166,14 +166,14 @@ figures: deps
 # sgemm, training and sampling of the plain and pair models, every goal judged,
 # and the projected wall time of E3+E4 (README "Speed"); then where a training
 # step's time goes (tests/bench/step_split.c, design.md §10.1); last the whole
-# study's cost at full and at smoke scale (src/exp/study_cost.sh), the pair
-# training units also from the model bench's rates (kept in $(B)/bench/).
+# study's cost at full and at smoke scale (src/exp/study_cost.sh), the model
+# units also at this core's rates (each unit's recipe run with --cost).
 bench: deps
 	@$(MAKE) --no-print-directory $(CLI) $(SPLIT)
 	@$(CLI) bench-teacher
-	@mkdir -p $(B)/bench; set -o pipefail; $(CLI) bench-model | tee $(B)/bench/model.txt
+	@$(CLI) bench-model
 	@$(SPLIT)
-	@BENCH_MODEL_OUT=$(B)/bench/model.txt SMOKE_ROOT=$(B)/smoke SMOKE_STATE=$(B)/reproduce/smoke bash src/exp/study_cost.sh
+	@SMOKE_ROOT=$(B)/smoke SMOKE_STATE=$(B)/reproduce/smoke bash src/exp/study_cost.sh
 
 numbers: deps
 	@$(MAKE) --no-print-directory $(CLI)

@@ -13,14 +13,12 @@
 # CPU-hours and its wall time with `make -j2` and on N two-core Slurm nodes
 # (the units spread evenly over the cores: a lower bound that ignores the
 # order the units depend on, and the same at both scales, so a measured smoke
-# run checks it). With BENCH_MODEL_OUT (the output of `crownshy bench-model`)
-# the pair model's training units are also projected from this machine's
-# measured rates (step and Euler-step times x the plan's counts), beside
-# their recorded times. Recorded times come from the machines and loads the
-# units ran on: a measured figure of the study as run, not of this machine.
+# run checks it). Recorded times come from the machines and loads the units
+# ran on: a measured figure of the study as run, not of this machine; so the
+# full run is printed a second time with every model unit at this core's
+# rates (model_cpu below: each unit's own recipe run with --cost).
 # usage: src/exp/study_cost.sh [NODES...]   (default nodes: 4 8)
-#   env: SMOKE_ROOT (default build/smoke), SMOKE_STATE (build/reproduce/smoke),
-#        BENCH_MODEL_OUT (optional)
+#   env: SMOKE_ROOT (default build/smoke), SMOKE_STATE (build/reproduce/smoke)
 set -u
 cd "$(dirname "$0")/../.."
 . src/exp/unit_wall.sh
@@ -96,22 +94,6 @@ if [ -x "$cli" ]; then
     awk -F'\t' -v OFS='\t' 'FNR == NR { M[$1] = $2; next } ($1 in M) { $2 = M[$1]; $4 = "measured" } { print }' \
         <(printf '%s\n' "$measured") <(printf '%s\n' "$full") |
         cut -f1,2,4 | cost full "the full run, its $(grep -c . <<<"$measured") model units (crownshy main-run) at this core's rates measured now (main-run --cost: model FLOPs over the training and sampling rates of a fresh model of the unit's configuration; a unit's teacher stands left out), the other units at their recorded wall times"
-fi
-
-# this machine's rates x the plan's counts, for the pair model's training units
-if [ -n "${BENCH_MODEL_OUT:-}" ] && [ -f "$BENCH_MODEL_OUT" ]; then
-    awk -F'\t' '
-      FNR == NR { if ($1 == "path" && !path) path = $2
-                  if ($1 == "pair_unit_s" && !j) { split($2, a, " "); split($3, b, " "); j = a[2]; i = b[2] }
-                  next }
-      $1 ~ /^extension-pair-16-stands\/main\/run_s[0-9]+_(joint|indep)\.tsv$/ {
-          units++; if ($2 != "") { rec += $2; nrec++ }
-          meas += $1 ~ /_joint\.tsv$/ ? j : i }
-      END {
-        if (!j) exit
-        printf "the %d pair-model training units (extension-pair-16-stands): recorded %.2f CPU-hours (%d recorded); this machine, path %s, measured rates x counts: %.2f CPU-hours (ratio recorded / measured %.2f; the measured figure is CPU time and leaves the teacher part of a unit out)\n",
-               units, rec / 3600, nrec, path, meas / 3600, (meas > 0 ? rec / meas : 0)
-      }' "$BENCH_MODEL_OUT" - <<<"$full"
 fi
 
 # the same projection at smoke scale: the units' wall times of the smoke run
