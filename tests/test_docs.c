@@ -6,6 +6,7 @@
 #include "testutil.h"
 #include "audit_docs.h"
 #include "docs_render.h"
+#include "audit_paper.h"
 
 static claim_row rows[3];
 static claim_result res[3];
@@ -115,6 +116,26 @@ static void test_stale_marker_and_block_fail_and_refresh(void **state)
     assert_non_null(strstr(out, "claim: MainJoint"));
 }
 
+/* a differing line of a generated file is named by the claim whose whole
+ * name it holds, never by a shorter claim name inside a longer one */
+static void test_generated_line_names_its_whole_claim(void **state)
+{
+    claim_row r2[2];
+    memset(r2, 0, sizeof r2);
+    snprintf(r2[0].macro, sizeof r2[0].macro, "MainRel");
+    snprintf(r2[1].macro, sizeof r2[1].macro, "PairMainRel");
+    claims c2 = {r2, 2};
+    char name[80];
+    paper_line_claim(&c2, "\\newcommand{\\PairMainRel}{91.0}", name, sizeof name);
+    assert_string_equal(name, "PairMainRel");
+    paper_line_claim(&c2, "\\texttt{PairMainRel} & measured & 53.6 & 91.0\\\\", name, sizeof name);
+    assert_string_equal(name, "PairMainRel");
+    paper_line_claim(&c2, "\\newcommand{\\MainRelGate}{PASS}", name, sizeof name);
+    assert_string_equal(name, "MainRel");
+    paper_line_claim(&c2, "MainRelative\tstand\trange", name, sizeof name);
+    assert_string_equal(name, "");
+}
+
 /* the findings show a gated claim as its gate judged it: a ratio formed from
  * the shown value is printed beside it; a percent of the judged fraction is not */
 static void test_findings_show_the_judged_quantity(void **state)
@@ -165,6 +186,7 @@ int main(void)
         cmocka_unit_test(test_stale_marker_and_block_fail_and_refresh),
         cmocka_unit_test(test_unknown_marker_exemption_and_link_fail),
         cmocka_unit_test(test_findings_show_the_judged_quantity),
+        cmocka_unit_test(test_generated_line_names_its_whole_claim),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

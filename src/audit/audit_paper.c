@@ -127,6 +127,27 @@ static void rmdir_fresh(const char *dir)
     rmdir(dir);
 }
 
+void paper_line_claim(const claims *c, const char *line, char *out, size_t n)
+{
+    static const char gate[] = "Gate"; /* numbers.tex writes a claim's verdict as \<claim>Gate */
+    out[0] = '\0';
+    for (const char *p = line; *p && !out[0];) {
+        size_t w = 0;
+        while (isalnum((unsigned char)p[w])) w++;
+        if (!w) { p++; continue; }
+        char word[128];
+        snprintf(word, sizeof word, "%.*s", (int)w, p);
+        const claim_row *row = claims_find(c, word);
+        size_t g = sizeof gate - 1;
+        if (!row && w > g && !strcmp(word + w - g, gate)) {
+            word[w - g] = '\0';
+            row = claims_find(c, word);
+        }
+        if (row) snprintf(out, n, "%s", row->macro);
+        p += w;
+    }
+}
+
 void audit_generated(const claims *c, const claim_result *res, checklist *cl, int only_numbers)
 {
     char dir[128];
@@ -155,9 +176,9 @@ void audit_generated(const claims *c, const claim_result *res, checklist *cl, in
             checklist_add(cl, VERDICT_FAIL, item, "%s missing (generate it with crownshy numbers)", generated[i]);
         else if (d) {
             /* name the claim on the differing line when there is one */
-            char claim[80] = "";
-            for (size_t r = 0; r < c->n && !claim[0]; r++)
-                if (strstr(lb, c->rows[r].macro)) snprintf(claim, sizeof claim, "; claim: %s", c->rows[r].macro);
+            char name[64], claim[80] = "";
+            paper_line_claim(c, lb, name, sizeof name);
+            if (name[0]) snprintf(claim, sizeof claim, "; claim: %s", name);
             checklist_add(cl, VERDICT_FAIL, item,
                           "%s:%d differs from a fresh generation ('%.200s'): edited by hand or stale%s", generated[i],
                           d, lb, claim);

@@ -30,6 +30,10 @@ cs_status paper_generate(const claims *c, const claim_result *res, const char *d
 /* Each generated file equals a fresh generation (only numbers.tex when
  * only_numbers), naming the first differing line and its claim. */
 void audit_generated(const claims *c, const claim_result *res, checklist *cl, int only_numbers);
+/* The claim a line of a generated file is about, into out (empty when none):
+ * the first word of the line that is a claim's whole name, or a claim's name
+ * followed by "Gate" (numbers.tex's verdict macro). */
+void paper_line_claim(const claims *c, const char *line, char *out, size_t n);
 /* Every non-generated .tex under paper/: claim macros registered, none
  * (re)defined, no measured number typed in any rounding, no exemption comment. */
 void audit_paper_text(const claims *c, const claim_result *res, checklist *cl);
