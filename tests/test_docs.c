@@ -120,19 +120,19 @@ static void test_stale_marker_and_block_fail_and_refresh(void **state)
  * name it holds, never by a shorter claim name inside a longer one */
 static void test_generated_line_names_its_whole_claim(void **state)
 {
-    claim_row r2[2];
-    memset(r2, 0, sizeof r2);
-    snprintf(r2[0].macro, sizeof r2[0].macro, "MainRel");
-    snprintf(r2[1].macro, sizeof r2[1].macro, "PairMainRel");
-    claims c2 = {r2, 2};
+    claim_row duo[2];
+    memset(duo, 0, sizeof duo);
+    snprintf(duo[0].macro, sizeof duo[0].macro, "MainRel");
+    snprintf(duo[1].macro, sizeof duo[1].macro, "PairMainRel");
+    claims c_duo = {duo, 2};
     char name[80];
-    paper_line_claim(&c2, "\\newcommand{\\PairMainRel}{91.0}", name, sizeof name);
+    paper_line_claim(&c_duo, "\\newcommand{\\PairMainRel}{91.0}", name, sizeof name);
     assert_string_equal(name, "PairMainRel");
-    paper_line_claim(&c2, "\\texttt{PairMainRel} & measured & 53.6 & 91.0\\\\", name, sizeof name);
+    paper_line_claim(&c_duo, "\\texttt{PairMainRel} & measured & 53.6 & 91.0\\\\", name, sizeof name);
     assert_string_equal(name, "PairMainRel");
-    paper_line_claim(&c2, "\\newcommand{\\MainRelGate}{PASS}", name, sizeof name);
+    paper_line_claim(&c_duo, "\\newcommand{\\MainRelGate}{PASS}", name, sizeof name);
     assert_string_equal(name, "MainRel");
-    paper_line_claim(&c2, "MainRelative\tstand\trange", name, sizeof name);
+    paper_line_claim(&c_duo, "MainRelative\tstand\trange", name, sizeof name);
     assert_string_equal(name, "");
 }
 
