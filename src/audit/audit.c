@@ -435,9 +435,16 @@ static void check_registry(const claims *c, checklist *cl)
         checklist_add(cl, VERDICT_FAIL, "registry", "tests/test_claims.c missing: claims have no tests");
         bad++;
     }
+    /* the registry file is the print of the claim tables: a hand edit shows */
+    if (claims_registry_check(PATHS_CLAIMS)) {
+        checklist_add(cl, VERDICT_FAIL, "registry", "%s", cs_errmsg());
+        bad++;
+    }
     if (!bad)
         checklist_add(cl, VERDICT_PASS, "registry",
-                      "%zu claims, each with a computing function name and a test; no orphan function", c->n);
+                      "%zu claims, each with a computing function name and a test; no orphan function; %s the print "
+                      "of the claim tables",
+                      c->n, PATHS_CLAIMS);
 }
 
 cs_status audit_run(const claims *c, const claim_result *res, checklist *out)

@@ -77,7 +77,7 @@ verdict verify_claim(const claim_row *row, const claim_result *res, const number
 
 cs_status verify_load_eval(claims *c, claim_result **res)
 {
-    cs_status st = claims_load(PATHS_CLAIMS, c);
+    cs_status st = claims_registry(c);
     if (st) return st;
     if ((st = verify_eval_all(c, res))) claims_free(c);
     return st;
@@ -396,7 +396,7 @@ cs_status verify_run(const verify_opts *o)
 cs_status verify_trace(const char *macro)
 {
     claims c;
-    cs_status st = claims_load(PATHS_CLAIMS, &c);
+    cs_status st = claims_registry(&c);
     if (st) return st;
     const claim_row *row = claims_find(&c, macro[0] == '\\' ? macro + 1 : macro);
     if (!row) { claims_free(&c); return cs_err(CS_EINPUT, "%s: no claim named '%s'", PATHS_CLAIMS, macro); }
