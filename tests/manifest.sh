@@ -154,7 +154,8 @@ if grep -q 'ToyMean}{1.50}' paper/numbers.tex; then ok "crownshy numbers compute
 else bad "crownshy numbers computes the toy claim" "$(grep Toy paper/numbers.tex; tail -3 "$T/numbers.log")"; fi
 tr=$(build/crownshy trace ToyMean 2>&1)
 if grep -q '^source *frozen/toy/numbers.tsv' <<<"$tr" && grep -q '^function *claim_toy_mean (src/claims/claim_toy.c:[0-9]*)' <<<"$tr" \
-   && grep -q '^experiment *toy (E99)' <<<"$tr"; then ok "crownshy trace ToyMean names the table, src/claims/claim_toy.c and the experiment"
+   && grep -q '^table *claim_table_toy (src/claims/claim_toy.c:[0-9]*)' <<<"$tr" \
+   && grep -q '^experiment *toy (E99)' <<<"$tr"; then ok "crownshy trace ToyMean names the table, src/claims/claim_toy.c (function and claim table) and the experiment"
 else bad "crownshy trace ToyMean" "$tr"; fi
 # the layout rules hold with the toy frozen, its row in src/README.md's generated table
 bash src/base/manifest.sh readme-write

@@ -427,7 +427,10 @@ cs_status verify_trace(const char *macro)
     if (r.gate_detail[0]) printf("gate detail  %s\n", r.gate_detail);
     printf("test         %s (alone: make test-claim MACRO=%s)\n", row->test, row->macro);
     printf("section      %s of the reference paper (reference value %s)\n", row->section, row->reference);
-    printf("registry     %s:%d\n", PATHS_CLAIMS, row->line);
+    if (claims_table_where(row, fpath, sizeof fpath, &fline))
+        printf("table        %s (%s)\n", row->table ? row->table : "-", cs_errmsg());
+    else printf("table        %s (%s:%d)\n", row->table ? row->table : "-", fpath, fline);
+    printf("registry     %s:%d (the tables' print)\n", PATHS_CLAIMS, row->line);
     if (have) numbers_free(&nt);
     claims_free(&c);
     /* a claim its input keeps from being computed: the command exits by that kind */

@@ -68,6 +68,7 @@ typedef struct {
     char macro[64], kind[16], source[256], function[64], gate[128], test[160], section[16], format[16], reference[64];
     claim_params param;
     int line; /* line in audit/claims.tsv */
+    const char *table; /* the claim table holding the row (claims_registry); NULL when read from a file */
     /* The registry's own gate column. `gate` is what audit/gate_map.tsv (pinned
      * with the gates) says when the registry is PATHS_CLAIMS; the audit fails
      * when the two differ. gate_map_line: line of the map row, 0 if none. */
@@ -121,6 +122,9 @@ cs_status claims_registry(claims *out);
 /* The registry's print (PATHS_CLAIMS): its header comments, the header line
  * and one row per claim; *text is malloc'd, NUL-terminated. */
 cs_status claims_registry_text(char **text, size_t *len);
+/* Where a row of the tables is written: the file of src/claims/ whose line
+ * opens with the row ({"MACRO", ...) and that line; CS_EINPUT when none. */
+cs_status claims_table_where(const claim_row *row, char *path, size_t pathsz, int *line);
 /* Write the print to path (atomic). */
 cs_status claims_registry_write(const char *path);
 /* CS_EINVARIANT naming path's first line that differs from the print (or the

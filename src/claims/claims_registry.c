@@ -70,6 +70,7 @@ static cs_status copy_cell(const char *table, size_t r, int line, const char *fi
 static cs_status row_from_spec(const claim_spec *s, const char *table, size_t r, int line, claim_row *w)
 {
     w->line = line;
+    w->table = table;
     cs_status st;
     if ((st = copy_cell(table, r, line, "macro", s->macro, w->macro, sizeof w->macro)) ||
         (st = copy_cell(table, r, line, "kind", s->kind, w->kind, sizeof w->kind)) ||
@@ -136,6 +137,32 @@ cs_status claims_registry_text(char **text, size_t *len)
     claims_free(&c);
     if (fclose(f) || !*text) { free(*text); *text = NULL; return cs_err(CS_ENOMEM, "%s: out of memory", PATHS_CLAIMS); }
     return CS_OK;
+}
+
+cs_status claims_table_where(const claim_row *row, char *path, size_t pathsz, int *line)
+{
+    paths_list files;
+    if (paths_list_files(PATHS_CLAIMS_SRC_DIR, ".c", 0, &files)) return cs_err(CS_ENOMEM, "out of memory");
+    char want[96], buf[1024];
+    snprintf(want, sizeof want, "{\"%s\", ", row->macro);
+    const size_t wn = strlen(want);
+    cs_status st = cs_err(CS_EINPUT, "%s: no file of %s/ holds the row of %s", PATHS_CLAIMS, PATHS_CLAIMS_SRC_DIR,
+                          row->macro);
+    for (size_t i = 0; i < files.n && st; i++) {
+        FILE *f = fopen(files.p[i], "r");
+        for (int ln = 1; f && fgets(buf, sizeof buf, f); ln++) {
+            const char *p = buf + strspn(buf, " ");
+            if (strncmp(p, want, wn)) continue;
+            snprintf(path, pathsz, "%s", files.p[i]);
+            *line = ln;
+            cs_errclear();
+            st = CS_OK;
+            break;
+        }
+        if (f) fclose(f);
+    }
+    paths_list_free(&files);
+    return st;
 }
 
 cs_status claims_registry_write(const char *path)
