@@ -6,9 +6,11 @@
 # scratch copy of the package (build/manifest-test/repo, its own git), adds a
 # toy experiment "toy" with exactly the files the "Adding an
 # experiment" section of src/README.md names for a unit with the common
-# options (manifest rows, the experiment, a claim function, its registry and
-# interval rows), then checks that
+# options (manifest rows, the experiment, a claim function and its claim
+# table, its interval row), then checks that
 #  - the number of hand-written files equals the count src/README.md states;
+#  - `crownshy claims-table` prints its claim into audit/claims.tsv (the
+#    file is generated, never edited);
 #  - make lists its unit (`make units`: reproduce and verify-deep) and
 #    `make toy` runs it;
 #  - `crownshy --help` lists its command and `crownshy toy-run --help` works;
@@ -47,6 +49,7 @@ cat >> src/base/manifest.h.new <<'EOF'
 EXPERIMENT(toy, "E99", "src/exp/exp_toy.c", "-", "src/claims/claim_toy.c", "-", "rerun", "a toy: five numbers and their mean")
 RUN(toy, "toy-run", exp_toy_run, "-", "toy: write five numbers")
 UNIT(toy, "numbers.tsv", "", "$(CLI) toy-run --out @R@", "top")
+CLAIMS(claim_table_toy)
 EOF
 # the rows go before the closing #undef lines
 awk 'FNR == NR { add = add $0 "\n"; next } /^#undef EXPERIMENT/ && !done { printf "%s\n", add; done = 1 } { print }' \
@@ -101,8 +104,12 @@ cs_status claim_toy_mean(const claim_row *row, claim_result *res)
     tsv_free(t);
     return st;
 }
+
+const claim_spec claim_table_toy[] = {
+    {"ToyMean", "measured", "frozen/toy/numbers.tsv", "claim_toy_mean", "-", "-", "%.2f", "-", {0}},
+};
+CLAIM_TABLE_SIZE(claim_table_toy);
 EOF
-printf 'ToyMean\tmeasured\tfrozen/toy/numbers.tsv\tclaim_toy_mean\t-\ttests/test_claims.c:claim_ToyMean\t-\t%%.2f\t-\t-\n' >> audit/claims.tsv
 printf 'claim_toy_mean\tnumber\tnone\ta toy: five numbers, no replicate unit\n' >> audit/intervals.tsv
 
 # ---- the count src/README.md states --------------------------------------------
@@ -118,6 +125,10 @@ rm -rf .git
 
 # ---- make, the CLI -----------------------------------------------------------
 if ! make -s -j2 build/crownshy > "$T/build.log" 2>&1; then bad "the package builds with the toy" "$(tail -5 "$T/build.log")"; finish; fi
+build/crownshy claims-table > "$T/claims.log" 2>&1
+if tail -1 audit/claims.tsv | grep -q '^ToyMean	measured	frozen/toy/numbers.tsv	claim_toy_mean	-	tests/test_claims.c:claim_ToyMean	'; then
+    ok "crownshy claims-table prints the toy's claim as the registry's last row"
+else bad "crownshy claims-table prints the toy's claim" "$(cat "$T/claims.log"; tail -1 audit/claims.tsv)"; fi
 units=$(make -s units 2>&1)
 if grep -q '^reproduce: .*build/results/toy/numbers.tsv' <<<"$units" && grep -q '^verify-deep: .*build/results/toy/numbers.tsv' <<<"$units" \
    && grep -q '^experiments: .* toy' <<<"$units"; then ok "make lists the toy unit for reproduce and verify-deep"
@@ -143,7 +154,8 @@ if grep -q 'ToyMean}{1.50}' paper/numbers.tex; then ok "crownshy numbers compute
 else bad "crownshy numbers computes the toy claim" "$(grep Toy paper/numbers.tex; tail -3 "$T/numbers.log")"; fi
 tr=$(build/crownshy trace ToyMean 2>&1)
 if grep -q '^source *frozen/toy/numbers.tsv' <<<"$tr" && grep -q '^function *claim_toy_mean (src/claims/claim_toy.c:[0-9]*)' <<<"$tr" \
-   && grep -q '^experiment *toy (E99)' <<<"$tr"; then ok "crownshy trace ToyMean names the table, src/claims/claim_toy.c and the experiment"
+   && grep -q '^table *claim_table_toy (src/claims/claim_toy.c:[0-9]*)' <<<"$tr" \
+   && grep -q '^experiment *toy (E99)' <<<"$tr"; then ok "crownshy trace ToyMean names the table, src/claims/claim_toy.c (function and claim table) and the experiment"
 else bad "crownshy trace ToyMean" "$tr"; fi
 # the layout rules hold with the toy frozen, its row in src/README.md's generated table
 bash src/base/manifest.sh readme-write

@@ -172,7 +172,8 @@ t05() {
 }
 
 # ---- every editable input of a number or a picture ----
-# 6. the registry's gate column (and numbers.tex regenerated): the pinned map decides
+# 6. the registry file's gate column edited by hand (and numbers.tex regenerated): the file is
+#    the print of the claim tables (and its row is pinned), the pinned map decides
 t06() {
   fresh
   awk -F'\t' 'BEGIN{OFS="\t"} $1=="MainGeomRatio"{$5="-"} {print}' "$scratch/audit/claims.tsv" > "$scratch/x" && mv "$scratch/x" "$scratch/audit/claims.tsv"

@@ -1,4 +1,4 @@
-/* Claim tests: one cmocka test per row of audit/claims.tsv (named
+/* Claim tests: one cmocka test per row of the claim tables (named
  * claim_<Macro>). Each recomputes its claim from frozen/ with the library
  * code the pipeline used, and checks it against paper/numbers.tex: the value
  * text, and the gate verdict the paper states. A claim whose experiment has
@@ -59,13 +59,13 @@ int main(int argc, char **argv)
         snprintf(filter, sizeof filter, "claim_%s", argv[1]);
         cmocka_set_test_filter(filter);
     }
-    if (claims_load("audit/claims.tsv", &c) != CS_OK) { fprintf(stderr, "%s\n", cs_errmsg()); return 1; }
+    if (claims_registry(&c) != CS_OK) { fprintf(stderr, "%s\n", cs_errmsg()); return 1; }
     if (numbers_read("paper/numbers.tex", &g_nt) != CS_OK) { fprintf(stderr, "%s\n", cs_errmsg()); return 1; }
     if (interval_table_load(PATHS_INTERVALS, &g_it) != CS_OK) { fprintf(stderr, "%s\n", cs_errmsg()); return 1; }
     if (argc > 1) {
         size_t k = 0;
         while (k < c.n && strcmp(c.rows[k].macro, argv[1])) k++;
-        if (k == c.n) { fprintf(stderr, "test_claims: no claim %s in audit/claims.tsv\n", argv[1]); return 1; }
+        if (k == c.n) { fprintf(stderr, "test_claims: no claim %s in the claim tables\n", argv[1]); return 1; }
     }
     struct CMUnitTest *t = calloc(c.n + 1, sizeof *t);
     char (*names)[80] = calloc(c.n, sizeof *names);

@@ -369,7 +369,7 @@ static void test_gate_map_parses_strictly(void **s)
     char p[600];
     snprintf(p, sizeof p, "%s/map.tsv", dir);
     claims c;
-    assert_int_equal(claims_load("audit/claims.tsv", &c), CS_OK);
+    assert_int_equal(claims_registry(&c), CS_OK);
     const char *bad[][2] = {{"macro\tgate\nNoSuchClaim\tmain.gate:seeds\n", "map.tsv:2: field 'macro'"},
                             {"macro\tgate\nMainRel\tmain.gate:seeds\nMainRel\tmain.gate:seeds\n", "map.tsv:3: field 'macro'"},
                             {"macro\tgate\nMainRel\tmain:seeds\n", "map.tsv:2: field 'gate'"},
@@ -416,7 +416,7 @@ static void test_per_tree_tables_name_their_claims(void **s)
 {
     (void)s;
     claims c;
-    assert_int_equal(claims_load("audit/claims.tsv", &c), CS_OK);
+    assert_int_equal(claims_registry(&c), CS_OK);
     char buf[600];
     audit_feeds(&c, "frozen/field/heldout_trees.tsv", buf, sizeof buf);
     assert_non_null(strstr(buf, "Elong"));

@@ -4,6 +4,7 @@
 #include "claims.h"
 #include "verify.h"
 #include "audit.h"
+#include "paths.h"
 
 static const char *HDR = "macro\tkind\tsource\tfunction\tgate\ttest\tsection\tformat\treference\tparams\n";
 
@@ -14,6 +15,52 @@ static const char *registry(const char *name, const char *rows)
     snprintf(buf, sizeof buf, "# what: test registry\n%s%s", HDR, rows);
     tu_write_in(path, sizeof path, tu_tmpdir(name), "claims.tsv", buf);
     return path;
+}
+
+/* The claim tables and the committed registry file agree: the file is the
+ * tables' print byte for byte, and read back it gives the rows the tables
+ * give (fields, typed params, lines). A row edited on either side fails. */
+static void test_registry_file_is_the_tables_print(void **s)
+{
+    (void)s;
+    if (claims_registry_check(PATHS_CLAIMS)) fail_msg("%s", cs_errmsg());
+    claims t, f;
+    if (claims_registry(&t)) fail_msg("%s", cs_errmsg());
+    if (claims_load(PATHS_CLAIMS, &f)) fail_msg("%s", cs_errmsg());
+    assert_int_equal(t.n, f.n);
+    for (size_t r = 0; r < t.n; r++) {
+        const claim_row *a = &t.rows[r], *b = &f.rows[r];
+        if (strcmp(a->macro, b->macro) || strcmp(a->kind, b->kind) || strcmp(a->source, b->source) ||
+            strcmp(a->function, b->function) || strcmp(a->gate_reg, b->gate_reg) || strcmp(a->gate, b->gate) ||
+            strcmp(a->test, b->test) || strcmp(a->section, b->section) || strcmp(a->format, b->format) ||
+            strcmp(a->reference, b->reference) || memcmp(&a->param, &b->param, sizeof a->param) || a->line != b->line)
+            fail_msg("%s:%d: row %s of the claim tables and the file disagree", PATHS_CLAIMS, b->line, b->macro);
+    }
+    claims_free(&t);
+    claims_free(&f);
+}
+
+/* A copy of the print with one row's reference edited is named at that line. */
+static void test_registry_check_names_the_edited_line(void **s)
+{
+    (void)s;
+    char *text;
+    size_t len;
+    if (claims_registry_text(&text, &len)) fail_msg("%s", cs_errmsg());
+    char *row = strstr(text, "\nMechOverlap\t");
+    assert_non_null(row);
+    int line = 2;
+    for (const char *p = text; p < row; p++) line += *p == '\n';
+    char *ref = strstr(row, "\t0.00\t");
+    assert_non_null(ref);
+    ref[4] = '1';
+    char path[600], want[64];
+    tu_write_in(path, sizeof path, tu_tmpdir("reg_print"), "claims.tsv", text);
+    free(text);
+    assert_int_equal(claims_registry_check(path), CS_EINVARIANT);
+    snprintf(want, sizeof want, "claims.tsv:%d:", line);
+    assert_non_null(strstr(cs_errmsg(), want));
+    assert_non_null(strstr(cs_errmsg(), "MechOverlap"));
 }
 
 static void test_registry_rejects_unknown_kind(void **s)
@@ -301,6 +348,8 @@ int main(void)
         cmocka_unit_test(test_truncated_numbers_tex_is_input_error),
         cmocka_unit_test(test_gate_failure_is_consistent_but_fails_verify),
         cmocka_unit_test(test_negative_zero_prints_unsigned),
+        cmocka_unit_test(test_registry_file_is_the_tables_print),
+        cmocka_unit_test(test_registry_check_names_the_edited_line),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -468,7 +468,7 @@ static void test_training_choices_join_the_alternatives(void **s)
 
 int main(void)
 {
-    if (claims_load(PATHS_CLAIMS, &g_c) != CS_OK || interval_table_load(PATHS_INTERVALS, &g_it) != CS_OK) {
+    if (claims_registry(&g_c) != CS_OK || interval_table_load(PATHS_INTERVALS, &g_it) != CS_OK) {
         fprintf(stderr, "%s\n", cs_errmsg());
         return 1;
     }

@@ -74,7 +74,7 @@ static void row_of(claim_row *r, const char *macro, const char *source, const ch
                    const char *fmt)
 {
     static claims reg;
-    if (!reg.n && claims_load(PATHS_CLAIMS, &reg)) fail_msg("%s", cs_errmsg());
+    if (!reg.n && claims_registry(&reg)) fail_msg("%s", cs_errmsg());
     const claim_row *known = claims_find(&reg, macro);
     memset(r, 0, sizeof *r);
     if (known) r->param = known->param;
@@ -254,7 +254,7 @@ static void extension_map_judges_extension_rows_only(void **st)
 {
     (void)st;
     claims c;
-    assert_int_equal(claims_load(PATHS_CLAIMS, &c), CS_OK);
+    assert_int_equal(claims_registry(&c), CS_OK);
     const claim_row *p = claims_find(&c, "PairMainRel"), *m = claims_find(&c, "MainRel");
     assert_non_null(p);
     assert_non_null(m);

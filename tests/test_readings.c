@@ -22,7 +22,7 @@ static void test_figure_stand_macros_come_from_the_hard_core_stand(void **s)
 {
     (void)s;
     claims c;
-    assert_int_equal(claims_load(PATHS_CLAIMS, &c), CS_OK);
+    assert_int_equal(claims_registry(&c), CS_OK);
     const claim_row *row = claims_find(&c, "MechOn");
     assert_non_null(row);
     assert_string_equal(row->source, "frozen/mechanism/figure_stats.tsv");
@@ -60,7 +60,7 @@ static void test_readings_summary_recomputes_from_the_run_tables(void **s)
 {
     (void)s;
     claims c;
-    assert_int_equal(claims_load(PATHS_CLAIMS, &c), CS_OK);
+    assert_int_equal(claims_registry(&c), CS_OK);
     size_t n = readings_count();
     readings_row *rows = calloc(n, sizeof *rows);
     assert_int_equal(readings_compute(&c, "frozen/readings", rows), CS_OK);

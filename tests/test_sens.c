@@ -237,7 +237,7 @@ static void test_a_figure_unit_runs_only_its_tables(void **s)
 
 int main(void)
 {
-    if (claims_load(PATHS_CLAIMS, &g_c) != CS_OK) { fprintf(stderr, "%s\n", cs_errmsg()); return 1; }
+    if (claims_registry(&g_c) != CS_OK) { fprintf(stderr, "%s\n", cs_errmsg()); return 1; }
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_summary_recomputes_from_the_unit_tables),
         cmocka_unit_test(test_centre_equals_the_full_run_where_counts_agree),

@@ -77,7 +77,7 @@ verdict verify_claim(const claim_row *row, const claim_result *res, const number
 
 cs_status verify_load_eval(claims *c, claim_result **res)
 {
-    cs_status st = claims_load(PATHS_CLAIMS, c);
+    cs_status st = claims_registry(c);
     if (st) return st;
     if ((st = verify_eval_all(c, res))) claims_free(c);
     return st;
@@ -396,7 +396,7 @@ cs_status verify_run(const verify_opts *o)
 cs_status verify_trace(const char *macro)
 {
     claims c;
-    cs_status st = claims_load(PATHS_CLAIMS, &c);
+    cs_status st = claims_registry(&c);
     if (st) return st;
     const claim_row *row = claims_find(&c, macro[0] == '\\' ? macro + 1 : macro);
     if (!row) { claims_free(&c); return cs_err(CS_EINPUT, "%s: no claim named '%s'", PATHS_CLAIMS, macro); }
@@ -427,7 +427,10 @@ cs_status verify_trace(const char *macro)
     if (r.gate_detail[0]) printf("gate detail  %s\n", r.gate_detail);
     printf("test         %s (alone: make test-claim MACRO=%s)\n", row->test, row->macro);
     printf("section      %s of the reference paper (reference value %s)\n", row->section, row->reference);
-    printf("registry     %s:%d\n", PATHS_CLAIMS, row->line);
+    if (claims_table_where(row, fpath, sizeof fpath, &fline))
+        printf("table        %s (%s)\n", row->table ? row->table : "-", cs_errmsg());
+    else printf("table        %s (%s:%d)\n", row->table ? row->table : "-", fpath, fline);
+    printf("registry     %s:%d (the tables' print)\n", PATHS_CLAIMS, row->line);
     if (have) numbers_free(&nt);
     claims_free(&c);
     /* a claim its input keeps from being computed: the command exits by that kind */

@@ -8,7 +8,8 @@
  *    Makefile);
  *  - the CLI's command table and its --help groups (src/cli/cli.c);
  *  - the experiment table of src/README.md (src/base/manifest.sh readme);
- *  - trace's experiment line (manifest.c).
+ *  - trace's experiment line (manifest.c);
+ *  - the claim registry: its tables and their order (CLAIMS rows).
  * tests/layout.sh fails when any of them is listed by hand elsewhere, when a
  * named file is missing, or when a frozen/ folder has no row here.
  *
@@ -48,6 +49,13 @@
  *           the experiment is rerun); "side": a table written by another
  *           unit, checked to exist; a variant experiment's name: the unit
  *           also runs in each of that experiment's VARIANT runs.
+ * CLAIMS(table)
+ *   a claim table (`const claim_spec table[]`, src/claims/claims.h) defined
+ *   in src/claims/ (its experiment's claim code or a claim_*_table.c beside
+ *   it): the CLAIMS rows in their
+ *   order are the registry, audit/claims.tsv its print (`crownshy
+ *   claims-table`; src/claims/claims_registry.c). An experiment's claims may
+ *   sit in more than one table where the paper's order interleaves them.
  * VARIANT(name, run, teacher, layout)
  *   one run of experiment name's variants under <root>/<name>/<run>/:
  *   teacher and layout are the switches put in place of @TEACHER@ and
@@ -57,6 +65,9 @@
 #endif
 #ifndef COMMAND
 #define COMMAND(name, command, handler, help)
+#endif
+#ifndef CLAIMS
+#define CLAIMS(table)
 #endif
 #ifndef RUN
 #define RUN(name, command, entry, takes, help)
@@ -224,8 +235,22 @@ EXPERIMENT(replicates, "E1", "src/exp/exp_replicates.c", "-", "src/agree/interva
 RUN(replicates, "replicates-run", exp_replicates_run, "stands", "E1/E8/E9: replicate stands k = 0..N-1 of the one-stand figure numbers (k = 0: the figure's own)")
 UNIT(replicates, "figure_stands.tsv", "$(TEACHER_DEPS)", "$(CLI) replicates-run --stands $(REPLICATE_STANDS) --out @R@", "top")
 
+/* the claim tables, in the registry's order (audit/claims.tsv prints them so) */
+CLAIMS(claim_table_teacher)
+CLAIMS(claim_table_main)
+CLAIMS(claim_table_field)
+CLAIMS(claim_table_anisotropy)
+CLAIMS(claim_table_comparison)
+CLAIMS(claim_table_perfect)
+CLAIMS(claim_table_probes)
+CLAIMS(claim_table_comparison_dart_pair)
+CLAIMS(claim_table_pointcloud)
+CLAIMS(claim_table_sensitivity)
+CLAIMS(claim_table_variants)
+
 #undef EXPERIMENT
 #undef COMMAND
 #undef RUN
 #undef UNIT
 #undef VARIANT
+#undef CLAIMS

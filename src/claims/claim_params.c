@@ -50,11 +50,16 @@ static const struct { const char *key; key_type type; const char *const *names; 
 #define NKEYS (sizeof KEYS / sizeof *KEYS)
 _Static_assert(NKEYS == 13 && PARAM_SEEDS == 1u << 12, "one PARAM_* bit per key, in KEYS order");
 
+/* The order the registry prints the keys in (indexes of KEYS). */
+static const unsigned char PRINT_ORDER[] = {0, 1, 3, 4, 6, 5, 7, 8, 9, 2, 10, 11, 12};
+_Static_assert(sizeof PRINT_ORDER == NKEYS, "every key printed once");
+
 void claim_params_format(const claim_params *p, char *buf, size_t n)
 {
     snprintf(buf, n, "-");
     size_t o = 0;
-    for (size_t k = 0; k < NKEYS && n; k++) {
+    for (size_t i = 0; i < NKEYS && n; i++) {
+        const size_t k = PRINT_ORDER[i];
         if (!(p->set & (1u << k))) continue;
         const char *field = (const char *)p + KEYS[k].off;
         char v[80];

@@ -86,7 +86,7 @@ cs_status claim_sens_paper(const claim_row *row, claim_result *res)
     cs_status st = claim_param_need(row, PARAM_QUANTITY);
     if (st) return st;
     claims c;
-    if ((st = claims_load(PATHS_CLAIMS, &c))) return st;
+    if ((st = claims_registry(&c))) return st;
     double on, bt, tgt, bf, miss, steps, dab;
     st = paper_value(&c, "MechOn", &on);
     if (!st) st = paper_value(&c, "CalibDiebackTrain", &bt);

@@ -1,4 +1,5 @@
-/* claims: registry, evaluation and numbers.tex (design.md §9). */
+/* claims: registry rows (read from a registry file, or validated for
+ * claims_registry), evaluation and numbers.tex (design.md §9). */
 #include "claims.h"
 #include "paths.h"
 #include "study.h"
@@ -13,7 +14,7 @@
 #include <unistd.h>
 
 /* claims_list.h is generated (the Makefile): X(f) for every claim function
- * defined in src/claims/. A function named by no row of audit/claims.tsv is an
+ * defined in src/claims/. A function named by no row of the claim tables is an
  * orphan and fails the audit; a row naming no such function is PENDING. */
 #define X(f) cs_status f(const claim_row *row, claim_result *res);
 #include "claims_list.h"
@@ -65,25 +66,9 @@ static cs_status copy_field(const tsv *t, size_t r, const char *col, char *dst, 
     return CS_OK;
 }
 
-/* One registry row, its fields checked; the duplicates are the caller's. */
-static cs_status row_read(const tsv *t, size_t r, const char *path, claim_row *w)
+/* A row's fields checked, however it was read; the duplicates are the caller's. */
+static cs_status row_check(const char *path, claim_row *w)
 {
-    cs_status st;
-    w->line = tsv_line(t, r);
-    if ((st = copy_field(t, r, "macro", w->macro, sizeof w->macro)) ||
-        (st = copy_field(t, r, "kind", w->kind, sizeof w->kind)) ||
-        (st = copy_field(t, r, "source", w->source, sizeof w->source)) ||
-        (st = copy_field(t, r, "function", w->function, sizeof w->function)) ||
-        (st = copy_field(t, r, "gate", w->gate, sizeof w->gate)) ||
-        (st = copy_field(t, r, "test", w->test, sizeof w->test)) ||
-        (st = copy_field(t, r, "section", w->section, sizeof w->section)) ||
-        (st = copy_field(t, r, "format", w->format, sizeof w->format)) ||
-        (st = copy_field(t, r, "reference", w->reference, sizeof w->reference)))
-        return st;
-    char params[512];
-    if ((st = copy_field(t, r, "params", params, sizeof params)) ||
-        (st = claim_params_parse(params, path, w->line, &w->param)))
-        return st;
     for (size_t k = 0; w->macro[k]; k++)
         if (!((w->macro[k] >= 'A' && w->macro[k] <= 'Z') || (w->macro[k] >= 'a' && w->macro[k] <= 'z')))
             return cs_err(CS_EINPUT, "%s:%d: field 'macro': '%s' is not a LaTeX macro name (letters only)", path,
@@ -107,6 +92,28 @@ static cs_status row_read(const tsv *t, size_t r, const char *path, claim_row *w
     return CS_OK;
 }
 
+/* One row of a registry file. */
+static cs_status row_read(const tsv *t, size_t r, const char *path, claim_row *w)
+{
+    cs_status st;
+    w->line = tsv_line(t, r);
+    if ((st = copy_field(t, r, "macro", w->macro, sizeof w->macro)) ||
+        (st = copy_field(t, r, "kind", w->kind, sizeof w->kind)) ||
+        (st = copy_field(t, r, "source", w->source, sizeof w->source)) ||
+        (st = copy_field(t, r, "function", w->function, sizeof w->function)) ||
+        (st = copy_field(t, r, "gate", w->gate, sizeof w->gate)) ||
+        (st = copy_field(t, r, "test", w->test, sizeof w->test)) ||
+        (st = copy_field(t, r, "section", w->section, sizeof w->section)) ||
+        (st = copy_field(t, r, "format", w->format, sizeof w->format)) ||
+        (st = copy_field(t, r, "reference", w->reference, sizeof w->reference)))
+        return st;
+    char params[512];
+    if ((st = copy_field(t, r, "params", params, sizeof params)) ||
+        (st = claim_params_parse(params, path, w->line, &w->param)))
+        return st;
+    return row_check(path, w);
+}
+
 /* The index of the row named name among rows[0..n), n when none: a claim is
  * found by its whole name, the registry's one key. */
 static size_t row_index(const claim_row *rows, size_t n, const char *name)
@@ -114,6 +121,34 @@ static size_t row_index(const claim_row *rows, size_t n, const char *name)
     size_t i = 0;
     while (i < n && strcmp(rows[i].macro, name)) i++;
     return i;
+}
+
+cs_status claims_adopt(claim_row *rows, size_t n, const char *path, int maps, claims *out)
+{
+    cs_status st = CS_OK;
+    for (size_t r = 0; r < n && !st; r++) {
+        if ((st = row_check(path, &rows[r]))) break;
+        const size_t q = row_index(rows, r, rows[r].macro);
+        if (q < r)
+            st = cs_err(CS_EINPUT, "%s:%d: field 'macro': duplicate of line %d", path, rows[r].line, rows[q].line);
+    }
+    /* a variant names the claim it stands for: a row of this registry */
+    for (size_t r = 0; r < n && !st; r++) {
+        const claim_row *w = &rows[r];
+        if (!(w->param.set & PARAM_OF)) continue;
+        const size_t q = row_index(rows, n, w->param.of);
+        if (q == n || q == r)
+            st = cs_err(CS_EINPUT, "%s:%d: field 'params': of=%s names %s", path, w->line, w->param.of,
+                        q == r ? "the row itself" : "no row of the registry");
+    }
+    if (st) { free(rows); return st; }
+    out->rows = rows;
+    out->n = n;
+    if (maps && (st = claims_apply_gate_maps(out, PATHS_GATE_MAP, PATHS_GATE_MAP_EXT))) {
+        claims_free(out);
+        return st;
+    }
+    return CS_OK;
 }
 
 cs_status claims_load(const char *path, claims *out)
@@ -133,23 +168,8 @@ cs_status claims_load(const char *path, claims *out)
         if (q < r) st = cs_err(CS_EINPUT, "%s:%d: field 'macro': duplicate of line %d", path, w->line, rows[q].line);
     }
     tsv_free(t);
-    /* a variant names the claim it stands for: a row of this registry */
-    for (size_t r = 0; r < n && !st; r++) {
-        const claim_row *w = &rows[r];
-        if (!(w->param.set & PARAM_OF)) continue;
-        const size_t q = row_index(rows, n, w->param.of);
-        if (q == n || q == r)
-            st = cs_err(CS_EINPUT, "%s:%d: field 'params': of=%s names %s", path, w->line, w->param.of,
-                        q == r ? "the row itself" : "no row of the registry");
-    }
     if (st) { free(rows); return st; }
-    out->rows = rows;
-    out->n = n;
-    if (!strcmp(path, PATHS_CLAIMS) && (st = claims_apply_gate_maps(out, PATHS_GATE_MAP, PATHS_GATE_MAP_EXT))) {
-        claims_free(out);
-        return st;
-    }
-    return CS_OK;
+    return claims_adopt(rows, n, path, !strcmp(path, PATHS_CLAIMS), out);
 }
 
 int claims_kind_beside(const char *kind)

@@ -1,6 +1,9 @@
-/* claims: the claim registry (audit/claims.tsv) and its evaluation (design.md §9).
- * Every macro of the paper has one row naming its kind, frozen source,
- * computing function, gate, test and paper section. A computing function
+/* claims: the claim registry and its evaluation (design.md §9). Every macro
+ * of the paper has one row of a claim table in C (claim_spec below; the
+ * tables in src/claims/claim_*_table.c, their order the CLAIMS rows of
+ * src/base/manifest.h) naming its kind, frozen source, computing function,
+ * gate and paper section, with typed params; audit/claims.tsv is their print
+ * (claims_registry_text), checked by the audit. A computing function
  * recomputes the value from frozen/ (or a gate file, for design constants)
  * with the same library code the pipeline used, formats it, and judges the
  * row's gate. paper/numbers.tex is generated from these results only. */
@@ -10,8 +13,8 @@
 #include "gate.h"
 #include <stddef.h>
 
-/* The typed parameters of a row (the registry's last column, params:
- * "key=value;..." or "-"): which arm, probe, bound, statistic, column or
+/* The typed parameters of a row (printed as the registry's last column,
+ * params: "key=value;..." or "-"): which arm, probe, bound, statistic, column or
  * quantity a computing function that serves several claims computes, and for
  * a row standing for another claim under a variant (`of`), which. The macro
  * is a name only: nothing is chosen by its spelling. `set` holds a PARAM_*
@@ -65,6 +68,7 @@ typedef struct {
     char macro[64], kind[16], source[256], function[64], gate[128], test[160], section[16], format[16], reference[64];
     claim_params param;
     int line; /* line in audit/claims.tsv */
+    const char *table; /* the claim table holding the row (claims_registry); NULL when read from a file */
     /* The registry's own gate column. `gate` is what audit/gate_map.tsv (pinned
      * with the gates) says when the registry is PATHS_CLAIMS; the audit fails
      * when the two differ. gate_map_line: line of the map row, 0 if none. */
@@ -88,6 +92,17 @@ typedef struct {
 
 typedef cs_status (*claim_fn)(const claim_row *row, claim_result *res);
 
+/* One row of a claim table (the C home of a claim): what audit/claims.tsv
+ * prints of it. gate is the registry's gate column (the pinned maps decide,
+ * claims_apply_gate_maps); the test is derived (tests/test_claims.c:claim_MACRO);
+ * param.set holds a PARAM_* bit per field given, the others stay zero. */
+typedef struct {
+    const char *macro, *kind, *source, *function, *gate, *section, *format, *reference;
+    claim_params param;
+} claim_spec;
+/* A table's row count beside it: CLAIM_TABLE_SIZE(claim_table_x); after the array. */
+#define CLAIM_TABLE_SIZE(t) const size_t t##_n = sizeof t / sizeof *t
+
 typedef struct { claim_row *rows; size_t n; } claims;
 
 /* Load and validate the registry (unique macros, known kinds, gate refs
@@ -95,12 +110,34 @@ typedef struct { claim_row *rows; size_t n; } claims;
  * For PATHS_CLAIMS the gate of every row comes from PATHS_GATE_MAP and, for
  * the rows of kind extension, from PATHS_GATE_MAP_EXT (see claims_apply_gate_map). */
 cs_status claims_load(const char *path, claims *out);
+/* Validate rows[0..n) (each row's fields as a file's, unique macros, an `of`
+ * naming another row; errors name path and the row's line) and hand them to
+ * *out, which owns rows after (freed on error); maps: the gates from the
+ * pinned maps (claims_apply_gate_maps). */
+cs_status claims_adopt(claim_row *rows, size_t n, const char *path, int maps, claims *out);
+/* The registry: every claim table, in the order of the CLAIMS rows of
+ * src/base/manifest.h, validated as claims_load validates a file (each row's
+ * line is the one it prints on in PATHS_CLAIMS), gates from the pinned maps. */
+cs_status claims_registry(claims *out);
+/* The registry's print (PATHS_CLAIMS): its header comments, the header line
+ * and one row per claim; *text is malloc'd, NUL-terminated. */
+cs_status claims_registry_text(char **text, size_t *len);
+/* Where a row of the tables is written: the file of src/claims/ whose line
+ * opens with the row ({"MACRO", ...) and that line; CS_EINPUT when none. */
+cs_status claims_table_where(const claim_row *row, char *path, size_t pathsz, int *line);
+/* Write the print to path (atomic). */
+cs_status claims_registry_write(const char *path);
+/* CS_EINVARIANT naming path's first line that differs from the print (or the
+ * line where one of them ends) unless path holds exactly the print. */
+cs_status claims_registry_check(const char *path);
 /* Parse a params cell into *p (zeroed first): CS_EINPUT naming path, line and
  * field 'params' for an unknown or repeated key, a pair without '=', or a
  * value out of its key's set (numbers: one finite number; names: letters,
  * digits and '_'; of: a macro name). */
 cs_status claim_params_parse(const char *text, const char *path, int line, claim_params *p);
-/* The params as the registry spells them ("-" when none), for trace. */
+/* The params as the registry spells them ("-" when none): its keys in the
+ * registry's print order (arm probe stat column stand quantity of choice x
+ * bound scale spacing seeds), numbers as %g. */
 void claim_params_format(const claim_params *p, char *buf, size_t n);
 /* CS_EINPUT naming the row's registry line unless the row gives every key of
  * `keys` (PARAM_* bits): a function never falls back to a default. */

@@ -45,7 +45,7 @@ static cs_status perfect_load(const claim_row *row, claim_result *res, perfect_d
 {
     memset(d, 0, sizeof *d);
     claims c;
-    cs_status st = claims_load(PATHS_CLAIMS, &c);
+    cs_status st = claims_registry(&c);
     if (st) return st;
     if (!(st = paper_value(&c, "MainJoint", &d->paper_joint))) st = paper_value(&c, "MainGeomRatio", &d->paper_ratio);
     claims_free(&c);

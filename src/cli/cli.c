@@ -74,6 +74,7 @@ static const cli_cmd cli_cmds[] = {
     {"figures", cli_cmd_figures, G_MAINTAIN, "redraw every figure from frozen/, install it into figures/ when its script succeeded"},
     {"pin", cli_cmd_pin, G_MAINTAIN, "re-pin the estimator, teacher, gates and claim code (deliberate)"},
     {"hash-frozen", cli_cmd_hash_frozen, G_MAINTAIN, "record the hashes of frozen/ (make freeze)"},
+    {"claims-table", cli_cmd_claims_table, G_MAINTAIN, "write audit/claims.tsv, the print of the claim tables (--check: compare only)"},
     {"bench-teacher", cli_cmd_bench_teacher, G_MAINTAIN, "teacher ms per 144-tree stand at N = 48 and 384 (make bench)"},
     {"bench-model", cli_cmd_bench_model, G_MAINTAIN, "trainer steps/s, model and sgemm GFLOP/s (design.md §10; make bench)"},
     {"version", cli_cmd_version, G_MAINTAIN, "print the version"},

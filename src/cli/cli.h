@@ -14,6 +14,7 @@ int cli_cmd_trace(int argc, char **argv);
 int cli_cmd_report(int argc, char **argv);
 int cli_cmd_pin(int argc, char **argv);
 int cli_cmd_hash_frozen(int argc, char **argv);
+int cli_cmd_claims_table(int argc, char **argv);
 int cli_cmd_gates(int argc, char **argv);
 int cli_cmd_check_tsv(int argc, char **argv);
 int cli_cmd_figures(int argc, char **argv);

@@ -199,6 +199,27 @@ int cli_cmd_pin(int argc, char **argv)
     return 0;
 }
 
+int cli_cmd_claims_table(int argc, char **argv)
+{
+    int check = 0;
+    const opt_spec spec[] = {{"check", OPT_FLAG, &check, 0, 0, "only compare the file with the print (write nothing)"}};
+    const opts_cmd oc = {"claims-table", "[--check]",
+                         "Write audit/claims.tsv, the print of the claim tables (src/claims/claim_*_table.c, in\n"
+                         "the order of the CLAIMS rows of src/base/manifest.h). --check: compare only (exit 1\n"
+                         "naming the first differing line; crownshy verify does the same).",
+                         spec, 1, 0, 0};
+    int r = opts_parse(&oc, argc, argv, NULL, NULL);
+    if (r) return opts_exit_code(r);
+    cs_status st = check ? claims_registry_check(PATHS_CLAIMS) : claims_registry_write(PATHS_CLAIMS);
+    if (st && check && st == CS_EINVARIANT) {
+        fprintf(stderr, "crownshy claims-table: %s\n", cs_errmsg());
+        return 1;
+    }
+    if (st) return cli_fail("claims-table", st);
+    printf("%s %s\n", check ? "checked" : "wrote", PATHS_CLAIMS);
+    return 0;
+}
+
 int cli_cmd_hash_frozen(int argc, char **argv)
 {
     const opts_cmd oc = {
@@ -291,7 +312,7 @@ int cli_cmd_figures(int argc, char **argv)
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     claims c;
-    int have_c = claims_load(PATHS_CLAIMS, &c) == CS_OK;
+    int have_c = claims_registry(&c) == CS_OK;
     checklist cl = {0};
     figcheck_verify(&cl, 1, have_c ? &c : NULL);
     if (have_c) claims_free(&c);

@@ -175,7 +175,7 @@ int cli_readings_summary(int argc, char **argv)
     if (r) return opts_exit_code(r);
     if (!dir || !out) { opts_usage_error("readings-summary", "--dir and --out are required"); return 2; }
     claims cl;
-    cs_status st = claims_load(PATHS_CLAIMS, &cl);
+    cs_status st = claims_registry(&cl);
     if (st) return cli_fail("readings-summary", st);
     size_t n = readings_count(), nr;
     readings_row *rows = calloc(n, sizeof *rows);

@@ -59,7 +59,7 @@ int cli_sensitivity_summary(int argc, char **argv)
     int r = opts_parse(&oc, argc, argv, NULL, NULL);
     if (r) return opts_exit_code(r);
     claims cl;
-    cs_status st = claims_load(PATHS_CLAIMS, &cl);
+    cs_status st = claims_registry(&cl);
     if (st) return cli_fail("sensitivity-summary", st);
     size_t n = sens_count();
     sens_row *rows = calloc(n, sizeof *rows);
