@@ -44,9 +44,9 @@ double attrib_half_unit(const char *ref);
  * attrib_reached then keeps the rest of a claim's experiment in agreement.
  * The generator's training choices join the alternatives here: a computed
  * claim whose source is a choice's unit set (<root>/generator-sensitivity/
- * <choice>/<rest>) and whose macro ends with the macro of a claim computed
- * by the same function on <root>/paper-reading/<rest> is that claim's value
- * under the choice (design.md §8.2). */
+ * <choice>/<rest>) and whose params name (of=) a claim computed by the same
+ * function on <root>/paper-reading/<rest> is that claim's value under the
+ * choice (design.md §8.2). */
 void attrib_bind(attrib_data *d, const claims *c, const claim_result *res, const struct claim_interval *ci);
 /* Against our interval [lo, hi] (design.md §6.1): does one reading or one
  * value of an unstated choice move our interval onto the paper's value p,
