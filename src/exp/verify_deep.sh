@@ -20,6 +20,9 @@ status=0
 units=($DEEP_UNITS)
 total=${#units[@]}
 mkdir -p "$DEEP"
+# Every unit reruns: a teacher unit depends on the gates, not on the code, so
+# make would take a table an earlier tier 2 left in $DEEP as up to date.
+rm -f "${units[@]}"
 log="$DEEP/make.log"
 nseeds=$(awk '$1 == "seeds" {print $2}' gates/main.gate 2>/dev/null)
 absent=0 redrawn=0 redraw_bad=0 jobs_list=() designed=0
