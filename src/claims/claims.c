@@ -523,25 +523,33 @@ int claims_rel_diff(const claim_row *row, const claim_result *res, double *ref, 
     return 1;
 }
 
-cs_status claims_function_file(const char *function, char *path, size_t pathsz, int *line)
+int claims_src_line(const char *prefix, int indented, char *path, size_t pathsz, int *line)
 {
     paths_list files;
-    if (paths_list_files(PATHS_CLAIMS_SRC_DIR, ".c", 0, &files)) return cs_err(CS_ENOMEM, "out of memory");
-    char want[160], buf[1024];
-    snprintf(want, sizeof want, "cs_status %s(", function);
-    cs_status st = cs_err(CS_EINPUT, "%s: no file of %s/ defines %s", PATHS_CLAIMS, PATHS_CLAIMS_SRC_DIR, function);
-    for (size_t i = 0; i < files.n && st; i++) {
+    if (paths_list_files(PATHS_CLAIMS_SRC_DIR, ".c", 0, &files)) return -1;
+    const size_t n = strlen(prefix);
+    char buf[1024];
+    int found = 0;
+    for (size_t i = 0; i < files.n && !found; i++) {
         FILE *f = fopen(files.p[i], "r");
-        for (int ln = 1; f && fgets(buf, sizeof buf, f); ln++)
-            if (!strncmp(buf, want, strlen(want))) {
-                snprintf(path, pathsz, "%s", files.p[i]);
-                *line = ln;
-                cs_errclear();
-                st = CS_OK;
-                break;
-            }
+        for (int ln = 1; f && !found && fgets(buf, sizeof buf, f); ln++) {
+            const char *p = indented ? buf + strspn(buf, " ") : buf;
+            if (strncmp(p, prefix, n)) continue;
+            snprintf(path, pathsz, "%s", files.p[i]);
+            *line = ln;
+            found = 1;
+        }
         if (f) fclose(f);
     }
     paths_list_free(&files);
-    return st;
+    return found ? 0 : 1;
+}
+
+cs_status claims_function_file(const char *function, char *path, size_t pathsz, int *line)
+{
+    char want[160];
+    snprintf(want, sizeof want, "cs_status %s(", function);
+    const int r = claims_src_line(want, 0, path, pathsz, line);
+    if (r < 0) return cs_err(CS_ENOMEM, "out of memory");
+    return r ? cs_err(CS_EINPUT, "%s: no file of %s/ defines %s", PATHS_CLAIMS, PATHS_CLAIMS_SRC_DIR, function) : CS_OK;
 }

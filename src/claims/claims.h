@@ -182,6 +182,10 @@ int claims_is_beside(const claim_row *row);
 int claims_awaited_source(const char *source);
 void claims_free(claims *c);
 const claim_row *claims_find(const claims *c, const char *macro);
+/* The first line of a .c file of src/claims/ that starts with prefix (after
+ * leading spaces when indented): its file and line number. 0 found, 1 none,
+ * -1 out of memory. */
+int claims_src_line(const char *prefix, int indented, char *path, size_t pathsz, int *line);
 /* Where a computing function is defined: the file of src/claims/ holding its
  * definition ("cs_status FN(" at the start of a line) and the line; CS_EINPUT
  * when no file defines it. */

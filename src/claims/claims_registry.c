@@ -142,28 +142,13 @@ cs_status claims_registry_text(char **text, size_t *len)
 
 cs_status claims_table_where(const claim_row *row, char *path, size_t pathsz, int *line)
 {
-    paths_list files;
-    if (paths_list_files(PATHS_CLAIMS_SRC_DIR, ".c", 0, &files)) return cs_err(CS_ENOMEM, "out of memory");
-    char want[96], buf[1024];
+    char want[96];
     snprintf(want, sizeof want, "{\"%s\", ", row->macro);
-    const size_t wn = strlen(want);
-    cs_status st = cs_err(CS_EINPUT, "%s: no file of %s/ holds the row of %s", PATHS_CLAIMS, PATHS_CLAIMS_SRC_DIR,
-                          row->macro);
-    for (size_t i = 0; i < files.n && st; i++) {
-        FILE *f = fopen(files.p[i], "r");
-        for (int ln = 1; f && fgets(buf, sizeof buf, f); ln++) {
-            const char *p = buf + strspn(buf, " ");
-            if (strncmp(p, want, wn)) continue;
-            snprintf(path, pathsz, "%s", files.p[i]);
-            *line = ln;
-            cs_errclear();
-            st = CS_OK;
-            break;
-        }
-        if (f) fclose(f);
-    }
-    paths_list_free(&files);
-    return st;
+    const int r = claims_src_line(want, 1, path, pathsz, line);
+    if (r < 0) return cs_err(CS_ENOMEM, "out of memory");
+    return r ? cs_err(CS_EINPUT, "%s: no file of %s/ holds the row of %s", PATHS_CLAIMS, PATHS_CLAIMS_SRC_DIR,
+                      row->macro)
+             : CS_OK;
 }
 
 cs_status claims_registry_write(const char *path)
