@@ -115,7 +115,7 @@ $(SPLIT): tests/bench/step_split.c $(B)/libcrownshy.a
 # line. Built on both cores unless make already runs parallel.
 check: deps
 	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j2) $(CLI) $(TESTS) $(ASAN_TESTS) $(SPLIT)
-	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/walls.sh tests/manifest.sh tests/citation.sh tests/paper_deps.sh tests/fonts.sh tests/spot.sh tests/docs.sh tests/readings_full.sh -- $(ASAN_TESTS)
+	@bash tests/run.sh $(TESTS) tests/tamper.sh tests/layout.sh tests/walls.sh tests/deep.sh tests/manifest.sh tests/citation.sh tests/paper_deps.sh tests/fonts.sh tests/spot.sh tests/docs.sh tests/readings_full.sh -- $(ASAN_TESTS)
 
 # One claim's test alone, by its macro: make test-claim MACRO=MainRel
 .PHONY: test-claim

@@ -122,7 +122,7 @@ while IFS= read -r f; do
         echo "  FAIL    $fz: data rows differ from the rerun $f: $line"
         differ=$((differ + 1))
     fi
-done < <(find "$DEEP" -name '*.tsv' ! -name '*.tmp*' ! -name '.*' | sort)
+done < <(find "$DEEP" -path "$DEEP/model" -prune -o -name '*.tsv' ! -name '*.tmp*' ! -name '.*' -print | sort)
 echo "verify-deep: teacher part: $same tables bit-identical to frozen/, $differ differ, $missing not frozen, $skipped figure tables not frozen by design"
 [ $((differ + missing)) -eq 0 ] || status=1
 
@@ -157,8 +157,31 @@ if [ ${#jobs_list[@]} -gt 0 ]; then
         echo "  PASS    $fz: redrawn from $w (volume $v), bit-identical"
     }
     export -f redraw; export DEEP CLI
-    mkdir -p "$DEEP/model"
-    printf '%s\n' "${jobs_list[@]}" | xargs -P "$JOBS" -L 1 bash -c 'redraw "$@"' _ | tee "$DEEP/model/redraw.log"
+    # The redraws' own samples, never a teacher table: an earlier tier 2's are removed.
+    # Each verdict goes to a file of its place in the list, moved there whole, so the
+    # progress counts finished redraws and the verdicts print in the list's order,
+    # whichever finished first.
+    rm -rf "$DEEP/model"; mkdir -p "$DEEP/model/.verdict"
+    nm=${#jobs_list[@]} k=0 t1=$SECONDS
+    for j in "${jobs_list[@]}"; do printf '%06d %s\n' $k "$j"; k=$((k + 1)); done |
+        xargs -P "$JOBS" -L 1 bash -c 'v="$DEEP/model/.verdict/$1"; shift; redraw "$@" > "$v.tmp"; mv "$v.tmp" "$v"' _ &
+    pid=$!
+    last=-1
+    while kill -0 "$pid" 2>/dev/null; do
+        n=$(find "$DEEP/model/.verdict" -type f ! -name '*.tmp' | wc -l)
+        if [ "$n" != "$last" ]; then
+            el=$((SECONDS - t1)); eta="?"
+            [ "$n" -gt 0 ] && eta="$(( el * (nm - n) / n )) s"
+            echo "verify-deep: $n of $nm models redrawn, ${el} s elapsed, ETA $eta"
+            last=$n
+        fi
+        sleep 5
+    done
+    wait "$pid"
+    for ((k = 0; k < nm; k++)); do
+        v=$(printf '%s/model/.verdict/%06d' "$DEEP" $k)
+        if [ -f "$v" ]; then cat "$v"; else echo "  FAIL    ${jobs_list[$k]%% *}: its redraw gave no verdict"; fi
+    done | tee "$DEEP/model/redraw.log"
     redrawn=$(grep -c '^  PASS ' "$DEEP/model/redraw.log" || true)
     redraw_bad=$(( ${#jobs_list[@]} - redrawn ))
 fi
