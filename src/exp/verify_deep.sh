@@ -85,19 +85,24 @@ echo "verify-deep: rerunning $total teacher experiment units into $DEEP/ (make -
 unset MAKEFLAGS MFLAGS MAKELEVEL MAKEOVERRIDES
 nice $MAKE --no-print-directory -j"$JOBS" RESULTS="$DEEP" SCALE=full "${units[@]}" > "$log" 2>&1 &
 pid=$!
+# progress PID TOTAL WHAT COUNT...: while PID runs, a line each time the count
+# the command COUNT prints changes (done of TOTAL, elapsed since now, ETA)
+progress() {
+    local pid=$1 total=$2 what=$3 t=$SECONDS last=-1 n el eta
+    shift 3
+    while kill -0 "$pid" 2>/dev/null; do
+        n=$("$@")
+        if [ "$n" != "$last" ]; then
+            el=$((SECONDS - t)); eta="?"
+            [ "$n" -gt 0 ] && eta="$(( el * (total - n) / n )) s"
+            echo "verify-deep: $n of $total $what, ${el} s elapsed, ETA $eta"
+            last=$n
+        fi
+        sleep 5
+    done
+}
 done_units() { local n=0 u; for u in "${units[@]}"; do [ -f "$u" ] && n=$((n + 1)); done; echo $n; }
-last=-1
-while kill -0 "$pid" 2>/dev/null; do
-    n=$(done_units)
-    el=$((SECONDS - t0))
-    if [ "$n" != "$last" ]; then
-        eta="?"
-        [ "$n" -gt 0 ] && eta="$(( el * (total - n) / n )) s"
-        echo "verify-deep: $n of $total units done, ${el} s elapsed, ETA $eta"
-        last=$n
-    fi
-    sleep 5
-done
+progress "$pid" "$total" "units done" done_units
 wait "$pid"; rc=$?
 echo "verify-deep: units finished in $((SECONDS - t0)) s (make exit $rc)"
 if [ $rc -ne 0 ]; then
@@ -162,21 +167,12 @@ if [ ${#jobs_list[@]} -gt 0 ]; then
     # progress counts finished redraws and the verdicts print in the list's order,
     # whichever finished first.
     rm -rf "$DEEP/model"; mkdir -p "$DEEP/model/.verdict"
-    nm=${#jobs_list[@]} k=0 t1=$SECONDS
+    nm=${#jobs_list[@]} k=0
     for j in "${jobs_list[@]}"; do printf '%06d %s\n' $k "$j"; k=$((k + 1)); done |
         xargs -P "$JOBS" -L 1 bash -c 'v="$DEEP/model/.verdict/$1"; shift; redraw "$@" > "$v.tmp"; mv "$v.tmp" "$v"' _ &
     pid=$!
-    last=-1
-    while kill -0 "$pid" 2>/dev/null; do
-        n=$(find "$DEEP/model/.verdict" -type f ! -name '*.tmp' | wc -l)
-        if [ "$n" != "$last" ]; then
-            el=$((SECONDS - t1)); eta="?"
-            [ "$n" -gt 0 ] && eta="$(( el * (nm - n) / n )) s"
-            echo "verify-deep: $n of $nm models redrawn, ${el} s elapsed, ETA $eta"
-            last=$n
-        fi
-        sleep 5
-    done
+    done_redraws() { find "$DEEP/model/.verdict" -type f ! -name '*.tmp' | wc -l; }
+    progress "$pid" "$nm" "models redrawn" done_redraws
     wait "$pid"
     for ((k = 0; k < nm; k++)); do
         v=$(printf '%s/model/.verdict/%06d' "$DEEP" $k)
