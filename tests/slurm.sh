@@ -12,7 +12,8 @@
 #      bind only to it when the host name resolves to a loopback address), and stops
 #      what it started by pid at exit;
 #   3. runs SCALE=smoke locally (B=build/slurm-test/local) and through Slurm
-#      (B=build/slurm-test/slurm), cancels one running training job of the Slurm run,
+#      (B=build/slurm-test/slurm; the node drained until the first pass has submitted
+#      every unit, so no job ends before it), cancels one running training job of the Slurm run,
 #      waits for the rest, checks that the re-invocation resubmits exactly the cancelled
 #      unit and the units that need it, and that a third invocation submits nothing;
 #   4. compares every result file of the two runs, `# ...` provenance lines aside.
@@ -197,6 +198,12 @@ wait_drained() {  # wait_drained SECONDS
 }
 submitted() { sed -n 's/^reproduce: submitted \([^:]*\): job .*/\1/p' "$1" | sort; }
 
+# The node is drained while the first pass submits: at smoke scale a training job can
+# start and end in the seconds that 164 submissions take, leaving none to cancel. The
+# jobs wait in the queue (as on a busy cluster) and start when the node is resumed.
+node_state() { scontrol update NodeName="$host" State="$1" ${2:+"Reason=$2"}; }
+node_state DRAIN "tests/slurm.sh: held while the first pass submits" \
+    || fatal "scontrol could not drain node $host before the first pass"
 t0=$SECONDS
 make --no-print-directory reproduce ENGINE=slurm "${SLURM[@]}" > "$T/slurm-1.log" 2>&1 \
     || { cat "$T/slurm-1.log" >&2; fatal "make reproduce ENGINE=slurm failed (log $T/slurm-1.log)"; }
@@ -204,15 +211,21 @@ n1=$(submitted "$T/slurm-1.log" | wc -l)
 if [ "$n1" -eq "$total" ]; then ok "first Slurm pass submitted all $total units, one job each"
 else bad "first Slurm pass submitted $n1 of $total units (log $T/slurm-1.log)"; fi
 
+node_state RESUME || fatal "scontrol could not resume node $host after the first pass"
+
 # Cancel one training job (extension-pair-16-stands/main/run_*) in the middle of its training; if it finishes
 # before the cancel lands, try the next. Its checkpoint (build/.../ckpt/) stays, so the
 # resubmitted job resumes from it, and must still give the local run's results.
 JOBS=$TA/slurm/reproduce/smoke/slurm/jobs.tsv
 cancelled=""
 mapfile -t cands < <(awk -F'\t' '$1 ~ /^extension-pair-16-stands\/main\/run_s/ {print $1 "\t" $2 "\t" $3}' "$JOBS")
-deadline=$((SECONDS + 300))
+deadline=$((SECONDS + 600))
 while [ -z "$cancelled" ] && [ "$SECONDS" -lt "$deadline" ]; do
-    q=$(squeue -h -u "$(id -un)" -o '%i %T')
+    # squeue can time out while the controller takes 164 submissions: a failed call
+    # says nothing about the queue, so ask again rather than read it as empty
+    if ! q=$(squeue -h -u "$(id -un)" -o '%i %T' 2>&1); then
+        echo "slurm test: squeue failed ($q); asking again"; sleep 0.5; continue
+    fi
     left=0
     for c in "${cands[@]}"; do
         IFS=$'\t' read -r unit id log <<< "$c"
@@ -231,7 +244,10 @@ while [ -z "$cancelled" ] && [ "$SECONDS" -lt "$deadline" ]; do
     [ -n "$cancelled" ] || [ "$left" -gt 0 ] || break
     sleep 0.1
 done
-[ -n "$cancelled" ] || fatal "could not cancel a running training job (all finished first; log $T/slurm-1.log)"
+if [ -z "$cancelled" ]; then
+    ndone=0; for c in "${cands[@]}"; do [ -f "$RS/${c%%$'\t'*}" ] && ndone=$((ndone + 1)); done
+    fatal "could not cancel a running training job: ${#cands[@]} candidates in $JOBS, $ndone finished first, the rest not in the queue (last squeue: $(wc -l <<< "$q") lines; log $T/slurm-1.log)"
+fi
 sleep 1
 echo "slurm test: cancelled job $cancelled_id ($cancelled) while it was running; its log ends:"
 tail -n 3 "$log" | sed 's/^/    /'
