@@ -221,8 +221,8 @@ cancelled=""
 mapfile -t cands < <(awk -F'\t' '$1 ~ /^extension-pair-16-stands\/main\/run_s/ {print $1 "\t" $2 "\t" $3}' "$JOBS")
 deadline=$((SECONDS + 600))
 while [ -z "$cancelled" ] && [ "$SECONDS" -lt "$deadline" ]; do
-    # squeue can time out while the controller takes 164 submissions: a failed call
-    # says nothing about the queue, so ask again rather than read it as empty
+    # a failed squeue (a busy controller can time out) says nothing about the queue:
+    # ask again rather than read it as empty
     if ! q=$(squeue -h -u "$(id -un)" -o '%i %T' 2>&1); then
         echo "slurm test: squeue failed ($q); asking again"; sleep 0.5; continue
     fi
